@@ -1,0 +1,1 @@
+"""BENCH: MACE-THOR, importers, metrics, modes, the evaluation runner and reports."""

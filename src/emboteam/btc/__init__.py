@@ -1,0 +1,1 @@
+"""BTC (Behavior Tree Compiler): merged plan -> py_trees tree; exporters."""

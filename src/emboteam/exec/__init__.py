@@ -1,0 +1,1 @@
+"""EXEC: the reactive executor, blackboard protocol, replanning, dynamic team, trace."""

@@ -1,0 +1,42 @@
+"""The executor's record of an episode: a time-ordered list of events, written as JSONL.
+
+Kinds (``data`` fields in brackets):
+
+- ``action_start`` / ``action_end``   robot, [step, action, success, reason, message, recovery]
+- ``node``                             robot, [node, path, status] (behavior-tree status change)
+- ``blackboard``                       robot, [key, value] (sync flags, resource locks)
+- ``pose``                             robot, [x, z, holding]
+- ``sim``                              [kind, detail] (faults, breakdowns, joins, moved objects)
+- ``replan``                           [reason, unmet, robots]
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict
+
+EventKind = Literal["action_start", "action_end", "node", "blackboard", "pose", "sim", "replan"]
+
+
+class TraceEvent(BaseModel):
+    model_config = ConfigDict(frozen=True)
+
+    t: float
+    kind: EventKind
+    robot: str | None = None
+    data: dict[str, Any] = {}
+
+
+def write_jsonl(events: Iterable[TraceEvent], path: Path) -> None:
+    with path.open("w") as fh:
+        for ev in events:
+            fh.write(ev.model_dump_json() + "\n")
+
+
+def read_jsonl(path: Path) -> list[TraceEvent]:
+    return [TraceEvent.model_validate(json.loads(line)) for line in path.read_text().splitlines()
+            if line.strip()]

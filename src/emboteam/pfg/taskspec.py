@@ -1,0 +1,70 @@
+"""The PFG's output: an instruction decomposed into subtasks with goals, robots and
+dependencies. Produced by a front end (oracle, offline parser or LLM), consumed by the
+hybrid planner."""
+
+from __future__ import annotations
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from emboteam.world.goals import Condition, Goal
+
+
+class Subtask(BaseModel):
+    """One subtask: what must hold at its end, who should do it, what must come first."""
+
+    model_config = ConfigDict(frozen=True)
+
+    id: str = Field(description="unique within the spec, e.g. s1")
+    description: str
+    robot: str | None = Field(None, description="team member name; None lets the planner allocate")
+    goal: tuple[Condition, ...] = Field(min_length=1)
+    depends_on: tuple[str, ...] = Field((), description="subtask ids that must finish first")
+
+
+class TaskSpec(BaseModel):
+    """An instruction as subtasks. Dependencies form a DAG (checked)."""
+
+    model_config = ConfigDict(frozen=True)
+
+    instruction: str
+    subtasks: tuple[Subtask, ...] = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _dag(self) -> TaskSpec:
+        ids = [s.id for s in self.subtasks]
+        if len(ids) != len(set(ids)):
+            raise ValueError(f"duplicate subtask ids in {ids}")
+        known = set(ids)
+        for s in self.subtasks:
+            missing = [d for d in s.depends_on if d not in known]
+            if missing:
+                raise ValueError(f"subtask {s.id} depends on unknown {missing}")
+        # Kahn's algorithm: a cycle leaves nodes unvisited
+        indeg = {s.id: len(s.depends_on) for s in self.subtasks}
+        users: dict[str, list[str]] = {i: [] for i in ids}
+        for s in self.subtasks:
+            for d in s.depends_on:
+                users[d].append(s.id)
+        ready = [i for i, n in indeg.items() if n == 0]
+        seen = 0
+        while ready:
+            i = ready.pop()
+            seen += 1
+            for u in users[i]:
+                indeg[u] -= 1
+                if indeg[u] == 0:
+                    ready.append(u)
+        if seen != len(ids):
+            raise ValueError("subtask dependencies form a cycle")
+        return self
+
+    def goal(self) -> Goal:
+        """All subtasks' conditions as one conjunction (duplicates removed, order kept)."""
+        seen: dict[str, Condition] = {}
+        for s in self.subtasks:
+            for c in s.goal:
+                seen.setdefault(str(c), c)
+        return Goal(conditions=tuple(seen.values()))
+
+    def subtask(self, sid: str) -> Subtask:
+        return next(s for s in self.subtasks if s.id == sid)

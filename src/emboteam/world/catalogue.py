@@ -1,0 +1,129 @@
+"""The object catalogue: AI2-THOR object types, their property flags, masses and the
+placement rules that say which type may go in or on which receptacle.
+
+Built once from package data (converted from AI2-THOR 5.x metadata by
+``scripts/build_world_data.py``) and cached; it is immutable.
+"""
+
+from __future__ import annotations
+
+import json
+from functools import cache
+from importlib import resources
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict
+
+from emboteam.errors import UnknownObjectError
+
+Property = Literal[
+    "pickupable", "receptacle", "openable", "toggleable", "sliceable", "cookable",
+    "breakable", "dirtyable", "canFillWithLiquid", "canBeUsedUp", "isHeatSource",
+    "isColdSource", "moveable",
+]
+
+#: Knife types that satisfy the slicing rule (ALFRED / rl_thor): to slice, hold one.
+KNIVES: frozenset[str] = frozenset({"Knife", "ButterKnife"})
+
+#: Receptacles that heat what is in or on them while switched on (a StoveBurner is "on"
+#: when its StoveKnob is).
+HEATERS: frozenset[str] = frozenset({"Microwave", "StoveBurner", "Toaster", "CoffeeMachine"})
+
+#: Basins that running water from a Faucet reaches.
+BASINS: frozenset[str] = frozenset({"SinkBasin", "BathtubBasin"})
+
+#: "In the sink" means in its basin: AI2-THOR puts objects in the SinkBasin (the Sink
+#: itself is often not a receptacle). Goal references to the left mean either.
+SAME_PLACE: dict[str, frozenset[str]] = {
+    "Sink": frozenset({"Sink", "SinkBasin"}),
+    "SinkBasin": frozenset({"Sink", "SinkBasin"}),
+    "Bathtub": frozenset({"Bathtub", "BathtubBasin"}),
+    "BathtubBasin": frozenset({"Bathtub", "BathtubBasin"}),
+}
+
+
+def place_types(types: tuple[str, ...]) -> frozenset[str]:
+    """Receptacle types a goal's receptacle reference stands for (Sink -> Sink, SinkBasin)."""
+    out: set[str] = set()
+    for t in types:
+        out |= SAME_PLACE.get(t, frozenset({t}))
+    return frozenset(out)
+
+
+class ObjectType(BaseModel):
+    """One AI2-THOR object type: the union of its instances' property flags, its median mass."""
+
+    model_config = ConfigDict(frozen=True)
+
+    name: str
+    properties: frozenset[str]
+    mass: float
+    rooms: tuple[str, ...] = ()
+
+    def has(self, prop: str) -> bool:
+        return prop in self.properties
+
+
+class Catalogue(BaseModel):
+    """All object types plus the placement rules of AI2-THOR's SimObjType.cs."""
+
+    model_config = ConfigDict(frozen=True)
+
+    types: dict[str, ObjectType]
+    #: object type -> receptacle types it may be placed in/on (types absent: anywhere)
+    placement: dict[str, frozenset[str]]
+    #: receptacles that must be open before something is put in them
+    must_be_open: frozenset[str]
+    #: receptacles things go *in* (the rest are surfaces things go *on*)
+    in_receptacles: frozenset[str]
+    #: receptacles that accept only the listed types (CoffeeMachine takes Mug, ...)
+    receptacle_whitelist: dict[str, frozenset[str]]
+    #: sliceable type -> (piece type, number of pieces)
+    slice_products: dict[str, tuple[str, int]]
+
+    def type(self, name: str) -> ObjectType:
+        try:
+            return self.types[name]
+        except KeyError:
+            raise UnknownObjectError(f"unknown object type {name!r}") from None
+
+    def can_place(self, obj_type: str, receptacle_type: str) -> bool:
+        """May an object of ``obj_type`` be put in/on a ``receptacle_type``?
+
+        A receptacle with a whitelist (CoffeeMachine, Toaster, StoveBurner, the holders)
+        decides alone: it takes exactly the listed types. Otherwise the object's placement
+        restriction decides; a type without a restriction goes anywhere (AI2-THOR's rule).
+        """
+        white = self.receptacle_whitelist.get(receptacle_type)
+        if white is not None:
+            return obj_type in white
+        allowed = self.placement.get(obj_type)
+        return allowed is None or receptacle_type in allowed
+
+    def slice_product(self, whole_type: str) -> tuple[str, int] | None:
+        return self.slice_products.get(whole_type)
+
+    def source_type(self, piece_type: str) -> str | None:
+        """The whole a piece type comes from (``AppleSliced`` -> ``Apple``)."""
+        for whole, (piece, _) in self.slice_products.items():
+            if piece == piece_type:
+                return whole
+        return None
+
+
+@cache
+def load_catalogue() -> Catalogue:
+    """The catalogue shipped with the package (cached: it never changes at run time)."""
+    raw = json.loads(resources.files("emboteam.world.data").joinpath("catalogue.json").read_text())
+    return Catalogue(
+        types={
+            name: ObjectType(name=name, properties=frozenset(t["properties"]), mass=t["mass"],
+                             rooms=tuple(t["rooms"]))
+            for name, t in raw["types"].items()
+        },
+        placement={k: frozenset(v) for k, v in raw["placement"].items()},
+        must_be_open=frozenset(raw["must_be_open"]),
+        in_receptacles=frozenset(raw["in_receptacles"]),
+        receptacle_whitelist={k: frozenset(v) for k, v in raw["receptacle_whitelist"].items()},
+        slice_products={k: (v[0], int(v[1])) for k, v in raw["slice_products"].items()},
+    )
