@@ -1,0 +1,86 @@
+"""An episode: one task run end to end, with its outcome, metrics and trace.
+
+On disk (``emboteam run --out DIR``)::
+
+    DIR/episode.json   Episode without the trace
+    DIR/trace.jsonl    one TraceEvent per line
+    DIR/report.html    the self-contained viewer (emboteam report DIR rebuilds it)
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from emboteam.exec.trace import TraceEvent, read_jsonl, write_jsonl
+from emboteam.hp.plan import MergedPlan
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.sim.faults import FaultConfig
+
+
+class ConditionOutcome(BaseModel):
+    """A goal condition's truth at the end of the episode."""
+
+    model_config = ConfigDict(frozen=True)
+
+    condition: str
+    holds: bool
+    satisfied: int
+    required: int
+
+
+class Episode(BaseModel):
+    model_config = ConfigDict(frozen=True)
+
+    task: str = Field(description="SUITE/ID, or 'adhoc' for an instruction given on the command line")
+    instruction: str
+    floor_plan: str
+    robots: tuple[str, ...] = Field(description="team member names, e.g. robot1")
+    category: str = ""
+    mode: str = Field("full", description="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p")
+    frontend: str = "offline"
+    seed: int = 0
+    faults: FaultConfig = FaultConfig()
+    fault_level: float = 0.0
+
+    success: bool = False
+    gcr: float = 0.0
+    exec: float = Field(0.0, description="share of executed actions that succeeded")
+    makespan: float = Field(0.0, description="simulated seconds until the last robot stopped")
+    actions: int = Field(0, description="actions executed (started), failed ones included")
+    failed_actions: int = 0
+    recoveries: int = 0
+    replans: int = 0
+    llm_calls: int = 0
+    tokens: int = 0
+    plan_seconds: float = Field(0.0, description="wall-clock seconds in PFG + HP")
+    wall_seconds: float = 0.0
+    error: str | None = Field(None, description="the typed error that ended the episode early")
+
+    conditions: tuple[ConditionOutcome, ...] = ()
+    taskspec: TaskSpec | None = None
+    plan: MergedPlan | None = None
+    trace: tuple[TraceEvent, ...] = Field((), exclude=True)
+
+    def summary(self) -> dict[str, object]:
+        """The fields of ``emboteam run --json`` (docs/DESIGN.md)."""
+        return {
+            "task": self.task, "success": self.success, "gcr": round(self.gcr, 4),
+            "exec": round(self.exec, 4), "makespan": round(self.makespan, 2),
+            "actions": self.actions, "llm_calls": self.llm_calls, "tokens": self.tokens,
+            "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
+        }
+
+    def save(self, directory: Path) -> None:
+        directory.mkdir(parents=True, exist_ok=True)
+        (directory / "episode.json").write_text(self.model_dump_json(indent=1))
+        write_jsonl(self.trace, directory / "trace.jsonl")
+
+    @classmethod
+    def load(cls, directory: Path) -> Episode:
+        data = json.loads((directory / "episode.json").read_text())
+        trace_path = directory / "trace.jsonl"
+        trace = read_jsonl(trace_path) if trace_path.exists() else []
+        return cls.model_validate({**data, "trace": trace})
