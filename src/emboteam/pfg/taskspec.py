@@ -19,6 +19,9 @@ class Subtask(BaseModel):
     robot: str | None = Field(None, description="team member name; None lets the planner allocate")
     goal: tuple[Condition, ...] = Field(min_length=1)
     depends_on: tuple[str, ...] = Field((), description="subtask ids that must finish first")
+    final: bool = Field(True, description="its conditions must still hold at the end; False for "
+                        "an intermediate step a later subtask undoes (rinse the lettuce in the "
+                        "sink, then put it on the counter)")
 
 
 class TaskSpec(BaseModel):
@@ -59,9 +62,12 @@ class TaskSpec(BaseModel):
         return self
 
     def goal(self) -> Goal:
-        """All subtasks' conditions as one conjunction (duplicates removed, order kept)."""
+        """The final subtasks' conditions as one conjunction (duplicates removed, order
+        kept): what must hold when the whole task is done."""
         seen: dict[str, Condition] = {}
         for s in self.subtasks:
+            if not s.final:
+                continue
             for c in s.goal:
                 seen.setdefault(str(c), c)
         return Goal(conditions=tuple(seen.values()))
