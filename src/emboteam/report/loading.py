@@ -1,0 +1,71 @@
+"""Reading a run directory (``episode.json`` + ``trace.jsonl``) with errors a user can act on.
+
+:meth:`Episode.load` would surface a raw ``FileNotFoundError``, ``JSONDecodeError`` or
+pydantic ``ValidationError``; the report is what people open after a run went wrong, so
+each problem becomes a :class:`ReportError` naming the file (and line) at fault.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from pydantic import ValidationError
+
+from emboteam.errors import EmboTeamError
+from emboteam.exec.episode import Episode
+from emboteam.exec.trace import TraceEvent
+
+
+class ReportError(EmboTeamError):
+    """A run or benchmark directory the report cannot be built from."""
+
+
+def _first_error(exc: ValidationError) -> str:
+    err = exc.errors()[0]
+    where = ".".join(str(p) for p in err["loc"]) or "(top level)"
+    more = f" (and {exc.error_count() - 1} more)" if exc.error_count() > 1 else ""
+    return f"{where}: {err['msg']}{more}"
+
+
+def read_trace(path: Path) -> list[TraceEvent]:
+    """The events of ``trace.jsonl``, in file order; a bad line is reported by number."""
+    events: list[TraceEvent] = []
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ReportError(f"cannot read {path}: {exc}") from None
+    for number, line in enumerate(text.splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            events.append(TraceEvent.model_validate(json.loads(line)))
+        except json.JSONDecodeError as exc:
+            raise ReportError(f"{path}:{number}: not JSON ({exc.msg})") from None
+        except ValidationError as exc:
+            raise ReportError(f"{path}:{number}: not a trace event: {_first_error(exc)}") from None
+    return events
+
+
+def load_episode_dir(directory: Path) -> Episode:
+    """The episode saved in ``directory`` by :meth:`Episode.save`, with its trace (a
+    missing ``trace.jsonl`` means an episode that ended before acting: empty trace)."""
+    if not directory.is_dir():
+        raise ReportError(f"{directory} is not a directory")
+    path = directory / "episode.json"
+    if not path.is_file():
+        raise ReportError(f"{directory} has no episode.json: not the output of `emboteam run --out`")
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ReportError(f"cannot read {path}: {exc}") from None
+    except json.JSONDecodeError as exc:
+        raise ReportError(f"{path}: not JSON ({exc.msg} at line {exc.lineno})") from None
+    if not isinstance(data, dict):
+        raise ReportError(f"{path}: expected a JSON object, found {type(data).__name__}")
+    trace_path = directory / "trace.jsonl"
+    trace = read_trace(trace_path) if trace_path.exists() else []
+    try:
+        return Episode.model_validate({**data, "trace": trace})
+    except ValidationError as exc:
+        raise ReportError(f"{path}: not an episode: {_first_error(exc)}") from None
