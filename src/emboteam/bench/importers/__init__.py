@@ -1,0 +1,1 @@
+"""Importers of other benchmarks' task formats into :class:`~emboteam.bench.task.BenchTask`."""

@@ -1,0 +1,94 @@
+"""Benchmark suites by name: ``mace-thor`` (package data) and ``smart-llm:PATH`` (tasks in
+the SMART-LLM / MAT-THOR format, imported from every ``FloorPlanN*.json`` beneath PATH).
+
+``get_task("SUITE/ID")`` is how the CLI resolves a TASK argument; unknown suites and tasks
+are typed errors that list the closest names.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections import Counter
+from pathlib import Path
+
+from pydantic import BaseModel, ConfigDict
+
+from emboteam.bench.mace_thor import SUITE_NAME as MACE_THOR
+from emboteam.bench.mace_thor import load_mace_thor
+from emboteam.bench.task import BenchTask
+from emboteam.errors import EmboTeamError
+
+SMART_LLM_PREFIX = "smart-llm:"
+
+#: how suites are written on the command line
+SUITE_SPECS: tuple[str, ...] = (MACE_THOR, SMART_LLM_PREFIX + "PATH")
+
+
+class UnknownSuiteError(EmboTeamError):
+    """A suite spec that names no known suite, or a smart-llm PATH with no task files."""
+
+
+class UnknownTaskError(EmboTeamError):
+    """A task id that is not in its suite."""
+
+
+class Suite(BaseModel):
+    """A loaded suite: its tasks, and what an importer had to leave out (``problems``:
+    one line each, ``FILE:LINE: why``)."""
+
+    model_config = ConfigDict(frozen=True)
+
+    name: str
+    tasks: tuple[BenchTask, ...]
+    problems: tuple[str, ...] = ()
+
+    def task(self, task_id: str) -> BenchTask:
+        for t in self.tasks:
+            if t.id == task_id:
+                return t
+        ids = [t.id for t in self.tasks]
+        close = difflib.get_close_matches(task_id, ids, n=5, cutoff=0.5)
+        hint = f"; did you mean {', '.join(close)}?" if close else f"; it has {len(ids)} tasks " \
+            f"(emboteam tasks --suite {self.name})"
+        raise UnknownTaskError(f"suite {self.name} has no task {task_id!r}{hint}")
+
+    def categories(self) -> dict[str, int]:
+        """Number of tasks per category, in first-seen order."""
+        return dict(Counter(t.category for t in self.tasks))
+
+
+def load_suite(spec: str) -> Suite:
+    """``mace-thor`` or ``smart-llm:PATH`` (a directory searched recursively, or one file)."""
+    text = spec.strip()
+    if text == MACE_THOR:
+        return Suite(name=MACE_THOR, tasks=load_mace_thor())
+    if text.startswith(SMART_LLM_PREFIX):
+        from emboteam.bench.importers.smart_llm import import_smart_llm
+
+        path = text[len(SMART_LLM_PREFIX):]
+        if not path:
+            raise UnknownSuiteError("smart-llm needs a path: smart-llm:PATH (a folder of FloorPlanN*.json files)")
+        return import_smart_llm(Path(path).expanduser(), suite=text)
+    close = difflib.get_close_matches(text, [MACE_THOR, "smart-llm"], n=1, cutoff=0.5)
+    hint = f"; did you mean {close[0]}{':PATH' if close[0] == 'smart-llm' else ''}?" if close else ""
+    raise UnknownSuiteError(f"unknown suite {spec!r}{hint} (suites: {', '.join(SUITE_SPECS)})")
+
+
+def split_task_key(key: str) -> tuple[str, str]:
+    """``SUITE/ID`` -> (suite, id). The id is after the last ``/`` (a smart-llm PATH may
+    contain slashes)."""
+    suite, sep, task_id = key.strip().rpartition("/")
+    if not sep or not suite or not task_id:
+        hint = ""
+        if sep == "" and key.strip():
+            ids = [t.id for t in load_mace_thor()]
+            if key.strip() in ids:
+                hint = f"; did you mean {MACE_THOR}/{key.strip()}?"
+        raise UnknownTaskError(f"a task is written SUITE/ID, e.g. {MACE_THOR}/fp1-toast, not {key!r}{hint}")
+    return suite, task_id
+
+
+def get_task(key: str) -> BenchTask:
+    """The task ``SUITE/ID`` (e.g. ``mace-thor/fp1-toast``)."""
+    suite, task_id = split_task_key(key)
+    return load_suite(suite).task(task_id)
