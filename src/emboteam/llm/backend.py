@@ -1,0 +1,78 @@
+"""The backend interface: one provider's wire protocol, nothing else.
+
+A backend sends one attempt of a request and returns an :class:`LLMResponse`, or raises
+:class:`TransientFailure` (worth retrying: 429, 5xx, time-out, connection) or
+:class:`PermanentFailure` (not worth it: bad request, bad key). Retries, budget, usage
+and recording live in :class:`emboteam.llm.client.LLMClient`, once for every backend.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime, timezone
+from email.utils import parsedate_to_datetime
+from typing import Literal, Protocol
+
+from emboteam.llm.messages import LLMRequest, LLMResponse
+
+TransientKind = Literal["rate_limit", "server", "timeout", "connection"]
+PermanentKind = Literal["auth", "request", "server", "timeout"]
+
+
+class TransientFailure(Exception):
+    """An attempt failed in a way a later attempt may not. ``retry_after``: the server's
+    Retry-After, seconds."""
+
+    def __init__(self, kind: TransientKind, message: str, *, retry_after: float | None = None,
+                 status: int | None = None) -> None:
+        super().__init__(message)
+        self.kind = kind
+        self.retry_after = retry_after
+        self.status = status
+
+
+class PermanentFailure(Exception):
+    """An attempt failed in a way retrying cannot fix."""
+
+    def __init__(self, kind: PermanentKind, message: str, *, status: int | None = None) -> None:
+        super().__init__(message)
+        self.kind = kind
+        self.status = status
+
+
+class Backend(Protocol):
+    """One provider. ``name`` is the spec without secrets, for logs and cassettes."""
+
+    name: str
+
+    def send(self, request: LLMRequest) -> LLMResponse: ...
+
+
+def parse_retry_after(value: str | None) -> float | None:
+    """Seconds from a Retry-After header (delta-seconds or an HTTP date), or None."""
+    if value is None:
+        return None
+    value = value.strip()
+    try:
+        return max(0.0, float(value))
+    except ValueError:
+        pass
+    try:
+        when = parsedate_to_datetime(value)
+    except (TypeError, ValueError):
+        return None
+    if when.tzinfo is None:
+        when = when.replace(tzinfo=timezone.utc)
+    return max(0.0, (when - datetime.now(timezone.utc)).total_seconds())
+
+
+def status_failure(status: int, message: str, retry_after: float | None) -> TransientFailure | PermanentFailure:
+    """Classify an HTTP error status the same way for every HTTP backend."""
+    if status == 429:
+        return TransientFailure("rate_limit", message, retry_after=retry_after, status=status)
+    if status == 408:
+        return TransientFailure("timeout", message, retry_after=retry_after, status=status)
+    if status >= 500:
+        return TransientFailure("server", message, retry_after=retry_after, status=status)
+    if status in (401, 403):
+        return PermanentFailure("auth", message, status=status)
+    return PermanentFailure("request", message, status=status)

