@@ -9,12 +9,15 @@ are *not* read here and must never be shipped.
 Conversion decisions (each one documented in docs/world.md):
 - stable ids ``Type_N``: objects of one type numbered 1.. in the order of their AI2-THOR
   objectId (a string that encodes the position, so the order is stable across dumps);
-- parent = the *first* entry of ``parentReceptacles`` (AI2-THOR lists the immediate
-  receptacle first); every parent id in the dump resolves exactly (checked here);
+- parent: ``parentReceptacles`` lists *every* receptacle whose trigger box overlaps the
+  object, in no useful order, with physics artefacts (a CounterTop "in" a Bowl, a
+  DiningTable "in" its Chairs, a Floor "in" a GarbageCan). :func:`resolve_parents` keeps
+  one immediate receptacle per object by the rule documented there and in docs/world.md;
+  every parent id in the dump resolves exactly, and the result has no cycle (both checked);
 - ``controls``: AI2-THOR's ``controlledObjects`` is missing from the dump, so each
-  StoveKnob is paired with a StoveBurner by minimum-distance matching, and each Faucet
-  with the nearest SinkBasin / BathtubBasin (the basin its water runs into) and the
-  Sink / Bathtub that basin belongs to;
+  StoveKnob is paired with a StoveBurner by minimum-distance matching, and each Faucet or
+  ShowerHead with the nearest basin within :data:`WATER_REACH` (the basin its water runs
+  into) and the Sink / Bathtub that basin belongs to;
 - initial state: AI2-THOR defaults (closed, off, clean, empty, room temperature) unless the
   dump records a non-default value.
 """
@@ -40,14 +43,20 @@ PROPS = [
 #: What slicing (or cracking) produces, and how many pieces. AI2-THOR spawns 7-10 pieces
 #: for most types; we spawn fewer to keep planning problems small. No goal in any suite
 #: depends on more than two pieces of one object.
-SLICE_PRODUCTS = {
-    "Apple": ["AppleSliced", 3],
-    "Bread": ["BreadSliced", 3],
-    "Lettuce": ["LettuceSliced", 3],
-    "Potato": ["PotatoSliced", 3],
-    "Tomato": ["TomatoSliced", 3],
-    "Egg": ["EggCracked", 1],
+SLICE_PRODUCTS: dict[str, tuple[str, int]] = {
+    "Apple": ("AppleSliced", 3),
+    "Bread": ("BreadSliced", 3),
+    "Lettuce": ("LettuceSliced", 3),
+    "Potato": ("PotatoSliced", 3),
+    "Tomato": ("TomatoSliced", 3),
+    "Egg": ("EggCracked", 1),
 }
+
+#: Openable receptacles that enclose their contents although AI2-THOR's
+#: MustBeOpenToPlaceObjectsIn omits them: a closed Safe's door blocks every placement in
+#: AI2-THOR's physics. (A Toilet is *not* among them: things stand on its tank with the lid
+#: closed, as 43 objects do in the bathroom scenes.)
+ENCLOSED_TOO = frozenset({"Safe"})
 
 #: Receptacles that accept only some types (AI2-THOR SimObjType.cs and the public object
 #: table: "CoffeeMachines ... only allow objects of type Mug", "StoveBurners ... only allow
@@ -114,7 +123,7 @@ def build_catalogue(shared: Path, scenes_raw: dict[str, list[dict[str, Any]]]) -
         "(AI2-THOR 5.x metadata, MIT/Apache)",
         "types": types,
         "placement": placement,
-        "must_be_open": sorted(restr["MustBeOpenToPlaceObjectsIn"]),
+        "must_be_open": sorted(set(restr["MustBeOpenToPlaceObjectsIn"]) | ENCLOSED_TOO),
         "in_receptacles": sorted(restr["InReceptacles"]),
         "receptacle_whitelist": RECEPTACLE_WHITELIST,
         "slice_products": SLICE_PRODUCTS,
@@ -147,6 +156,132 @@ def _pair_knobs(knobs: list[dict[str, Any]], burners: list[dict[str, Any]]) -> d
     return pairs
 
 
+#: Seats: their trigger boxes reach up around a table they are tucked under, so an object
+#: on the table is also "in" the chair. A seat loses to any other surface.
+SEATS = frozenset({"Chair", "Stool", "ArmChair", "Sofa", "Ottoman", "Footstool"})
+
+#: Moveable furniture that stands on the floor: its trigger-box overlaps with neighbouring
+#: furniture (a desk "in" the chair pushed under it) are artefacts.
+FLOOR_STANDING = SEATS | frozenset({
+    "Bed", "CoffeeTable", "Desk", "DiningTable", "DogBed", "Dresser", "FloorLamp", "GarbageBag",
+    "GarbageCan", "LaundryHamper", "RoomDecor", "Safe", "ShelvingUnit", "SideTable", "TVStand",
+    "VacuumCleaner",
+})
+
+#: How far (horizontally, m) a Faucet's or ShowerHead's water reaches: it runs into the
+#: nearest basin within this distance, or into nothing (a shower over a bare floor).
+WATER_REACH = 1.5
+
+#: Basin-like receptacles running water fills; a Sink/Bathtub without a basin object
+#: (a few bathrooms) stands in for its own basin.
+WATER_BASINS = ("SinkBasin", "BathtubBasin")
+WATER_OUTERS = ("Sink", "Bathtub")
+
+
+def _hdist(a: dict[str, float], b: dict[str, float]) -> float:
+    return math.hypot(a["x"] - b["x"], a["z"] - b["z"])
+
+
+def _kind(o: dict[str, Any]) -> str:
+    if "pickupable" in o["props"]:
+        return "pickupable"
+    return "moveable" if "moveable" in o["props"] else "fixture"
+
+
+def resolve_parents(objs: list[dict[str, Any]]) -> dict[str, str | None]:
+    """One immediate receptacle per object (AI2-THOR objectId -> objectId or None).
+
+    - fixtures (neither pickupable nor moveable: counters, cabinets, sinks, the floor)
+      have no parent, except a SinkBasin/BathtubBasin, which is part of the Sink/Bathtub
+      its id is prefixed with (AI2-THOR's ``UseParentObjectIDasPrefix``);
+    - moveable furniture (:data:`FLOOR_STANDING`) stands on the Floor when it is a
+      candidate; other moveable objects (appliances, lamps, a television) rest on the
+      non-pickupable candidate chosen as below (a toaster on a counter top);
+    - pickupable objects: drop candidates that contain another candidate (the counter
+      under the plate the tomato is on), then prefer anything over a seat, and a seat over
+      the Floor; remaining ties (a pan across two burners) go to the horizontally nearest.
+    """
+    by_id = {o["objectId"]: o for o in objs}
+    parents: dict[str, str | None] = {}
+    resolving: set[str] = set()
+
+    def ancestors(oid: str) -> set[str]:
+        out: set[str] = set()
+        cur = resolve(oid)
+        while cur is not None and cur not in out:
+            out.add(cur)
+            cur = resolve(cur)
+        return out
+
+    def resolve(oid: str) -> str | None:
+        if oid in parents:
+            return parents[oid]
+        o = by_id[oid]
+        if oid in resolving:  # a containment cycle in the dump: this link is an artefact
+            return None
+        resolving.add(oid)
+        kind = _kind(o)
+        cands = [p for p in dict.fromkeys(o["parentReceptacles"] or []) if p != oid]
+        choice: str | None = None
+        if kind == "fixture":
+            outer = oid.rsplit("|", 1)[0]
+            if o["objectType"] in WATER_BASINS and outer != oid and outer in by_id:
+                choice = outer
+        elif (kind == "moveable" and o["objectType"] in FLOOR_STANDING
+              and any(by_id[p]["objectType"] == "Floor" for p in cands)):
+            choice = next(p for p in cands if by_id[p]["objectType"] == "Floor")
+        else:
+            if kind == "moveable":
+                cands = [p for p in cands if _kind(by_id[p]) != "pickupable"]
+            anc = {p: ancestors(p) for p in cands}
+            inner = [p for p in cands if not any(p in anc[q] for q in cands if q != p)]
+            cands = inner or cands
+            if cands:
+                def rank(p: str) -> tuple[int, float, str]:
+                    t = by_id[p]["objectType"]
+                    cls = 2 if t == "Floor" else 1 if t in SEATS else 0
+                    return (cls, _hdist(by_id[p]["position"], o["position"]), p)
+                choice = min(cands, key=rank)
+        resolving.discard(oid)
+        parents[oid] = choice
+        return choice
+
+    for o in objs:
+        resolve(o["objectId"])
+    for oid in parents:  # the result must be a forest
+        seen = {oid}
+        cur = parents[oid]
+        while cur is not None:
+            if cur in seen:
+                raise SystemExit(f"containment cycle through {oid}")
+            seen.add(cur)
+            cur = parents[cur]
+    return parents
+
+
+def water_links(objs: list[dict[str, Any]]) -> dict[str, list[str]]:
+    """Faucet/ShowerHead -> the basin its water runs into and that basin's Sink/Bathtub."""
+    by_id = {o["objectId"]: o for o in objs}
+    basins = [o for o in objs if o["objectType"] in WATER_BASINS]
+    # a Sink/Bathtub with no basin object of its own is its own basin
+    owned = {b["objectId"].rsplit("|", 1)[0] for b in basins}
+    basins += [o for o in objs if o["objectType"] in WATER_OUTERS and o["objectId"] not in owned]
+    basins = [b for b in basins if "receptacle" in b["props"]]  # water into nothing does nothing
+    links: dict[str, list[str]] = {}
+    for src in (o for o in objs if o["objectType"] in ("Faucet", "ShowerHead")):
+        # a shower head runs into a bathtub, never into a sink (shower stalls have no basin)
+        near = [b for b in basins if _hdist(b["position"], src["position"]) <= WATER_REACH
+                and (src["objectType"] == "Faucet" or b["objectId"].startswith("Bathtub"))]
+        if not near:
+            continue
+        basin = min(near, key=lambda b: (_hdist(b["position"], src["position"]), b["objectId"]))
+        links[src["objectId"]] = [basin["objectId"]]
+        outer = basin["objectId"].rsplit("|", 1)[0]
+        if outer != basin["objectId"] and outer in by_id:
+            links[src["objectId"]].append(outer)
+    return links
+
+
 def convert_scene(floor_plan: str, objs: list[dict[str, Any]]) -> dict[str, Any]:
     by_thor = {o["objectId"]: o for o in objs}
     counters: dict[str, int] = defaultdict(int)
@@ -154,30 +289,26 @@ def convert_scene(floor_plan: str, objs: list[dict[str, Any]]) -> dict[str, Any]
     for o in sorted(objs, key=lambda o: (o["objectType"], o["objectId"])):
         counters[o["objectType"]] += 1
         stable[o["objectId"]] = f"{o['objectType']}_{counters[o['objectType']]}"
+    for o in objs:
+        for p in o["parentReceptacles"] or []:
+            if p not in by_thor:
+                raise SystemExit(f"{floor_plan}: parent {p} of {o['objectId']} not in scene")
 
     controls: dict[str, list[str]] = defaultdict(list)
     knobs = [o for o in objs if o["objectType"] == "StoveKnob"]
     burners = [o for o in objs if o["objectType"] == "StoveBurner"]
     for knob, burner in _pair_knobs(knobs, burners).items():
         controls[knob].append(burner)
-    basins = [o for o in objs if o["objectType"] in ("SinkBasin", "BathtubBasin")]
-    for faucet in (o for o in objs if o["objectType"] == "Faucet"):
-        if basins:
-            nearest = min(basins, key=lambda b: _dist(b["position"], faucet["position"]))
-            controls[faucet["objectId"]].append(nearest["objectId"])
-            # the basin's id is "<Sink id>|SinkBasin": water reaches the sink proper too
-            outer = nearest["objectId"].rsplit("|", 1)[0]
-            if outer in by_thor:
-                controls[faucet["objectId"]].append(outer)
+    for src, targets in water_links(objs).items():
+        controls[src].extend(targets)
+    parents = resolve_parents(objs)
 
     out = []
-    for o in sorted(objs, key=lambda o: stable[o["objectId"]].rsplit("_", 1)[0] + f"{_num(stable[o['objectId']]):04d}"):
-        parents = o["parentReceptacles"] or []
-        for p in parents:
-            if p not in by_thor:
-                raise SystemExit(f"{floor_plan}: parent {p} of {o['objectId']} not in scene")
+    for o in sorted(objs, key=lambda o: (o["objectType"], _num(stable[o["objectId"]]))):
         st = o["state"]
-        state = {}
+        state: dict[str, Any] = {}
+        # ``isOpen`` decides (AI2-THOR's OpenObject/PutObject checks read it); three
+        # cabinets/drawers report openness 1.0 with isOpen false and stay closed
         if st.get("isOpen"):
             state["is_open"] = True
         if st.get("isToggled"):
@@ -189,6 +320,7 @@ def convert_scene(floor_plan: str, objs: list[dict[str, Any]]) -> dict[str, Any]
         if st.get("temperature") in ("Hot", "Cold"):
             state["temperature"] = st["temperature"]
         pos = o["position"]
+        parent = parents[o["objectId"]]
         out.append({
             "id": stable[o["objectId"]],
             "thor_id": o["objectId"],
@@ -196,7 +328,7 @@ def convert_scene(floor_plan: str, objs: list[dict[str, Any]]) -> dict[str, Any]
             "properties": sorted(p for p in o["props"] if p in PROPS),
             "mass": float(o["mass"] or 0.0),
             "position": [round(pos["x"], 3), round(pos["y"], 3), round(pos["z"], 3)],
-            "parent": stable[parents[0]] if parents else None,
+            "parent": stable[parent] if parent is not None else None,
             "state": state,
             "controls": [stable[c] for c in controls.get(o["objectId"], [])],
         })

@@ -3,12 +3,22 @@ coffee, and stove knobs that switch their burners.
 
 :func:`settle` is called after every successful action and is idempotent. Effects are
 persistent (a potato taken out of a hot microwave stays hot and cooked), which is how
-goal checks in SMART-LLM, LaMMA-P and ALFRED read them.
+goal checks in SMART-LLM, LaMMA-P and ALFRED read them; AI2-THOR itself lets temperature
+drift back to RoomTemp after about ten seconds (docs/world.md).
 """
 
 from __future__ import annotations
 
+from collections import defaultdict
+
 from emboteam.world.state import ObjectState, WorldState
+
+#: Heat sources that heat (and cook) everything in or on them, transitively: the contents
+#: of a pan on a burner, a potato in a bowl in the microwave.
+HEATING = frozenset({"Microwave", "StoveBurner", "Toaster"})
+
+#: Objects whose running water reaches the basins they control.
+WATER_SOURCES = frozenset({"Faucet", "ShowerHead"})
 
 
 def switch(state: WorldState, o: ObjectState, *, on: bool) -> None:
@@ -29,30 +39,48 @@ def _heat(o: ObjectState) -> None:
 
 
 def settle(state: WorldState) -> None:
-    """Apply every standing side effect of running appliances and cold sources."""
-    for src in state.objects.values():
+    """Apply every standing side effect of running appliances and cold sources.
+
+    One pass builds a parent -> children index, so the cost is linear in the number of
+    objects however many appliances run (it runs after every action).
+    """
+    children: dict[str, list[ObjectState]] = defaultdict(list)
+    for o in state.objects.values():
+        if o.parent is not None:
+            children[o.parent].append(o)
+    if not children:
+        return
+
+    def within(root: str) -> list[ObjectState]:
+        out: list[ObjectState] = []
+        frontier = [root]
+        while frontier:
+            for child in children.get(frontier.pop(), ()):
+                out.append(child)
+                frontier.append(child.id)
+        return out
+
+    for src in list(state.objects.values()):
         t = src.type
         if t == "Fridge" and src.has("isColdSource"):
-            for o in state.descendants(src.id):
+            for o in within(src.id):
                 o.temperature = "Cold"
         if not src.is_on:
             continue
-        if t in ("Microwave", "StoveBurner"):
-            # contents and contents of pans/pots on the burner heat; cookables cook
-            for o in state.descendants(src.id):
-                _heat(o)
-        elif t == "Toaster":
-            for o in state.descendants(src.id):
+        if t in HEATING:
+            for o in within(src.id):
                 _heat(o)
         elif t == "CoffeeMachine":
-            for o in state.children(src.id):
+            # AI2-THOR: an empty Mug in a running coffee machine fills with coffee and
+            # turns Hot (only Mugs fit, see the catalogue's receptacle whitelist)
+            for o in children.get(src.id, ()):
                 if o.has("canFillWithLiquid") and o.liquid is None:
                     o.liquid = "coffee"
                 if o.type == "Mug":
                     o.temperature = "Hot"
-        elif t == "Faucet":
+        elif t in WATER_SOURCES:
             for basin in src.controls:
-                for o in state.descendants(basin):
+                for o in within(basin):
                     if o.is_dirty:
                         o.is_dirty = False
                     if o.has("canFillWithLiquid") and o.liquid is None:

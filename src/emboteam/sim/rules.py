@@ -17,6 +17,10 @@ from emboteam.world.state import ObjectState, WorldState
 
 R = FailureReason
 
+#: Appliances whose door and power interlock (AI2-THOR's object table: "Microwaves cannot
+#: be turned on if they are open, and cannot be opened if they are currently on").
+INTERLOCKED: frozenset[str] = frozenset({"Microwave"})
+
 
 @dataclass(frozen=True, slots=True)
 class Failure:
@@ -103,6 +107,8 @@ def check_action(state: WorldState, robot: str, action: Action) -> Failure | Non
             return Failure(R.ALREADY_OPEN, f"{o.id} is already open")
         if skill is Skill.CloseObject and not o.is_open:
             return Failure(R.ALREADY_CLOSED, f"{o.id} is already closed")
+        if skill is Skill.OpenObject and o.type in INTERLOCKED and o.is_on:
+            return Failure(R.ALREADY_ON, f"{o.id} is running: switch it off before opening it")
         return None
     if skill in (Skill.SwitchOn, Skill.SwitchOff):
         if not o.has("toggleable"):
@@ -112,6 +118,10 @@ def check_action(state: WorldState, robot: str, action: Action) -> Failure | Non
             return Failure(R.ALREADY_ON, f"{o.id} is already on")
         if skill is Skill.SwitchOff and not o.is_on:
             return Failure(R.ALREADY_OFF, f"{o.id} is already off")
+        if skill is Skill.SwitchOn and o.is_broken:
+            return Failure(R.ALREADY_BROKEN, f"{o.id} is broken and no longer switches on")
+        if skill is Skill.SwitchOn and o.type in INTERLOCKED and o.is_open:
+            return Failure(R.ALREADY_OPEN, f"{o.id} is open: close it before switching it on")
         return None
     if skill is Skill.SliceObject:
         if not o.has("sliceable") or cat.slice_product(o.type) is None:
@@ -163,6 +173,8 @@ def apply_action(state: WorldState, robot: str, action: Action) -> None:
     - ThrowObject lands the held object in the nearest GarbageCan within reach whatever the
       placement rules (THOR_SEMANTICS: "the held object ends in a GarbageCan").
     - DropHandObject drops it on the floor under the robot.
+    - BreakObject switches a running object off (a broken Television or Laptop cannot be
+      switched on again, see :func:`check_action`).
     - PushObject/PullObject only shift a position in AI2-THOR, which the symbolic state
       does not model: they succeed without a symbolic effect.
     """
@@ -199,6 +211,8 @@ def apply_action(state: WorldState, robot: str, action: Action) -> None:
         _cut(state, o)
     elif skill is Skill.BreakObject:
         o.is_broken = True
+        if o.has("toggleable") and o.is_on:
+            switch(state, o, on=False)  # AI2-THOR: a broken TV or laptop goes off for good
         if o.type == "Egg":
             _cut(state, o)
     elif skill is Skill.CleanObject:

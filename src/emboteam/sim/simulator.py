@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 from pydantic import BaseModel, ConfigDict
 
-from emboteam.errors import EmboTeamError, UnknownRobotError
+from emboteam.errors import EmboTeamError, UnknownObjectError, UnknownRobotError
 from emboteam.sim.durations import FAILED_ACTION_SECONDS, action_seconds, navigation_seconds
 from emboteam.sim.faults import FaultConfig, FaultInjector, ObjectMove
 from emboteam.sim.rules import Failure, apply_action, check_action
@@ -85,6 +85,10 @@ class Simulator:
         for b in self.faults.breakdowns:
             self._schedule(b.at, "breakdown", b.robot)
         for m in self.faults.moves:
+            for oid in (m.object, m.to):
+                if oid is not None and not self._may_exist(oid):
+                    raise UnknownObjectError(f"fault moves unknown object {oid!r} "
+                                             f"({scene.floor_plan})")
             self._schedule(m.at, "move", m)
 
     # ---- Environment protocol --------------------------------------------------------
@@ -133,8 +137,9 @@ class Simulator:
             dest = (o.position[0], o.position[2])
             if o.held_by is not None:
                 dest = self.state.robots[o.held_by].position
+            # ``at`` and the position change when the drive ends (a failed drive changes
+            # nothing); :meth:`pose` interpolates for observers meanwhile
             duration = navigation_seconds(origin, dest, r.profile.speed)
-            r.at = None
         else:
             dest = origin
             duration = action_seconds(action.skill)
@@ -209,6 +214,13 @@ class Simulator:
         return dict(self._locks)
 
     # ---- internals -------------------------------------------------------------------
+    def _may_exist(self, object_id: str) -> bool:
+        """An object of the state, or a slice piece one of them may be cut into."""
+        if object_id in self.state.objects:
+            return True
+        whole, sep, _ = object_id.partition("_Slice_")
+        return bool(sep) and whole in self.state.objects
+
     def _schedule(self, t: float, kind: str, payload: object) -> None:
         heapq.heappush(self._queue, _Scheduled(t, next(self._seq), kind, payload))
 
@@ -245,6 +257,7 @@ class Simulator:
         if failure is None:
             apply_action(self.state, run.robot, run.action)
             if run.action.skill is Skill.GoToObject:
+                self._arrive(run)
                 self._approaches[run.robot] = self._approaches.get(run.robot, 0) + 1
                 for target in self._occluded_now.pop(run.robot, set()):
                     self._cleared.add((run.robot, target))
@@ -259,10 +272,22 @@ class Simulator:
         self.outcomes.append(outcome)
         return outcome
 
+    def _arrive(self, run: _Running) -> None:
+        """A drive ends where it was headed when it started: if someone moved the target
+        meanwhile, the robot arrives at the old place and is not at the object."""
+        r = self.state.robots[run.robot]
+        if r.position == run.destination:
+            return
+        r.position = run.destination
+        r.at = run.action.target if self.state.in_reach(run.robot, run.action.target) else None
+        if r.holding is not None:
+            self.state.attach_to_robot(r.holding, run.robot)
+
     def _break_down(self, robot: str) -> ActionOutcome | None:
         r = self.state.robots.get(robot)
         if r is None or r.down:
             return None
+        r.position = self.pose(robot)  # a robot that breaks down mid-drive stops there
         r.down = True
         self.events.append(SimEvent(t=self._now, kind="breakdown", detail=robot))
         run = self._running.pop(robot, None)
@@ -284,7 +309,8 @@ class Simulator:
 
     def _move_object(self, move: ObjectMove) -> None:
         o = self.state.objects.get(move.object)
-        if o is None or o.held_by is not None or o.gone:
+        if (o is None or o.held_by is not None or o.gone
+                or (move.to is not None and move.to not in self.state.objects)):
             self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=move.object))
             return
         cat = load_catalogue()
@@ -295,6 +321,7 @@ class Simulator:
                 if r.has("receptacle") and r.id != o.id and r.id != o.parent and not r.gone
                 and r.held_by is None and cat.can_place(o.type, r.type)
                 and (r.type not in cat.must_be_open or r.is_open)
+                and self.state.enclosing_closed(r.id) is None  # not the bowl in a shut fridge
                 and o.id not in self.state.ancestors(r.id)
             )
             if not options:

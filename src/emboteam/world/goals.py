@@ -2,7 +2,8 @@
 
 Text form, as written in task files, prompts and logs::
 
-    inside(Apple, Fridge)                 any apple in/on any fridge (transitively)
+    inside(Apple, Fridge)                 any apple in/on any fridge (transitively);
+                                          also in(..), on(.., ..), contains(Fridge, Apple)
     on(2 of Potato|Lettuce|Tomato, CounterTop)   two vegetables on a counter top
     sliced(Lettuce_1)                     that lettuce
     off(LightSwitch)  switched_on(Television)  open(Fridge)  closed(Box)
@@ -132,6 +133,8 @@ class Condition(BaseModel):
             except ValueError:
                 known = ", ".join(p.value for p in Predicate)
                 raise GoalSyntaxError(f"unknown predicate {name!r} in {text!r}; known: {known}") from None
+        if name == "contains" and len(args) == 2:
+            args.reverse()  # contains(Fridge, Apple) reads "the fridge contains an apple"
         subject_text = args[0]
         count = 1
         cm = re.fullmatch(r"(\d+)\s*(?:of|x|\*)\s*(.+)", subject_text)

@@ -3,7 +3,7 @@ task files index 1-based in their ``robot list``, plus a speed.
 
 The facts (which skills, what mass capacity) are those of SMART-LLM's
 ``resources/robots.py``; they are restated here as a table rather than shipped as the
-peer's file (which carries no licence). ``tests/test_robots.py`` checks the table against
+peer's file (which carries no licence). ``tests/test_world_robots.py`` checks the table against
 ``../shared/data/peers/smart-llm/robots.json``.
 """
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import gzip
 import json
+import math
 import re
 from functools import cache
 from importlib import resources
@@ -70,6 +71,7 @@ class Scene(BaseModel):
     room: Room
     objects: tuple[SceneObject, ...]
     _index: dict[str, SceneObject] = PrivateAttr(default_factory=dict)
+    _starts: list[tuple[float, float]] = PrivateAttr(default_factory=list)
 
     def model_post_init(self, __context: object) -> None:
         self._index = {o.id: o for o in self.objects}
@@ -92,14 +94,91 @@ class Scene(BaseModel):
     def robot_start(self, index: int) -> tuple[float, float]:
         """Start pose (x, z) of the ``index``-th robot of a team.
 
-        AI2-THOR's agent start positions are not in the metadata dump; robots start in a
-        row 0.5 m apart, centred on the middle of the floor plan's object bounding box,
-        which is open floor in every iTHOR room.
+        AI2-THOR's agent start positions are not in the metadata dump, and the bounding-box
+        centre of the objects is a poor guess: in L-shaped or off-origin rooms it lies
+        outside the room or inside a kitchen island. Robots therefore start on free floor
+        cells (AI2-THOR's 0.25 m grid) chosen by :func:`free_floor_cells`, nearest first to
+        the median object position, 0.5 m or more apart while such cells remain.
         """
-        xs = [o.position[0] for o in self.objects]
-        zs = [o.position[2] for o in self.objects]
-        cx, cz = (min(xs) + max(xs)) / 2, (min(zs) + max(zs)) / 2
-        return (round(cx + 0.5 * index, 3), round(cz, 3))
+        if index < 0:
+            raise ValueError(f"robot index must be >= 0, got {index}")
+        if not self._starts:
+            self._starts = _spread(free_floor_cells(self), _median_point(self), TEAM_SPACING)
+        starts = self._starts
+        if not starts:  # no free cell (never happens in iTHOR): fall back to the centre
+            cx, cz = _median_point(self)
+            return (round(cx + TEAM_SPACING * index, 3), round(cz, 3))
+        return starts[index % len(starts)]
+
+
+#: AI2-THOR's navigation grid (m)
+GRID = 0.25
+#: a start cell keeps this far (m, horizontally) from every object's pivot, so a robot does
+#: not start inside a counter, an island or a table
+START_CLEARANCE = 0.6
+#: a cell is inside the room when objects lie on all four sides of it within this band (m)
+ROOM_BAND = 1.0
+#: distance between team members' start cells (m)
+TEAM_SPACING = 0.5
+
+
+def _placed(scene: Scene) -> list[tuple[float, float]]:
+    """Floor positions (x, z) of the objects that mark out the room: the Floor and objects
+    parked at the world origin (a placeholder pivot, e.g. some ShowerGlass) do not."""
+    return [(o.position[0], o.position[2]) for o in scene.objects
+            if o.type != "Floor" and o.position != (0.0, 0.0, 0.0)]
+
+
+def _median_point(scene: Scene) -> tuple[float, float]:
+    pts = _placed(scene) or [(0.0, 0.0)]
+    xs = sorted(p[0] for p in pts)
+    zs = sorted(p[1] for p in pts)
+    return (xs[len(xs) // 2], zs[len(zs) // 2])
+
+
+def free_floor_cells(scene: Scene) -> list[tuple[float, float]]:
+    """Grid cells (x, z) that are plausibly open floor inside the room.
+
+    Without AI2-THOR's navigation mesh the room is inferred from its objects: a cell is
+    free when no object pivot is within :data:`START_CLEARANCE`, and inside the room when
+    objects lie on all four sides of it within a :data:`ROOM_BAND` corridor (which rules
+    out the empty notch of an L-shaped room's bounding box).
+    """
+    pts = _placed(scene)
+    if not pts:
+        return []
+    xs = [p[0] for p in pts]
+    zs = [p[1] for p in pts]
+    x0 = math.floor(min(xs) / GRID) * GRID
+    z0 = math.floor(min(zs) / GRID) * GRID
+    nx = int((max(xs) - x0) / GRID) + 1
+    nz = int((max(zs) - z0) / GRID) + 1
+    cells = []
+    for i in range(nx + 1):
+        x = round(x0 + i * GRID, 3)
+        column = [p for p in pts if abs(p[0] - x) <= ROOM_BAND]
+        for j in range(nz + 1):
+            z = round(z0 + j * GRID, 3)
+            if min(math.hypot(px - x, pz - z) for px, pz in pts) < START_CLEARANCE:
+                continue
+            row = [p for p in pts if abs(p[1] - z) <= ROOM_BAND]
+            if (any(p[0] > x for p in row) and any(p[0] < x for p in row)
+                    and any(p[1] > z for p in column) and any(p[1] < z for p in column)):
+                cells.append((x, z))
+    return cells
+
+
+def _spread(cells: list[tuple[float, float]], centre: tuple[float, float],
+            spacing: float) -> list[tuple[float, float]]:
+    """Cells nearest ``centre`` first, those ``spacing`` apart from earlier ones before the
+    rest (a large team in a small room still gets distinct cells)."""
+    ordered = sorted(cells, key=lambda c: (math.hypot(c[0] - centre[0], c[1] - centre[1]), c))
+    chosen: list[tuple[float, float]] = []
+    for c in ordered:
+        if all(math.hypot(c[0] - d[0], c[1] - d[1]) >= spacing - 1e-9 for d in chosen):
+            chosen.append(c)
+    taken = set(chosen)
+    return chosen + [c for c in ordered if c not in taken]
 
 
 @cache

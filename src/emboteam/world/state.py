@@ -14,6 +14,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 
 from emboteam.errors import UnknownObjectError
+from emboteam.world.catalogue import load_catalogue
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 
@@ -141,10 +142,16 @@ class WorldState:
         return out
 
     def enclosing_closed(self, object_id: str) -> str | None:
-        """The innermost closed openable receptacle hiding the object, if any."""
+        """The innermost closed receptacle hiding the object, if any.
+
+        Only receptacles things go *in* hide them (the catalogue's ``must_be_open``:
+        fridge, cabinet, drawer, microwave, box, hamper, safe); a closed Toilet lid does
+        not hide what stands on its tank.
+        """
+        enclosing = load_catalogue().must_be_open
         for r in self.ancestors(object_id):
             rec = self.objects[r]
-            if rec.has("openable") and rec.has("receptacle") and not rec.is_open:
+            if rec.type in enclosing and not rec.is_open:
                 return r
         return None
 
