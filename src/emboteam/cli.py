@@ -8,6 +8,7 @@ import json
 import sys
 from collections.abc import Callable
 from functools import wraps
+from pathlib import Path
 from typing import Any, TypeVar
 
 import typer
@@ -117,6 +118,45 @@ def robots(as_json: bool = typer.Option(False, "--json", help="one JSON object o
         skills = " ".join(s.value.replace("Object", "") for s in Skill if s in p.skills)
         table.add_row(str(p.number), p.name, f"{p.mass_capacity:g}", f"{p.speed:g}", skills)
     out.print(table)
+
+
+@app.command()
+@cli_errors
+def tasks(
+    suite: str = typer.Option("mace-thor", "--suite", help="mace-thor | smart-llm:PATH"),
+    as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
+) -> None:
+    """List a suite's tasks: id, floor plan, category, instruction."""
+    from emboteam.bench.suites import load_suite
+
+    loaded = load_suite(suite)
+    for problem in loaded.problems:
+        err.print(f"[yellow]skipped:[/yellow] {problem}", highlight=False, soft_wrap=True)
+    if as_json:
+        print_json({"tasks": [
+            {"id": t.key, "scene": t.floor_plan, "category": t.category, "instruction": t.instruction,
+             "robots": list(t.robots), "goal": [str(c) for c in t.goal.conditions]}
+            for t in loaded.tasks
+        ]})
+        return
+    counts = ", ".join(f"{n} {cat}" for cat, n in loaded.categories().items())
+    table = Table(title=f"{loaded.name}: {len(loaded.tasks)} tasks ({counts})")
+    for col in ("task", "scene", "category", "robots"):
+        table.add_column(col, no_wrap=True)
+    table.add_column("instruction", overflow="fold")
+    for t in loaded.tasks:
+        table.add_row(t.key, t.floor_plan, t.category, ",".join(t.robots), t.instruction)
+    out.print(table)
+
+
+@app.command()
+@cli_errors
+def report(directory: Path = typer.Argument(..., help="a run's or a benchmark's --out DIR")) -> None:
+    """(Re)build the HTML report of a run (report.html) or a benchmark (index.html)."""
+    from emboteam.report import write_report
+
+    for path in write_report(directory):
+        out.print(f"wrote {path}")
 
 
 def main() -> None:
