@@ -2,12 +2,17 @@
 
 Kinds (``data`` fields in brackets):
 
-- ``action_start`` / ``action_end``   robot, [step, action, success, reason, message, recovery]
+- ``action_start`` / ``action_end``   robot, [step, action, success, reason, message, recovery,
+  strategy, plan] (``plan``: 0 for the first plan, k after the k-th replan: step ids repeat
+  across plans; ``action_start`` also has skill, target, receptacle and the interaction spot)
 - ``node``                             robot, [node, path, status] (behavior-tree status change)
 - ``blackboard``                       robot, [key, value] (sync flags, resource locks)
 - ``pose``                             robot, [x, z, holding]
 - ``sim``                              [kind, detail] (faults, breakdowns, joins, moved objects)
-- ``replan``                           [reason, unmet, robots]
+- ``replan``                           [reason, unmet, robots, error]
+- ``recovery``                         robot, [step, strategy, object, why, fault, gave_up]
+  (a recovery subtree starts, or a step gives up; its actions are ``action_*`` events
+  with ``recovery`` true)
 """
 
 from __future__ import annotations
@@ -19,7 +24,8 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict
 
-EventKind = Literal["action_start", "action_end", "node", "blackboard", "pose", "sim", "replan"]
+EventKind = Literal["action_start", "action_end", "node", "blackboard", "pose", "sim", "replan",
+                    "recovery"]
 
 
 class TraceEvent(BaseModel):
