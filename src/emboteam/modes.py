@@ -1,0 +1,195 @@
+"""The stage wiring of every mode of the paper's Tables 1 and 2 (see :mod:`emboteam.pipeline`).
+
+Each mode is a choice of front end, planner configuration and executor; the parts are the
+same packages everywhere, so an ablation differs from the full system only in the part it
+ablates.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+from functools import cache
+
+from emboteam.bench.task import BenchTask
+from emboteam.errors import EmboTeamError
+from emboteam.exec import Executor, Join, planner_replanner, run_linear, run_sequences
+from emboteam.exec.episode import Episode
+from emboteam.exec.result import ExecutionResult
+from emboteam.hp.plan import MergedPlan, PlanStep
+from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.llm.client import LLMClient, make_client
+from emboteam.pddl.domain import DomainError, step_literals
+from emboteam.pddl.literal import Literal
+from emboteam.pddl.errors import PlanningError
+from emboteam.pfg.scripted import scripted_action_lists
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.pipeline import RunConfig, initial_state, score
+from emboteam.sim.rules import apply_action, check_action
+from emboteam.sim.simulator import Simulator
+from emboteam.world.actions import Action
+from emboteam.world.goals import Goal
+from emboteam.world.robots import RobotProfile
+from emboteam.world.scene import Scene, load_scene
+from emboteam.world.state import WorldState
+
+
+class ModeConfigError(EmboTeamError):
+    """A mode/front-end combination that cannot run (e.g. ``--frontend llm`` without ``--llm``)."""
+
+
+#: the planner configuration of each mode; LaMMA-P: Fast Downward calls
+#: per subtask (one at a time), merged without validation, executed linearly
+PLANNER_OF_MODE: dict[str, PlannerConfig] = {
+    "full": PlannerConfig(),
+    "no-btc": PlannerConfig(),
+    "no-hp": PlannerConfig(validate=False, merge="concatenate"),
+    "lamma-p": PlannerConfig(workers=1, validate=False, merge="formal"),
+}
+
+
+@cache
+def planner_for(mode: str) -> HybridPlanner:
+    """One planner per mode and process, so its plan cache serves every episode."""
+    return HybridPlanner(PLANNER_OF_MODE[mode])
+
+
+def make_llm(cfg: RunConfig) -> LLMClient | None:
+    if cfg.llm is None:
+        if cfg.frontend == "llm":
+            raise ModeConfigError("--frontend llm needs --llm PROVIDER:MODEL[@BASE_URL]")
+        return None
+    return make_client(cfg.llm, timeout=cfg.llm_timeout, record_dir=cfg.llm_record, seed=cfg.seed)
+
+
+def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
+               team: Sequence[RobotProfile], llm: LLMClient | None) -> TaskSpec:
+    """The PFG: the instruction as a TaskSpec, by the configured front end."""
+    if cfg.frontend == "oracle":
+        from emboteam.pfg.oracle import OracleFrontend
+
+        if not task.goal.conditions:
+            raise ModeConfigError("the oracle front end needs a task with a ground-truth goal")
+        return OracleFrontend(task.goal).decompose(task.instruction, scene, state, team)
+    if cfg.frontend == "llm":
+        from emboteam.pfg.llm_frontend import LLMFrontend
+
+        assert llm is not None
+        return LLMFrontend(llm).decompose(task.instruction, scene, state, team)
+    from emboteam.pfg.offline import OfflineFrontend
+
+    return OfflineFrontend().decompose(task.instruction, scene, state, team)
+
+
+def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, state: WorldState,
+              team: Sequence[RobotProfile], llm: LLMClient | None) -> tuple[TaskSpec, MergedPlan]:
+    """The HP. With an LLM front end in the full system, the paper's LLM validation stage
+    reviews the TaskSpec first, and one planner error goes back to the LLM for repair."""
+    planner = planner_for(cfg.mode)
+    if llm is not None and cfg.frontend == "llm" and cfg.mode == "full":
+        from emboteam.hp.llm_stages import review_spec
+
+        spec = review_spec(llm, spec, task.instruction, scene, state, team).spec
+    try:
+        return spec, planner.plan(spec, state)
+    except PlanningError as exc:
+        if llm is None or cfg.frontend != "llm":
+            raise
+        from emboteam.pfg.llm_frontend import LLMFrontend
+
+        spec = LLMFrontend(llm).repair(spec, str(exc), scene, state, team)
+        return spec, planner.plan(spec, state)
+
+
+def action_lists(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
+                 team: Sequence[RobotProfile], llm: LLMClient | None) -> dict[str, list[Action]]:
+    """Per-robot action lists written directly (no PDDL): by the LLM, or without one by the
+    scripted stand-in over the goal the front end understood."""
+    if llm is not None and cfg.frontend == "llm":
+        from emboteam.pfg.action_lists import LLMActionListFrontend
+
+        return LLMActionListFrontend(llm).generate(task.instruction, scene, state, team)
+    goal = understand(task, cfg, scene, state, team, None).goal()
+    return scripted_action_lists(goal, state, team)
+
+
+def literal_plan(lists: Mapping[str, Sequence[Action]], state: WorldState) -> MergedPlan:
+    """Action lists as a plan whose steps carry their PDDL pre/post literals (for the
+    no-pfg-hp ablation, which compiles LLM-written lists to behavior trees). Literals are
+    grounded on a forward simulation of the lists in order; an action the forward state
+    rejects keeps empty literals (its tree still runs the action with recovery)."""
+    forward = state.copy()
+    steps: list[PlanStep] = []
+    queues = {r: list(a) for r, a in lists.items()}
+    index = dict.fromkeys(lists, 0)
+    while any(queues.values()):  # round-robin, the order concurrent robots would interleave
+        for robot, queue in queues.items():
+            if not queue:
+                continue
+            action = queue.pop(0)
+            index[robot] += 1
+            pre: tuple[Literal, ...] = ()
+            post: tuple[Literal, ...] = ()
+            if check_action(forward, robot, action) is None:
+                try:
+                    pre, post = step_literals(robot, action, forward)
+                except DomainError:
+                    pre, post = (), ()
+                apply_action(forward, robot, action)
+            steps.append(PlanStep(id=f"{robot}.{index[robot]}", robot=robot, action=action, subtask="s1",
+                                  pre=pre, post=post))
+    return MergedPlan(robots=tuple(lists), steps=tuple(steps))
+
+
+def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: WorldState,
+            team: Sequence[RobotProfile], *, reactive: bool, replan: bool) -> tuple[ExecutionResult, Simulator]:
+    sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
+    if not reactive:
+        return run_linear(sim, plan, goal, time_limit=cfg.time_limit), sim
+    names = [p.name for p in team]
+    joins = [Join.parse(f"{j.profile}@{j.at}", names) for j in cfg.joins]
+    replanner = planner_replanner(planner_for("full")) if replan else None
+    executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
+                        time_limit=cfg.time_limit)
+    return executor.run(), sim
+
+
+def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
+    """Plan and execute one task in ``cfg.mode``; typed errors propagate to the caller."""
+    scene = load_scene(task.floor_plan)
+    state, team = initial_state(task)
+    llm = make_llm(cfg)
+    t0 = time.perf_counter()
+    spec: TaskSpec | None = None
+    if cfg.mode in ("no-pfg-hp", "smart-llm"):
+        lists = action_lists(task, cfg, scene, state, team, llm)
+        plan_seconds = time.perf_counter() - t0
+        goal = task.goal if task.goal.conditions else Goal(conditions=())
+        if cfg.mode == "smart-llm":
+            sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
+            result = run_sequences(sim, lists, goal, time_limit=cfg.time_limit)
+        else:
+            result, sim = execute(literal_plan(lists, state), goal, cfg, scene, state, team,
+                                  reactive=True, replan=False)
+    else:
+        spec = understand(task, cfg, scene, state, team, llm)
+        spec, plan = plan_spec(spec, cfg, task, scene, state, team, llm)
+        plan_seconds = time.perf_counter() - t0
+        reactive = cfg.mode in ("full", "no-hp")
+        result, sim = execute(plan, spec.goal(), cfg, scene, state, team,
+                              reactive=reactive, replan=cfg.mode == "full")
+    truth = task.goal if task.goal.conditions else (spec.goal() if spec else Goal(conditions=()))
+    success, gcr, conditions = score(truth, sim.state)
+    fields = result.episode_fields()
+    fields.update(success=success, gcr=gcr, conditions=conditions)
+    return Episode(
+        task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
+        robots=tuple(sorted(sim.state.robots)), category=task.category, mode=cfg.mode,
+        frontend=cfg.frontend, seed=cfg.seed, faults=cfg.fault_config(), fault_level=cfg.fault_level,
+        llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
+        plan_seconds=round(plan_seconds, 4), taskspec=spec,
+        error=result.error, **fields,  # type: ignore[arg-type]
+    )
+
+
+__all__ = ["PLANNER_OF_MODE", "ModeConfigError", "planner_for", "run_mode"]
