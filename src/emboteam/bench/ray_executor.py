@@ -1,0 +1,83 @@
+"""``--executor ray``: the same episodes as the local executor, as Ray tasks.
+
+Each job is one Ray task (``num_cpus=1``) running :func:`emboteam.bench.jobs.execute_job`,
+so an exception inside an episode comes back as a failed episode exactly as locally. A
+task whose worker process dies is retried once by Ray (``max_retries=1``); if it dies
+again, the job is recorded as a failed episode and the run goes on.
+
+Connecting: an already initialised Ray (a test, a notebook) is used as is and left
+running; otherwise ``ray.init(address=...)`` joins a cluster (``"auto"``, ``HOST:6379``,
+or ``ray://HOST:10001`` for Ray Client) or, with no address, whatever Ray finds
+(``RAY_ADDRESS``, a ``ray start`` instance on this machine) or a new local instance; the
+runner disconnects at the end. Every node must be able to import EmboTeam and the
+episode function (install the package on the nodes, or pass a ``runtime_env``).
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from emboteam.bench.jobs import BenchConfigError, EpisodeFn, Job, JobResult, execute_job, failed_episode
+
+log = logging.getLogger(__name__)
+
+
+def _import_ray() -> Any:
+    try:
+        import ray
+    except ImportError:
+        raise BenchConfigError("--executor ray needs Ray: pip install 'emboteam[ray]'") from None
+    return ray
+
+
+class RayExecutor:
+    """Keeps at most ``workers`` Ray tasks in flight (the runner records each as it ends)."""
+
+    def __init__(self, episode_fn: EpisodeFn, workers: int, *, address: str | None = None,
+                 num_cpus_per_job: float = 1.0) -> None:
+        self._ray = ray = _import_ray()
+        self._owns_ray = not ray.is_initialized()
+        if self._owns_ray:
+            try:
+                ray.init(address=address, include_dashboard=False, log_to_driver=False)
+            except (ConnectionError, RuntimeError, ValueError) as exc:
+                where = address or "a local instance"
+                raise BenchConfigError(f"cannot start or reach Ray ({where}): {exc}") from None
+        self._workers = workers
+        self._fn_ref = ray.put(episode_fn)
+        self._remote = ray.remote(execute_job).options(num_cpus=num_cpus_per_job, max_retries=1)
+        self._running: dict[Any, Job] = {}
+
+    def has_capacity(self) -> bool:
+        return len(self._running) < self._workers
+
+    def busy(self) -> bool:
+        return bool(self._running)
+
+    def submit(self, job: Job) -> None:
+        self._running[self._remote.remote(self._fn_ref, job)] = job
+
+    def wait(self) -> list[tuple[Job, JobResult]]:
+        ray = self._ray
+        ready, _ = ray.wait(list(self._running), num_returns=1)
+        results: list[tuple[Job, JobResult]] = []
+        for ref in ready:
+            job = self._running.pop(ref)
+            try:
+                results.append((job, ray.get(ref)))
+            except ray.exceptions.RayError as exc:
+                # execute_job catches the episode's own exceptions, so this is Ray's: the
+                # worker died twice, the node was lost, the object could not be fetched
+                detail = f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"
+                log.warning("Ray lost job %s: %s", job.key, detail)
+                results.append((job, JobResult(key=job.key, traceback=str(exc),
+                                               episode=failed_episode(job, f"WorkerDied: {detail}"))))
+        return results
+
+    def close(self) -> None:
+        for ref in self._running:
+            self._ray.cancel(ref, force=True)
+        self._running.clear()
+        if self._owns_ray:
+            self._ray.shutdown()

@@ -1,0 +1,427 @@
+"""The evaluation runner behind ``emboteam bench``: runs jobs on workers, stores every
+episode as it finishes, resumes a killed run, and writes the tables and plots.
+
+Guarantees (docs/benchmarking.md):
+
+- every finished episode is committed to ``DIR/results.sqlite`` and saved under
+  ``DIR/episodes/<job dir>/`` before the next result is taken, so a killed run loses only
+  the episodes that were running;
+- ``resume=True`` skips every job whose key is stored and runs the rest once, the ones
+  the kill interrupted included;
+- an exception inside an episode, or a worker process that dies, becomes a recorded
+  failed episode carrying the error; the run goes on.
+
+Executors: ``local`` (a ``ProcessPoolExecutor`` of ``workers`` processes; the default),
+``ray`` (:mod:`emboteam.bench.ray_executor`) and ``inline`` (this process, one job at a
+time: for debugging, and for episode functions that cannot be pickled).
+"""
+
+from __future__ import annotations
+
+import logging
+import multiprocessing
+import os
+import pickle
+import threading
+import time
+from collections import deque
+from collections.abc import Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from pathlib import Path
+from types import TracebackType
+from typing import Protocol
+
+from rich.console import Console
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TaskID,
+    TextColumn,
+    TimeElapsedColumn,
+    TimeRemainingColumn,
+)
+
+from emboteam.bench.jobs import (
+    BenchConfig,
+    BenchConfigError,
+    EpisodeFn,
+    Job,
+    JobResult,
+    execute_job,
+    failed_episode,
+    resolve_episode_fn,
+)
+from emboteam.bench.store import ResultStore, ResultStoreError
+from emboteam.exec.episode import Episode
+
+log = logging.getLogger(__name__)
+
+#: the episode function ``emboteam bench`` uses: the full pipeline, by import path so that
+#: local worker processes and Ray nodes import it themselves
+PIPELINE_EPISODE_FN = "emboteam.bench.runner:pipeline_episode"
+
+STORE_NAME = "results.sqlite"
+EPISODES_DIR = "episodes"
+
+
+def pipeline_episode(job: Job) -> Episode:
+    """Plan and execute one job with :func:`emboteam.pipeline.run_episode`."""
+    from emboteam.pipeline import RunConfig, run_episode
+
+    cfg = RunConfig(mode=job.mode, frontend=job.frontend, llm=job.llm, llm_timeout=job.llm_timeout,
+                    fault_level=job.fault_level, seed=job.seed)
+    return run_episode(job.task, cfg)
+
+
+# --------------------------------------------------------------------------- executors
+
+class JobExecutor(Protocol):
+    """Where jobs run. The runner hands out jobs while :meth:`has_capacity` and collects
+    them with :meth:`wait`; an executor never raises for a failing job, it returns a
+    :class:`JobResult` holding a failed episode."""
+
+    def has_capacity(self) -> bool: ...
+
+    def busy(self) -> bool: ...
+
+    def submit(self, job: Job) -> None: ...
+
+    def wait(self) -> list[tuple[Job, JobResult]]: ...
+
+    def close(self) -> None: ...
+
+
+class InlineExecutor:
+    """Runs each job in this process when it is collected."""
+
+    def __init__(self, episode_fn: EpisodeFn) -> None:
+        self._fn = episode_fn
+        self._queue: deque[Job] = deque()
+
+    def has_capacity(self) -> bool:
+        return not self._queue
+
+    def busy(self) -> bool:
+        return bool(self._queue)
+
+    def submit(self, job: Job) -> None:
+        self._queue.append(job)
+
+    def wait(self) -> list[tuple[Job, JobResult]]:
+        job = self._queue.popleft()
+        return [(job, execute_job(self._fn, job))]
+
+    def close(self) -> None:
+        self._queue.clear()
+
+
+def worker_died(job: Job, detail: str) -> JobResult:
+    """The result of a job whose worker process died under it (segfault, OOM kill, exit)."""
+    return JobResult(key=job.key, episode=failed_episode(job, f"WorkerDied: {detail}"),
+                     traceback=detail)
+
+
+class ProcessExecutor:
+    """A ``ProcessPoolExecutor`` of ``workers`` spawned processes.
+
+    At most ``workers`` jobs are in flight, so "handed to a worker" means "running".
+    When a worker dies the pool breaks and every job in flight on it is lost with it;
+    those jobs are re-run one at a time on a new pool, so the one that kills its worker
+    again is recorded as failed and the others are not blamed for it.
+    """
+
+    def __init__(self, episode_fn: EpisodeFn, workers: int) -> None:
+        self._fn = episode_fn
+        self._workers = workers
+        # spawn, not fork: the runner has threads (the progress bar), and forking a
+        # threaded process can deadlock the child
+        self._ctx = multiprocessing.get_context("spawn")
+        self._pool = self._new_pool()
+        self._generation = 0  # which pool a future belongs to: only a broken pool's jobs are lost
+        self._running: dict[Future[JobResult], tuple[Job, int]] = {}
+        self._suspects: deque[Job] = deque()
+        self._isolating = False
+
+    def _new_pool(self) -> ProcessPoolExecutor:
+        return ProcessPoolExecutor(max_workers=self._workers, mp_context=self._ctx,
+                                   initializer=_exit_with_parent, initargs=(os.getpid(),))
+
+    def _replace_pool(self) -> None:
+        self._pool.shutdown(wait=False, cancel_futures=True)
+        self._pool = self._new_pool()
+        self._generation += 1
+
+    def has_capacity(self) -> bool:
+        return not self._suspects and not self._isolating and len(self._running) < self._workers
+
+    def busy(self) -> bool:
+        return bool(self._running or self._suspects)
+
+    def submit(self, job: Job) -> None:
+        try:
+            future = self._pool.submit(execute_job, self._fn, job)
+        except BrokenProcessPool:
+            # a worker died since the last wait(); the jobs it took down are collected by
+            # wait() from their futures, this one never started
+            self._replace_pool()
+            future = self._pool.submit(execute_job, self._fn, job)
+        self._running[future] = (job, self._generation)
+
+    def wait(self) -> list[tuple[Job, JobResult]]:
+        if not self._running:
+            self._isolating = True
+            self.submit(self._suspects.popleft())
+        done, _ = wait(list(self._running), return_when=FIRST_COMPLETED)
+        results: list[tuple[Job, JobResult]] = []
+        lost: list[Job] = []
+        broken: set[int] = set()
+        for future in done:
+            job, generation = self._running.pop(future)
+            try:
+                results.append((job, future.result()))
+            except BrokenProcessPool:
+                lost.append(job)
+                broken.add(generation)
+        if broken:
+            # the rest of a broken pool's jobs are lost too, unless they finished just now
+            for future, (job, generation) in list(self._running.items()):
+                if generation in broken:
+                    del self._running[future]
+                    if future.done() and future.exception() is None:
+                        results.append((job, future.result()))
+                    else:
+                        lost.append(job)
+            if self._generation in broken:
+                self._replace_pool()
+        if self._isolating and not self._running:
+            self._isolating = False
+        if len(lost) == 1:
+            # it was alone on its pool, so it is the one that killed its worker
+            results.append((lost[0], worker_died(lost[0], "the worker process died while running it")))
+        elif lost:
+            log.warning("a worker process died; re-running its %d jobs one at a time", len(lost))
+            self._suspects.extend(lost)
+        return results
+
+    def close(self) -> None:
+        if self._running:
+            # the run is being abandoned (an error, Ctrl-C): do not wait for episodes whose
+            # results nobody will record. ProcessPoolExecutor has no public way to stop
+            # running workers before Python 3.14 (terminate_workers), hence _processes.
+            stop = getattr(self._pool, "terminate_workers", None)
+            if callable(stop):
+                stop()
+            else:
+                for process in list((getattr(self._pool, "_processes", None) or {}).values()):
+                    process.terminate()
+        self._pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _exit_with_parent(parent: int, every: float = 0.5) -> None:
+    """Worker initializer: end this worker when the runner dies.
+
+    A worker of a SIGKILLed runner would otherwise wait on its task queue for ever (it
+    holds both ends of the pipe, so it never sees end-of-file) and keep running episodes
+    nobody records."""
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(every)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="exit-with-parent", daemon=True).start()
+
+
+def make_executor(config: BenchConfig, episode_fn: EpisodeFn) -> JobExecutor:
+    if config.executor == "inline":
+        return InlineExecutor(episode_fn)
+    _check_picklable(episode_fn, config.executor)
+    if config.executor == "ray":
+        from emboteam.bench.ray_executor import RayExecutor
+
+        return RayExecutor(episode_fn, config.workers, address=config.ray_address)
+    return ProcessExecutor(episode_fn, config.workers)
+
+
+def _check_picklable(episode_fn: EpisodeFn, executor: str) -> None:
+    if isinstance(episode_fn, str):
+        return
+    try:
+        pickle.dumps(episode_fn)
+    except (pickle.PicklingError, AttributeError, TypeError) as exc:
+        raise BenchConfigError(
+            f"the {executor} executor sends the episode function to other processes, and "
+            f"{getattr(episode_fn, '__qualname__', episode_fn)!r} cannot be pickled ({exc}); give a "
+            "module-level function or its import path package.module:function") from None
+
+
+# --------------------------------------------------------------------------- progress
+
+class _Progress:
+    """done/total, SR so far, errors and ETA on stderr: a rich progress bar on a terminal,
+    one plain line per episode otherwise (CI logs, ``2> file``), log records when quiet."""
+
+    def __init__(self, total: int, previous: Sequence[Episode], enabled: bool) -> None:
+        self.total, self.done = total, len(previous)
+        self.successes = sum(e.success for e in previous)
+        self.errors = sum(e.error is not None for e in previous)
+        self._resumed = self.done
+        self._started = time.monotonic()
+        self._console = Console(stderr=True) if enabled else None
+        self._bar: Progress | None = None
+        self._task: TaskID | None = None
+        if self._console is not None and self._console.is_terminal:
+            self._bar = Progress(
+                TextColumn("[bold]bench"), BarColumn(), MofNCompleteColumn(),
+                TextColumn("SR {task.fields[sr]}"), TextColumn("{task.fields[errors]}"),
+                TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
+                console=self._console, transient=False,
+            )
+            self._task = self._bar.add_task("bench", total=total, completed=self.done, sr=self._sr(),
+                                            errors=self._errors())
+
+    def _sr(self) -> str:
+        return f"{self.successes / self.done:.1%}" if self.done else "-"
+
+    def _errors(self) -> str:
+        return f"errors {self.errors}" if self.errors else ""
+
+    def _eta(self) -> str:
+        ran = self.done - self._resumed
+        if not ran:
+            return "-"
+        seconds = round((time.monotonic() - self._started) / ran * (self.total - self.done))
+        return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+    def __enter__(self) -> _Progress:
+        if self._bar is not None:
+            self._bar.start()
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        if self._bar is not None:
+            self._bar.stop()
+
+    def finished(self, job: Job, episode: Episode) -> None:
+        self.done += 1
+        self.successes += int(episode.success)
+        self.errors += int(episode.error is not None)
+        if self._bar is not None and self._task is not None:
+            self._bar.update(self._task, advance=1, sr=self._sr(), errors=self._errors())
+            return
+        outcome = "success" if episode.success else "failure"
+        error = f" ({episode.error})" if episode.error else ""
+        if self._console is not None:
+            self._console.print(f"[{self.done}/{self.total}] {job.key}: {outcome}{error}  SR {self._sr()}  "
+                                f"ETA {self._eta()}", markup=False, highlight=False, soft_wrap=True)
+        else:
+            log.info("[%d/%d] %s: %s%s", self.done, self.total, job.key, outcome, error)
+
+
+# --------------------------------------------------------------------------- the run
+
+def store_path(out_dir: Path) -> Path:
+    return Path(out_dir) / STORE_NAME
+
+
+def run_bench(config: BenchConfig, jobs: Sequence[Job], episode_fn: EpisodeFn = PIPELINE_EPISODE_FN,
+              *, progress: bool = True, reports: bool = True) -> list[Episode]:
+    """Run every job not yet in ``config.out_dir``'s store; return the episodes of all
+    ``jobs`` (stored earlier or now) in job order, then write tables and plots.
+
+    Without ``config.resume`` an out dir that already holds results is refused, so a run
+    never mixes into another by accident.
+    """
+    out_dir = Path(config.out_dir)
+    unique = list({job.key: job for job in jobs}.values())
+    resolve_episode_fn(episode_fn)  # a bad import path fails here, before any worker starts
+    with ResultStore(store_path(out_dir)) as store:
+        stored = len(store)
+        if stored and not config.resume:
+            raise BenchConfigError(f"{out_dir} already holds {stored} results: pass --resume to "
+                                   "continue that run, or choose another --out")
+        _check_same_llm(store, config)
+        done = store.done_keys()
+        pending = [job for job in unique if job.key not in done]
+        interrupted = store.interrupted_keys() & {job.key for job in pending}
+        if done or interrupted:
+            log.info("resuming: %d of %d jobs already stored, %d interrupted jobs to re-run",
+                     len(unique) - len(pending), len(unique), len(interrupted))
+        store.set_meta("config", config.model_dump_json())
+        previous = store.episodes(keys={j.key for j in unique})
+        if pending:
+            _run_pending(config, pending, episode_fn, store, out_dir, _Progress(len(unique), previous, progress))
+        by_key = {r.key: r.episode for r in store.results(keys={j.key for j in unique})}
+        episodes = [by_key[job.key] for job in unique]
+    if reports:
+        write_reports(out_dir)
+    return episodes
+
+
+def _check_same_llm(store: ResultStore, config: BenchConfig) -> None:
+    """Episodes do not record the LLM spec, so tables pool everything in a store by mode
+    and front end: one out dir must hold one LLM's results."""
+    stored = store.llm_specs()
+    if stored and stored != {config.llm}:
+        shown = ", ".join(sorted(s or "none" for s in stored))
+        raise BenchConfigError(f"{config.out_dir} holds results of --llm {shown}, not "
+                               f"{config.llm or 'none'}: use another --out for another LLM")
+
+
+def _run_pending(config: BenchConfig, pending: list[Job], episode_fn: EpisodeFn, store: ResultStore,
+                 out_dir: Path, bar: _Progress) -> None:
+    queue = deque(pending)
+    executor = make_executor(config, episode_fn)
+    try:
+        with bar:
+            while queue or executor.busy():
+                while queue and executor.has_capacity():
+                    job = queue.popleft()
+                    store.mark_started(job)
+                    executor.submit(job)
+                for job, result in executor.wait():
+                    _record(store, out_dir, job, result)
+                    bar.finished(job, result.episode)
+    finally:
+        executor.close()
+
+
+def _record(store: ResultStore, out_dir: Path, job: Job, result: JobResult) -> None:
+    """Trace files first, then the row: a row always points at a complete episode dir."""
+    relative = f"{EPISODES_DIR}/{job.dirname}"
+    try:
+        result.episode.save(out_dir / relative)
+    except OSError as exc:
+        raise ResultStoreError(f"cannot write the episode of {job.key} to {out_dir / relative}: {exc}") from None
+    store.add(job, result.episode, episode_dir=relative, traceback=result.traceback)
+
+
+def write_reports(out_dir: Path) -> list[Path]:
+    """``DIR/tables.md``, ``DIR/summary.json`` and the PNG plots from everything in the
+    store of ``out_dir`` (what ``emboteam report`` rebuilds after a run)."""
+    from emboteam.bench.plots import write_plots
+    from emboteam.bench.tables import GroupSummaries, write_summary, write_tables
+
+    out_dir = Path(out_dir)
+    path = store_path(out_dir)
+    if not path.exists():
+        raise ResultStoreError(f"{out_dir} holds no benchmark results ({STORE_NAME} is missing)")
+    with ResultStore(path) as store:
+        episodes = store.episodes()
+        suite = _suite_name(store)
+    summaries = GroupSummaries(episodes)
+    written = [write_tables(summaries, out_dir / "tables.md"),
+               write_summary(episodes, out_dir / "summary.json", suite=suite)]
+    written += write_plots(summaries, out_dir)
+    return written
+
+
+def _suite_name(store: ResultStore) -> str:
+    config = store.meta("config")
+    if config is None:
+        return ""
+    return BenchConfig.model_validate_json(config).suite
+
