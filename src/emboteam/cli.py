@@ -9,16 +9,20 @@ import sys
 from collections.abc import Callable
 from functools import wraps
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
 from rich.console import Console
 from rich.table import Table
 
+from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.world.actions import Skill
 from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
+
+if TYPE_CHECKING:
+    from emboteam.pipeline import RunConfig
 
 app = typer.Typer(
     add_completion=False,
@@ -157,6 +161,206 @@ def report(directory: Path = typer.Argument(..., help="a run's or a benchmark's 
 
     for path in write_report(directory):
         out.print(f"wrote {path}")
+
+
+# ---- tasks, planning and runs ------------------------------------------------------
+FRONTEND_HELP = "oracle (ground-truth goals) | offline (embedded parser) | llm (needs --llm)"
+LLM_HELP = "PROVIDER:MODEL[@BASE_URL]: openai, anthropic, llamacpp (MODEL = .gguf path), replay (MODEL = cassette dir)"
+
+
+def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) -> BenchTask:
+    """TASK (SUITE/ID) or an instruction with --scene and --robots."""
+    from emboteam.bench.suites import get_task
+    from emboteam.pipeline import adhoc_task
+
+    if scene_fp is not None or robots_list is not None:
+        if scene_fp is None or robots_list is None:
+            raise EmboTeamError("an instruction needs both --scene FLOORPLAN and --robots LIST")
+        return adhoc_task(target, scene_fp, robots_list)
+    return get_task(target)
+
+
+def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConfig:
+    from emboteam.pipeline import MODES, RunConfig
+
+    if mode not in MODES:
+        raise EmboTeamError(f"unknown mode {mode!r}; modes: {', '.join(MODES)}")
+    if frontend not in ("oracle", "offline", "llm"):
+        raise EmboTeamError(f"unknown front end {frontend!r}: oracle, offline or llm")
+    if llm is not None and frontend == "offline" and "frontend_given" not in kw:
+        frontend = "llm"
+    kw.pop("frontend_given", None)
+    return RunConfig(mode=mode, frontend=frontend, llm=llm, **kw)
+
+
+@app.command()
+@cli_errors
+def plan(
+    target: str = typer.Argument(..., metavar="TASK|INSTRUCTION", help="SUITE/ID, or an instruction"),
+    scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
+    robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
+    frontend: str = typer.Option("offline", "--frontend", help=FRONTEND_HELP),
+    llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
+    as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
+) -> None:
+    """Decompose and plan a task (PFG + HP) without executing it."""
+    import time
+
+    from emboteam.modes import make_llm, plan_spec, understand
+    from emboteam.pipeline import initial_state
+    from emboteam.views import plan_json, plan_table, spec_json, spec_table
+    from emboteam.world.scene import load_scene
+
+    task = _resolve_task(target, scene_fp, robots_list)
+    cfg = _run_config("full", frontend, llm, llm_timeout=llm_timeout)
+    state, team = initial_state(task)
+    scene = load_scene(task.floor_plan)
+    client = make_llm(cfg)
+    t0 = time.perf_counter()
+    spec = understand(task, cfg, scene, state, team, client)
+    spec, merged = plan_spec(spec, cfg, task, scene, state, team, client)
+    seconds = time.perf_counter() - t0
+    if as_json:
+        print_json({"task": task.key, "instruction": task.instruction, "scene": task.floor_plan,
+                    "subtasks": spec_json(spec), **plan_json(merged), "plan_seconds": round(seconds, 4),
+                    "llm_calls": client.usage.calls if client else 0})
+        return
+    out.print(f"[bold]{task.key}[/bold] {task.floor_plan}: {task.instruction}")
+    out.print(spec_table(spec))
+    out.print(plan_table(merged))
+    out.print(f"planned in {seconds:.2f} s")
+
+
+@app.command()
+@cli_errors
+def run(
+    target: str = typer.Argument(..., metavar="TASK|INSTRUCTION", help="SUITE/ID, or an instruction"),
+    scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
+    robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
+    frontend: str = typer.Option("offline", "--frontend", help=FRONTEND_HELP),
+    mode: str = typer.Option("full", "--mode", help="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p"),
+    llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
+    llm_record: str | None = typer.Option(None, "--llm-record", help="record LLM calls into this cassette dir"),
+    faults: float = typer.Option(0.0, "--faults", min=0.0, max=1.0, help="per-action failure probability"),
+    seed: int = typer.Option(0, "--seed", help="seed of the fault injection"),
+    join: list[str] = typer.Option([], "--join", help="PROFILE@SECONDS: a robot joins mid-run (repeatable)"),
+    out_dir: Path | None = typer.Option(None, "--out", help="write episode.json, trace.jsonl, report.html here"),
+    as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
+) -> None:
+    """Plan and execute a task in the simulator; print the outcome and metrics."""
+    from emboteam.exec import Join
+    from emboteam.pipeline import run_episode
+    from emboteam.views import episode_panel, plan_table, spec_table
+
+    task = _resolve_task(target, scene_fp, robots_list)
+    cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record,
+                      fault_level=faults, seed=seed, joins=tuple(join))
+    for j in join:
+        Join.parse(j)  # a typed error now rather than mid-run
+    episode = run_episode(task, cfg)
+    if out_dir is not None:
+        from emboteam.report import save_episode_report
+
+        episode.save(out_dir)
+        save_episode_report(episode, out_dir)
+    if as_json:
+        print_json(episode.summary())
+        return
+    out.print(f"[bold]{task.key}[/bold] {task.floor_plan}: {task.instruction}")
+    if episode.taskspec is not None:
+        out.print(spec_table(episode.taskspec))
+    if episode.plan is not None:
+        out.print(plan_table(episode.plan))
+    out.print(episode_panel(episode, out_dir=str(out_dir) if out_dir else None))
+
+
+@app.command()
+@cli_errors
+def bench(
+    suite: str = typer.Option(..., "--suite", help="mace-thor | smart-llm:PATH"),
+    frontend: list[str] = typer.Option(["offline"], "--frontend", help=FRONTEND_HELP + " (repeatable)"),
+    llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
+    ablation: list[str] = typer.Option([], "--ablation", help="full | no-pfg-hp | no-hp | no-btc (repeatable)"),
+    baseline: list[str] = typer.Option([], "--baseline", help="smart-llm | lamma-p (repeatable)"),
+    faults: list[str] = typer.Option(["0"], "--faults", help="fault level(s): 0.2 or 0,0.1,0.2 (repeatable)"),
+    seeds: int = typer.Option(1, "--seeds", min=1, help="seeds 0..N-1 per task"),
+    workers: int = typer.Option(2, "--workers", min=1, help="parallel episodes"),
+    executor: str = typer.Option("local", "--executor", help="local (process pool) | ray"),
+    ray_address: str | None = typer.Option(None, "--ray-address", help="Ray cluster address (default: local)"),
+    out_dir: Path = typer.Option(Path("bench-out"), "--out", help="results store, tables, plots, index.html"),
+    resume: bool = typer.Option(False, "--resume", help="continue a killed run in --out"),
+    as_json: bool = typer.Option(False, "--json", help="one JSON summary object on stdout"),
+) -> None:
+    """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
+    from emboteam.bench.jobs import BenchConfig, expand_jobs, modes_from_options, parse_fault_levels
+    from emboteam.bench.runner import run_bench
+    from emboteam.bench.suites import load_suite
+    from emboteam.bench.tables import bench_summary
+
+    loaded = load_suite(suite)
+    for problem in loaded.problems:
+        err.print(f"[yellow]skipped:[/yellow] {problem}", highlight=False, soft_wrap=True)
+    frontends = ["llm" if (llm and f == "offline" and len(frontend) == 1) else f for f in frontend]
+    cfg = BenchConfig.build(
+        suite=suite, modes=modes_from_options(ablation, baseline), frontends=frontends, llm=llm,
+        seeds=seeds, fault_levels=parse_fault_levels(faults), workers=workers, executor=executor,
+        ray_address=ray_address, out_dir=out_dir, resume=resume, llm_timeout=llm_timeout,
+    )
+    episodes = run_bench(cfg, expand_jobs(cfg, loaded.tasks))
+    from emboteam.report import write_report
+
+    write_report(out_dir)
+    summary = bench_summary(episodes, suite=suite)
+    if as_json:
+        print_json(summary.to_json())
+        return
+    tables = out_dir / "tables.md"
+    if tables.exists():
+        from rich.markdown import Markdown
+
+        out.print(Markdown(tables.read_text()))
+    out.print(f"results: {out_dir}/results.sqlite · report: {out_dir}/index.html")
+
+
+@app.command("export-bt")
+@cli_errors
+def export_bt(
+    target: str = typer.Argument(..., metavar="TASK|INSTRUCTION", help="SUITE/ID, or an instruction"),
+    fmt: str = typer.Option("btcpp", "--format", help="btcpp (BehaviorTree.CPP v4 XML) | dot | ascii"),
+    scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
+    robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
+    frontend: str = typer.Option("offline", "--frontend", help=FRONTEND_HELP),
+    llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    out_file: Path | None = typer.Option(None, "--out", help="write here (.png/.svg with --format dot: an image)"),
+) -> None:
+    """Export a task's behavior tree: BehaviorTree.CPP v4 XML (Groot2), Graphviz DOT or ASCII."""
+    from emboteam.btc.export import render, to_ascii, to_btcpp_xml, to_dot
+    from emboteam.modes import make_llm, plan_spec, understand
+    from emboteam.pipeline import initial_state
+    from emboteam.world.scene import load_scene
+
+    if fmt not in ("btcpp", "dot", "ascii"):
+        raise EmboTeamError(f"unknown format {fmt!r}: btcpp, dot or ascii")
+    task = _resolve_task(target, scene_fp, robots_list)
+    cfg = _run_config("full", frontend, llm)
+    state, team = initial_state(task)
+    scene = load_scene(task.floor_plan)
+    client = make_llm(cfg)
+    spec = understand(task, cfg, scene, state, team, client)
+    _, merged = plan_spec(spec, cfg, task, scene, state, team, client)
+    if fmt == "dot" and out_file is not None and out_file.suffix.lower() in (".png", ".svg"):
+        render(merged, out_file, state=state)
+        err.print(f"wrote {out_file}")
+        return
+    text = {"btcpp": to_btcpp_xml, "dot": to_dot, "ascii": to_ascii}[fmt](merged, state=state)
+    if out_file is None:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+    else:
+        out_file.write_text(text)
+        err.print(f"wrote {out_file}")
 
 
 def main() -> None:

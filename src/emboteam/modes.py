@@ -20,8 +20,8 @@ from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.llm.client import LLMClient, make_client
 from emboteam.pddl.domain import DomainError, step_literals
-from emboteam.pddl.literal import Literal
 from emboteam.pddl.errors import PlanningError
+from emboteam.pddl.literal import Literal
 from emboteam.pfg.scripted import scripted_action_lists
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.pipeline import RunConfig, initial_state, score
@@ -147,7 +147,7 @@ def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: W
     if not reactive:
         return run_linear(sim, plan, goal, time_limit=cfg.time_limit), sim
     names = [p.name for p in team]
-    joins = [Join.parse(f"{j.profile}@{j.at}", names) for j in cfg.joins]
+    joins = [Join.parse(j, names) for j in cfg.joins]
     replanner = planner_replanner(planner_for("full")) if replan else None
     executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
                         time_limit=cfg.time_limit)
@@ -188,7 +188,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
         frontend=cfg.frontend, seed=cfg.seed, faults=cfg.fault_config(), fault_level=cfg.fault_level,
         llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
         plan_seconds=round(plan_seconds, 4), taskspec=spec,
-        error=result.error, **fields,  # type: ignore[arg-type]
+        error=result.error, **fields,
     )
 
 

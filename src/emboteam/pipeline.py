@@ -45,23 +45,6 @@ FrontendName = Literal["oracle", "offline", "llm"]
 MODES: tuple[str, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p")
 
 
-class Join(BaseModel):
-    """A robot joining mid-run (``--join PROFILE@SECONDS``)."""
-
-    model_config = ConfigDict(frozen=True)
-
-    profile: str
-    at: float = Field(ge=0)
-
-    @classmethod
-    def parse(cls, text: str) -> Join:
-        profile, _, at = text.partition("@")
-        try:
-            return cls(profile=profile.strip(), at=float(at))
-        except ValueError:
-            raise EmboTeamError(f"--join takes PROFILE@SECONDS, e.g. 5@30, not {text!r}") from None
-
-
 class RunConfig(BaseModel):
     """How to run an episode: the mode, the front end, the LLM, faults, seed, limits."""
 
@@ -76,7 +59,7 @@ class RunConfig(BaseModel):
     faults: FaultConfig | None = Field(None, description="explicit faults (overrides fault_level)")
     seed: int = 0
     time_limit: float = Field(900.0, description="simulated seconds")
-    joins: tuple[Join, ...] = ()
+    joins: tuple[str, ...] = Field((), description="PROFILE@SECONDS: robots joining mid-run")
 
     def fault_config(self) -> FaultConfig:
         return self.faults if self.faults is not None else FaultConfig.level(self.fault_level)
@@ -101,7 +84,7 @@ def initial_state(task: BenchTask) -> tuple[WorldState, tuple[RobotProfile, ...]
 
 
 def _episode(task: BenchTask, cfg: RunConfig, **fields: object) -> Episode:
-    state, team = initial_state(task)
+    _, team = initial_state(task)
     base: dict[str, object] = dict(
         task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
         robots=tuple(p.name for p in team), category=task.category, mode=cfg.mode,
@@ -129,7 +112,7 @@ def run_episode(task: BenchTask, cfg: RunConfig) -> Episode:
         episode = run_mode(task, cfg)
     except EmboTeamError as exc:
         state, _ = initial_state(task)
-        ok, gcr, conds = score(task.goal, state) if task.goal.conditions else (False, 0.0, ())
+        _, gcr, conds = score(task.goal, state) if task.goal.conditions else (False, 0.0, ())
         episode = _episode(task, cfg, success=False, gcr=gcr, conditions=conds,
                            error=f"{type(exc).__name__}: {exc}")
     return episode.model_copy(update={"wall_seconds": round(time.perf_counter() - started, 4)})
