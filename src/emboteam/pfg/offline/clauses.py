@@ -1,0 +1,193 @@
+"""Clause segmentation: an instruction -> clauses, each with how it attaches to what came
+before (in parallel, after it, before it) and the robot it is addressed to.
+
+Boundaries are sentence punctuation, sequence markers ("then", "after that"),
+subordinators ("after", "before", "once", "when", "while", "by" + gerund, "if"), and
+"and"/"," when what follows starts with a verb ("slice the apple and put it ..." is two
+clauses, "slice the apple and the tomato" is one).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.tagger import Item
+
+#: how a clause attaches to the one before it
+AND, THEN = "and", "then"
+
+
+@dataclass
+class Clause:
+    items: list[Item]
+    #: "and" (parallel), "then" (after the previous step), or a subordinator relation
+    #: "after"/"before"/"while"/"by"/"if"/"purpose" (the clause is subordinate)
+    link: str = AND
+    robot: tuple[str, int] | None = None
+    sentence: int = 0
+    #: position of a subordinate clause: first in its sentence ("After X, Y") or not
+    initial: bool = False
+    extra: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def text(self) -> str:
+        return " ".join(i.text for i in self.items if i.punct is None)
+
+
+_SENTENCE_END = frozenset(".!?;:")
+_HUMAN = frozenset({"i", "we", "you", "someone", "somebody", "nobody", "anyone", "anybody",
+                    "everyone", "everybody", "they", "he", "she", "one"})
+_VERB_CUES = frozenset({"should", "must", "will", "can", "could", "would", "to", "please",
+                        "also", "just", "then", "now", "go", "quickly", "kindly", "you",
+                        "someone", "somebody", "anyone", "anybody", "we", "let", "us", "ahead",
+                        "and", "maybe", "perhaps", "possibly"})
+
+
+def _next_is_object(items: list[Item], j: int) -> bool:
+    """Does a verb-or-noun word at ``j`` take an object (so it is a verb)?"""
+    if j + 1 >= len(items):
+        return False
+    nxt = items[j + 1]
+    if nxt.det or nxt.pron is not None or nxt.quant is not None or nxt.number is not None:
+        return True
+    if nxt.noun is not None and nxt.prep is None and (
+            nxt.verb is None or j + 2 >= len(items) or items[j + 2].punct is not None
+            or items[j + 2].conj is not None):
+        return True     # "open microwave." : a noun that could be a verb, with nothing after
+    if nxt.particle is not None and nxt.prep is None:
+        return True
+    verb = items[j].verb
+    if nxt.particle in ("on", "off") and verb is not None and verb.sense.act is lx.Act.SWITCH:
+        return True
+    return bool(nxt.particle is not None and j + 2 < len(items)
+                and (items[j + 2].det or items[j + 2].noun is not None))
+
+
+def verb_here(items: list[Item], j: int) -> bool:
+    """Is ``items[j]`` (after optional cues like "also", "please") the verb of a new clause?"""
+    while j < len(items) and items[j].text in _VERB_CUES and items[j].verb is None:
+        j += 1
+    if j >= len(items):
+        return False
+    it = items[j]
+    if it.verb is None or it.verb.form == "s":
+        return False
+    if it.verb.form == "ed" and it.state is not None and it.noun is None:
+        return False   # "the bread sliced and the slices ..." : a state, not a verb
+    if it.noun is not None or it.state is not None or it.prep is not None:
+        return _next_is_object(items, j)
+    return True
+
+
+#: words that only introduce a robot: "have robot 2 ...", "the second robot", "ask robot 1 to"
+_ROBOT_INTRO = frozenset({"the", "have", "let", "ask", "tell", "get", "make", "use", "using",
+                          "with", "by", "for", "assign", "order", "instruct"})
+
+
+def _without_robot_words(items: list[Item]) -> list[Item]:
+    """The clause without its robot names and the words that introduce them."""
+    drop: set[int] = set()
+    for k, x in enumerate(items):
+        if x.robot is None:
+            continue
+        drop.add(k)
+        m = k - 1
+        while m >= 0 and items[m].text in _ROBOT_INTRO:
+            drop.add(m)
+            m -= 1
+    return [x for k, x in enumerate(items) if k not in drop]
+
+
+def split_sentences(items: list[Item]) -> list[list[Item]]:
+    out: list[list[Item]] = [[]]
+    for it in items:
+        if it.punct in _SENTENCE_END:
+            if out[-1]:
+                out.append([])
+            continue
+        out[-1].append(it)
+    return [s for s in out if s]
+
+
+def _starts_new(items: list[Item], j: int) -> bool:
+    """A boundary before ``items[j]`` (after ',' or 'and')?"""
+    it = items[j]
+    if it.seq is not None or it.robot is not None:
+        return True
+    if (it.sub is not None and it.sub != "purpose") or it.text == "so":
+        return True
+    if it.text in _HUMAN and j + 1 < len(items) and (items[j + 1].verb is not None
+                                                    or items[j + 1].copula):
+        return True
+    return verb_here(items, j)
+
+
+def segment(items: list[Item]) -> list[Clause]:
+    """Clauses in textual order."""
+    clauses: list[Clause] = []
+    robot: tuple[str, int] | None = None
+    for s_index, sentence in enumerate(split_sentences(items)):
+        sentence_robot: tuple[str, int] | None = None
+        current = Clause([], AND, None, s_index, initial=True)
+        first_in_sentence = True
+
+        def close(c: Clause) -> None:
+            if c.items:
+                clauses.append(c)
+
+        j = 0
+        while j < len(sentence):
+            it = sentence[j]
+            boundary: str | None = None
+            skip = 1
+            if it.seq is not None:
+                boundary = THEN
+            elif it.robot is not None and current.items and any(x.is_content() for x in current.items):
+                boundary = AND
+                skip = 0
+            elif it.text == "as well as" or ((it.text in (",", "and", "but", "plus")
+                                             or it.punct == ",") and j + 1 < len(sentence)):
+                k = j + 1
+                while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")):
+                    k += 1
+                if k < len(sentence) and _starts_new(sentence, k):
+                    boundary = AND
+                    skip = k - j
+            elif (it.sub is not None and j > 0) or (it.sub is not None and j == 0):
+                nxt = sentence[j + 1] if j + 1 < len(sentence) else None
+                is_sub = it.sub != "by" or (nxt is not None and nxt.verb is not None
+                                            and nxt.verb.form == "ing")
+                if it.text == "as" and nxt is not None and nxt.text in ("to", "well", "soon"):
+                    is_sub = nxt.text != "well"
+                if it.text == "so" and nxt is not None and nxt.text in ("that",):
+                    skip = 2
+                if is_sub:
+                    boundary = it.sub
+            if boundary is None:
+                current.items.append(it)
+                j += 1
+                continue
+            if not current.items and boundary == AND:
+                boundary = current.link     # ", and then ,": keep the stronger link
+            close(current)
+            if current.items:
+                first_in_sentence = False
+            current = Clause([], boundary, None, s_index, initial=first_in_sentence)
+            j += skip
+        close(current)
+        # robots: "robot 2, open the box" addresses its clause and the rest of the sentence;
+        # a clause that is only a robot name ("Robot 1:") addresses everything until the
+        # next robot is named
+        for c in clauses:
+            if c.sentence != s_index:
+                continue
+            named = [x.robot for x in c.items if x.robot is not None]
+            if named:
+                sentence_robot = named[-1]
+                c.items = _without_robot_words(c.items)
+                if not any(x.is_content() for x in c.items):
+                    robot = sentence_robot
+            c.robot = sentence_robot if sentence_robot is not None else robot
+        del first_in_sentence
+    return [c for c in clauses if c.items]

@@ -1,0 +1,198 @@
+"""Decomposition: clauses and their drafts -> a TaskSpec (ids, dependencies, robots,
+final flags).
+
+Ordering rules (docs/offline_parser.md):
+
+- "A then B", "A. After that B", "first A, then B", "once A is done, B": B depends on
+  every subtask of A's step;
+- "after A, B" / "B after A" / "once A, B" / "when A, B": B depends on A; "before B, A" /
+  "A before B": B depends on A;
+- "A and B" (or separate sentences): independent, unless B involves an object A works on
+  or with ("slice the apple and put it in the fridge", "put the mug in the coffee machine
+  and switch it on"): then B depends on A, in the order written;
+- a subtask whose condition a later subtask undoes (the apple held, then put away; the
+  fridge opened, then closed) is intermediate: ``final=False``; so is a means to an end
+  (rinsing a non-dirtyable object in the sink basin under the running faucet, the running
+  microwave of "microwave the potato"): the end state need not keep it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from emboteam.errors import UnknownRobotError
+from emboteam.pfg.offline.clauses import THEN, Clause
+from emboteam.pfg.offline.semantics import Draft
+from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.world.goals import Condition, ObjectRef, Predicate
+from emboteam.world.robots import RobotProfile
+
+P = Predicate
+_OPPOSITES = {
+    (P.switched_on, P.switched_off), (P.switched_off, P.switched_on), (P.open, P.closed),
+    (P.closed, P.open), (P.clean, P.dirty), (P.dirty, P.clean), (P.hot, P.cold), (P.cold, P.hot),
+}
+
+
+@dataclass
+class Node:
+    """A draft placed in the instruction: its clause, its step, its dependencies."""
+
+    draft: Draft
+    clause: int
+    robot: str | None
+    after: set[int]
+
+
+def steps(clauses: Sequence[Clause]) -> list[list[int]]:
+    """Clause indices grouped into steps, in execution order: clauses of one step may run
+    in parallel, each step after the one before."""
+    groups: list[list[int]] = []
+    pending: tuple[str, int] | None = None    # a sentence-initial "after X," / "before X,"
+    for ci, c in enumerate(clauses):
+        link = c.link
+        if pending is not None and clauses[pending[1]].sentence == c.sentence and link not in (
+                "after", "before"):
+            kind, sub = pending
+            pending = None
+            if kind == "after":
+                groups.append([ci])
+            else:   # "before X, Y": Y goes before X's step
+                pos = next(k for k, g in enumerate(groups) if sub in g)
+                groups.insert(pos, [ci])
+            continue
+        if not groups:
+            groups.append([ci])
+            if link in ("after", "before") and c.initial:
+                pending = (link, ci)
+            continue
+        if link == THEN:
+            groups.append([ci])
+        elif link in ("after", "before") and c.initial:
+            groups.append([ci])
+            pending = (link, ci)
+        elif link == "after":
+            # "B after A": A (this clause) before the step of B (the clause before)
+            pos = next(k for k, g in enumerate(groups) if ci - 1 in g)
+            groups.insert(pos, [ci])
+            if len(groups[pos + 1]) > 1:
+                groups[pos + 1].remove(ci - 1)
+                groups.insert(pos + 2, [ci - 1])
+        elif link == "before":
+            groups.append([ci])      # "A before B": B (this clause) after A
+        else:
+            groups[-1].append(ci)
+    return groups
+
+
+def _refs_overlap(a: ObjectRef, b: ObjectRef) -> bool:
+    ta = set(a.types) if a.id is None else {a.id.split("_")[0]}
+    tb = set(b.types) if b.id is None else {b.id.split("_")[0]}
+    if a.id is not None and b.id is not None:
+        return a.id == b.id
+    return bool(ta & tb) or any(t.startswith(u) or u.startswith(t) for t in ta for u in tb)
+
+
+def undoes(later: Condition, earlier: Condition) -> bool:
+    """Does ``later`` make ``earlier`` false (about the same object)?"""
+    if not _refs_overlap(later.subject, earlier.subject):
+        return False
+    if (earlier.predicate, later.predicate) in _OPPOSITES:
+        return True
+    moves = (P.inside, P.held)
+    if earlier.predicate in moves and later.predicate in moves:
+        if earlier.predicate is P.inside and later.predicate is P.inside:
+            assert earlier.receptacle is not None and later.receptacle is not None
+            return not _refs_overlap(earlier.receptacle, later.receptacle)
+        return earlier.predicate != later.predicate
+    return False
+
+
+def robot_name(mention: tuple[str, int] | None, team: Sequence[RobotProfile]) -> str | None:
+    """The team member a clause addresses: "robot 5" is the member built from profile 5,
+    else the fifth member; "the second robot" is the second member."""
+    if mention is None:
+        return None
+    kind, value = mention
+    names = [r.name for r in team]
+    if kind == "number":
+        if f"robot{value}" in names:
+            return f"robot{value}"
+        if 1 <= value <= len(team):
+            return names[value - 1]
+    elif kind == "ordinal":
+        if value == -1 and team:
+            return names[-1]
+        if 1 <= value <= len(team):
+            return names[value - 1]
+    label = f"robot {value}" if kind == "number" else f"robot number {value} in order"
+    raise UnknownRobotError(f"the instruction names {label}, but the team is "
+                            f"{', '.join(names) or 'empty'}")
+
+
+def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list[Draft]],
+             team: Sequence[RobotProfile]) -> TaskSpec:
+    """Drafts per clause -> a TaskSpec with dependencies and final flags."""
+    order = steps(clauses)
+    nodes: list[Node] = []
+    clause_nodes: dict[int, list[int]] = {}
+    for group in order:
+        for ci in sorted(group):
+            base = len(nodes)
+            robot = robot_name(clauses[ci].robot, team)
+            for k, d in enumerate(drafts.get(ci, [])):
+                nodes.append(Node(d, ci, robot, {base + a for a in d.after}))
+                clause_nodes.setdefault(ci, []).append(base + k)
+    # step order: everything of a step after every subtask of the last non-empty step
+    previous: list[int] = []
+    for group in order:
+        members = [n for ci in sorted(group) for n in clause_nodes.get(ci, [])]
+        for n in members:
+            nodes[n].after |= set(previous)
+        # within a step: an object shared with an earlier clause orders the two
+        for a in members:
+            for b in members:
+                if nodes[a].clause < nodes[b].clause and nodes[a].draft.entities & nodes[b].draft.entities:
+                    nodes[b].after.add(a)
+        if members:
+            previous = members
+    # duplicates ("make a salad" then "chop the lettuce"): keep the first
+    seen: dict[str, int] = {}
+    alias: dict[int, int] = {}
+    for i, node in enumerate(nodes):
+        key = " & ".join(sorted(str(c) for c in node.draft.conditions))
+        if key in seen and not node.draft.intermediate:
+            alias[i] = seen[key]
+        else:
+            seen[key] = i
+    kept = [i for i in range(len(nodes)) if i not in alias]
+
+    def canon(i: int) -> int:
+        while i in alias:
+            i = alias[i]
+        return i
+
+    for i in kept:
+        nodes[i].after = {canon(a) for a in nodes[i].after if canon(a) != i}
+    for i, target in alias.items():
+        nodes[canon(target)].after |= {canon(a) for a in nodes[i].after if canon(a) != canon(target)}
+    # final flags: a condition undone by a later subtask is intermediate
+    final = {i: True for i in kept}
+    for pos, i in enumerate(kept):
+        later = kept[pos + 1:]
+        for c in nodes[i].draft.conditions:
+            if any(undoes(c2, c) for j in later for c2 in nodes[j].draft.conditions):
+                final[i] = False
+        if nodes[i].draft.intermediate:
+            final[i] = False
+    ids = {i: f"s{k + 1}" for k, i in enumerate(kept)}
+    subtasks = []
+    for i in kept:
+        node = nodes[i]
+        deps = tuple(sorted((ids[a] for a in node.after if a in ids), key=lambda s: int(s[1:])))
+        subtasks.append(Subtask(id=ids[i], description=node.draft.description, robot=node.robot,
+                                goal=tuple(node.draft.conditions), depends_on=deps,
+                                final=final[i]))
+    return TaskSpec(instruction=instruction, subtasks=tuple(subtasks))
+

@@ -1,0 +1,299 @@
+"""Grounding: a parsed noun phrase -> object references of the scene, with counts.
+
+Only types the scene has are used ("the table" is a DiningTable in a kitchen and a
+CoffeeTable in a living room). What the predicate needs narrows the choice (to switch
+"the stove" is to switch its knob; a lamp that is a floor lamp here). Plurals and "all"
+mean every instance, split per type; numbers mean "that many of these types";
+adjectives ("the dirty mug") and places ("the apple in the fridge") pick object ids when
+they single out some instances. Anything that cannot be grounded raises
+:class:`GroundingError` naming the phrase and the closest objects of the scene.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.errors import GroundingError
+from emboteam.pfg.offline.frames import Head
+from emboteam.pfg.offline.tagger import NounReading
+from emboteam.pfg.offline.text import split_camel
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import ObjectRef
+from emboteam.world.scene import Scene
+from emboteam.world.state import ObjectState, WorldState
+
+Stat = lx.Stat
+
+
+@dataclass(frozen=True)
+class Ref:
+    """A grounded noun phrase: one or more (reference, count) groups."""
+
+    label: str
+    groups: tuple[tuple[ObjectRef, int], ...]
+    plural: bool = False
+
+    @property
+    def types(self) -> frozenset[str]:
+        """Every type the phrase can stand for, slices folded into their whole."""
+        cat = load_catalogue()
+        out: set[str] = set()
+        for ref, _ in self.groups:
+            names = ref.types if ref.id is None else (ref.id.split("_")[0],)
+            for t in names:
+                out.add(cat.source_type(t) or t)
+        return frozenset(out)
+
+    def type_names(self) -> tuple[str, ...]:
+        names: list[str] = []
+        for ref, _ in self.groups:
+            for t in (ref.types if ref.id is None else (ref.id.split("_")[0],)):
+                if t not in names:
+                    names.append(t)
+        return tuple(names)
+
+    def single(self) -> ObjectRef:
+        """All groups as one reference (for a receptacle: any of these)."""
+        if len(self.groups) == 1:
+            return self.groups[0][0]
+        return ObjectRef(types=self.type_names())
+
+
+#: predicate need -> catalogue property
+NEEDS: dict[str, str] = {
+    "switch": "toggleable", "open": "openable", "slice": "sliceable", "break": "breakable",
+    "cook": "cookable", "dirty": "dirtyable", "fill": "canFillWithLiquid", "hold": "pickupable",
+    "receptacle": "receptacle",
+}
+
+
+class Grounder:
+    """Grounds noun phrases in one scene and state."""
+
+    def __init__(self, scene: Scene, state: WorldState) -> None:
+        self.scene = scene
+        self.state = state
+        self.cat = load_catalogue()
+        live = [o for o in state.objects.values() if not o.gone]
+        self.present: set[str] = {o.type for o in live} | scene.types()
+        self._live = live
+
+    # ---- helpers -------------------------------------------------------------------
+    def instances(self, t: str) -> list[ObjectState]:
+        return sorted((o for o in self._live if o.type == t), key=lambda o: _id_key(o.id))
+
+    def count_available(self, t: str) -> int:
+        """How many objects of type ``t`` there are or could be (pieces of uncut wholes)."""
+        n = len(self.instances(t))
+        source = self.cat.source_type(t)
+        if source is not None:
+            product = self.cat.slice_product(source)
+            assert product is not None
+            n += product[1] * len(self.instances(source))
+        return n
+
+    def has_type(self, t: str) -> bool:
+        if t in self.present:
+            return True
+        source = self.cat.source_type(t)
+        return source is not None and source in self.present
+
+    def can(self, t: str, need: str | None) -> bool:
+        if need is None:
+            return True
+        if need == "slice":
+            return self.cat.slice_product(t) is not None
+        prop = NEEDS[need]
+        if t not in self.cat.types:
+            return False
+        if self.cat.type(t).has(prop):
+            return True
+        product = self.cat.slice_product(t)
+        return need == "cook" and product is not None and self.cat.type(product[0]).has(prop)
+
+    def suggestions(self, phrase: str, limit: int = 3) -> list[str]:
+        """Scene types closest to a phrase, by the spelling of their names and synonyms
+        (difflib's ratio: a typo of a name scores high, an unrelated word low)."""
+        names: dict[str, str] = {}
+        for key, concept in lx.nouns().items():
+            for t in (*concept.types, *concept.fallback):
+                if t in self.present:
+                    names.setdefault(key, t)
+                    break
+        for t in sorted(self.present):
+            names.setdefault(split_camel(t).lower(), t)
+        scored: dict[str, float] = {}
+        for query in {phrase.lower(), *phrase.lower().split()}:
+            matcher = difflib.SequenceMatcher(None, "", query)
+            for key, t in names.items():
+                matcher.set_seq1(key)
+                if matcher.real_quick_ratio() <= scored.get(t, 0.0):
+                    continue
+                scored[t] = max(scored.get(t, 0.0), matcher.ratio())
+        ranked = sorted(scored.items(), key=lambda kv: (-kv[1], kv[0]))
+        return [t for t, _ in ranked[:limit]]
+
+    def fail(self, message: str, phrase: str) -> GroundingError:
+        return GroundingError(message, phrase=phrase, suggestions=self.suggestions(phrase))
+
+    # ---- candidate types -----------------------------------------------------------
+    def candidate_types(self, head: Head, need: str | None) -> list[str]:
+        """Types the phrase stands for in this scene, narrowed by what is asked of them."""
+        phrase = head.label()
+        if head.noun is None and head.liquid == "water" and need == "switch":
+            head = Head(text=phrase, noun=NounReading(lx.nouns()["faucet"], "faucet", False))
+        if head.noun is None:
+            if head.unknown:
+                word = " ".join(head.unknown)
+                raise self.fail(f"{word!r} names nothing EmboTeam knows", word)
+            raise self.fail(f"cannot tell what {phrase!r} refers to", phrase)
+        concept = head.noun.concept
+        if concept.kind == "room" or (concept.kind == "anything" and not head.location):
+            what = "a room, not an object" if concept.kind == "room" else "too vague"
+            err = self.fail(f"{phrase!r} is {what}: say which objects", phrase)
+            err.vague = True
+            raise err
+        base: list[str] = list(concept.types)
+        if concept.kind == "lights" and (head.quant in ("all", "every", "each") or (head.plural
+                                         and head.quant is not None)):
+            base += ["DeskLamp", "FloorLamp"]
+        if concept.kind == "anything":
+            return self._things_at(head)
+        types = [t for t in base if self.has_type(t)]
+        if not types:
+            types = [t for t in concept.fallback if self.has_type(t)]
+        if not types:
+            names = "/".join(concept.types)
+            noun = head.noun.phrase
+            raise self.fail(f"{self.scene.floor_plan} has no {noun} ({names})", noun)
+        if head.piece:
+            pieces = []
+            for t in types:
+                product = self.cat.slice_product(t)
+                pieces.append(product[0] if product is not None else t)
+            types = pieces
+        if need is not None:
+            able = [t for t in types if self.can(t, need)]
+            if not able and need == "switch":
+                able = [s for t in types for s in lx.SWITCHED_BY.get(t, ()) if self.has_type(s)]
+            if not able and need == "receptacle":
+                able = []
+            if not able:
+                verb = {"switch": "switched", "open": "opened or closed", "slice": "sliced",
+                        "break": "broken", "cook": "cooked", "dirty": "made dirty",
+                        "fill": "filled", "hold": "picked up", "receptacle": "used as a place"}
+                noun = head.noun.phrase
+                raise self.fail(f"no {noun} in {self.scene.floor_plan} can be {verb[need]} "
+                                f"({'/'.join(types)})", noun)
+            types = list(dict.fromkeys(able))
+        return types
+
+    def _things_at(self, head: Head) -> list[str]:
+        """"everything on the table": pickupable types found there."""
+        places = [self.ground(land, None) for _, land in head.location]
+        out: list[str] = []
+        for o in self._live:
+            if not o.has("pickupable"):
+                continue
+            chain = self.state.ancestors(o.id) if o.id in self.state.objects else []
+            for place in places:
+                if any(self.state.objects[c].type in place.type_names() for c in chain) \
+                        and o.type not in out:
+                    out.append(o.type)
+        if not out:
+            raise self.fail(f"nothing found for {head.label()!r}", head.label())
+        return out
+
+    # ---- filtering and counting ----------------------------------------------------
+    def _matches(self, o: ObjectState, head: Head, places: list[Ref]) -> bool:
+        for stat, pos in head.filters:
+            value = {
+                Stat.SWITCH: o.is_on, Stat.OPEN: o.is_open, Stat.HOT: o.temperature == "Hot",
+                Stat.COLD: o.temperature == "Cold", Stat.COOKED: o.is_cooked,
+                Stat.CLEAN: not o.is_dirty, Stat.BROKEN: o.is_broken, Stat.SLICED: o.is_sliced,
+                Stat.FILLED: o.liquid is not None,
+            }.get(stat)
+            if value is not None and value != pos:
+                return False
+        for place in places:
+            chain = self.state.ancestors(o.id) if o.id in self.state.objects else []
+            held = o.held_by is not None
+            if not held and not any(self.state.objects[c].type in place.type_names() for c in chain):
+                return False
+        return True
+
+    def ground(self, head: Head, need: str | None) -> Ref:
+        """The references a (non-pronoun) noun phrase stands for."""
+        types = self.candidate_types(head, need)
+        label = head.label()
+        places = []
+        for _, land in head.location:
+            try:
+                places.append(self.ground(land, None))
+            except GroundingError:
+                continue   # a place we cannot find does not make the object unknown
+        selective = bool(head.filters or places)
+        if selective and not head.piece:
+            pool = [o for t in types for o in self.instances(t)]
+            chosen = [o for o in pool if self._matches(o, head, places)]
+            if chosen and len(chosen) < len(pool):
+                many = head.plural or head.quant in ("all", "every", "each") or (head.count or 1) > 1
+                picked = chosen if many else chosen[:1]
+                if head.count is not None and many:
+                    picked = chosen[: head.count]
+                return Ref(label, tuple((ObjectRef(id=o.id), 1) for o in picked), many)
+        if head.ordinal is not None and not head.piece:
+            pool = [o for t in types for o in self.instances(t)]
+            k = head.ordinal - 1 if head.ordinal > 0 else len(pool) - 1
+            if 0 <= k < len(pool):
+                return Ref(label, ((ObjectRef(id=pool[k].id), 1),))
+        available = sum(self.count_available(t) for t in types)
+        if head.count is not None and not (head.quant == "both" and not head.plural):
+            n = head.count
+            if head.vague_count:
+                n = max(1, min(n, available))
+            if n > available:
+                raise self.fail(f"{self.scene.floor_plan} has only {available} {label!r} "
+                                f"({'/'.join(types)}), not {n}", label)
+            return Ref(label, ((ObjectRef(types=tuple(types)), n),), n > 1)
+        every = head.quant in ("all", "every", "each", "everything") or (
+            head.plural and not head.piece and not head.vague_count)
+        if every:
+            groups = []
+            for t in types:
+                k = len(self.instances(t)) or (1 if self.has_type(t) else 0)
+                if k:
+                    groups.append((ObjectRef(types=(t,)), k))
+            return Ref(label, tuple(groups), True)
+        return Ref(label, ((ObjectRef(types=tuple(types)), 1),), False)
+
+    def light_sources(self, on: bool = False) -> Ref:
+        """The lights to switch to make the room dark: its switch and its lamps; to make it
+        bright (``on``) its main light is enough (its lamps where it has no light switch)."""
+        groups = []
+        kinds = ("LightSwitch",) if on and self.instances("LightSwitch") else (
+            "LightSwitch", "DeskLamp", "FloorLamp")
+        for t in kinds:
+            k = len(self.instances(t))
+            if k:
+                groups.append((ObjectRef(types=(t,)), k))
+        if not groups:
+            raise GroundingError(f"{self.scene.floor_plan} has no lights to switch")
+        return Ref("the lights", tuple(groups), True)
+
+    def types_ref(self, types: Iterable[str], label: str) -> Ref:
+        """A reference to one object of any of the given types (those present)."""
+        present = tuple(t for t in types if self.has_type(t))
+        if not present:
+            raise self.fail(f"{self.scene.floor_plan} has no {label}", label)
+        return Ref(label, ((ObjectRef(types=present), 1),))
+
+
+def _id_key(object_id: str) -> tuple[str, int, int]:
+    parts = object_id.split("_")
+    num = int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else 0
+    piece = int(parts[3]) if len(parts) > 3 and parts[3].isdigit() else 0
+    return parts[0], num, piece

@@ -1,0 +1,245 @@
+"""Tagging: tokens -> items, each a word or a multi-word unit with every reading it can
+have (a noun, a verb, a state word, a preposition ...). The clause parser picks one
+reading from the context: "microwave" is a verb at the start of a clause and a noun after
+"the".
+
+Multi-word units are matched longest first: noun phrases of the lexicon ("coffee table",
+"toilet paper holder", plurals included), prepositions ("on top of"), sequence markers
+("after that") and robot names ("robot 2", "the second robot"). Typos are corrected here,
+once, so everything downstream sees lexicon words.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.morphology import correct, singular, singular_candidates, verb_lemma
+from emboteam.pfg.offline.text import PUNCT, tokenize
+
+
+@dataclass(frozen=True, slots=True)
+class NounReading:
+    concept: lx.Concept
+    phrase: str
+    plural: bool
+    #: "a slice of bread", "apple slices": the pieces, not the whole
+    piece: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class VerbReading:
+    lemma: str
+    form: str   # base | ing | ed | s
+    sense: lx.VerbSense
+
+
+@dataclass(slots=True)
+class Item:
+    """One word or multi-word unit with all its possible readings."""
+
+    text: str
+    noun: NounReading | None = None
+    verb: VerbReading | None = None
+    state: tuple[lx.Stat, bool] | None = None
+    prep: str | None = None
+    particle: str | None = None
+    number: int | None = None
+    det: bool = False
+    quant: str | None = None
+    pron: str | None = None
+    neg: bool = False
+    copula: bool = False
+    punct: str | None = None
+    #: "robot 2" -> ("number", 2); "the second robot" -> ("ordinal", 2); "last" -> ("ordinal", -1)
+    robot: tuple[str, int] | None = None
+    liquid: str | None = None
+    recipe: str | None = None
+    seq: str | None = None            # a sequence marker ("then", "after that")
+    sub: str | None = None            # a subordinator relation (after/before/while/...)
+    conj: str | None = None           # and / or
+    ordinal: int | None = None
+    corrected_from: str | None = None
+    extra: dict[str, str] = field(default_factory=dict)
+
+    def is_content(self) -> bool:
+        return self.noun is not None or self.verb is not None or self.state is not None
+
+    def __repr__(self) -> str:
+        tags = [k for k in ("noun", "verb", "state", "prep", "particle", "number", "quant",
+                            "pron", "punct", "robot", "liquid", "recipe", "seq", "sub", "conj")
+                if getattr(self, k) not in (None, False)]
+        tags += ["det"] if self.det else []
+        tags += ["neg"] if self.neg else []
+        tags += ["cop"] if self.copula else []
+        return f"{self.text}<{','.join(tags)}>"
+
+
+_MAX_SPAN = 5
+
+
+def _noun_at(words: list[str], i: int) -> tuple[int, NounReading] | None:
+    """The longest noun phrase of the lexicon starting at ``words[i]``."""
+    table = lx.nouns()
+    for n in range(min(_MAX_SPAN, len(words) - i), 0, -1):
+        span = words[i:i + n]
+        if any(w in PUNCT for w in span):
+            continue
+        phrase = " ".join(span)
+        if phrase in lx.PLURAL_NOUNS:
+            return n, NounReading(lx.PLURAL_NOUNS[phrase], phrase, True)
+        if phrase in table:
+            return n, NounReading(table[phrase], phrase, False)
+        for last in singular_candidates(span[-1])[:-1]:
+            phrase = " ".join([*span[:-1], last])
+            if phrase in table:
+                return n, NounReading(table[phrase], phrase, True)
+    return None
+
+
+def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
+           sizes: tuple[int, ...] = (4, 3, 2)) -> tuple[int, str] | None:
+    for n in sizes:
+        phrase = " ".join(words[i:i + n])
+        if len(words) - i >= n and phrase in phrases:
+            return n, phrase
+    return None
+
+
+def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
+    """Join words split by a space ("micro wave") and correct typos ("frigde")."""
+    vocab = lx.vocabulary()
+    out: list[str] = []
+    fixed: dict[int, str] = {}
+    i = 0
+    while i < len(words):
+        w = words[i]
+        if i + 1 < len(words) and w not in PUNCT:
+            joined = w + words[i + 1]
+            if joined in lx.noun_words() and (w not in vocab or words[i + 1] not in vocab):
+                out.append(joined)
+                i += 2
+                continue
+        if w not in vocab and not w.isdigit() and w not in PUNCT \
+                and not singular(w, lx.noun_words())[1] and w not in lx.PLURAL_NOUNS:
+            after_det = bool(out) and (out[-1] in lx.DETERMINERS or out[-1] in lx.NUMBERS
+                                       or out[-1].isdigit())
+            fix = correct(w, after_det)
+            if fix is None and w.endswith("s"):
+                stem = correct(w[:-1], after_det)
+                fix = stem + "s" if stem is not None else None
+            if fix is not None and verb_lemma(w) is None:
+                fixed[len(out)] = w
+                w = fix
+        out.append(w)
+        i += 1
+    # "turn of the tv": "of" right after a switching verb is "off"
+    for k in range(len(out) - 1):
+        if out[k] in ("turn", "switch", "shut", "power", "turning", "switching", "flick") \
+                and out[k + 1] == "of":
+            out[k + 1] = "off"
+    return out, fixed
+
+
+def tag(text: str) -> list[Item]:
+    """Items of an instruction, in order."""
+    normal = " ".join(t.text for t in tokenize(text))
+    for pattern, repl in lx.IDIOMS:
+        normal = re.sub(pattern, repl, normal)
+    words, fixed = _repair(normal.split())
+    items: list[Item] = []
+    i = 0
+    while i < len(words):
+        w = words[i]
+        # robot names: "robot 2", "robot two", "the second robot"
+        if w in lx.ROBOT_WORDS and i + 1 < len(words):
+            nxt = words[i + 1]
+            k = 2 if nxt in ("number", "no", "nr") and i + 2 < len(words) else 1
+            nxt = words[i + k] if i + k < len(words) else ""
+            num = int(nxt) if nxt.isdigit() else lx.NUMBERS.get(nxt) if nxt in (
+                "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten") else None
+            if num is not None:
+                items.append(Item(f"robot {num}", robot=("number", num)))
+                i += k + 1
+                continue
+        if w in lx.ORDINALS and i + 1 < len(words) and words[i + 1] in ("robot", "bot", "agent"):
+            items.append(Item(f"{w} robot", robot=("ordinal", lx.ORDINALS[w])))
+            i += 2
+            continue
+        noun = _noun_at(words, i)
+        prep = _multi(words, i, {p: p for p in lx.PREPOSITIONS if " " in p})
+        if prep is not None and (noun is None or prep[0] >= noun[0]):
+            n, phrase = prep
+            items.append(Item(phrase, prep=lx.PREPOSITIONS[phrase]))
+            i += n
+            continue
+        sub = _multi(words, i, {s: s for s in lx.SUBORDINATORS if " " in s}, (3, 2))
+        if sub is not None:
+            n, phrase = sub
+            items.append(Item(phrase, sub=lx.SUBORDINATORS[phrase]))
+            i += n
+            continue
+        seq = _multi(words, i, lx.SEQUENCE_MARKERS, (4, 3, 2, 1))
+        if seq is not None and seq[1] != "after":
+            n, phrase = seq
+            items.append(Item(phrase, seq=phrase))
+            i += n
+            continue
+        if noun is not None and noun[0] > 1:
+            n, reading = noun
+            if reading.phrase in lx.MASS_NOUNS and not reading.plural:
+                reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
+            phrase = " ".join(words[i:i + n])
+            item = Item(phrase, noun=reading)
+            if phrase in lx.RECIPES:
+                item.recipe = lx.RECIPES[phrase]
+            items.append(item)
+            i += n
+            continue
+        item = Item(w)
+        if i in fixed:
+            item.corrected_from = fixed[i]
+        if noun is not None:
+            reading = noun[1]
+            if reading.phrase in lx.MASS_NOUNS and not reading.plural:
+                reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
+            item.noun = reading
+        if w in lx.RECIPES:
+            item.recipe = lx.RECIPES[w]
+        vl = verb_lemma(w)
+        if vl is not None:
+            lemma, form = vl
+            sense = lx.VERBS.get(lemma)
+            if sense is not None:
+                item.verb = VerbReading(lemma, form, sense)
+        if w in lx.STATES:
+            item.state = lx.STATES[w]
+        if w in lx.PREPOSITIONS:
+            item.prep = lx.PREPOSITIONS[w]
+        if w in lx.PARTICLES:
+            item.particle = w
+        if w.isdigit():
+            item.number = int(w)
+        elif w in lx.NUMBERS:
+            item.number = lx.NUMBERS[w]
+        item.det = w in lx.DETERMINERS
+        if w in lx.QUANTIFIERS:
+            item.quant = w
+        if w in lx.PRONOUNS:
+            item.pron = w
+        item.neg = w in lx.NEGATIONS
+        item.copula = w in lx.COPULAS
+        if w in PUNCT:
+            item.punct = w
+        if w in lx.LIQUIDS:
+            item.liquid = w
+        if w in lx.SUBORDINATORS:
+            item.sub = lx.SUBORDINATORS[w]
+        if w in ("and", "or", "plus", "nor"):
+            item.conj = "or" if w == "or" else "and"
+        if w in lx.ORDINALS:
+            item.ordinal = lx.ORDINALS[w]
+        items.append(item)
+        i += 1
+    return items

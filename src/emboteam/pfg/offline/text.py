@@ -1,0 +1,90 @@
+"""Normalisation and tokenisation: from what people type to a clean token stream.
+
+Lower-cases, splits CamelCase type names (``CounterTop`` -> ``counter top``), expands
+contractions (``don't`` -> ``do not``), turns arrows and ampersands into words and keeps
+sentence punctuation as tokens, because clause boundaries depend on it. Kept by hand
+(a few regular expressions): a tokenizer library would not know AI2-THOR's CamelCase
+names, and the parser must stay dependency-free and fast.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+#: punctuation kept as tokens: they delimit sentences and clauses
+PUNCT = frozenset(".,;:!?")
+
+_REPLACE: tuple[tuple[str, str], ...] = (
+    (r"[\u2018\u2019\u201b`´]", "'"),
+    (r"[\u201c\u201d\"]", " "),
+    (r"\s*(?:->|=>|\u2192|\u27f6)\s*", " to "),
+    (r"\s*[\u2014\u2013]\s*|\s+-\s+|\s*--\s*", " , "),
+    (r"&", " and "),
+    (r"\+", " and "),
+    (r"(?<=[a-z])/(?=[a-z])", " or "),
+    (r"\(|\)|\[|\]", " , "),
+    (r"\.\.\.+", " . "),
+)
+
+_CONTRACTIONS: tuple[tuple[str, str], ...] = (
+    (r"\bwon't\b", "will not"), (r"\bcan't\b", "can not"), (r"\bcannot\b", "can not"),
+    (r"\bshan't\b", "shall not"), (r"\bain't\b", "is not"),
+    (r"n't\b", " not"),
+    (r"\b(it|that|there|what|here|who|this)'s\b", r"\1 is"),
+    (r"\blet's\b", "let us"),
+    (r"'re\b", " are"), (r"'m\b", " am"), (r"'ll\b", " will"), (r"'ve\b", " have"),
+    (r"'d\b", " would"),
+    (r"'s\b", ""),          # possessive: "the robot's arm" -> "the robot arm"
+    (r"s'(?=\s|$)", "s"),   # plural possessive
+    (r"'", ""),
+    # apostrophe-less spellings people type
+    (r"\bdont\b", "do not"), (r"\bdoesnt\b", "does not"), (r"\bdidnt\b", "did not"),
+    (r"\bcant\b", "can not"), (r"\bisnt\b", "is not"), (r"\barent\b", "are not"),
+    (r"\bshouldnt\b", "should not"), (r"\bwouldnt\b", "would not"), (r"\bim\b", "i am"),
+    (r"\bthats\b", "that is"), (r"\blets\b", "let us"), (r"\bpls\b|\bplz\b", "please"),
+)
+
+
+@dataclass(frozen=True, slots=True)
+class Token:
+    """One word, number or punctuation mark, lower-case."""
+
+    text: str
+    index: int
+
+    @property
+    def is_punct(self) -> bool:
+        return self.text in PUNCT
+
+    @property
+    def is_number(self) -> bool:
+        return self.text.isdigit()
+
+
+def split_camel(text: str) -> str:
+    """``CounterTop`` -> ``Counter Top``, ``TVStand`` -> ``TV Stand``, ``robot2`` -> ``robot 2``."""
+    text = re.sub(r"(?<=[a-z])(?=[A-Z])", " ", text)
+    text = re.sub(r"(?<=[A-Z])(?=[A-Z][a-rt-z]|[A-Z]s[a-z])", " ", text)   # not "CDs"
+    text = re.sub(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?=[A-Za-z])", " ", text)
+    return text
+
+
+def normalize(text: str) -> str:
+    """The instruction as lower-case words and punctuation separated by single spaces."""
+    for pattern, repl in _REPLACE:
+        text = re.sub(pattern, repl, text)
+    text = split_camel(text)
+    text = text.lower()
+    for pattern, repl in _CONTRACTIONS:
+        text = re.sub(pattern, repl, text)
+    text = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", text)   # counter-top, well-lit
+    text = re.sub(r"(?<=\d)(st|nd|rd|th)\b", "", text)   # 2nd -> 2
+    text = re.sub(r"([.,;:!?])", r" \1 ", text)
+    text = re.sub(r"[^a-z0-9.,;:!? ]+", " ", text)
+    return re.sub(r"\s+", " ", text).strip()
+
+
+def tokenize(text: str) -> list[Token]:
+    """Normalise and split into tokens."""
+    return [Token(w, i) for i, w in enumerate(normalize(text).split())]
