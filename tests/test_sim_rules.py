@@ -15,9 +15,11 @@ from emboteam.world import (
     Action,
     ActionOutcome,
     FailureReason,
+    Goal,
     RobotProfile,
     Skill,
     WorldState,
+    check_goal,
     load_scene,
     parse_team,
 )
@@ -138,6 +140,8 @@ def test_break_and_egg_cracks(sim1: Simulator) -> None:
     cracked = st.objects["Egg_1_Slice_1"]
     assert cracked.type == "EggCracked" and cracked.parent == "Fridge_1" and st.objects["Egg_1"].gone
     assert cracked.temperature == "Cold"  # a cold egg cracks into a cold egg
+    report = check_goal(Goal.parse("broken(Egg); broken(Egg_1); broken(Vase)"), st)
+    assert report.success, [str(r) for r in report.results]  # "crack the egg" is checkable
 
 
 def test_slicing_an_egg_cracks_it_too(sim1: Simulator) -> None:

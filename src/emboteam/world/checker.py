@@ -101,6 +101,8 @@ def check_condition(cond: Condition, state: WorldState) -> ConditionResult:
             continue
         if cond.predicate is Predicate.sliced:
             ok = o.is_sliced and o.source is None  # the whole, not each of its pieces
+        elif cond.predicate is Predicate.broken and o.gone:
+            ok = o.is_broken  # a cracked egg is gone, but it was broken
         elif o.gone:
             continue  # a sliced whole no longer exists; its pieces stand for it
         elif cond.predicate is Predicate.inside:
