@@ -70,7 +70,7 @@ def adhoc_task(instruction: str, floor_plan: str, robots: str | Sequence[str]) -
     the goal the front end understood (the episode says so in its ``category``)."""
     fp = load_scene(floor_plan).floor_plan
     team = parse_team(robots if isinstance(robots, str) else ",".join(robots))
-    return BenchTask(id="adhoc", suite="adhoc", floor_plan=fp,
+    return BenchTask(id="instruction", suite="adhoc", floor_plan=fp,
                      robots=tuple(str(p.number or p.name) for p in team), category="imported",
                      instruction=instruction, goal=Goal(conditions=()))
 

@@ -34,7 +34,7 @@ class ConditionOutcome(BaseModel):
 class Episode(BaseModel):
     model_config = ConfigDict(frozen=True)
 
-    task: str = Field(description="SUITE/ID, or 'adhoc' for an instruction given on the command line")
+    task: str = Field(description="SUITE/ID; adhoc/instruction for an instruction given on the command line")
     instruction: str
     floor_plan: str
     robots: tuple[str, ...] = Field(description="team member names, e.g. robot1")
