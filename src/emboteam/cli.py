@@ -5,6 +5,7 @@ exits non-zero with a one-line error, never a traceback."""
 from __future__ import annotations
 
 import json
+import os
 import sys
 from collections.abc import Callable
 from functools import wraps
@@ -45,6 +46,15 @@ def cli_errors(fn: F) -> F:
         except EmboTeamError as exc:
             err.print(f"[red]error:[/red] {exc}", highlight=False, soft_wrap=True)
             raise typer.Exit(exc.exit_code) from None
+        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+            raise
+        except Exception as exc:  # a bug: one line for the user, the traceback on request
+            if os.environ.get("EMBOTEAM_DEBUG"):
+                raise
+            err.print(f"[red]internal error:[/red] {type(exc).__name__}: {exc} "
+                      "(set EMBOTEAM_DEBUG=1 for the traceback; please report it)",
+                      highlight=False, soft_wrap=True)
+            raise typer.Exit(70) from None
 
     return wrapper  # type: ignore[return-value]
 
