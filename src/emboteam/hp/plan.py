@@ -56,6 +56,8 @@ class MergedPlan(BaseModel):
     joint: bool = Field(False, description="solved as one joint multi-robot problem (fallback)")
     planner_calls: int = 0
     plan_seconds: float = 0.0
+    notes: tuple[str, ...] = Field((), description="how the planner got there: allocation, replanning, "
+                                   "fallbacks (human-readable)")
 
     def for_robot(self, robot: str) -> list[PlanStep]:
         return [s for s in self.steps if s.robot == robot]

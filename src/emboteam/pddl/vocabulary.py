@@ -15,6 +15,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from emboteam.pddl.literal import Literal
+from emboteam.sim.physics import HEATING, WATER_SOURCES
+from emboteam.sim.rules import INTERLOCKED, piece_ids
 from emboteam.world.catalogue import KNIVES, load_catalogue
 from emboteam.world.state import WorldState
 
@@ -48,6 +50,57 @@ def _can_lift(s: WorldState, r: str, o: str) -> bool:
     return s.objects[o].mass <= s.robots[r].profile.mass_capacity
 
 
+# ---- predicates added for the planner's domain (emboteam.pddl.domain) -------------------
+# Each mirrors one rule of sim/rules.py or sim/physics.py, so a plan step's conditions and
+# effects can be checked on the live state like the original vocabulary.
+
+def _carried(s: WorldState, o: str) -> bool:
+    """Held by a robot, or in/on something that is (an apple on a carried plate)."""
+    if o not in s.objects:
+        return False
+    return any(s.objects[x].held_by is not None for x in (o, *s.ancestors(o)))
+
+
+def _place_chain(s: WorldState, c: str) -> list[str]:
+    return [c, *s.ancestors(c)] if c in s.objects else []
+
+
+def _cools(s: WorldState, o: str) -> bool:
+    return s.objects[o].type == "Fridge" and s.objects[o].has("isColdSource")
+
+
+def _chilled_place(s: WorldState, c: str) -> bool:
+    """Something put in/on ``c`` turns Cold: ``c`` is a cooling Fridge or inside one."""
+    return any(_cools(s, a) for a in _place_chain(s, c))
+
+
+def _heated_place(s: WorldState, c: str) -> bool:
+    """Something put in/on ``c`` heats: ``c`` is a running heater or inside one."""
+    return any(s.objects[a].type in HEATING and s.objects[a].is_on for a in _place_chain(s, c))
+
+
+def _watered_place(s: WorldState, c: str) -> bool:
+    """Running water reaches ``c``: it is a basin of a running faucet, or inside one."""
+    chain = set(_place_chain(s, c))
+    return any(f.type in WATER_SOURCES and f.is_on and chain.intersection(f.controls)
+               for f in s.objects.values())
+
+
+def _piece_of(s: WorldState, p: str, o: str) -> bool:
+    """``p`` is one of the pieces slicing ``o`` yields (``Apple_1_Slice_2`` of ``Apple_1``),
+    whether or not it has been cut yet."""
+    if o not in s.objects or s.objects[o].source is not None:
+        return False
+    product = load_catalogue().slice_product(s.objects[o].type)
+    return product is not None and p in piece_ids(o, product[1])
+
+
+def _is_floor(s: WorldState, o: str) -> bool:
+    """The Floor a dropped object lands on (sim.rules drops onto the first Floor)."""
+    floors = [x.id for x in s.of_type("Floor")]
+    return bool(floors) and floors[0] == o
+
+
 #: fluent name -> (argument kinds, evaluator); argument kinds: r = robot, o = object
 FLUENTS: dict[str, tuple[str, Evaluator]] = {
     "at": ("ro", _at),
@@ -68,6 +121,13 @@ FLUENTS: dict[str, tuple[str, Evaluator]] = {
     "available": ("o", _available),
     "hidden": ("o", _hidden),
     "robot-up": ("r", lambda s, r: not s.robots[r].down),
+    # added for the planner's domain
+    "has-water": ("o", lambda s, o: s.objects[o].liquid == "water"),
+    "has-wine": ("o", lambda s, o: s.objects[o].liquid == "wine"),
+    "carried": ("o", _carried),
+    "chilled-place": ("o", _chilled_place),
+    "heated-place": ("o", _heated_place),
+    "watered-place": ("o", _watered_place),
 }
 
 #: static predicate name -> (argument kinds, evaluator)
@@ -88,6 +148,18 @@ STATICS: dict[str, tuple[str, Evaluator]] = {
     "can-place": ("oo", _can_place),
     "can-lift": ("ro", _can_lift),
     "controls": ("oo", lambda s, k, b: b in s.objects[k].controls),
+    # added for the planner's domain
+    "cools": ("o", _cools),
+    "heats": ("o", lambda s, o: s.objects[o].type in HEATING),
+    "brews": ("o", lambda s, o: s.objects[o].type == "CoffeeMachine"),
+    "mug": ("o", lambda s, o: s.objects[o].type == "Mug"),
+    "interlocked": ("o", lambda s, o: s.objects[o].type in INTERLOCKED),
+    "cracks": ("o", lambda s, o: s.objects[o].type == "Egg"),
+    "switches": ("oo", lambda s, k, b: s.objects[k].type == "StoveKnob" and b in s.objects[k].controls
+                 and s.objects[b].type == "StoveBurner"),
+    "waters": ("oo", lambda s, f, b: s.objects[f].type in WATER_SOURCES and b in s.objects[f].controls),
+    "piece-of": ("oo", _piece_of),
+    "floor": ("o", _is_floor),
 }
 
 #: one capability predicate per skill: (can-pickup robot1) ...
@@ -133,7 +205,7 @@ def evaluate(literal: Literal, state: WorldState) -> bool:
 #: (a robot next to the fridge is also "at" the apple on the counter beside it).
 OBSERVABLE_POST = frozenset({
     "holding", "in", "within", "is-open", "is-on", "sliced", "broken", "dirty", "filled",
-    "has-coffee", "hot", "cold", "cooked", "at",
+    "has-coffee", "hot", "cold", "cooked", "at", "has-water", "has-wine",
 })
 
 

@@ -1,0 +1,336 @@
+"""Planning latency of the hybrid planner, against a LaMMA-P-like pipeline.
+
+1. Per task of the MACE-THOR suite (one subtask per ground-truth condition, as the oracle
+   front end gives them): wall time, Fast Downward calls, makespan against its lower bound.
+2. A scaling sweep: 2..32 robots x 8..128 random consistent goal conditions in one kitchen
+   (FloorPlan1) and one living room (FloorPlan201). A room supports only so many distinct
+   conditions that can hold together; where it has fewer than asked, the sweep uses them all
+   and says so.
+
+Both run our planner (lama-first, parallel units, formal merge, simulator validation,
+cache cold for every task) and, in the same process, a LaMMA-P-like pipeline: one
+optimal Fast Downward call per subtask, sequential, no cache, plans concatenated. LaMMA-P
+uses ``seq-opt-lmcut``; LM-cut supports neither axioms nor conditional effects (Fast
+Downward exits 34 on our domain), so the pipeline runs A* with h^max, the optimal
+configuration Fast Downward accepts here. Its plans are simulated afterwards only to
+report whether they work (they are not repaired).
+
+    .venv/bin/python benchmarks/plan_latency.py                 # everything, writes docs/planning.md
+    .venv/bin/python benchmarks/plan_latency.py --quick         # a smaller sweep
+    .venv/bin/python benchmarks/plan_latency.py --no-docs --json out.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import random
+import statistics
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from emboteam.errors import EmboTeamError
+from emboteam.hp.goalgen import random_conditions
+from emboteam.hp.plan import MergedPlan
+from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.validate import simulate
+from emboteam.pddl.problem import planning_state
+from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.world.goals import Goal
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+from emboteam.world.state import WorldState
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs" / "planning.md"
+START, END = "<!-- results:start -->", "<!-- results:end -->"
+
+#: profiles of sweep teams, cycled: mostly capable, mixed strengths and skills
+SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
+LAMMA_P = "astar(hmax())"
+
+
+def ours() -> HybridPlanner:
+    return HybridPlanner(PlannerConfig())
+
+
+def lamma_p() -> HybridPlanner:
+    return HybridPlanner(PlannerConfig(alias=LAMMA_P, workers=1, merge="concatenate", validate=False))
+
+
+@dataclass
+class Run:
+    seconds: float
+    calls: int = 0
+    makespan: float = 0.0
+    lower_bound: float = 0.0
+    busiest: float = 0.0
+    work: float = 0.0
+    robots: int = 0
+    valid: bool = True
+    joint: bool = False
+    error: str = ""
+
+    @property
+    def ratio(self) -> float:
+        return self.makespan / self.lower_bound if self.lower_bound > 0 else 1.0
+
+
+@dataclass
+class Row:
+    label: str
+    scene: str
+    robots: int
+    conditions: int
+    asked: int
+    ours: Run
+    base: Run | None = None
+    extra: dict[str, str] = field(default_factory=dict)
+
+
+def measure(make: Callable[[], HybridPlanner], spec: TaskSpec, state: WorldState, *, check: bool) -> Run:
+    planner = make()
+    t0 = time.perf_counter()
+    try:
+        plan = planner.plan(spec, state)
+    except EmboTeamError as exc:
+        return Run(seconds=time.perf_counter() - t0, error=f"{type(exc).__name__}: {exc}"[:120])
+    seconds = time.perf_counter() - t0
+    run = _describe(plan, seconds)
+    if check:
+        timing = simulate(plan, planning_state(state), spec.goal())
+        run.valid = timing.ok
+        if timing.ok:
+            run.makespan, run.lower_bound = timing.makespan, timing.lower_bound
+    return run
+
+
+def _describe(plan: MergedPlan, seconds: float) -> Run:
+    work: dict[str, float] = {}
+    for s in plan.steps:
+        work[s.robot] = work.get(s.robot, 0.0) + s.est_end - s.est_start
+    return Run(seconds=seconds, calls=plan.planner_calls, makespan=plan.makespan, lower_bound=plan.lower_bound,
+               busiest=max(work.values(), default=0.0), work=sum(work.values()), robots=len(plan.robots),
+               joint=plan.joint)
+
+
+def mace_thor(progress: Progress, repeat: int, with_base: bool) -> list[Row]:
+    from emboteam.bench.suites import load_suite
+    from emboteam.pfg.oracle import OracleFrontend
+
+    tasks = load_suite("mace-thor").tasks
+    job = progress.add_task("MACE-THOR", total=len(tasks))
+    rows: list[Row] = []
+    for task in tasks:
+        state = task.initial_state()
+        spec = OracleFrontend(task.goal).decompose(task.instruction, load_scene(task.floor_plan), state, task.team())
+        runs = [measure(ours, spec, state, check=False) for _ in range(repeat)]
+        run = sorted(runs, key=lambda r: r.seconds)[len(runs) // 2]
+        base = measure(lamma_p, spec, state, check=True) if with_base else None
+        rows.append(Row(task.id, task.floor_plan, len(task.robots), len(task.goal.conditions),
+                        len(task.goal.conditions), run, base, {"category": task.category}))
+        progress.advance(job)
+    return rows
+
+
+def sweep(progress: Progress, scenes: Sequence[str], robots: Sequence[int], conditions: Sequence[int],
+          with_base: bool, seed: int) -> list[Row]:
+    cells = [(s, n, k) for s in scenes for n in robots for k in conditions]
+    job = progress.add_task("scaling sweep", total=len(cells))
+    rows: list[Row] = []
+    for scene, n, k in cells:
+        team = parse_team([SWEEP_PROFILES[i % len(SWEEP_PROFILES)] for i in range(n)])
+        state = WorldState.from_scene(load_scene(scene), team)
+        conds = random_conditions(state, k, random.Random(seed))
+        goal = Goal(conditions=tuple(conds))
+        spec = TaskSpec(instruction=str(goal), subtasks=tuple(
+            Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
+        run = measure(ours, spec, state, check=False)
+        base = measure(lamma_p, spec, state, check=True) if with_base else None
+        rows.append(Row(f"{scene} {n}x{k}", scene, n, len(conds), k, run, base))
+        progress.advance(job)
+    return rows
+
+
+# ---- reporting ------------------------------------------------------------------------------
+
+def _f(x: float, nd: int = 2) -> str:
+    return f"{x:.{nd}f}"
+
+
+def _base_cells(b: Run | None) -> list[str]:
+    if b is None:
+        return ["-", "-", "-"]
+    if b.error:
+        return [_f(b.seconds), str(b.calls), "error"]
+    return [_f(b.seconds), str(b.calls), _f(b.makespan, 1) if b.valid else "fails"]
+
+
+def task_table(rows: Sequence[Row]) -> tuple[list[str], list[list[str]]]:
+    head = ["task", "robots", "cond.", "ours s", "FD calls", "makespan", "lower bd", "ratio",
+            "LaMMA-P-like s", "calls", "makespan"]
+    body = []
+    for r in rows:
+        o = r.ours
+        ours_cells = ([_f(o.seconds), str(o.calls), _f(o.makespan, 1), _f(o.lower_bound, 1), _f(o.ratio)]
+                      if not o.error else [_f(o.seconds), "-", "error", "-", "-"])
+        body.append([r.label, str(r.robots), str(r.conditions), *ours_cells, *_base_cells(r.base)])
+    return head, body
+
+
+def sweep_table(rows: Sequence[Row]) -> tuple[list[str], list[list[str]]]:
+    head = ["scene", "robots", "cond. (asked)", "ours s", "FD calls", "makespan", "lower bd", "ratio",
+            "busiest", "work/robots", "LaMMA-P-like s", "calls", "makespan"]
+    body = []
+    for r in rows:
+        o = r.ours
+        asked = str(r.conditions) if r.conditions == r.asked else f"{r.conditions} ({r.asked})"
+        if o.error:
+            cells = [_f(o.seconds), "-", "error", "-", "-", "-", "-"]
+        else:
+            cells = [_f(o.seconds), str(o.calls), _f(o.makespan, 1), _f(o.lower_bound, 1), _f(o.ratio),
+                     _f(o.busiest, 1), _f(o.work / max(o.robots, 1), 1)]
+        body.append([r.scene, str(r.robots), asked, *cells, *_base_cells(r.base)])
+    return head, body
+
+
+def summary(tasks: Sequence[Row], cells: Sequence[Row]) -> list[str]:
+    lines: list[str] = []
+    ok = [r.ours for r in tasks if not r.ours.error]
+    if tasks:
+        times = sorted(r.seconds for r in ok)
+        lines.append(f"- MACE-THOR: {len(ok)}/{len(tasks)} tasks planned; planning time median "
+                     f"{statistics.median(times):.3f} s, mean {statistics.mean(times):.3f} s, p90 "
+                     f"{times[int(0.9 * (len(times) - 1))]:.3f} s (target: median <= 0.3 s); makespan / lower "
+                     f"bound mean {statistics.mean(r.ratio for r in ok):.3f} (target <= 1.15); "
+                     f"{sum(r.joint for r in ok)} joint fallbacks; {sum(r.calls for r in ok)} Fast Downward calls.")
+        base = [r.base for r in tasks if r.base is not None and not r.base.error]
+        if base:
+            bt = [b.seconds for b in base]
+            valid = [b for b in base if b.valid]
+            lines.append(f"- LaMMA-P-like on MACE-THOR: median {statistics.median(bt):.3f} s, mean "
+                         f"{statistics.mean(bt):.3f} s; its concatenated plans run in the simulator for "
+                         f"{len(valid)}/{len(tasks)} tasks.")
+            pairs = [(r.ours, r.base) for r in tasks if r.base and r.base.valid and not r.ours.error]
+            if pairs:
+                lines.append(f"- Makespan where both plans work ({len(pairs)} tasks): ours "
+                             f"{statistics.mean(o.makespan for o, _ in pairs):.1f} s, LaMMA-P-like "
+                             f"{statistics.mean(b.makespan for _, b in pairs):.1f} s on average.")
+    if cells:
+        good = [r for r in cells if not r.ours.error]
+        if good:
+            ratio = statistics.mean(r.ours.ratio for r in good)
+            lines.append(f"- Sweep: {len(good)}/{len(cells)} cells planned; makespan / lower bound mean "
+                         f"{ratio:.3f}; makespan / max(busiest robot, total work / robots) mean "
+                         f"{statistics.mean(r.ours.makespan / max(r.ours.busiest, r.ours.work / r.ours.robots, 1e-9) for r in good):.3f}.")
+            big = max(good, key=lambda r: (r.robots, r.conditions))
+            lines.append(f"- Largest cell: {big.robots} robots x {big.conditions} conditions "
+                         f"({big.scene}) planned in {big.ours.seconds:.2f} s with {big.ours.calls} Fast "
+                         f"Downward calls (target: 32 x 128 under 10 s).")
+        short = sorted({(r.scene, r.conditions) for r in cells if r.conditions < r.asked})
+        for scene, n in short:
+            lines.append(f"- {scene} supports {n} distinct mutually consistent conditions from the generator: "
+                         "larger requests use them all.")
+    return lines
+
+
+def markdown(head: list[str], body: list[list[str]]) -> str:
+    out = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
+    out += ["| " + " | ".join(row) + " |" for row in body]
+    return "\n".join(out)
+
+
+def write_docs(text: str) -> None:
+    old = DOCS.read_text() if DOCS.exists() else "# Planning\n"
+    block = f"{START}\n{text}\n{END}"
+    if START in old and END in old:
+        new = old[:old.index(START)] + block + old[old.index(END) + len(END):]
+    else:
+        new = old.rstrip() + "\n\n## Measured latency\n\n" + block + "\n"
+    DOCS.write_text(new)
+
+
+def _shown_args(args: list[str]) -> list[str]:
+    """The command line minus output options (they do not change the numbers)."""
+    out: list[str] = []
+    skip = False
+    for a in args:
+        if skip:
+            skip = False
+        elif a == "--json":
+            skip = True
+        elif not a.startswith(("--json=", "--no-docs")):
+            out.append(a)
+    return out
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="robots 2,8,32 x conditions 8,32,128; one repeat")
+    ap.add_argument("--robots", default="2,4,8,16,32")
+    ap.add_argument("--conditions", default="8,16,32,64,128")
+    ap.add_argument("--scenes", default="FloorPlan1,FloorPlan201")
+    ap.add_argument("--repeat", type=int, default=3, help="runs per MACE-THOR task (median kept)")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--no-suite", action="store_true", help="skip the MACE-THOR tasks")
+    ap.add_argument("--no-sweep", action="store_true", help="skip the scaling sweep")
+    ap.add_argument("--no-baseline", action="store_true", help="skip the LaMMA-P-like pipeline")
+    ap.add_argument("--no-docs", action="store_true", help=f"do not rewrite {DOCS.relative_to(ROOT)}")
+    ap.add_argument("--json", type=Path, help="also write the raw numbers here")
+    args = ap.parse_args(argv)
+    if args.quick:
+        args.robots, args.conditions, args.repeat = "2,8,32", "8,32,128", 1
+    robots = [int(x) for x in args.robots.split(",")]
+    conditions = [int(x) for x in args.conditions.split(",")]
+    scenes = [s.strip() for s in args.scenes.split(",")]
+    console = Console(stderr=True)
+    load0 = os.getloadavg()
+    started = time.strftime("%Y-%m-%d %H:%M")
+    t0 = time.perf_counter()
+    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                  console=console) as progress:
+        tasks = [] if args.no_suite else mace_thor(progress, args.repeat, not args.no_baseline)
+        cells = [] if args.no_sweep else sweep(progress, scenes, robots, conditions, not args.no_baseline,
+                                               args.seed)
+    load1 = os.getloadavg()
+    out = Console(width=240)
+    sections: list[str] = []
+    machine = (f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}; load average "
+               f"{load0[0]:.1f} before, {load1[0]:.1f} after; {started}; {time.perf_counter() - t0:.0f} s in all")
+    lines = summary(tasks, cells)
+    for title, rows, table in (("MACE-THOR, per task", tasks, task_table), ("Scaling sweep", cells, sweep_table)):
+        if not rows:
+            continue
+        head, body = table(rows)
+        t = Table(title=title)
+        for h in head:
+            t.add_column(h)
+        for row in body:
+            t.add_row(*row)
+        out.print(t)
+        sections.append(f"### {title}\n\n{markdown(head, body)}")
+    for line in lines:
+        out.print(line)
+    shown = _shown_args(list(argv if argv is not None else sys.argv[1:]))
+    command = " ".join([".venv/bin/python benchmarks/plan_latency.py", *shown])
+    text = "\n\n".join([f"Regenerate with `{command}` ({machine}).", "\n".join(lines), *sections])
+    if not args.no_docs:
+        write_docs(text)
+        console.print(f"wrote {DOCS.relative_to(ROOT)}")
+    if args.json:
+        args.json.write_text(json.dumps({"machine": machine, "tasks": [asdict(r) for r in tasks],
+                                         "sweep": [asdict(r) for r in cells]}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,57 @@
+"""A bare goal -> subtasks, for replanning and generated tasks.
+
+Conditions that may be satisfied by a common object (``sliced(Apple)`` and
+``inside(Apple, Fridge)``: cutting the apple changes what must go in the fridge) stay in
+one subtask; the rest become independent subtasks the allocator spreads over the team.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.world.goals import Condition, Goal
+from emboteam.world.state import WorldState
+
+
+def group_indices(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str]) -> list[list[int]]:
+    """Indices of conditions grouped by shared candidate objects (union-find), in order."""
+    slices = slicing_targets(conditions, state)
+    parent = list(range(len(conditions)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    owner: dict[str, int] = {}
+    for i, cond in enumerate(conditions):
+        part = compile_condition(cond, state, robots, slices=slices)
+        for oid in part.subjects:
+            anchor = oid.split("_Slice_")[0]
+            if anchor in owner:
+                parent[find(i)] = find(owner[anchor])
+            else:
+                owner[anchor] = i
+    groups: dict[int, list[int]] = {}
+    for i in range(len(conditions)):
+        groups.setdefault(find(i), []).append(i)
+    return list(groups.values())
+
+
+def group_conditions(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str]
+                     ) -> list[list[Condition]]:
+    """Conditions grouped by shared candidate objects, in goal order."""
+    return [[conditions[i] for i in g] for g in group_indices(conditions, state, robots)]
+
+
+def decompose_goal(goal: Goal, state: WorldState, *, instruction: str = "") -> TaskSpec:
+    """One subtask per group of related conditions, no robot, no dependencies."""
+    robots = [r for r, rs in state.robots.items() if not rs.down]
+    groups = group_conditions(goal.conditions, state, robots)
+    subtasks = tuple(
+        Subtask(id=f"g{i}", description=" & ".join(str(c) for c in conds), goal=tuple(conds))
+        for i, conds in enumerate(groups, 1))
+    return TaskSpec(instruction=instruction or str(goal), subtasks=subtasks)

@@ -1,0 +1,470 @@
+"""The hybrid planner: subtasks -> Fast Downward -> one validated partially ordered plan.
+
+``HybridPlanner(config).plan(spec, state)``:
+
+1. Check the goals against the state (unknown objects, impossible goals, skills or mass
+   capacity the team lacks) and fail early with a typed error.
+2. Plan the subtasks in dependency order, in *rounds*: the subtasks whose dependencies are
+   planned are allocated to robots (capability, then balanced expected work), grouped into
+   planning units (one robot's or one small team's subtasks, at most
+   ``unit_conditions`` conditions), and the units are solved in parallel by Fast Downward
+   from the state the plans accepted so far leave. Units are then accepted one by one,
+   each replayed on the symbolic state: a unit whose plan no longer runs there, misses its
+   goal or breaks a goal accepted earlier goes back to the next round (with that goal
+   protected); a unit Fast Downward cannot solve is retried with every candidate object and
+   the whole team.
+3. Merge the accepted sequence into a partial order (:mod:`emboteam.hp.merge`) and
+   validate it in the simulator, robots concurrently (:mod:`emboteam.hp.validate`).
+4. If decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
+   validate), plan the whole goal as ONE joint multi-robot problem, deorder it the same way,
+   and mark the plan ``joint``.
+
+``merge="concatenate"`` with ``validate=False`` is the paper's no-HP ablation: each
+subtask is solved from the state its dependencies leave, robots' lists are concatenated in
+subtask order, the only waits are the subtask dependencies, and nothing is simulated.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Literal as TypingLiteral
+
+from emboteam.hp.allocation import allocate
+from emboteam.hp.decompose import decompose_goal
+from emboteam.hp.merge import (
+    GroundedStep,
+    MergeMode,
+    SeqStep,
+    StepFailure,
+    advance,
+    assemble,
+    ground_sequence,
+    order,
+)
+from emboteam.hp.plan import MergedPlan
+from emboteam.hp.requirements import Need, check_team, need_of
+from emboteam.hp.rounds import (
+    Attempt,
+    Unit,
+    already_done,
+    attribute,
+    clusters,
+    helpers,
+    make_units,
+    polish,
+    preparations,
+)
+from emboteam.hp.validate import estimate, simulate, with_times
+from emboteam.pddl.domain import Universe, domain_pddl
+from emboteam.pddl.errors import PlannerLimitError, PlanningError, PlanValidationError, UnsolvableSubtaskError
+from emboteam.pddl.problem import Problem, build_problem, planning_state
+from emboteam.pddl.runner import FastDownward, PlanCache, SolveResult
+from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.sim.rules import apply_action, check_action
+from emboteam.world.actions import Skill
+from emboteam.world.checker import check_condition
+from emboteam.world.goals import Condition, Goal
+from emboteam.world.state import WorldState
+
+
+@dataclass(frozen=True)
+class PlannerConfig:
+    """How the hybrid planner runs (the ablations are configurations, not forks).
+
+    A dataclass rather than a pydantic model: ``validate`` is a field here, and pydantic
+    reserves that name.
+    """
+
+    #: Fast Downward alias, or a search string such as ``astar(hmax())``
+    alias: str = "lama-first"
+    #: seconds per Fast Downward call
+    time_limit: float = 30.0
+    #: MB per Fast Downward call
+    memory_limit_mb: int = 2048
+    #: Fast Downward calls run in parallel
+    workers: int = 2
+    #: also cache plans on disk here
+    cache_dir: str | None = None
+    #: plan per subtask (False: one joint problem)
+    decompose: bool = True
+    #: check the merged plan in the simulator
+    validate: bool = True
+    #: "formal" (causal links, conflicts, sync points) or "concatenate" (no-HP ablation)
+    merge: TypingLiteral["formal", "concatenate"] = "formal"
+    #: most conditions one planning unit takes
+    unit_conditions: int = 8
+
+    def __post_init__(self) -> None:
+        if self.time_limit <= 0 or self.memory_limit_mb <= 0:
+            raise PlanningError("planner time and memory limits must be positive")
+        if self.workers < 1 or self.unit_conditions < 1:
+            raise PlanningError("planner workers and unit_conditions must be at least 1")
+        if self.merge not in ("formal", "concatenate"):
+            raise PlanningError(f"merge must be 'formal' or 'concatenate', not {self.merge!r}")
+
+
+class _Fallback(Exception):
+    """Decomposition cannot work here; the reason goes into the plan's notes."""
+
+
+class _Invalid(Exception):
+    """The merged plan failed in the simulator."""
+
+
+class HybridPlanner:
+    """Plans TaskSpecs (and bare goals) for the robots of a state. Reusable: its plan
+    cache persists across calls."""
+
+    def __init__(self, config: PlannerConfig | None = None) -> None:
+        self.config = config or PlannerConfig()
+        self.cache = PlanCache(self.config.cache_dir)
+        self.fd = FastDownward(self.config.alias, time_limit=self.config.time_limit,
+                               memory_limit_mb=self.config.memory_limit_mb, cache=self.cache)
+
+    # ---- public API ---------------------------------------------------------------------
+    def plan(self, spec: TaskSpec, state: WorldState) -> MergedPlan:
+        """A validated multi-robot plan for ``spec`` from ``state`` (not modified)."""
+        t0 = time.perf_counter()
+        calls0 = self.fd.calls
+        team = [r for r, rs in state.robots.items() if not rs.down]
+        if not team:
+            raise PlanningError("no working robot in the team")
+        start = planning_state(state)
+        needs = {t.id: [need_of(c, start, team) for c in t.goal] for t in spec.subtasks}
+        check_team([n for ns in needs.values() for n in ns], [start.robots[r].profile for r in team])
+        notes: list[str] = []
+        if self.config.merge == "concatenate":
+            plan = self._concatenated(spec, start, team, needs, notes)
+        elif self.config.decompose:
+            try:
+                plan = self._decomposed(spec, start, team, notes)
+            except _Fallback as fb:
+                notes.append(f"decomposition failed ({fb}): planned as one joint problem")
+                plan = self._joint(spec, start, team, notes)
+        else:
+            plan = self._joint(spec, start, team, notes)
+        return plan.model_copy(update={"planner_calls": self.fd.calls - calls0,
+                                       "plan_seconds": round(time.perf_counter() - t0, 4),
+                                       "notes": tuple(notes)})
+
+    def plan_goal(self, goal: Goal, state: WorldState) -> MergedPlan:
+        """Plan a bare goal from ``state`` (e.g. mid-run, robots holding things): related
+        conditions become subtasks, the allocator spreads them over the working robots."""
+        return self.plan(decompose_goal(goal, state), state)
+
+    # ---- Fast Downward ------------------------------------------------------------------
+    def _solve(self, problems: Sequence[Problem]) -> list[SolveResult]:
+        results = self.fd.solve_many([(domain_pddl(), p.text) for p in problems], self.config.workers)
+        for r in results:
+            if isinstance(r, PlanningError):
+                raise r
+        return [r for r in results if isinstance(r, SolveResult)]
+
+    def _unsolvable(self, what: str, conditions: Sequence[Condition], state: WorldState,
+                    robots: Sequence[str]) -> UnsolvableSubtaskError:
+        """Name the conditions that cannot be reached (each tried alone, a few calls)."""
+        unmet = [c for c in conditions if not check_condition(c, state).holds]
+        culprits: list[Condition] = []
+        if 1 < len(unmet) <= 4:
+            problems = [build_problem(state, [c], robots, name="why", narrow=False, release=False)
+                        for c in unmet]
+            culprits = [c for c, r in zip(unmet, self._solve(problems), strict=True) if not r.solved]
+        shown = culprits or unmet
+        return UnsolvableSubtaskError(
+            f"subtask {what} has no plan: {', '.join(str(c) for c in shown)} cannot be reached by "
+            f"{', '.join(robots)}", subtask=what, unmet=tuple(str(c) for c in shown))
+
+    # ---- decomposed planning ------------------------------------------------------------
+    def _decomposed(self, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str]) -> MergedPlan:
+        forward = start.copy()
+        universe = Universe(forward)
+        accepted: list[GroundedStep] = []
+        done: set[str] = set()
+        unit_of: dict[str, str] = {}
+        protected: dict[str, tuple[Condition, frozenset[str]]] = {}
+        assigned: dict[str, tuple[str, ...]] = {}
+        cluster: dict[str, str] = {}
+        attempts = {t.id: Attempt() for t in spec.subtasks}
+        pending = [t for t in spec.subtasks]
+        counter = itertools.count(1)
+        rounds = 0
+        while pending:
+            rounds += 1
+            if rounds > 3 * len(spec.subtasks) + 3:
+                raise _Fallback("subtasks keep undoing each other")
+            ready = [t for t in pending if all(d in done for d in t.depends_on)]
+            load = {r: sum(g.seconds for g in accepted if g.robot == r) for r in team}
+            fresh = [t for t in ready if t.id not in assigned]
+            if fresh:
+                groups = clusters(fresh, forward, team)
+                needs = {g.id: [need_of(c, forward, team) for c in g.goal] for g in groups}
+                for a in allocate(groups, needs, forward, team, load):
+                    members = a.subtask.split("+")
+                    for m in members:
+                        assigned[m] = a.robots
+                        cluster[m] = a.subtask
+                    if a.note != "as specified":
+                        notes.append(f"{', '.join(members)}: {a.note} -> {', '.join(a.robots)}")
+            units = make_units(ready, assigned, attempts, counter, cluster, self.config.unit_conditions)
+            base = forward.copy()
+            todo: list[tuple[Unit, Problem]] = []
+            # units already satisfied are accepted first, so their goals are protected in
+            # the problems of the others
+            for u in [u for u in units if self._nothing_to_do(u, base)]:
+                self._accept(u, [], forward, accepted, done, unit_of, protected)
+            units = [u for u in units if u.subtasks[0].id not in done]
+            pending = [t for t in pending if t.id not in done]
+            for u in units:
+                problem = build_problem(base, u.conditions, u.robots, name=u.id, narrow=u.narrow)
+                overlap = [c for c, objs in protected.values() if objs & set(problem.objects)]
+                extra = [c for c in overlap if str(c) not in {str(p) for p in u.protect}]
+                if u.protect or extra:
+                    u.protect = [*u.protect, *extra]
+                    problem = build_problem(base, u.conditions, u.robots, name=u.id, narrow=u.narrow,
+                                            protect=u.protect)
+                todo.append((u, problem))
+            results = self.fd.solve_many([(domain_pddl(), p.text) for _, p in todo], self.config.workers)
+            for (u, problem), result in zip(todo, results, strict=True):
+                if isinstance(result, PlannerLimitError) and len(u.subtasks) > 1:
+                    for t in u.subtasks:  # too big to solve at once: one subtask at a time
+                        attempts[t.id].solo = True
+                    notes.append(f"{u.describe()}: {result}; planned one subtask at a time")
+                    continue
+                if isinstance(result, PlanningError):
+                    raise result
+                if not result.solved:
+                    self._retry_unsolvable(u, attempts, accepted, start, forward, team)
+                    continue
+                actions = polish(problem.decode(result.plan))
+                steps = [SeqStep(r, a, t, u.id)
+                         for (r, a), t in zip(actions, attribute(actions, u, base), strict=True)]
+                trial = forward.copy()
+                grounded, why = self._replay(trial, steps, universe)
+                if why is None:
+                    missing = [c for c in u.conditions if not check_condition(c, trial).holds]
+                    broken = [c for c, _ in protected.values() if not check_condition(c, trial).holds]
+                    if missing:
+                        why = "misses " + ", ".join(str(c) for c in missing)
+                    elif broken:
+                        why = "undoes " + ", ".join(str(c) for c in broken)
+                        for t in u.subtasks:
+                            attempts[t.id].protect.update({str(c): c for c in broken})
+                if why is not None:
+                    for t in u.subtasks:
+                        assigned.pop(t.id, None)  # re-allocate from the state it now faces
+                        cluster.pop(t.id, None)
+                        attempts[t.id].tries += 1
+                        if attempts[t.id].tries > 3:
+                            raise _Fallback(f"subtask {t.id} {why} whatever the order")
+                    notes.append(f"{u.describe()}: replanned ({why})")
+                    continue
+                self._accept(u, grounded, forward, accepted, done, unit_of, protected, after=trial)
+            pending = [t for t in pending if t.id not in done]
+        deps = _group_dependencies(spec, unit_of)
+        try:
+            return self._finish(accepted, deps, team, start, spec.goal(), "formal")
+        except _Invalid as exc:
+            raise _Fallback(f"the merged plan failed in the simulator: {exc}") from None
+
+    @staticmethod
+    def _nothing_to_do(u: Unit, state: WorldState) -> bool:
+        if not all(check_condition(c, state).holds for c in u.conditions):
+            return False
+        return all(state.robots[r].holding is None or not (
+            state.robots[r].profile.can(Skill.PutObject) or state.robots[r].profile.can(Skill.DropHandObject))
+            for r in u.robots)
+
+    def _retry_unsolvable(self, u: Unit, attempts: Mapping[str, Attempt], accepted: Sequence[GroundedStep],
+                          start: WorldState, forward: WorldState, team: Sequence[str]) -> None:
+        """Fast Downward found no plan for a unit: retry once with every candidate object
+        and more robots (those able to fill its roles, least loaded first), then give up
+        (a typed error if nothing was planned yet, else the joint fallback)."""
+        a = [attempts[t.id] for t in u.subtasks]
+        if any(not x.wide for x in a):
+            wide = helpers(u, forward, team, accepted)
+            for x in a:
+                x.narrow, x.wide = False, wide
+                x.tries += 1
+            return
+        if not accepted and not u.protect:
+            raise self._unsolvable(u.describe(), u.conditions, start, list(u.robots))
+        raise _Fallback(f"subtask {u.describe()} has no plan from the state the others leave")
+
+    @staticmethod
+    def _replay(trial: WorldState, steps: Sequence[SeqStep], universe: Universe
+                ) -> tuple[list[GroundedStep], str | None]:
+        """Run a unit's steps on ``trial`` (in place): grounded steps, or why they fail."""
+        grounded: list[GroundedStep] = []
+        try:
+            for i, st in enumerate(steps):
+                if already_done(trial, st.action):
+                    continue  # another unit opened (switched, ...) it first: nothing to do
+                for prep in preparations(trial, st):
+                    # planned for a world another unit has changed since (the robot or the
+                    # object moved, the microwave was left running): a step first puts it right
+                    grounded.append(advance(trial, SeqStep(st.robot, prep, st.subtask, st.group), i,
+                                            universe=universe))
+                grounded.append(advance(trial, st, i, universe=universe))
+        except StepFailure as exc:
+            return [], f"no longer runs: {exc}"
+        return grounded, None
+
+    @staticmethod
+    def _accept(u: Unit, grounded: list[GroundedStep], forward: WorldState, accepted: list[GroundedStep],
+                done: set[str], unit_of: dict[str, str],
+                protected: dict[str, tuple[Condition, frozenset[str]]],
+                after: WorldState | None = None) -> None:
+        if after is not None:
+            forward.objects, forward.robots = after.objects, after.robots
+        accepted.extend(grounded)
+        for t in u.subtasks:
+            done.add(t.id)
+            unit_of[t.id] = u.id
+            if not t.final:
+                continue
+            for c in t.goal:
+                result = check_condition(c, forward)
+                objs = set(result.witnesses)
+                for w in result.witnesses:
+                    if w in forward.objects:
+                        objs.update(forward.ancestors(w))
+                protected[str(c)] = (c, frozenset(objs))
+
+    # ---- joint planning -----------------------------------------------------------------
+    def _joint(self, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str]) -> MergedPlan:
+        goal = spec.goal()
+        if any(not t.final for t in spec.subtasks):
+            notes.append("joint problem: intermediate (non-final) subtask goals are not planned")
+        problem = build_problem(start, goal.conditions, team, name="joint")
+        result = self._solve([problem])[0]
+        if not result.solved:
+            problem = build_problem(start, goal.conditions, team, name="joint", narrow=False)
+            result = self._solve([problem])[0]
+        if not result.solved:
+            raise self._unsolvable("joint (the whole goal)", goal.conditions, start, team)
+        actions = polish(problem.decode(result.plan))
+        unit = Unit("joint", list(spec.subtasks), tuple(team))
+        steps = [SeqStep(r, a, t, "joint") for (r, a), t in zip(actions, attribute(actions, unit, start),
+                                                                strict=True)]
+        try:
+            grounded, _ = ground_sequence(start, steps)
+        except StepFailure as exc:
+            raise PlanValidationError(f"Fast Downward's joint plan does not run in the simulator: {exc}") from None
+        try:
+            plan = self._finish(grounded, {}, team, start, goal, "formal")
+        except _Invalid as exc:
+            notes.append(f"joint plan's partial order failed ({exc}): robots take turns")
+            try:
+                plan = self._finish(grounded, {}, team, start, goal, "sequential")
+            except _Invalid as again:
+                raise PlanValidationError(f"the joint plan fails in the simulator: {again}") from None
+        return plan.model_copy(update={"joint": True})
+
+    # ---- no-HP: concatenation -----------------------------------------------------------
+    def _concatenated(self, spec: TaskSpec, start: WorldState, team: list[str],
+                      needs: Mapping[str, list[Need]], notes: list[str]) -> MergedPlan:
+        load: dict[str, float] = {r: 0.0 for r in team}
+        assigned = {a.subtask: a.robots for a in allocate(list(spec.subtasks), needs, start, team, load)}
+        levels = _levels(spec)
+        plans: dict[str, list[SeqStep]] = {}
+        bases: dict[str, WorldState] = {}
+        used: set[str] = set()  # robots with an earlier subtask: they start elsewhere
+        for level in levels:
+            problems = []
+            for t in level:
+                bases[t.id] = _lenient_state(start, [s for d in _ancestors(spec, t.id) for s in plans.get(d, [])])
+                away = [r for r in assigned[t.id] if r in used]
+                used.update(assigned[t.id])
+                problems.append(build_problem(bases[t.id], t.goal, assigned[t.id], name=t.id, elsewhere=away))
+            results = self._solve(problems)
+            for t, problem, result in zip(level, problems, results, strict=True):
+                if not result.solved:
+                    problem = build_problem(bases[t.id], t.goal, team, name=t.id, narrow=False, elsewhere=team)
+                    result = self._solve([problem])[0]
+                    if not result.solved:
+                        raise self._unsolvable(t.id, t.goal, bases[t.id], team)
+                plans[t.id] = [SeqStep(r, a, t.id, t.id) for r, a in polish(problem.decode(result.plan))]
+        grounded: list[GroundedStep] = []
+        for t in (t for level in levels for t in level):
+            try:
+                g, _ = ground_sequence(bases[t.id], plans[t.id])
+            except StepFailure as exc:
+                raise PlanValidationError(f"subtask {t.id}'s plan does not run: {exc}") from None
+            grounded.extend(g)
+        deps = {t.id: tuple(_ancestors(spec, t.id)) for t in spec.subtasks}
+        if not self.config.validate:
+            waits = order(grounded, deps, "concatenate")
+            plan = assemble(grounded, waits, team, deps)
+            return estimate(plan, {s.id: g.seconds for s, g in zip(plan.steps, grounded, strict=True)})
+        try:
+            return self._finish(grounded, deps, team, start, spec.goal(), "concatenate")
+        except _Invalid as exc:
+            notes.append(f"the concatenated plan failed in the simulator ({exc}): planned as one joint problem")
+            return self._joint(spec, start, team, notes)
+
+    # ---- merge + validate ---------------------------------------------------------------
+    def _finish(self, grounded: Sequence[GroundedStep], deps: Mapping[str, Sequence[str]], team: Sequence[str],
+                start: WorldState, goal: Goal, mode: MergeMode) -> MergedPlan:
+        waits = order(grounded, deps, mode)
+        plan = assemble(grounded, waits, team, deps)
+        if not self.config.validate:
+            return estimate(plan, {s.id: g.seconds for s, g in zip(plan.steps, grounded, strict=True)})
+        timing = simulate(plan, start, goal)
+        if not timing.ok:
+            raise _Invalid(timing.failure)
+        return with_times(plan, timing)
+
+
+# ---- helpers ------------------------------------------------------------------------------
+
+def _ancestors(spec: TaskSpec, sid: str) -> list[str]:
+    """Transitive dependencies of a subtask, in spec order."""
+    seen: set[str] = set()
+    frontier = list(spec.subtask(sid).depends_on)
+    while frontier:
+        d = frontier.pop()
+        if d not in seen:
+            seen.add(d)
+            frontier += spec.subtask(d).depends_on
+    return [t.id for t in spec.subtasks if t.id in seen]
+
+
+def _group_dependencies(spec: TaskSpec, unit_of: Mapping[str, str]) -> dict[str, tuple[str, ...]]:
+    """Planning unit -> the units holding its subtasks' (transitive) dependencies."""
+    out: dict[str, set[str]] = {}
+    for t in spec.subtasks:
+        u = unit_of.get(t.id)
+        if u is None:
+            continue
+        out.setdefault(u, set()).update(unit_of[d] for d in _ancestors(spec, t.id) if d in unit_of)
+    return {u: tuple(sorted(d - {u})) for u, d in out.items()}
+
+
+def _levels(spec: TaskSpec) -> list[list[Subtask]]:
+    """Subtasks by dependency depth (each level only depends on earlier ones)."""
+    depth: dict[str, int] = {}
+
+    def d(sid: str) -> int:
+        if sid not in depth:
+            deps = spec.subtask(sid).depends_on
+            depth[sid] = 1 + max((d(x) for x in deps), default=-1)
+        return depth[sid]
+
+    levels: dict[int, list[Subtask]] = {}
+    for t in spec.subtasks:
+        levels.setdefault(d(t.id), []).append(t)
+    return [levels[k] for k in sorted(levels)]
+
+
+def _lenient_state(start: WorldState, steps: Sequence[SeqStep]) -> WorldState:
+    """The state after ``steps``, skipping those that cannot run (no validation: the
+    no-HP ablation plans each subtask from what its dependencies *probably* leave)."""
+    s = start.copy()
+    for st in steps:
+        if check_action(s, st.robot, st.action) is None:
+            apply_action(s, st.robot, st.action)
+    return s
+

@@ -1,0 +1,250 @@
+"""What it takes to achieve a condition: the *roles* robots must fill (carry the apple,
+open the fridge, switch on the microwave), each a bundle of skills one robot must have
+together, plus a mass to lift. Used to allocate robots before planning, to explain why a
+team cannot do something, and to estimate how long a subtask keeps a robot busy.
+
+The analysis looks at the most promising candidate object (the one the goal compiler
+ranks first) and is an estimate: Fast Downward has the last word. Only roles every way
+of satisfying the condition needs (``certain``) may reject a team outright.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+from emboteam.pddl.errors import ImpossibleGoalError, MissingSkillError
+from emboteam.pddl.goal_compiler import GoalPart, compile_condition
+from emboteam.sim.durations import ACTION_SECONDS, navigation_seconds
+from emboteam.sim.physics import HEATING, WATER_SOURCES
+from emboteam.sim.rules import INTERLOCKED
+from emboteam.world.actions import Skill
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import Condition, Predicate
+from emboteam.world.robots import RobotProfile
+from emboteam.world.state import WorldState
+
+S = Skill
+
+
+@dataclass(frozen=True)
+class Role:
+    """A job one robot must do: any one of ``options`` (a set of skills it must all have),
+    lifting ``mass`` kg."""
+
+    what: str
+    options: tuple[frozenset[Skill], ...]
+    mass: float = 0.0
+    certain: bool = False
+
+    def filled_by(self, profile: RobotProfile) -> bool:
+        return profile.mass_capacity >= self.mass and any(opt <= profile.skills for opt in self.options)
+
+
+@dataclass(frozen=True)
+class Need:
+    """The roles of one condition: any one alternative, all of its roles."""
+
+    condition: Condition
+    alternatives: tuple[tuple[Role, ...], ...]
+    #: objects a robot will drive to, in order (navigation estimate)
+    visits: tuple[str, ...] = ()
+    #: seconds of manipulation expected
+    work: float = 0.0
+    part: GoalPart | None = field(default=None, compare=False)
+
+    @property
+    def satisfied(self) -> bool:
+        return self.alternatives == ((),)
+
+
+def _role(what: str, *options: Iterable[Skill], mass: float = 0.0, certain: bool = False) -> Role:
+    return Role(what, tuple(frozenset(o) for o in options), mass, certain)
+
+
+def _mass(state: WorldState, part: GoalPart, oid: str) -> float:
+    o = state.objects.get(oid)
+    if o is not None:
+        return o.mass
+    whole = oid.split("_Slice_")[0]
+    product = load_catalogue().slice_product(state.objects[whole].type) if whole in state.objects else None
+    return round(state.objects[whole].mass / product[1], 4) if product else 0.0
+
+
+def _anchor(state: WorldState, oid: str) -> str:
+    """Where an object (or the whole a pending piece comes from) is."""
+    return oid if oid in state.objects else oid.split("_Slice_")[0]
+
+
+def _opener(state: WorldState, oid: str) -> list[Role]:
+    hider = state.enclosing_closed(_anchor(state, oid)) if _anchor(state, oid) in state.objects else None
+    return [_role(f"open {hider}", [S.OpenObject])] if hider else []
+
+
+def _heater_for(state: WorldState, oid: str) -> str | None:
+    cat = load_catalogue()
+    t = state.objects[oid].type if oid in state.objects else None
+    if t is None:
+        whole = state.objects.get(_anchor(state, oid))
+        product = cat.slice_product(whole.type) if whole is not None else None
+        t = product[0] if product else None
+    for h in state.objects.values():
+        if h.type in ("Microwave", "Toaster") and t is not None and cat.can_place(t, h.type):
+            return h.id
+    burners = list(state.of_type("StoveBurner"))
+    return burners[0].id if burners else None
+
+
+def _water_basin(state: WorldState) -> tuple[str | None, str | None]:
+    for f in state.objects.values():
+        if f.type in WATER_SOURCES:
+            for b in f.controls:
+                if b in state.objects and state.objects[b].has("receptacle"):
+                    return f.id, b
+    return None, None
+
+
+def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
+    """Roles for ``cond`` from ``state`` (raises the goal compiler's typed errors)."""
+    part = compile_condition(cond, state, robots)
+    if part.satisfied:
+        return Need(cond, ((),), part=part)
+    pred = cond.predicate
+    s = part.subjects[0]
+    mass = _mass(state, part, s)
+    lightest = min(_mass(state, part, x) for x in part.subjects)
+    carry = _role(f"carry {s}", [S.PickupObject, S.PutObject], mass=mass)
+    opener = _opener(state, s)
+    a = ACTION_SECONDS
+    if pred in (Predicate.inside, Predicate.held):
+        place = part.places[0] if part.places else None
+        if pred is Predicate.held:
+            roles = [_role(f"hold {s}", [S.PickupObject], mass=lightest, certain=True), *opener]
+            return Need(cond, (tuple(roles),), (s,), a[S.PickupObject], part)
+        options = [[S.PickupObject, S.PutObject]]
+        if place is not None and state.objects[place].type == "GarbageCan":
+            options.append([S.PickupObject, S.ThrowObject])
+        roles = [_role(f"carry {s}", *options, mass=mass), *opener,
+                 _role(f"move {cond.subject}", [S.PickupObject], mass=lightest, certain=True)]
+        if place is not None:
+            roles += _opener(state, place)
+            p = state.objects[place]
+            if p.type in load_catalogue().must_be_open and not p.is_open:
+                roles.append(_role(f"open {place}", [S.OpenObject]))
+        return Need(cond, (tuple(roles),), (s, place) if place else (s,), a[S.PickupObject] + a[S.PutObject], part)
+    if pred is Predicate.sliced:
+        options = [[S.SliceObject, S.PickupObject]]
+        if state.objects[s].type == "Egg":
+            options.append([S.BreakObject])
+        certain = [S.SliceObject] if state.objects[s].type != "Egg" else None
+        roles = [_role(f"slice {s}", *options), *opener]
+        if certain:
+            roles.append(_role(f"slice {cond.subject}", certain, certain=True))
+        knives = [k.id for k in state.of_type("Knife", "ButterKnife")]
+        return Need(cond, (tuple(roles),), (*knives[:1], s), a[S.PickupObject] + a[S.SliceObject], part)
+    single = {Predicate.broken: S.BreakObject, Predicate.switched_on: S.SwitchOn,
+              Predicate.switched_off: S.SwitchOff, Predicate.open: S.OpenObject,
+              Predicate.closed: S.CloseObject}
+    if pred in single:
+        skill = single[pred]
+        roles = [_role(f"{skill.value} {s}", [skill], certain=True), *opener]
+        o = state.objects[s]
+        if pred is Predicate.switched_on and o.type in INTERLOCKED and o.is_open:
+            roles.append(_role(f"close {s}", [S.CloseObject]))
+        return Need(cond, (tuple(roles),), (s,), a[skill], part)
+    if pred in (Predicate.hot, Predicate.cooked):
+        heater = _heater_for(state, s)
+        chain = state.ancestors(_anchor(state, s)) if _anchor(state, s) in state.objects else []
+        inside = next((h for h in chain if state.objects[h].type in HEATING), None)
+        roles = [] if inside else [carry, *opener]
+        h = inside or heater
+        if h is not None:
+            ho = state.objects[h]
+            switch = h if ho.has("toggleable") else next(
+                (k.id for k in state.of_type("StoveKnob") if h in k.controls), h)
+            if not ho.is_on:
+                roles.append(_role(f"switch on {switch}", [S.SwitchOn]))
+            if ho.type in INTERLOCKED:
+                roles += [_role(f"open {h}", [S.OpenObject]), _role(f"close {h}", [S.CloseObject])]
+        if s not in state.objects:  # a piece: cut the whole first
+            roles.append(_role(f"slice {_anchor(state, s)}", [S.SliceObject, S.PickupObject]))
+        return Need(cond, (tuple(roles),), (s, h) if h else (s,), 4.0, part)
+    if pred is Predicate.cold:
+        fridge = next((f.id for f in state.of_type("Fridge")), None)
+        roles = [carry, *opener]
+        if fridge is not None and not state.objects[fridge].is_open:
+            roles.append(_role(f"open {fridge}", [S.OpenObject]))
+        return Need(cond, (tuple(roles),), (s, fridge) if fridge else (s,), 3.5, part)
+    if pred in (Predicate.clean, Predicate.filled):
+        faucet, basin = _water_basin(state)
+        if pred is Predicate.filled and cond.liquid == "coffee":
+            faucet = basin = next((c.id for c in state.of_type("CoffeeMachine")), None)
+        roles = [carry, *opener]
+        if faucet is not None and not state.objects[faucet].is_on:
+            roles.append(_role(f"switch on {faucet}", [S.SwitchOn]))
+        alternatives = [tuple(roles)]
+        if pred is Predicate.clean:
+            alternatives.insert(0, (_role(f"clean {s}", [S.CleanObject]), *opener))
+        return Need(cond, tuple(alternatives), (s, basin) if basin else (s,), 3.0, part)
+    return Need(cond, ((),), part=part)
+
+
+def covers(profiles: Sequence[RobotProfile], need: Need) -> bool:
+    """Can these robots together fill every role of some alternative?"""
+    return any(all(any(role.filled_by(p) for p in profiles) for role in alt) for alt in need.alternatives)
+
+
+def check_team(needs: Sequence[Need], profiles: Sequence[RobotProfile]) -> None:
+    """Reject a goal the team certainly cannot reach, naming the skill and the condition;
+    also too many objects to hold for the robots that can pick up."""
+    names = ", ".join(p.name for p in profiles)
+    for need in needs:
+        for alt in need.alternatives:
+            for role in alt:
+                if not role.certain or any(role.filled_by(p) for p in profiles):
+                    continue
+                skills = sorted({s.value for opt in role.options for s in opt})
+                able = [p for p in profiles if any(opt <= p.skills for opt in role.options)]
+                if able and role.mass > 0:
+                    raise ImpossibleGoalError(
+                        f"{need.condition}: every {need.condition.subject} here weighs {role.mass:g} kg "
+                        f"or more; the robots that can pick up ({', '.join(p.name for p in able)}) lift at "
+                        f"most {max(p.mass_capacity for p in able):g} kg")
+                raise MissingSkillError(
+                    f"{need.condition} needs {' + '.join(skills)}, which no robot of the team ({names}) has",
+                    skill=skills[0], condition=str(need.condition))
+    # objects held at once: conditions whose candidates are pairwise disjoint need
+    # different objects, hence different hands (a greedy packing is a lower bound)
+    held = sorted((n for n in needs if n.condition.predicate is Predicate.held and n.part is not None),
+                  key=lambda n: len(n.part.subjects) if n.part else 0)
+    taken: set[str] = set()
+    required = 0
+    for n in held:
+        assert n.part is not None
+        pool = set(n.part.subjects)
+        if not pool & taken:
+            taken |= pool
+            required += n.condition.count
+    hands = sum(1 for p in profiles if p.can(S.PickupObject))
+    if required > hands:
+        raise ImpossibleGoalError(f"the goal has {required} objects held at once, but only {hands} robot(s) "
+                                  f"of the team ({names}) can pick up")
+
+
+def estimate(state: WorldState, robot: str, needs: Sequence[Need]) -> float:
+    """Seconds ``robot`` would be busy with ``needs``: driving along their visits from
+    where it stands, plus their manipulation."""
+    r = state.robots[robot]
+    pos = r.position
+    total = 0.0
+    for need in needs:
+        for oid in need.visits:
+            anchor = _anchor(state, oid)
+            if anchor not in state.objects:
+                continue
+            o = state.objects[anchor]
+            dest = (o.position[0], o.position[2])
+            total += navigation_seconds(pos, dest, r.profile.speed)
+            pos = dest
+        total += need.work
+    return total

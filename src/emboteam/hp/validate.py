@@ -1,0 +1,127 @@
+"""Run a merged plan in the simulator, robots concurrently, to validate it and time it.
+
+Each robot runs its steps in order; a step starts once the steps it waits for (``after``)
+have ended and its interaction spot is free (the simulator rejects a second robot at a
+busy spot, so the scheduler waits instead, as the behavior trees do with their locks).
+No faults: this checks the plan, not the robots. The result gives every step's start and
+end (``est_start``/``est_end``), the makespan and the lower bound
+``max(critical path, busiest robot's work)`` over the measured durations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from emboteam.hp.plan import MergedPlan, PlanStep
+from emboteam.sim.simulator import Simulator
+from emboteam.world.actions import Skill
+from emboteam.world.checker import check_goal
+from emboteam.world.goals import Goal
+from emboteam.world.scene import load_scene
+from emboteam.world.state import WorldState
+
+
+@dataclass
+class Timing:
+    ok: bool
+    failure: str = ""
+    times: dict[str, tuple[float, float]] = field(default_factory=dict)
+    makespan: float = 0.0
+    lower_bound: float = 0.0
+    final: WorldState | None = None
+    unmet: tuple[str, ...] = ()
+
+
+def lower_bound(plan: MergedPlan, durations: dict[str, float]) -> float:
+    """max(longest path through robot orders and waits, busiest robot's total work)."""
+    finish: dict[str, float] = {}
+    last: dict[str, str] = {}
+    work: dict[str, float] = {}
+    for s in plan.steps:  # a topological order
+        ready = max([finish[p] for p in s.after if p in finish] + [finish[last[s.robot]] if s.robot in last else 0.0])
+        finish[s.id] = ready + durations.get(s.id, 0.0)
+        last[s.robot] = s.id
+        work[s.robot] = work.get(s.robot, 0.0) + durations.get(s.id, 0.0)
+    return max([*finish.values(), *work.values(), 0.0])
+
+
+def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> Timing:
+    """Execute ``plan`` from ``state`` (not modified). ``ok`` when every step succeeds and
+    ``goal`` (if given) holds at the end."""
+    sim = Simulator(load_scene(state.floor_plan), [], state=state)
+    queues: dict[str, list[PlanStep]] = {r: plan.for_robot(r) for r in plan.robots}
+    for s in plan.steps:
+        queues.setdefault(s.robot, [])
+    ended: set[str] = set()
+    running: dict[str, PlanStep] = {}
+    starts: dict[str, float] = {}
+    times: dict[str, tuple[float, float]] = {}
+    while True:
+        for robot in sorted(queues):
+            queue = queues[robot]
+            if robot in running or not queue:
+                continue
+            step = queue[0]
+            if not all(p in ended for p in step.after):
+                continue
+            if step.action.skill is not Skill.GoToObject:
+                target = step.action.receptacle or step.action.target
+                if target in sim.state.objects:
+                    holder = sim.locks.get(sim.state.spot_of(target))
+                    if holder is not None and holder != robot:
+                        continue
+            queue.pop(0)
+            running[robot] = step
+            starts[step.id] = sim.now
+            sim.start(robot, step.action)
+        if not running:
+            break
+        t = sim.next_event_time()
+        assert t is not None
+        for outcome in sim.advance(t):
+            if outcome.robot not in running:
+                continue
+            step = running.pop(outcome.robot)
+            if not outcome.success:
+                return Timing(ok=False, failure=f"{step.id} {outcome}", times=times, final=sim.state)
+            ended.add(step.id)
+            times[step.id] = (starts[step.id], outcome.end)
+    left = [s.id for q in queues.values() for s in q]
+    if left:
+        return Timing(ok=False, failure=f"steps {', '.join(left[:5])} never became ready (their waits "
+                      "form a cycle or name unknown steps)", times=times, final=sim.state)
+    makespan = max((e for _, e in times.values()), default=0.0)
+    durations = {k: e - s for k, (s, e) in times.items()}
+    timing = Timing(ok=True, times=times, makespan=makespan, lower_bound=lower_bound(plan, durations),
+                    final=sim.state)
+    if goal is not None:
+        report = check_goal(goal, sim.state)
+        if not report.success:
+            timing.ok = False
+            timing.unmet = tuple(str(c) for c in report.unmet())
+            timing.failure = "the goal does not hold at the end: " + ", ".join(timing.unmet)
+    return timing
+
+
+def with_times(plan: MergedPlan, timing: Timing) -> MergedPlan:
+    steps = tuple(s.model_copy(update={"est_start": round(timing.times[s.id][0], 3),
+                                       "est_end": round(timing.times[s.id][1], 3)})
+                  if s.id in timing.times else s for s in plan.steps)
+    return plan.model_copy(update={"steps": steps, "makespan": round(timing.makespan, 3),
+                                   "lower_bound": round(timing.lower_bound, 3)})
+
+
+def estimate(plan: MergedPlan, seconds: dict[str, float]) -> MergedPlan:
+    """Times from nominal durations without simulating (for unvalidated plans): each
+    step starts when its robot and its waits are done."""
+    finish: dict[str, float] = {}
+    last: dict[str, str] = {}
+    steps = []
+    for s in plan.steps:
+        start = max([finish[p] for p in s.after if p in finish] + [finish[last[s.robot]] if s.robot in last else 0.0])
+        finish[s.id] = start + seconds.get(s.id, 0.0)
+        last[s.robot] = s.id
+        steps.append(s.model_copy(update={"est_start": round(start, 3), "est_end": round(finish[s.id], 3)}))
+    makespan = max(finish.values(), default=0.0)
+    return plan.model_copy(update={"steps": tuple(steps), "makespan": round(makespan, 3),
+                                   "lower_bound": round(lower_bound(plan, seconds), 3)})

@@ -1,0 +1,258 @@
+"""Goal conditions -> PDDL goal formulas, with the objects each may be satisfied by.
+
+A condition over one object id becomes a formula over that object (and the pieces it may
+be cut into: a slice of ``Apple_1`` in the fridge satisfies ``inside(Apple_1, Fridge)``, as
+:func:`emboteam.world.checker.matches` reads it). "Any instance of a type" becomes a
+disjunction over the candidates, "N of types" a disjunction of conjunctions over
+N-subsets (or, past :data:`MAX_COMBINATIONS`, the N most promising candidates). Every
+formula mirrors :func:`emboteam.world.checker.check_condition`: a sliced whole no longer
+counts (only ``sliced`` looks at it), ``inside`` is transitive, "Sink" means Sink or
+SinkBasin.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from itertools import combinations
+
+from emboteam.pddl.domain import pending_pieces
+from emboteam.pddl.errors import ImpossibleGoalError, UnknownGoalObjectError
+from emboteam.world.catalogue import load_catalogue, place_types
+from emboteam.world.checker import check_condition
+from emboteam.world.goals import Condition, ObjectRef, Predicate
+from emboteam.world.state import ObjectState, WorldState
+
+#: past this many N-subsets, "N of types" commits to the N most promising candidates
+MAX_COMBINATIONS = 20
+#: at most this many candidates for "any instance" (nearest and easiest first): more only
+#: grows the problem, rarely the plan's quality
+MAX_CANDIDATES = 6
+
+#: the instance property a subject needs for the predicate to be achievable
+_NEEDS: dict[Predicate, str] = {
+    Predicate.broken: "breakable", Predicate.switched_on: "toggleable",
+    Predicate.switched_off: "toggleable", Predicate.open: "openable", Predicate.closed: "openable",
+    Predicate.cooked: "cookable", Predicate.dirty: "dirtyable", Predicate.filled: "canFillWithLiquid",
+    Predicate.held: "pickupable", Predicate.inside: "pickupable", Predicate.hot: "pickupable",
+    Predicate.cold: "pickupable",
+}
+
+
+@dataclass(frozen=True)
+class GoalPart:
+    """One compiled condition."""
+
+    condition: Condition
+    formula: str
+    #: objects that may satisfy it (pending pieces included)
+    subjects: tuple[str, ...]
+    #: receptacles that may hold them (inside)
+    places: tuple[str, ...] = ()
+    #: wholes that must (or may) be cut for it
+    slices: tuple[str, ...] = ()
+    satisfied: bool = False
+    #: the subjects the formula commits to when it had to choose (N of many)
+    chosen: tuple[str, ...] = field(default=())
+
+
+class _View:
+    """The state plus the pieces its sliceable objects may be cut into."""
+
+    def __init__(self, state: WorldState) -> None:
+        self.state = state
+        self.pending = pending_pieces(state)
+        self.objects: dict[str, ObjectState] = {**state.objects, **self.pending}
+
+    def type_of_source(self, o: ObjectState) -> str | None:
+        return self.objects[o.source].type if o.source is not None and o.source in self.objects else None
+
+    def matches_types(self, o: ObjectState, types: Iterable[str]) -> bool:
+        ts = set(types)
+        return o.type in ts or self.type_of_source(o) in ts
+
+    def pieces_of(self, whole: str) -> list[str]:
+        return [p.id for p in self.objects.values() if p.source == whole]
+
+
+def _pred_atom(pred: Predicate, o: str, places: Sequence[str], robots: Sequence[str],
+               liquid: str | None) -> str:
+    if pred is Predicate.sliced:
+        return f"(sliced {o})"
+    if pred is Predicate.inside:
+        body = " ".join(f"(within {o} {p})" for p in places if p != o)
+        core = f"(or {body})" if len(places) > 1 else body
+    elif pred is Predicate.held:
+        holders = " ".join(f"(holding {r} {o})" for r in robots)
+        core = f"(or {holders})" if len(robots) > 1 else holders
+    else:
+        core = {
+            Predicate.broken: f"(broken {o})", Predicate.switched_on: f"(is-on {o})",
+            Predicate.switched_off: f"(not (is-on {o}))", Predicate.open: f"(is-open {o})",
+            Predicate.closed: f"(not (is-open {o}))", Predicate.hot: f"(hot {o})",
+            Predicate.cold: f"(cold {o})", Predicate.cooked: f"(cooked {o})",
+            Predicate.clean: f"(not (dirty {o}))", Predicate.dirty: f"(dirty {o})",
+            Predicate.filled: {None: f"(filled {o})", "water": f"(has-water {o})",
+                               "coffee": f"(has-coffee {o})", "wine": f"(has-wine {o})"}.get(
+                liquid, f"(filled {o})"),
+        }[pred]
+    return f"(and (available {o}) {core})"
+
+
+def slicing_targets(conditions: Sequence[Condition], state: WorldState) -> set[str]:
+    """Wholes a goal asks to slice, or whose pieces it names or needs (``cooked(Bread)``:
+    only bread slices cook)."""
+    view = _View(state)
+    cat = load_catalogue()
+    out: set[str] = set()
+    for cond in conditions:
+        ref = cond.subject
+        for o in _raw_subjects(ref, view):
+            if o.source is not None:
+                named = ref.id == o.id or (ref.types and o.type in ref.types)
+                if o.id in view.pending and named:
+                    out.add(o.source)
+                continue
+            product = cat.slice_product(o.type)
+            if product is None or o.gone:
+                continue
+            named_piece = bool(ref.types) and product[0] in ref.types and o.type not in ref.types
+            if cond.predicate is Predicate.sliced or named_piece:
+                out.add(o.id)
+            else:
+                need = _NEEDS.get(cond.predicate)
+                if need is not None and not o.has(need) and need in cat.type(product[0]).properties:
+                    out.add(o.id)
+    return out
+
+
+def _raw_subjects(ref: ObjectRef, view: _View) -> list[ObjectState]:
+    """Objects (and pending pieces) a reference can stand for, before any filtering."""
+    if ref.id is not None:
+        o = view.objects.get(ref.id)
+        if o is None:
+            raise UnknownGoalObjectError(f"{view.state.floor_plan} has no object {ref.id!r}")
+        return [o, *(view.objects[p] for p in view.pieces_of(o.id))] if o.source is None else [o]
+    return [o for o in view.objects.values() if view.matches_types(o, ref.types)]
+
+
+def _places(cond: Condition, view: _View) -> list[str]:
+    assert cond.receptacle is not None
+    ref = cond.receptacle
+    state = view.state
+    if ref.id is not None:
+        if ref.id not in state.objects:
+            raise UnknownGoalObjectError(f"{state.floor_plan} has no object {ref.id!r}")
+        found = [ref.id]
+    else:
+        types = place_types(ref.types)
+        found = [o.id for o in state.objects.values() if not o.gone and view.matches_types(o, types)]
+    places = [p for p in found if state.objects[p].has("receptacle")]
+    if not found:
+        raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has no {ref}")
+    if not places:
+        raise ImpossibleGoalError(f"{cond}: {ref} is not a receptacle")
+    return places
+
+
+def _rank(view: _View, robots: Sequence[str], oid: str) -> tuple[float, str]:
+    """Promise of a candidate: existing before pending, near a robot, not hidden."""
+    state = view.state
+    o = view.objects[oid]
+    anchor = o.source if oid in view.pending and o.source is not None else oid
+    hidden = 1.0 if anchor in state.objects and state.enclosing_closed(anchor) is not None else 0.0
+    near = min((state.distance(r, anchor) for r in robots if r in state.robots), default=0.0)
+    return (hidden * 5 + near + (3.0 if oid in view.pending else 0.0), oid)
+
+
+def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str], *,
+                      slices: set[str] | None = None, narrow: bool = True) -> GoalPart:
+    """Compile one condition for a problem whose acting robots are ``robots``.
+
+    ``slices`` are the wholes the whole goal will cut (their pieces become candidates);
+    with ``narrow``, a condition that already holds commits to the objects that satisfy it
+    now (small problems; the caller retries without ``narrow`` if that proves unsolvable).
+    """
+    view = _View(state)
+    slices = slices if slices is not None else slicing_targets([cond], state)
+    pred = cond.predicate
+    result = check_condition(cond, state)
+    raw = _raw_subjects(cond.subject, view)
+    if not raw:
+        raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has no {cond.subject}")
+
+    def usable(o: ObjectState) -> bool:
+        if pred is Predicate.sliced:
+            return o.source is None and o.has("sliceable") and load_catalogue().slice_product(o.type) is not None
+        if o.gone:
+            return False
+        if o.id in view.pending and o.source not in slices:
+            return False
+        if pred is Predicate.inside and cond.receptacle is not None and cond.receptacle.id == o.id:
+            return False
+        need = _NEEDS.get(pred)
+        return need is None or o.has(need) or o.id in result.witnesses
+
+    subjects = [o.id for o in raw if usable(o)]
+    if not subjects:
+        need = _NEEDS.get(pred, "sliceable" if pred is Predicate.sliced else str(pred))
+        raise ImpossibleGoalError(f"{cond}: no {cond.subject} in {state.floor_plan} is {need}")
+    if pred is Predicate.dirty:
+        subjects = [s for s in subjects if s in result.witnesses]
+        if not subjects:
+            raise ImpossibleGoalError(f"{cond}: no skill makes an object dirty and no {cond.subject} is")
+    if pred is Predicate.filled and cond.liquid not in (None, "water", "coffee"):
+        subjects = [s for s in subjects if s in result.witnesses]
+        if not subjects:
+            raise ImpossibleGoalError(f"{cond}: nothing here pours {cond.liquid}")
+    if len(subjects) < cond.count:
+        raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has only {len(subjects)} {cond.subject}")
+    places = _places(cond, view) if pred is Predicate.inside else []
+
+    holders = list(dict.fromkeys([*robots, *(view.objects[s].held_by for s in subjects
+                                              if s in state.objects and state.objects[s].held_by)]))
+    if pred is Predicate.held and not holders:
+        raise ImpossibleGoalError(f"{cond}: no robot to hold it")
+
+    satisfied = result.holds
+    # a witness about to be cut no longer counts: then its pieces must take over
+    doomed = any(w in slices for w in result.witnesses)
+    if narrow and satisfied and not doomed:
+        subjects = list(result.witnesses[:cond.count])
+        if pred is Predicate.inside:
+            keep = [p for p in places if any(state.is_within(s, p) for s in subjects)]
+            places = keep or places
+    else:
+        subjects.sort(key=lambda s: (s not in result.witnesses, _rank(view, robots, s)))
+    cap = max(MAX_CANDIDATES, cond.count + 2)
+    subjects = subjects[:cap]
+
+    atoms = {s: _pred_atom(pred, s, places, [h for h in holders if h], cond.liquid) for s in subjects}
+    chosen: tuple[str, ...] = ()
+    if cond.count == 1:
+        formula = atoms[subjects[0]] if len(subjects) == 1 else "(or " + " ".join(atoms.values()) + ")"
+    elif math.comb(len(subjects), cond.count) <= MAX_COMBINATIONS:
+        groups = ["(and " + " ".join(atoms[s] for s in combo) + ")"
+                  for combo in combinations(subjects, cond.count)]
+        formula = groups[0] if len(groups) == 1 else "(or " + " ".join(groups) + ")"
+    else:
+        chosen = tuple(subjects[:cond.count])
+        formula = "(and " + " ".join(atoms[s] for s in chosen) + ")"
+        subjects = list(chosen)
+    cut: set[str] = set()
+    for sid in subjects:
+        o = view.objects[sid]
+        if pred is Predicate.sliced and not o.is_sliced:
+            cut.add(sid)
+        elif sid in view.pending and o.source is not None:
+            cut.add(o.source)
+    return GoalPart(condition=cond, formula=formula, subjects=tuple(subjects), places=tuple(places),
+                    slices=tuple(sorted(cut)), satisfied=satisfied, chosen=chosen)
+
+
+def compile_goal(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str], *,
+                 narrow: bool = True) -> list[GoalPart]:
+    """Compile conditions that one problem must satisfy together."""
+    slices = slicing_targets(conditions, state)
+    return [compile_condition(c, state, robots, slices=slices, narrow=narrow) for c in conditions]
