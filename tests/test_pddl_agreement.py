@@ -54,6 +54,8 @@ CASES: list[Case] = [
     Case("FloorPlan1", "1", "hot(Potato) & closed(Microwave)", why="microwave door/power interlock"),
     Case("FloorPlan6", "2", "cooked(Potato) & inside(Potato, Plate)", why="cooking persists when moved"),
     Case("FloorPlan15", "2", "filled(Mug, coffee)", why="coffee machine whitelist and brewing"),
+    Case("FloorPlan402", "25", "inside(ToiletPaper, ToiletPaperHanger)",
+         why="a closed toilet lid hides nothing: no OpenObject needed (robot25 cannot open)"),
     Case("FloorPlan21", "3", "filled(Cup, water) & switched_off(Faucet)", why="running water fills"),
     Case("FloorPlan1", "1", "clean(Mug)", (StateChange(object="Mug_1", is_dirty=True),),
          why="running water cleans (no robot has CleanObject)"),

@@ -196,7 +196,7 @@ DERIVED: dict[str, str] = {
     "within": """(:derived (within ?x - thing ?y - thing)
     (or (in ?x ?y) (exists (?z - thing) (and (in ?x ?z) (within ?z ?y)))))""",
     "hidden": """(:derived (hidden ?x - thing)
-    (exists (?y - thing) (and (within ?x ?y) (openable ?y) (receptacle ?y) (not (is-open ?y)))))""",
+    (exists (?y - thing) (and (within ?x ?y) (must-open ?y) (not (is-open ?y)))))""",
     "carried": """(:derived (carried ?x - thing)
     (or (exists (?r - robot) (holding ?r ?x)) (exists (?y - thing) (and (in ?x ?y) (carried ?y)))))""",
     "chilled-place": """(:derived (chilled-place ?c - thing)
