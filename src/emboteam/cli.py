@@ -261,7 +261,7 @@ def run(
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join
-    from emboteam.pipeline import run_episode
+    from emboteam.pipeline import check_config, run_episode
     from emboteam.views import episode_panel, plan_table, spec_table
 
     task = _resolve_task(target, scene_fp, robots_list)
@@ -269,6 +269,7 @@ def run(
                       fault_level=faults, seed=seed, joins=tuple(join))
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run
+    check_config(cfg)
     episode = run_episode(task, cfg)
     if out_dir is not None:
         from emboteam.report import save_episode_report
@@ -319,6 +320,10 @@ def bench(
         seeds=seeds, fault_levels=parse_fault_levels(faults), workers=workers, executor=executor,
         ray_address=ray_address, out_dir=out_dir, resume=resume, llm_timeout=llm_timeout,
     )
+    from emboteam.pipeline import RunConfig, check_config
+
+    for f in cfg.frontends:
+        check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout))
     episodes = run_bench(cfg, expand_jobs(cfg, loaded.tasks))
     from emboteam.report import write_report
 

@@ -38,13 +38,16 @@ class ModeConfigError(EmboTeamError):
     """A mode/front-end combination that cannot run (e.g. ``--frontend llm`` without ``--llm``)."""
 
 
-#: the planner configuration of each mode; LaMMA-P: Fast Downward calls
-#: per subtask (one at a time), merged without validation, executed linearly
+#: the planner configuration of each mode. LaMMA-P: optimal Fast Downward calls per subtask,
+#: one at a time, no cache, sub-plans concatenated without validation and executed
+#: linearly. LaMMA-P's ``seq-opt-lmcut`` rejects this domain (LM-cut supports neither
+#: axioms nor conditional effects: Fast Downward exit 34), so it runs ``astar(hmax())``,
+#: the admissible search that does (docs/planning.md).
 PLANNER_OF_MODE: dict[str, PlannerConfig] = {
     "full": PlannerConfig(),
     "no-btc": PlannerConfig(),
     "no-hp": PlannerConfig(validate=False, merge="concatenate"),
-    "lamma-p": PlannerConfig(workers=1, validate=False, merge="formal"),
+    "lamma-p": PlannerConfig(alias="astar(hmax())", workers=1, validate=False, merge="concatenate"),
 }
 
 

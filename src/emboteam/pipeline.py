@@ -103,6 +103,15 @@ def score(goal: Goal, state: WorldState) -> tuple[bool, float, tuple[ConditionOu
     return report.success, report.gcr, outcomes
 
 
+def check_config(cfg: RunConfig) -> None:
+    """Raise the typed error of an unusable configuration (an LLM spec that names no
+    provider, ``--frontend llm`` without ``--llm``, a missing API key) before any episode
+    runs: such errors are the user's to fix, not failed episodes."""
+    from emboteam.modes import make_llm
+
+    make_llm(cfg)
+
+
 def run_episode(task: BenchTask, cfg: RunConfig) -> Episode:
     """Plan and execute one task; a typed error ends it as a recorded failed episode."""
     from emboteam.modes import run_mode  # the stage wiring lives in modes.py
