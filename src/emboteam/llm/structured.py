@@ -16,7 +16,7 @@ from collections.abc import Callable
 from string import Template
 from typing import Any, TypeVar
 
-import jsonschema  # type: ignore[import-untyped]  # no stubs in the venv (types-jsonschema)
+import jsonschema  # no stubs in the venv (types-jsonschema)
 from pydantic import ValidationError
 
 from emboteam.errors import EmboTeamError
