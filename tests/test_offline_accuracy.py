@@ -25,7 +25,7 @@ import pytest
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.evaluate import evaluate, goal_keys, load_records
+from emboteam.pfg.offline.evaluate import Outcome, evaluate, goal_keys, initial_state, load_records
 from emboteam.pfg.oracle import OracleFrontend, OracleGoalError
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.checker import validate_goal
@@ -38,7 +38,7 @@ DATA = Path(__file__).parent / "data"
 SMART_LLM = Path(__file__).resolve().parents[2] / "shared" / "data" / "peers" / "smart-llm" / "final_test"
 
 
-def _report(name: str, outcomes: list[Any]) -> float:
+def _report(name: str, outcomes: list[Outcome]) -> float:
     ok = sum(o.correct for o in outcomes)
     print(f"\n{name}: {ok}/{len(outcomes)} = {ok / len(outcomes):.3f}")
     for o in outcomes:
@@ -47,11 +47,20 @@ def _report(name: str, outcomes: list[Any]) -> float:
     return ok / len(outcomes)
 
 
+#: the phenomena of round 2 (docs/offline_parser.md), each with its own dev examples
+PHENOMENA = ("locative-modifier", "motion-predicate", "vague-umbrella", "verbless-states",
+             "desire-result", "discourse-reference", "universal-quantifier", "dark-light",
+             "measure-noun", "instrument", "light-verb", "verb-particle",
+             "politeness-justification")
+
+
 def test_dev_set_accuracy() -> None:
     records = load_records(DATA / "offline_dev.jsonl")
-    assert len(records) >= 120
-    assert len({r["scene"] for r in records}) >= 8
-    assert _report("dev", evaluate(records)) >= 0.95
+    assert len(records) >= 450
+    assert len({r["scene"] for r in records}) >= 40
+    tags = [r.get("phenomenon") for r in records]
+    assert all(tags.count(p) >= 5 for p in PHENOMENA)
+    assert _report("dev", evaluate(records)) >= 0.97
 
 
 def test_heldout_set_accuracy() -> None:
@@ -74,7 +83,7 @@ def test_every_parsed_goal_is_valid_in_its_scene() -> None:
             team = parse_team(str(rec.get("robots", "1,2,3")))
             try:
                 spec = frontend.decompose(str(rec["instruction"]), scene,
-                                          WorldState.from_scene(scene, team), team)
+                                          initial_state(rec, scene, team), team)
             except Exception:   # accuracy tests report misses; validity is about what parses
                 continue
             for sub in spec.subtasks:
@@ -91,7 +100,7 @@ def test_fast_enough() -> None:
     for r in records:
         scene = load_scene(str(r["scene"]))
         team = parse_team("1,2")
-        prepared.append((str(r["instruction"]), scene, WorldState.from_scene(scene, team), team))
+        prepared.append((str(r["instruction"]), scene, initial_state(r, scene, team), team))
     times = []
     for text, scene, state, team in prepared:
         start = time.perf_counter()
@@ -206,7 +215,9 @@ def test_smart_llm_test_set_accuracy() -> None:
             continue
         found += len(expected & goal_keys(spec.goal().conditions, scene))
     print(f"SMART-LLM condition recall: {found}/{total} = {found / total:.3f}")
-    assert acc >= 0.7   # measured 0.778 (docs/offline_parser.md): a regression guard
+    # measured 0.750 (docs/offline_parser.md; 0.778 before "dark" also closed the blinds,
+    # which its ground truth for "Make the kitchen dark" does not): a regression guard
+    assert acc >= 0.7
 
 
 # ---- the oracle front end -----------------------------------------------------------------

@@ -1,11 +1,12 @@
 """The offline parser: the PFG's embedded default front end (rule-based, no LLM).
 
-``OfflineFrontend().decompose(instruction, scene, state, team) -> TaskSpec``; errors are
-:class:`OfflineParseError` and its subclass :class:`GroundingError`. See
+``OfflineFrontend().decompose(instruction, scene, state, team) -> TaskSpec``;
+``OfflineFrontend().parse(...) -> ParseResult`` also gives the notes on skipped clauses.
+Errors are :class:`OfflineParseError` and its subclass :class:`GroundingError`. See
 docs/offline_parser.md.
 """
 
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
-from emboteam.pfg.offline.frontend import OfflineFrontend
+from emboteam.pfg.offline.frontend import OfflineFrontend, ParseResult
 
-__all__ = ["GroundingError", "OfflineFrontend", "OfflineParseError"]
+__all__ = ["GroundingError", "OfflineFrontend", "OfflineParseError", "ParseResult"]

@@ -110,8 +110,40 @@ def split_sentences(items: list[Item]) -> list[list[Item]]:
     return [s for s in out if s]
 
 
-def _starts_new(items: list[Item], j: int) -> bool:
-    """A boundary before ``items[j]`` (after ',' or 'and')?"""
+#: team members named without a number: "one of you", "the other", "another robot"
+TEAM_SUBJECTS: tuple[tuple[str, ...], ...] = (
+    ("one", "of", "you"), ("one", "of", "the", "robots"), ("one", "of", "them"),
+    ("the", "other", "robot"), ("the", "other", "one"), ("the", "other"),
+    ("another", "robot"), ("another", "one"), ("another",), ("one", "robot"),
+    ("someone", "else"), ("somebody", "else"), ("each", "robot"), ("both", "robots"),
+    ("both", "of", "you"), ("the", "first", "one"), ("the", "second", "one"))
+
+
+def team_subject(items: list[Item], j: int) -> int:
+    """The index after a team-member subject at ``j`` ("one of you", "the other"), else
+    ``j``."""
+    for words in TEAM_SUBJECTS:
+        if tuple(x.text for x in items[j:j + len(words)]) == words:
+            return j + len(words)
+    return j
+
+
+def _has_predicate(items: list[Item]) -> bool:
+    """Has the clause so far a predicate of its own? "the bread on the counter" (and ...
+    need to go in the fridge) has not: the next subject shares the predicate."""
+    if not items:
+        return False
+    last = items[-1]
+    return any(x.copula or (x.verb is not None and x.noun is None and x.state is None)
+               for x in items) or last.particle is not None or (
+        last.state is not None and last.prep is None)
+
+
+def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
+                comma: bool = True) -> bool:
+    """A boundary before ``items[j]`` (after ',' or 'and')? ``current``: the clause so
+    far; ``comma``: a comma came before (a new subject needs one: "I need the tomato and
+    the lettuce sliced" is one clause, "turn the TV off, the lights too" two)."""
     it = items[j]
     if it.seq is not None or it.robot is not None:
         return True
@@ -120,7 +152,64 @@ def _starts_new(items: list[Item], j: int) -> bool:
     if it.text in _HUMAN and j + 1 < len(items) and (items[j + 1].verb is not None
                                                     or items[j + 1].copula):
         return True
-    return verb_here(items, j)
+    k = team_subject(items, j)
+    if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
+        return True     # ", the other should put ...", "while another turns off ..."
+    if it.text in ("use", "using") and j + 1 < len(items) and (items[j + 1].det
+                                                              or items[j + 1].noun is not None):
+        return True     # "fry the egg - use the pan on the stove"
+    kind = subject_here(items, j)
+    return verb_here(items, j) or (kind is not None and (comma or kind != "state")
+                                   and _has_predicate(current or []))
+
+
+_NP_WORDS = frozenset({"of", "all", "both", "each", "every"})
+
+
+def _skip_np(items: list[Item], j: int) -> int:
+    """The index after a simple noun phrase at ``j`` (``j`` when there is none)."""
+    k = j
+    named = False
+    while k < len(items):
+        x = items[k]
+        if x.noun is not None or x.pron in ("it", "they", "them", "this", "that"):
+            named = True
+        elif not (x.det or x.quant is not None or x.number is not None or x.ordinal is not None
+                  or x.text in _NP_WORDS or x.text in lx.MEASURE_WORDS
+                  or (x.state is not None and x.prep is None and x.particle is None)):
+            break
+        if x.punct is not None or x.conj is not None or (x.verb is not None and x.noun is None):
+            break
+        k += 1
+    return k if named or (k > j and items[k - 1].number is not None) else j
+
+
+def subject_here(items: list[Item], j: int) -> str | None:
+    """Does a subject with its own predicate start at ``j``? Which kind: "copula" (",
+    the microwave is fine", ", all three need to be cold"), "verb" ("and the fork goes in
+    the drawer") or "state" ("- lights off, blinds down"); None when not. A noun phrase
+    followed by a place or by another noun phrase is not one ("put the apple, the egg in
+    the fridge")."""
+    n = len(items)
+    k = _skip_np(items, j)
+    if k == j or k >= n:
+        return None
+    if items[k].prep in ("in", "on", "from") and k + 1 < n:
+        # "the mug on the counter is dirty": a place that describes the subject
+        m = _skip_np(items, k + 1)
+        if m > k + 1 and m < n and (items[m].copula or items[m].text in ("goes", "belongs")):
+            k = m
+    it = items[k]
+    end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None
+    if it.copula and it.text != "to":
+        return "copula"
+    if end and (it.particle in ("on", "off", "up", "down") or (
+            it.state is not None and it.prep is None)):
+        return "state"
+    if it.verb is not None and it.verb.form == "s" and it.noun is None \
+            and it.verb.sense.act is lx.Act.GO:
+        return "verb"
+    return None
 
 
 def segment(items: list[Item]) -> list[Clause]:
@@ -151,7 +240,8 @@ def segment(items: list[Item]) -> list[Clause]:
                 k = j + 1
                 while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")):
                     k += 1
-                if k < len(sentence) and _starts_new(sentence, k):
+                comma = any(sentence[x].punct == "," for x in range(j, k))
+                if k < len(sentence) and _starts_new(sentence, k, current.items, comma):
                     boundary = AND
                     skip = k - j
             elif (it.sub is not None and j > 0) or (it.sub is not None and j == 0):

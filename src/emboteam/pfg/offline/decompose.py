@@ -25,6 +25,7 @@ from emboteam.errors import UnknownRobotError
 from emboteam.pfg.offline.clauses import THEN, Clause
 from emboteam.pfg.offline.semantics import Draft
 from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.robots import RobotProfile
 
@@ -86,7 +87,8 @@ def steps(clauses: Sequence[Clause]) -> list[list[int]]:
     return groups
 
 
-def _refs_overlap(a: ObjectRef, b: ObjectRef) -> bool:
+def refs_overlap(a: ObjectRef, b: ObjectRef) -> bool:
+    """Can the two references name the same object (a slice type its whole's)?"""
     ta = set(a.types) if a.id is None else {a.id.split("_")[0]}
     tb = set(b.types) if b.id is None else {b.id.split("_")[0]}
     if a.id is not None and b.id is not None:
@@ -94,18 +96,68 @@ def _refs_overlap(a: ObjectRef, b: ObjectRef) -> bool:
     return bool(ta & tb) or any(t.startswith(u) or u.startswith(t) for t in ta for u in tb)
 
 
+#: what is done to an object that is not held while it happens (it is cut on a surface,
+#: cooked in a pan, cleaned in the sink, filled under the tap, chilled in the fridge)
+_DONE_WITH_IT = frozenset({P.sliced, P.cooked, P.hot, P.cold, P.clean, P.filled, P.broken,
+                           P.inside, P.dirty})
+
+
 def undoes(later: Condition, earlier: Condition) -> bool:
     """Does ``later`` make ``earlier`` false (about the same object)?"""
-    if not _refs_overlap(later.subject, earlier.subject):
+    if not refs_overlap(later.subject, earlier.subject):
         return False
     if (earlier.predicate, later.predicate) in _OPPOSITES:
         return True
+    if earlier.predicate is P.held and later.predicate in _DONE_WITH_IT:
+        return True    # "get the lettuce out of the fridge and slice it": held on the way
     moves = (P.inside, P.held)
     if earlier.predicate in moves and later.predicate in moves:
         if earlier.predicate is P.inside and later.predicate is P.inside:
             assert earlier.receptacle is not None and later.receptacle is not None
-            return not _refs_overlap(earlier.receptacle, later.receptacle)
+            if _carried_into(earlier.receptacle, later.receptacle):
+                return False   # "the egg in a bowl, then microwave it": in the bowl, in there
+            return not refs_overlap(earlier.receptacle, later.receptacle)
         return earlier.predicate != later.predicate
+    return False
+
+
+def _carried_into(container: ObjectRef, place: ObjectRef) -> bool:
+    """Can the container (a bowl, a plate: pickupable) itself go into the place, so that
+    what it holds is in both?"""
+    cat = load_catalogue()
+    inner = container.types if container.id is None else (container.id.split("_")[0],)
+    outer = place.types if place.id is None else (place.id.split("_")[0],)
+    return all(t in cat.types and cat.type(t).has("pickupable") for t in inner) and all(
+        cat.can_place(t, o) for t in inner for o in outer)
+
+
+def _depends(nodes: list[Node], start: int, target: int) -> bool:
+    """Does node ``start`` wait, directly or not, for ``target``?"""
+    stack = list(nodes[start].after)
+    seen: set[int] = set()
+    while stack:
+        k = stack.pop()
+        if k == target:
+            return True
+        if k not in seen:
+            seen.add(k)
+            stack.extend(nodes[k].after)
+    return False
+
+
+def _reaches(nodes: list[Node], start: int, target: int) -> bool:
+    """Does node ``start`` depend on ``target`` through a chain of at least two steps
+    (``start`` after something that is after ``target``)?"""
+    stack = [a for a in nodes[start].after if a != target]
+    seen: set[int] = set()
+    while stack:
+        k = stack.pop()
+        if k in seen:
+            continue
+        seen.add(k)
+        if target in nodes[k].after:
+            return True
+        stack.extend(nodes[k].after)
     return False
 
 
@@ -157,12 +209,14 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
                     nodes[b].after.add(a)
         if members:
             previous = members
-    # duplicates ("make a salad" then "chop the lettuce"): keep the first
+    # duplicates ("make a salad" then "chop the lettuce"): keep the first, unless the
+    # second comes after something that comes after the first ("take the mug, fill it
+    # and bring it": held, filled, held again) - merging them would make a cycle
     seen: dict[str, int] = {}
     alias: dict[int, int] = {}
     for i, node in enumerate(nodes):
         key = " & ".join(sorted(str(c) for c in node.draft.conditions))
-        if key in seen and not node.draft.intermediate:
+        if key in seen and not node.draft.intermediate and not _reaches(nodes, i, seen[key]):
             alias[i] = seen[key]
         else:
             seen[key] = i
@@ -176,11 +230,19 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
     for i in kept:
         nodes[i].after = {canon(a) for a in nodes[i].after if canon(a) != i}
     for i, target in alias.items():
-        nodes[canon(target)].after |= {canon(a) for a in nodes[i].after if canon(a) != canon(target)}
+        # what the dropped duplicate waited for, the kept one waits for too - unless that
+        # already waits for the kept one (two duplicated groups: no cycle)
+        keep = canon(target)
+        for a in {canon(a) for a in nodes[i].after}:
+            if a != keep and not _depends(nodes, a, keep):
+                nodes[keep].after.add(a)
     # final flags: a condition undone by a later subtask is intermediate
     final = {i: True for i in kept}
     for pos, i in enumerate(kept):
-        later = kept[pos + 1:]
+        # objects of one clause are different objects ("the toilet paper goes on the
+        # holder, the spare roll in the cabinet"), not one object moved twice
+        later = [j for j in kept[pos + 1:] if nodes[j].clause != nodes[i].clause
+                 or nodes[j].draft.after]
         for c in nodes[i].draft.conditions:
             if any(undoes(c2, c) for j in later for c2 in nodes[j].draft.conditions):
                 final[i] = False

@@ -1,7 +1,9 @@
 """Parse accuracy of the offline parser on an instruction set (JSON lines).
 
 Each line: ``{"id", "scene", "instruction", "goal": [conditions]}`` or ``{..., "error":
-"GroundingError"}``; optional ``"robots": "1,2"``. A parse is correct when its final goal
+"GroundingError"}``; optional ``"robots": "1,2"`` and ``"setup": [state changes]`` (the
+initial-state changes of a benchmark task, e.g. ``{"object": "RemoteControl_1", "parent":
+"Drawer_2"}``: "the remote is in one of the drawers" needs the remote to be there). A parse is correct when its final goal
 equals the expected one as a set of conditions, modulo these equivalences (documented in
 docs/offline_parser.md):
 
@@ -29,9 +31,10 @@ from pathlib import Path
 
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline.frontend import OfflineFrontend
+from emboteam.sim.setup import StateChange, apply_changes
 from emboteam.world.catalogue import load_catalogue, place_types
 from emboteam.world.goals import Condition, ObjectRef, Predicate
-from emboteam.world.robots import parse_team
+from emboteam.world.robots import RobotProfile, parse_team
 from emboteam.world.scene import Scene, load_scene
 from emboteam.world.state import WorldState
 
@@ -111,7 +114,7 @@ def evaluate_record(rec: dict[str, object], frontend: OfflineFrontend | None = N
     frontend = frontend or OfflineFrontend()
     scene = load_scene(str(rec["scene"]))
     team = parse_team(str(rec.get("robots", "1,2,3")))
-    state = WorldState.from_scene(scene, team)
+    state = initial_state(rec, scene, team)
     text = str(rec["instruction"])
     expected_error = rec.get("error")
     start = time.perf_counter()
@@ -136,6 +139,16 @@ def evaluate_record(rec: dict[str, object], frontend: OfflineFrontend | None = N
     ok = got_conditions is not None and goal_keys(got_conditions, scene) == goal_keys(expected, scene)
     del got_conditions
     return Outcome(str(rec["id"]), text, ok, " & ".join(str(c) for c in expected), got, seconds)
+
+
+def initial_state(rec: dict[str, object], scene: Scene,
+                  team: Sequence[RobotProfile]) -> WorldState:
+    """The state a record starts from: the scene's, with the record's ``setup`` applied."""
+    state = WorldState.from_scene(scene, team)
+    setup = rec.get("setup") or []
+    assert isinstance(setup, list)
+    apply_changes(state, [StateChange.model_validate(c) for c in setup])
+    return state
 
 
 def load_records(path: Path) -> list[dict[str, object]]:

@@ -19,96 +19,55 @@ still count as mentions for pronouns.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.clauses import Clause
-from emboteam.pfg.offline.tagger import Item, NounReading
+from emboteam.pfg.offline.clauses import Clause, team_subject
+from emboteam.pfg.offline.constructions import (
+    DURATION,
+    instrument_clause,
+    light_verb,
+    noun_phrase_wish,
+    places_to_locations,
+    with_as_and,
+)
+from emboteam.pfg.offline.phrases import (
+    MODIFIER_PREPS,
+    Frame,
+    Head,
+    ParsedClause,
+    Target,
+    fix_ellipsis,
+    is_piece_word,
+    list_end,
+    np_list,
+    np_start,
+    parse_np,
+    position_participle,
+    predicate_at,
+    predicate_start,
+    skip_locative,
+    unknown_words,
+)
+from emboteam.pfg.offline.tagger import Item
 
 Act = lx.Act
 Stat = lx.Stat
 
 
-@dataclass
-class Head:
-    """A noun phrase: what it names and how many."""
-
-    text: str = ""
-    noun: NounReading | None = None
-    pron: str | None = None
-    count: int | None = None
-    vague_count: bool = False
-    quant: str | None = None
-    definite: bool = False
-    plural: bool = False
-    piece: bool = False
-    ordinal: int | None = None
-    filters: list[tuple[Stat, bool]] = field(default_factory=list)
-    #: where it is: ("in", landmark) from "the apple in the fridge", "from the dresser"
-    location: list[tuple[str, Head]] = field(default_factory=list)
-    #: the phrase names a liquid ("water", "some coffee", "the wine")
-    liquid: str | None = None
-    #: what a container holds: "a glass of water", "a mug of coffee"
-    contents: str | None = None
-    recipe: str | None = None
-    unknown: list[str] = field(default_factory=list)
-    #: "the apple or the tomato": one of them
-    alternatives: list[Head] = field(default_factory=list)
-    #: "a plate containing an egg", "the bowl with the apple in it": what it must hold
-    holds: list[Head] = field(default_factory=list)
-
-    @property
-    def is_empty(self) -> bool:
-        return (self.noun is None and self.pron is None and self.liquid is None
-                and self.recipe is None and not self.unknown and not self.piece)
-
-    def label(self) -> str:
-        return self.text.strip() or (self.noun.phrase if self.noun else self.pron or "?")
-
-
-@dataclass
-class Target:
-    head: Head
-    dest: list[Head] = field(default_factory=list)
-    prep: str | None = None
-
-
-@dataclass
-class Frame:
-    act: Act | None
-    verb: str
-    targets: list[Target] = field(default_factory=list)
-    state: tuple[Stat, bool] | None = None
-    liquid: str | None = None
-    #: "heat X in the microwave": the appliance named as the means
-    means: Head | None = None
-    #: "open a book in a well lit room": states of the room the act happens in
-    room_states: list[tuple[Stat, bool]] = field(default_factory=list)
-    negated: bool = False
-    #: a report of how things are (read as a complaint), not a request
-    report: bool = False
-    too: bool = False
-    #: "bring me X", "hand it over": X ends up with the person
-    recipient: bool = False
-    weak: bool = False
-    particle: str | None = None
-    text: str = ""
-
-
-@dataclass
-class ParsedClause:
-    clause: Clause
-    frames: list[Frame]
-    mentions: list[Head]
-    unknown: list[str]
-
-
 # --- preamble: politeness, hedges and framing that carry no content -------------------
-_WHO = r"(?:you|someone|somebody|anyone|anybody|one of you|the robots?|robots?|the team|team|guys)"
+_WHO = (r"(?:you|someone|somebody|anyone|anybody|one of you|one of the robots|one robot|"
+        r"another robot|the other robot|the other one|the other|another one|another|"
+        r"either of you|any robot|the robots?|robots?|the team|team|guys|you two|you guys)")
 _PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
     r"please|kindly|just|also|now|ok|okay|alright|all right|so|well|oh|hey|hi|hello|um|uh|"
     r"hmm|and|but|first|firstly|to begin|to start|then|quickly|right|yes|yeah|finally",
     r"(?:could|can|would|will|might) " + _WHO + r"(?: please)?(?: kindly)?(?: possibly)?",
+    r"(?:can|could|may|might) (?:i|we)(?: please)?(?= (?:have|get|grab)\b)",
+    r"(?:be )?(?:able|willing) to",
+    r"(?:do you think|i was wondering if|i wonder if|any chance|is there any chance|"
+    r"i would be grateful if|i would love it if|it would help if) " + _WHO
+    + r" (?:could|can|would|might|will)(?: please)?",
+    r"(?:if " + _WHO + r" (?:could|can|would|have time),? ?)",
     r"(?:would|do) " + _WHO + r" mind|mind",
     r"(?:i|we) (?:would|will|do|really)? ?(?:want|need|like|love|wish|expect|require|ask) "
     + _WHO + r"? ?to",
@@ -131,8 +90,12 @@ _PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
     r"to",
 )]
 _TRAILING = re.compile(r"\s*\b(?:please|for me|for us|thanks|thank you|if you can|if possible|"
-                       r"right now|now|asap|when you can|would you|will you|as well|too|"
-                       r"okay|ok|real quick|for a moment|for a second|again)$")
+                       r"right now|now|asap|when you can|would you|will you|as well|too|also|"
+                       r"okay|ok|real quick|for a moment|for a second|again|"
+                       r"(?:would|will|that would|it would) be (?:really |very |so |just )?"
+                       r"(?:great|nice|lovely|perfect|ideal|wonderful|awesome|appreciated|good|"
+                       r"brilliant|amazing|fantastic|super|helpful)|"
+                       r"if you (?:could|would|can|do not mind|please))$")
 #: words dropped anywhere outside noun phrases
 _MID_FILLERS = frozenset({"please", "also", "just", "quickly", "carefully", "gently", "kindly",
                           "immediately", "really", "actually", "again", "back", "right",
@@ -144,16 +107,24 @@ _WISH = re.compile(r"^(?:make sure|ensure|see to it|check that|verify that|what 
                    r"(?:i|we) (?:would|will|do|really)? ?(?:want|need|like|love)|it would be)")
 
 
+_ASK_FOR = re.compile(r"^(?:can|could|may|might) (?:i|we) (?:please )?(?:have|get|grab)\b")
+
+
 def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
     changed = True
     while changed and items:
         changed = False
+        while items and (items[0].punct is not None or items[0].conj == "and"):
+            items = items[1:]      # "oh, and the tomato too"
         text = " ".join(i.text for i in items)
         for pat in _PREAMBLE:
             m = pat.match(text)
             if m and m.end() > 0:
                 if _WISH.match(text):
                     flags["directive"] = True
+                    flags["wish_scope"] = True
+                if _ASK_FOR.match(text):
+                    flags["recipient"] = True     # "can I have the apple": give it to me
                 consumed = text[: m.end()].split()
                 k, used = 0, 0
                 while k < len(items) and used < len(consumed):
@@ -169,6 +140,8 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
         m = _TRAILING.search(text)
         if not m or (m.start() == 0 and len(items) == len(text.split()) == len(m.group().split())):
             break
+        if m.group().strip() in ("too", "as well", "also"):
+            flags["also"] = True      # "and the tomato too": the act before, on this
         n_words = len(m.group().split())
         k, used = len(items), 0
         while k > 0 and used < n_words:
@@ -180,194 +153,12 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
     return items
 
 
-# --- noun phrases ---------------------------------------------------------------------
-_PIECE_NOUNS = frozenset({"slice", "piece", "chunk", "wedge", "bit", "half", "segment",
-                          "portion", "sliver", "slices", "pieces", "chunks", "wedges", "bits",
-                          "halves", "segments", "portions", "slivers"})
-
-
-def _is_piece_word(it: Item) -> bool:
-    """"slice", "pieces": a word that names the pieces of what follows or precedes."""
-    return it.text in _PIECE_NOUNS
-
-
-def _np_start(it: Item) -> bool:
-    return bool(it.det or it.quant or it.number is not None or it.noun is not None
-                or it.pron is not None or it.liquid is not None or it.recipe is not None
-                or _is_piece_word(it) or it.ordinal is not None)
-
-
-_HUMAN_OBJECTS = frozenset({"me", "us", "here", "over here", "him", "her", "my hand"})
-
-
-def parse_np(items: list[Item], i: int) -> tuple[Head | None, int]:
-    """A noun phrase starting at ``items[i]`` and the index after it."""
-    h = Head()
-    j = i
-    words: list[str] = []
-    n = len(items)
-    while j < n:
-        it = items[j]
-        nxt = items[j + 1] if j + 1 < n else None
-        if it.punct is not None or it.conj is not None or it.seq is not None or it.robot is not None \
-                or it.text in lx.CONTAINING:
-            break
-        if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
-            break
-        if it.quant is not None and h.noun is None:
-            h.quant = it.quant
-            if it.quant == "both":
-                h.count = 2
-            if it.quant == "everything":
-                h.noun = NounReading(lx.nouns()["everything"], "everything", True)
-            words.append(it.text)
-            j += 1
-            if j < n and items[j].text == "of":
-                j += 1
-            continue
-        if it.text == "one" and nxt is not None and nxt.text == "of":
-            h.count = 1
-            words.append("one of")
-            j += 2
-            continue
-        if it.det and (it.text not in ("this", "that", "these", "those", "some", "one")
-                       or ((nxt is not None and (_np_start(nxt) or nxt.state is not None)
-                           and nxt.verb is None) or (nxt is not None and (
-                               nxt.noun is not None or nxt.liquid is not None
-                               or nxt.recipe is not None)))):
-            if it.text == "one":
-                h.count = 1
-            elif it.text in ("the", "this", "that", "these", "those", "my", "your", "our",
-                             "his", "her", "their", "its"):
-                h.definite = True
-                if it.text in ("these", "those"):
-                    h.plural = True
-            elif it.text == "some":
-                h.vague_count = True
-            words.append(it.text)
-            j += 1
-            continue
-        if (it.number is not None and h.noun is None and it.pron is None) or (
-                it.number is not None and it.text in lx.NUMBERS and it.text != "one"
-                and h.noun is None):
-            h.count = it.number
-            h.vague_count = it.text in lx.VAGUE_COUNTS
-            words.append(it.text)
-            j += 1
-            if j < n and items[j].text == "of":
-                j += 1
-            continue
-        if it.ordinal is not None and h.noun is None:
-            h.ordinal = it.ordinal
-            words.append(it.text)
-            j += 1
-            continue
-        if _is_piece_word(it) and it.noun is None:
-            h.piece = True
-            words.append(it.text)
-            j += 1
-            if j < n and items[j].text == "of":
-                j += 1
-            continue
-        if it.noun is not None and not (it.verb is not None and h.noun is not None
-                                        and it.verb.form == "s"):
-            if h.noun is not None and h.noun.concept.kind == "room":
-                h.noun = None          # "the kitchen light": the room is a modifier
-            if h.noun is not None and it.noun.concept.kind == "room":
-                words.append(it.text)  # "the lights in the room" handled as location
-                j += 1
-                continue
-            h.noun = it.noun
-            h.plural = h.plural or it.noun.plural
-            if it.recipe is not None:
-                h.recipe = it.recipe
-            words.append(it.text)
-            j += 1
-            # "a glass of water", "a mug of coffee"
-            if it.liquid is not None:
-                h.liquid = it.liquid
-            if j + 1 < n and items[j].text == "of" and items[j + 1].liquid is not None:
-                h.contents = items[j + 1].liquid
-                words.append(f"of {h.contents}")
-                j += 2
-            elif j + 2 < n and items[j].text == "of" and items[j + 1].det and items[j + 2].noun is not None \
-                    and h.noun.concept.kind == "anything":
-                j += 1     # "all of the ..." spelled with a noun: "everything of the"
-            continue
-        if it.recipe is not None and h.noun is None:
-            h.recipe = it.recipe
-            h.liquid = it.liquid
-            words.append(it.text)
-            j += 1
-            continue
-        if it.liquid is not None and h.noun is None:
-            h.liquid = it.liquid
-            h.recipe = lx.RECIPES.get(it.liquid)
-            words.append(it.text)
-            j += 1
-            continue
-        if (it.pron is not None and h.noun is None and it.text not in ("this", "that")) or (
-                it.text in ("this", "that", "these", "those", "some", "one")):
-            if h.noun is None:
-                h.pron = it.text
-                words.append(it.text)
-                j += 1
-            break
-        if it.state is not None and it.text not in ("on", "off", "in", "open") and h.noun is None \
-                and nxt is not None and (nxt.noun is not None or _is_piece_word(nxt) or nxt.state is not None):
-            stat, pos = it.state
-            if stat is Stat.SLICED or it.text in ("cracked",):
-                h.piece = True
-            elif stat is Stat.TOASTED:
-                h.piece = True
-                h.filters.append((Stat.COOKED, True))
-            else:
-                h.filters.append((stat, pos))
-            words.append(it.text)
-            j += 1
-            continue
-        if it.verb is not None and h.noun is None and it.noun is None and not it.det:
-            break
-        if it.prep is not None or it.particle is not None or it.state is not None:
-            break
-        if it.verb is not None and h.noun is not None:
-            break
-        # an unknown word (an adjective we do not know, or a noun we do not know)
-        if it.text not in lx.COMMON_WORDS and not it.text.isdigit():
-            if h.noun is None:
-                h.unknown.append(it.corrected_from or it.text)
-        elif h.noun is not None:
-            break
-        words.append(it.text)
-        j += 1
-    if j == i:
-        return None, i
-    h.text = " ".join(words)
-    if h.noun is None and h.pron is None and h.liquid is None and h.recipe is None \
-            and not h.piece and not h.unknown:
-        return (None, j) if words else (None, i)
-    if h.noun is not None:
-        h.unknown = []
-    return h, j
-
-
-def _fix_ellipsis(prev: Head, nxt: Head) -> None:
-    """"the desk and floor lamps": a modifier-only conjunct borrows the next head noun."""
-    if prev.noun is None or nxt.noun is None or " " not in nxt.noun.phrase:
-        return
-    head_word = nxt.noun.phrase.split()[-1]
-    cand = f"{prev.noun.phrase.split()[-1]} {head_word}"
-    table = lx.nouns()
-    if cand in table and cand != prev.noun.phrase:
-        prev.noun = NounReading(table[cand], cand, nxt.noun.plural)
-        prev.plural = nxt.plural or prev.plural
-
-
 # --- clause parsing ---------------------------------------------------------------------
 _HUMAN_SUBJECTS = frozenset({"i", "we", "you", "someone", "somebody", "nobody", "anyone",
                              "anybody", "everyone", "everybody", "they", "he", "she",
                              "no one", "no"})
-_WANT = frozenset({"want", "need", "like", "love", "prefer", "wish", "require"})
+_WANT = frozenset({"want", "need", "like", "love", "prefer", "wish", "require", "fancy",
+                   "crave"})
 _REFLEXIVE = frozenset({"itself", "themselves", "himself", "herself"})
 
 
@@ -394,6 +185,7 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
         elif t == "to" and not (nxt_item is not None and (nxt_item.text == "be" or nxt_item.verb)):
             break      # "towel to towel holder": a place, not an infinitive
         elif it.copula or t in ("still", "already", "always", "now", "currently", "way", "so",
+                                "somewhere", "probably", "usually", "normally", "definitely",
                                 "very", "really", "again", "kept", "be", "been", "being",
                                 "all", "nice", "and", "both", "completely", "fully",
                                 "properly", "totally", "pretty", "bit", "a", "little",
@@ -411,6 +203,7 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
     """Objects, prepositional phrases and a trailing particle or state after a verb."""
     n = len(items)
     last_np: list[Target] = []
+    dest_end = -1       # where the last destination phrase ended
     while j < n:
         it = items[j]
         if it.conj is not None or it.punct is not None or it.text in ("as well as", "along with",
@@ -429,6 +222,8 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                 and it.state is None) or it.text in ("me", "us", "here", "there", "him", "her"):
             if it.text in ("me", "us", "here", "him", "her"):
                 frame.recipient = True
+            if it.text in ("back", "away") and frame.particle is None:
+                frame.particle = it.text       # "put it back", "put the knife away"
             j += 1
             continue
         if it.text in lx.CONTAINING and pending:
@@ -441,7 +236,7 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                 mentions.append(held)
                 pending[-1].head.holds.append(held)
                 j = k
-                if j < n and items[j].conj == "and" and j + 1 < n and _np_start(items[j + 1]):
+                if j < n and items[j].conj == "and" and j + 1 < n and np_start(items[j + 1]):
                     j += 1
                     continue
                 break
@@ -452,11 +247,29 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
             if j < n and items[j].prep is not None:
                 _, j = parse_np(items, j + 1)
             continue
+        if it.prep == "in" and j + 1 < n and is_piece_word(items[j + 1]) and (
+                j + 2 >= n or items[j + 2].noun is None):
+            j += 2          # "cut it in half", "chop it into pieces": how, not where
+            continue
+        if it.text == "to" and j + 1 < n and not np_start(items[j + 1]) \
+                and items[j + 1].prep is None and items[j + 1].punct is None:
+            j += 2          # "leave it to dry", "put it in water to soak": what for
+            continue
         if it.prep is not None and it.prep != "of" and not (
-                it.particle is not None and (j + 1 >= n or not _np_start(items[j + 1]))):
+                it.particle is not None and (j + 1 >= n or not np_start(items[j + 1]))):
             prep = it.prep
+            at = j
             head, k = parse_np(items, j + 1)
             if head is None:
+                if frame.act is Act.PLACE and prep in ("in", "on") and it.text in (
+                        "inside", "in", "into", "on top", "on top of") \
+                        and any(not t.dest for t in pending):
+                    # "open the box, put the remote inside": in the one just named
+                    there = Head(text="it", pron="it", role="dest")
+                    mentions.append(there)
+                    for t in pending:
+                        if not t.dest:
+                            t.dest, t.prep = [there], prep
                 j += 1
                 continue
             mentions.append(head)
@@ -467,12 +280,16 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                 pending[-1].head.holds.append(head)     # "the bowl with the apple in it"
                 j += 2
                 continue
+            head.role = "place"
             if prep == "with":
                 if head.liquid is not None:
                     frame.liquid = head.liquid
                     # "with coffee in it"
                     if j + 1 < n and items[j].prep == "in" and items[j + 1].pron is not None:
                         j += 2
+                elif head.noun is not None:
+                    frame.instruments.append(head)   # "with the big knife", "using the stove"
+                    j = skip_locative(items, j)     # "with the knife on the counter"
                 continue
             if prep == "for":
                 continue
@@ -488,12 +305,26 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                         frame.room_states.append((Stat.BRIGHT, pos))
                 continue
             waiting = [t for t in pending if not t.dest]
+            adjacent = at == dest_end       # right after a destination phrase
+            if not waiting and prep in ("under", "near") and adjacent:
+                # "in the cabinet under the sink": where that cabinet is, not a second place
+                continue
+            head.role = "dest"
+            dest_end = j
             if waiting:
                 for t in waiting:
                     t.dest = [head, *head.alternatives]
                     t.prep = prep
+            elif last_np and adjacent and prep in ("in", "on") and \
+                    items[at].text in ("in", "on", "inside", "at"):
+                # "put it on a plate on the table": where that plate is
+                for t in last_np:
+                    if t.dest:
+                        t.dest[0].location.append((prep, head))
+                head.role = "place"
             elif last_np:
-                # a second place for the same objects: the first was where they are
+                # a second place for the same objects ("take the book on the shelf to the
+                # desk"): the first was where they are
                 for t in last_np:
                     if t.dest and t.prep is not None:
                         t.head.location.append((t.prep, t.dest[0]))
@@ -507,11 +338,19 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                 frame.means = head
             continue
         if (it.particle is not None or it.state is not None) and (
-                j + 1 >= n or not _np_start(items[j + 1]) or (items[j + 1].pron == "it" and False)):
+                j + 1 >= n or not np_start(items[j + 1]) or (items[j + 1].pron == "it" and False)):
             if it.particle in ("on", "off") or it.state is not None:
                 if it.state is not None:
                     frame.state = it.state
                 frame.particle = it.particle or frame.particle
+                for t in pending:
+                    if t.particle is not None or t.state is not None:
+                        continue
+                    if it.particle in ("on", "off"):
+                        t.particle = it.particle
+                        t.state = (Stat.SWITCH, it.particle == "on")
+                    elif it.state is not None:
+                        t.state = it.state
             j += 1
             continue
         head, k = parse_np(items, j)
@@ -525,7 +364,7 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
             continue
         mentions.append(head)
         if pending and head.noun is not None:
-            _fix_ellipsis(pending[-1].head, head)
+            fix_ellipsis(pending[-1].head, head)
         t = Target(head)
         if last_np and items[j - 1].conj is None and items[j - 1].punct is None \
                 and not pending[-1].dest:
@@ -590,16 +429,28 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
                 break
             mentions.append(head)
             if subjects and head.noun is not None:
-                _fix_ellipsis(subjects[-1].head, head)
+                fix_ellipsis(subjects[-1].head, head)
             subjects.append(Target(head))
             j = k
+            # "the bread on the counter and the egg on the table need to go ...": a place
+            # inside a list of subjects that a predicate follows describes its subject
+            if j + 1 < n and items[j].prep in MODIFIER_PREPS and np_start(items[j + 1]) \
+                    and predicate_at(items, list_end(items, j)):
+                land, m = parse_np(items, j + 1)
+                if land is not None and m < n and (items[m].conj == "and" or items[m].punct == ","):
+                    land.role = "place"
+                    mentions.append(land)
+                    head.location.append((str(items[j].prep), land))
+                    j = m
             if j < n and (items[j].conj == "and" or items[j].punct == ",") and j + 1 < n \
-                    and _np_start(items[j + 1]) and items[j + 1].verb is None:
+                    and np_start(items[j + 1]) and items[j + 1].verb is None:
                 j += 1
                 continue
             break
         if not subjects:
             break
+        k_subj = j
+        j = _locative_modifiers(items, j, subjects, mentions)
         local = dict(flags)
         j = _skip_aux(items, j, local)
         if j >= n:
@@ -612,15 +463,19 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             and not local.get("terse", False)
         is_participle = it.verb is not None and (it.verb.form in ("ed", "ing") or (
             it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS)))
-        pp_here = it.prep is not None and j + 1 < n and _np_start(items[j + 1])
+        pp_here = it.prep is not None and j + 1 < n and np_start(items[j + 1])
         if it.state is not None and not pp_here and not (
                 it.verb is not None and it.verb.sense.act is Act.GO) and (
                 it.verb is None or it.verb.form != "ed" or it.text in lx.STATES):
             frame.state = it.state
             j += 1
-            # "with coffee in it", "in the sink"
-            rest: list[Target] = []
+            # "with coffee in it", "in the sink"; "the book should be open on the desk":
+            # and placed there
+            rest = [Target(t.head) for t in subjects]
             j = _parse_tail_until_next(items, j, frame, rest, mentions)
+            placed = [t for t in rest if t.dest]
+            if placed and not frame.report:
+                frames.append(Frame(Act.PLACE, "put", placed, text=frame.text))
         elif it.verb is not None and (is_participle or it.verb.sense.act is Act.GO):
             sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
             end = len(items)
@@ -640,7 +495,9 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             frame.liquid = sub.liquid
             frame.means = sub.means
             frame.state = sub.state
-            if sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
+            if sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
+                frame.act = None         # "the toaster stays": leave it as it is
+            elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
                 frame.act = Act.PLACE if sub.act is Act.GO else sub.act
                 frame.report = False
                 for t in subjects:
@@ -655,8 +512,13 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             if frame.act is Act.SWITCH_ON and it.text == "lit":
                 frame.act = Act.SWITCH_ON
             j = end
+        elif it.particle in ("up", "down") and (j + 1 >= n or not np_start(items[j + 1])) \
+                and any(t.head.noun is not None and "Blinds" in t.head.noun.concept.types
+                        for t in subjects):
+            frame.state = (Stat.OPEN, it.particle == "up")     # "blinds down": closed
+            j += 1
         elif it.prep is not None or it.particle in ("on", "off"):
-            if it.particle in ("on", "off") and (j + 1 >= n or not _np_start(items[j + 1])):
+            if it.particle in ("on", "off") and (j + 1 >= n or not np_start(items[j + 1])):
                 frame.state = (Stat.SWITCH, it.particle == "on")
                 j += 1
             else:
@@ -672,7 +534,43 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
         # "the laptop shut and the desk lamp off": another subject and predicate
         while j < n and (items[j].conj is not None or items[j].punct is not None):
             j += 1
+        # "the bread needs to be sliced, toasted and put on a plate": more predicates of
+        # the same subjects
+        if j < n and not np_start(items[j]) and (items[j].verb is not None
+                                                  or items[j].state is not None
+                                                  or predicate_start(items, j)):
+            more = _state_frames([*items[:k_subj], *items[j:]], [], dict(flags))
+            mentions.extend(h for f in more for t in f.targets for h in (t.head, *t.dest)
+                            if h not in mentions)
+            frames.extend(more)
+            break
     return [f for f in frames if f.act is not None or f.state is not None]
+
+
+def _locative_modifiers(items: list[Item], j: int, subjects: list[Target],
+                        mentions: list[Head]) -> int:
+    """"the mug on the counter needs to go in the sink", "the cups in the cabinet belong
+    on the table": a place between a subject and its predicate says where the subject is
+    now (it picks the instance), never where it goes. "bread on plate" (no predicate
+    after it) stays a placement."""
+    n = len(items)
+    while True:
+        p = j
+        if p + 2 < n and position_participle(items[p]) and items[p + 1].prep in MODIFIER_PREPS:
+            p += 1          # "the lettuce sitting on the counter should ..."
+        if not (p + 1 < n and items[p].prep in MODIFIER_PREPS and np_start(items[p + 1])):
+            break
+        land, k = parse_np(items, p + 1)
+        if land is None or not predicate_at(items, k):
+            break
+        j = p
+        land.role = "place"
+        mentions.append(land)
+        for t in subjects:
+            if not t.head.location:
+                t.head.location.append((str(items[j].prep), land))
+        j = k
+    return j
 
 
 def _parse_tail_until_next(items: list[Item], j: int, frame: Frame, rest: list[Target],
@@ -683,21 +581,43 @@ def _parse_tail_until_next(items: list[Item], j: int, frame: Frame, rest: list[T
     end = j
     while end < n:
         it = items[end]
-        if (it.conj is not None or it.punct is not None) and end + 1 < n and _np_start(items[end + 1]) \
-                and items[end + 1].prep is None:
-            break
+        if (it.conj is not None or it.punct is not None) and end + 1 < n and (
+                (np_start(items[end + 1]) and items[end + 1].prep is None)
+                or (it.conj is not None and predicate_start(items, end + 1))):
+            break     # "the mug clean and on the desk": another predicate
         end += 1
     pending = list(rest)
     _parse_tail(items[j:end], 0, frame, pending, mentions)
     return end
 
 
-def parse_clause(clause: Clause) -> ParsedClause:
-    """The frames of one clause (possibly none), and every noun phrase it mentions."""
+def parse_clause(clause: Clause, directive: bool = False) -> ParsedClause:
+    """The frames of one clause (possibly none), and every noun phrase it mentions.
+    ``directive``: the clause continues a wish ("make sure X is closed, Y is off")."""
     items = [i for i in clause.items if not (i.text in ("please", "kindly") and i.noun is None)]
     mentions: list[Head] = []
-    flags: dict[str, bool] = {}
+    flags: dict[str, bool] = {"directive": True, "wish_scope": True} if directive else {}
     items = _strip_preamble(items, flags)
+    parsed = _parse_items(clause, items, mentions, flags)
+    parsed.directive = flags.get("wish_scope", False)
+    return parsed
+
+
+#: verbs that stand for the verb before: "so does the tomato", "the egg should too"
+_PRO_VERBS = frozenset({"does", "do", "did", "is", "are", "should", "can", "will", "must",
+                        "has", "have"})
+
+
+def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
+                 flags: dict[str, bool]) -> ParsedClause:
+    # "... and so does the tomato", "the tomato does too": the act before, on this
+    if items and items[0].text in _PRO_VERBS and clause.link == "purpose":
+        heads = np_list(items[1:])
+        if heads:
+            mentions.extend(heads)
+            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    if flags.get("also") and len(items) > 1 and items[-1].text in _PRO_VERBS:
+        items = items[:-1]
     if clause.link in ("after", "before", "if", "by", "purpose", "while"):
         flags["directive"] = True
     # leading negation: "don't leave the lights on", "never turn on ..."
@@ -708,6 +628,12 @@ def parse_clause(clause: Clause) -> ParsedClause:
         items = items[1:]
     if items and items[0].text == "need" and len(items) > 1 and items[1].text == "to":
         items = items[2:]
+    # "one of you slices the bread", "the other should open the fridge": the team
+    # member is left to the planner, the verb is the act
+    k = team_subject(items, 0)
+    if 0 < k < len(items) and (items[k].verb is not None or items[k].copula):
+        items = items[k:]
+        flags["subject"] = True
     # "(robot 1) should slice ...", "(robot 2) will open ...": a modal before a verb
     while len(items) > 1 and items[0].text in ("should", "must", "will", "can", "shall", "could",
                                                "would", "to", "is", "needs", "has") \
@@ -717,6 +643,19 @@ def parse_clause(clause: Clause) -> ParsedClause:
     frames: list[Frame] = []
     if not items:
         return ParsedClause(clause, [], mentions, unknown)
+    items = light_verb(items)
+    if len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were"):
+        # "there's a bottle of wine in the cupboard": introduces a referent and where it is
+        found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))
+        for f in found:
+            places_to_locations(f)
+        return ParsedClause(clause, [], mentions, unknown_words(mentions))
+    means = instrument_clause(items, mentions)
+    if means is not None:
+        return ParsedClause(clause, [], mentions, [], means=means)
+    used = _use_to(items, clause, mentions)
+    if used is not None:
+        return used
     first = items[0]
     human = first.text in _HUMAN_SUBJECTS and first.noun is None
     if human:
@@ -728,11 +667,11 @@ def parse_clause(clause: Clause) -> ParsedClause:
         if wanted is not None and wanted.lemma in _WANT \
                 and j + 1 < len(items) and items[j + 1].text != "to":
             # "i need the alarm clock on the desk", "i want the tv on": a wish about objects
-            rest = items[j + 1:]
+            rest = with_as_and(items[j + 1:])
             wish = dict(flags, directive=True, terse=True)
             found = _state_frames(rest, mentions, wish)
             if not found:
-                frame = _verb_frame(items, j, flags, mentions)
+                frame = _verb_frame([*items[:j + 1], *rest], j, flags, mentions)
                 frame.report = False
                 found = [frame]
             frames.extend(found)
@@ -748,7 +687,7 @@ def parse_clause(clause: Clause) -> ParsedClause:
             frames.append(frame)
     elif first.verb is not None and (
             (first.verb.form in ("base", "ing") and (first.noun is None or _takes_object(items)))
-            or (first.verb.form == "s" and clause.robot is not None)
+            or (first.verb.form == "s" and (clause.robot is not None or flags.get("subject")))
             or (first.noun is None and first.state is None and first.verb.form != "s")):
         frames.append(_verb_frame(items, 0, flags, mentions))
     else:
@@ -756,15 +695,46 @@ def parse_clause(clause: Clause) -> ParsedClause:
         flags["terse"] = terse
         if terse:
             flags["directive"] = True
-        frames.extend(_state_frames(items, mentions, flags))
+        wished = noun_phrase_wish(items, mentions)
+        frames.extend([wished] if wished is not None else _state_frames(items, mentions, flags))
+        if not frames and flags.get("also"):
+            heads = np_list(items)
+            if heads:
+                mentions.extend(h for h in heads if h not in mentions)
+                return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    timed = bool(DURATION.search(" ".join(x.text for x in items)))
     for f in frames:
+        f.timed = timed
         if f.act is Act.CAUSE and f.verb in _WANT:
             f.report = False
-    for h in mentions:
-        unknown.extend(h.unknown)
-    return ParsedClause(clause, frames, mentions, unknown)
+            f.wish = True
+        if flags.get("recipient"):
+            f.recipient = True
+        if f.report:
+            places_to_locations(f)
+    return ParsedClause(clause, frames, mentions, unknown_words(mentions))
 
+
+def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
+    """"use the stove to fry the egg", "using the microwave, heat the soup": the act of the
+    rest of the clause, with the named appliance as its means."""
+    if items[0].text not in ("use", "using") or items[0].noun is not None:
+        return None
+    head, k = parse_np(items, 1)
+    n = len(items)
+    while k < n and (items[k].text in ("to", "and", "for") or items[k].punct is not None):
+        k += 1
+    if head is None or k >= n or items[k].verb is None:
+        return None
+    head.role = "place"
+    inner = parse_clause(Clause(items[k:], clause.link, clause.robot, clause.sentence,
+                                clause.initial))
+    for f in inner.frames:
+        f.means = f.means or head
+    inner.mentions.insert(0, head)
+    return inner
 
 def _takes_object(items: list[Item]) -> bool:
     from emboteam.pfg.offline.clauses import verb_here
     return verb_here(items, 0)
+

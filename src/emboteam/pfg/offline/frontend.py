@@ -2,25 +2,116 @@
 
 from __future__ import annotations
 
+import logging
 import re
 from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 from emboteam.pfg.offline import lexicon
-from emboteam.pfg.offline.clauses import segment
-from emboteam.pfg.offline.decompose import assemble
+from emboteam.pfg.offline.clauses import Clause, segment
+from emboteam.pfg.offline.corrections import apply_corrections
+from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.morphology import warm_spelling
+from emboteam.pfg.offline.phrases import Head, ParsedClause, Target
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.goals import Predicate
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
 
 _MAX_CHARS = 2000
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class ParseResult:
+    """A parse and what the parser left out on purpose, one line each ("skipped 'tidy
+    up the kitchen': too vague ..."): a skipped clause is reported, never silently lost."""
+
+    spec: TaskSpec
+    notes: tuple[str, ...] = ()
+
+
+def _vague_phrase(clause: Clause) -> str | None:
+    """The chore of a clause that has no single household reading ("tidy up the
+    kitchen", "set the table"), if any."""
+    text = " ".join(i.text for i in clause.items)
+    for pattern in lexicon.VAGUE_PHRASES:
+        m = re.search(pattern, text)
+        if m:
+            return m.group(0)
+    return None
+
+
+def _attach_means(parsed: list[ParsedClause]) -> None:
+    """"cook the potato, the microwave is fine", "the stove is fine - fry the egg": a
+    clause that only names an appliance gives the means of the act next to it (the one
+    before, else the one after)."""
+    for k, p in enumerate(parsed):
+        if p.means is None:
+            continue
+        for other in (parsed[k - 1] if k > 0 else None, parsed[k + 1] if k + 1 < len(parsed) else None):
+            if other is not None and other.frames:
+                for f in other.frames:
+                    f.means = f.means or p.means
+                break
+
+
+def _repeat_for_also(parsed: list[ParsedClause]) -> None:
+    """"Put the apple in the fridge. Oh, and the tomato too.": the act of the clause
+    before, with its place, on the new objects."""
+    for k, p in enumerate(parsed):
+        if not p.also or p.frames or k == 0:
+            continue
+        before = next((q for q in reversed(parsed[:k]) if q.frames), None)
+        if before is None:
+            continue
+        last = before.frames[-1]
+        model = last.targets[-1] if last.targets else Target(Head())
+        p.frames = [replace(last, targets=[Target(h, list(model.dest), model.prep) for h in p.also],
+                            instruments=list(last.instruments), room_states=[])]
+
+
+#: what a later act brings about: a wished state it makes true needs no subtask of its own
+_FULFILS: dict[Predicate, frozenset[Predicate]] = {
+    Predicate.hot: frozenset({Predicate.hot, Predicate.cooked}),
+    Predicate.cold: frozenset({Predicate.cold}),
+    Predicate.cooked: frozenset({Predicate.cooked}),
+    Predicate.clean: frozenset({Predicate.clean}),
+    Predicate.filled: frozenset({Predicate.filled}),
+}
+
+
+def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
+    """"I'd love a warm slice of bread - toast some for me": the wish introduces what a
+    later clause says how to make; toasting makes it warm (cooking heats), so the wish adds
+    no subtask of its own."""
+    for ci in sorted(drafts):
+        later = [c for cj, ds in drafts.items() if cj > ci for d in ds if not d.wished
+                 for c in d.conditions]
+        gone = {k for k, d in enumerate(drafts[ci]) if d.wished and all(
+            any(c2.predicate in _FULFILS.get(c.predicate, frozenset())
+                and refs_overlap(c.subject, c2.subject) for c2 in later)
+            for c in d.conditions)}
+        if not gone:
+            continue
+        kept = [k for k in range(len(drafts[ci])) if k not in gone]
+        index = {old: new for new, old in enumerate(kept)}
+        out = []
+        for k in kept:
+            d = drafts[ci][k]
+            d.after = [index[a] for a in d.after if a in index]
+            out.append(d)
+        if out:
+            drafts[ci] = out
+        else:
+            del drafts[ci]
 
 
 class OfflineFrontend:
@@ -32,6 +123,10 @@ class OfflineFrontend:
     places, states) -> :class:`~emboteam.pfg.offline.semantics.Semantics` (grounded goal
     conditions, pronouns) -> :func:`~emboteam.pfg.offline.decompose.assemble`
     (dependencies, robots, intermediate steps).
+
+    A clause too vague to act on ("tidy up the kitchen", "sort things out") is skipped
+    with a note when another clause says what to do ("tidy up: the book goes on the
+    shelf"); an instruction with nothing actionable is an :class:`OfflineParseError`.
     """
 
     name = "offline"
@@ -45,28 +140,43 @@ class OfflineFrontend:
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile]) -> TaskSpec:
+        return self.parse(instruction, scene, state, team).spec
+
+    def parse(self, instruction: str, scene: Scene, state: WorldState,
+              team: Sequence[RobotProfile]) -> ParseResult:
+        """The TaskSpec and the notes on what was skipped (also logged at INFO)."""
         text = instruction.strip()
         if not text:
             raise OfflineParseError("empty instruction")
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        normal = normalize(text)
-        for pattern in lexicon.VAGUE_PHRASES:
-            m = re.search(pattern, normal)
-            if m:
-                raise OfflineParseError(
-                    f"{m.group(0)!r} is too vague for the offline parser: say which objects go "
-                    "where or what to do with them (e.g. 'put the plate on the table')",
-                    phrase=m.group(0))
-        clauses = segment(tag(text))
+        clauses = segment(apply_corrections(tag(text)))
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
         unknown: list[str] = []
         skipped: list[OfflineParseError] = []
         verbs_seen = False
-        for ci, clause in enumerate(clauses):
-            parsed = parse_clause(clause)
+        parsed_clauses: list[ParsedClause] = []
+        for k, c in enumerate(clauses):
+            # "make sure the fridge is closed, the stove is off": the wish reaches over the
+            # comma to the next statement of the same sentence
+            before = parsed_clauses[-1] if parsed_clauses else None
+            inherit = before is not None and before.directive and clauses[k - 1].sentence == \
+                c.sentence and c.link == "and"
+            parsed_clauses.append(parse_clause(c, directive=inherit))
+        _attach_means(parsed_clauses)
+        _repeat_for_also(parsed_clauses)
+        for ci, (clause, parsed) in enumerate(zip(clauses, parsed_clauses, strict=True)):
+            chore = _vague_phrase(clause)
+            if chore is not None:
+                for h in parsed.mentions:
+                    semantics.note(h, ci)
+                skipped.append(OfflineParseError(
+                    f"{chore!r} is too vague for the offline parser: say which objects go "
+                    "where or what to do with them (e.g. 'put the plate on the table')",
+                    phrase=chore, vague=True))
+                continue
             if not parsed.frames:
                 for h in parsed.mentions:
                     semantics.note(h, ci)
@@ -78,9 +188,9 @@ class OfflineFrontend:
                 try:
                     out = concat(out, semantics.frame(frame, ci))
                 except OfflineParseError as exc:
-                    # "when you get a chance": small talk; "dim things": too vague, maybe
-                    # said better by another clause ("... by switching off the lamp")
-                    if frame.weak or getattr(exc, "vague", False):
+                    # "when you get a chance": small talk; "dim things", "tidy up": too
+                    # vague, maybe said better by another clause
+                    if frame.weak or exc.vague:
                         skipped.append(exc)
                         continue
                     raise
@@ -91,22 +201,35 @@ class OfflineFrontend:
                 semantics.note(h, ci)
             if not any(f.act is not None or f.state is not None for f in parsed.frames):
                 unknown.extend(parsed.unknown)
+        _drop_fulfilled_wishes(drafts)
         if not drafts:
-            vague = [w for w in normalize(text).split() if w in lexicon.VAGUE_NOUNS]
-            if vague and not unknown:
-                raise OfflineParseError(
-                    f"{text!r} is too vague for the offline parser ({vague[0]!r} has no single "
-                    "household reading): say which objects to act on, e.g. 'cook the potato'",
-                    phrase=vague[0])
-            if skipped and any(getattr(e, "vague", False) for e in skipped):
-                raise next(e for e in skipped if getattr(e, "vague", False))
-            if unknown and verbs_seen:
-                word = unknown[0]
-                grounder = semantics.g
-                raise GroundingError(f"{word!r} names nothing in {scene.floor_plan}", phrase=word,
-                                     suggestions=grounder.suggestions(word))
-            what = "no goal could be read from it" if verbs_seen else "no action found in it"
+            self._nothing_actionable(text, scene.floor_plan, semantics, unknown, skipped,
+                                     verbs_seen)
+        notes = tuple(f"skipped: {e.message}" for e in skipped)
+        for note in notes:
+            log.info("offline parser: %s", note)
+        return ParseResult(assemble(text, clauses, drafts, team), notes)
+
+    @staticmethod
+    def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,
+                            unknown: list[str], skipped: list[OfflineParseError],
+                            verbs_seen: bool) -> None:
+        """Raise the error that best explains why no clause gave a goal."""
+        vague = [w for w in normalize(text).split() if w in lexicon.VAGUE_NOUNS]
+        if skipped and any(e.vague for e in skipped):
+            raise next(e for e in skipped if e.vague)
+        if vague and not unknown:
             raise OfflineParseError(
-                f"cannot understand {text!r}: {what} (try e.g. 'put the apple in the fridge', "
-                "'slice the bread', 'turn off the lights')", phrase=text)
-        return assemble(text, clauses, drafts, team)
+                f"{text!r} is too vague for the offline parser ({vague[0]!r} has no single "
+                "household reading): say which objects to act on, e.g. 'cook the potato'",
+                phrase=vague[0], vague=True)
+        if skipped:
+            raise skipped[0]     # "I'd love five slices of toast": why the wish failed
+        if unknown and verbs_seen:
+            word = unknown[0]
+            raise GroundingError(f"{word!r} names nothing in {floor_plan}", phrase=word,
+                                 suggestions=lambda: semantics.g.suggestions(word))
+        what = "no goal could be read from it" if verbs_seen else "no action found in it"
+        raise OfflineParseError(
+            f"cannot understand {text!r}: {what} (try e.g. 'put the apple in the fridge', "
+            "'slice the bread', 'turn off the lights')", phrase=text)

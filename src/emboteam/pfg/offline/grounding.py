@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.errors import GroundingError
-from emboteam.pfg.offline.frames import Head
+from emboteam.pfg.offline.phrases import Head
 from emboteam.pfg.offline.tagger import NounReading
 from emboteam.pfg.offline.text import split_camel
 from emboteam.world.catalogue import load_catalogue
@@ -137,7 +137,7 @@ class Grounder:
         return [t for t, _ in ranked[:limit]]
 
     def fail(self, message: str, phrase: str) -> GroundingError:
-        return GroundingError(message, phrase=phrase, suggestions=self.suggestions(phrase))
+        return GroundingError(message, phrase=phrase, suggestions=lambda: self.suggestions(phrase))
 
     # ---- candidate types -----------------------------------------------------------
     def candidate_types(self, head: Head, need: str | None) -> list[str]:
@@ -153,9 +153,8 @@ class Grounder:
         concept = head.noun.concept
         if concept.kind == "room" or (concept.kind == "anything" and not head.location):
             what = "a room, not an object" if concept.kind == "room" else "too vague"
-            err = self.fail(f"{phrase!r} is {what}: say which objects", phrase)
-            err.vague = True
-            raise err
+            raise GroundingError(f"{phrase!r} is {what}: say which objects", phrase=phrase,
+                                 suggestions=lambda: self.suggestions(phrase), vague=True)
         base: list[str] = list(concept.types)
         if concept.kind == "lights" and (head.quant in ("all", "every", "each") or (head.plural
                                          and head.quant is not None)):
@@ -164,7 +163,11 @@ class Grounder:
             return self._things_at(head)
         types = [t for t in base if self.has_type(t)]
         if not types:
-            types = [t for t in concept.fallback if self.has_type(t)]
+            # fallbacks are in order of preference: "the table" of a kitchen without a
+            # dining table is its side table, not "a side table or the counter"
+            present = [t for t in concept.fallback if self.has_type(t)]
+            able = [t for t in present if need is None or self.can(t, need)]
+            types = (able or present)[:1]
         if not types:
             names = "/".join(concept.types)
             noun = head.noun.phrase
@@ -284,12 +287,41 @@ class Grounder:
             raise GroundingError(f"{self.scene.floor_plan} has no lights to switch")
         return Ref("the lights", tuple(groups), True)
 
+    def every_instance(self, types: Iterable[str]) -> Ref | None:
+        """Every object of these types the scene has, one group per type (None if none)."""
+        groups = tuple((ObjectRef(types=(t,)), len(self.instances(t))) for t in types
+                       if self.instances(t))
+        return Ref("/".join(types), groups, True) if groups else None
+
+    def all_that_are(self, stat: Stat) -> Ref:
+        """"everything" that is on (``Stat.SWITCH``) or open (``Stat.OPEN``) now: every
+        instance of each type with at least one such object."""
+        attr = "is_on" if stat is Stat.SWITCH else "is_open"
+        groups: list[tuple[ObjectRef, int]] = []
+        for t in sorted({o.type for o in self._live if getattr(o, attr)}):
+            every = self.instances(t)
+            those = [o for o in every if getattr(o, attr)]
+            if len(those) == len(every):
+                groups.append((ObjectRef(types=(t,)), len(every)))   # all of them
+            else:
+                groups += [(ObjectRef(id=o.id), 1) for o in those]   # just the ones that are
+        if not groups:
+            word = "on" if stat is Stat.SWITCH else "open"
+            raise GroundingError(f"nothing in {self.scene.floor_plan} is {word}",
+                                 phrase="everything")
+        return Ref("everything", tuple(groups), True)
+
     def types_ref(self, types: Iterable[str], label: str) -> Ref:
         """A reference to one object of any of the given types (those present)."""
         present = tuple(t for t in types if self.has_type(t))
         if not present:
             raise self.fail(f"{self.scene.floor_plan} has no {label}", label)
         return Ref(label, ((ObjectRef(types=present), 1),))
+
+
+def ref_types(ref: ObjectRef) -> tuple[str, ...]:
+    """The type names a reference stands for (an id: its type)."""
+    return ref.types if ref.id is None else (ref.id.split("_")[0],)
 
 
 def _id_key(object_id: str) -> tuple[str, int, int]:

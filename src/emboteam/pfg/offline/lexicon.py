@@ -101,7 +101,10 @@ VERBS: dict[str, VerbSense] = {
         "return", "relocate", "position", "deposit", "stack", "load", "insert", "hang",
         "tuck", "shove", "slide", "shift", "stash", "rest", "deliver", "bring", "fetch",
         "take", "throw", "toss", "send", "set", "arrange", "replace", "restock", "transport",
-        "haul", "plonk", "plop", "dump")},
+        "haul", "plonk", "plop", "dump", "pack", "stow", "slot", "file", "nestle", "park",
+        "stand", "prop", "perch", "pull", "roll")},
+    # placing where the verb says: "shelve the book" is on a shelf
+    "shelve": _v(A.PLACE),
     # putting it in the garbage
     **{w: _v(A.TRASH) for w in (
         "trash", "discard", "dispose", "bin", "junk", "chuck", "ditch", "scrap", "garbage")},
@@ -113,8 +116,8 @@ VERBS: dict[str, VerbSense] = {
         "quarter", "shred")},
     **{w: _v(A.BREAK) for w in (
         "break", "smash", "shatter", "crack", "destroy", "crush", "wreck", "bust")},
-    "open": _v(A.OPEN), "unclose": _v(A.OPEN), "unseal": _v(A.OPEN),
-    **{w: _v(A.CLOSE) for w in ("close", "shut", "seal")},
+    "open": _v(A.OPEN), "unclose": _v(A.OPEN), "unseal": _v(A.OPEN), "raise": _v(A.OPEN),
+    **{w: _v(A.CLOSE) for w in ("close", "shut", "seal", "lower", "draw")},
     **{w: _v(A.SWITCH) for w in ("turn", "switch", "flip", "flick", "power", "click")},
     **{w: _v(A.SWITCH_ON) for w in (
         "activate", "start", "run", "boot", "enable", "light", "ignite", "kindle",
@@ -142,13 +145,17 @@ VERBS: dict[str, VerbSense] = {
     **{w: _v(A.GO, weak=True) for w in (
         "go", "belong", "end", "stay", "live", "sit", "remain", "lie", "wind", "land")},
     **{w: _v(A.CAUSE, weak=True) for w in (
-        "leave", "keep", "get", "have", "render", "want", "need", "like", "prefer", "love")},
+        "leave", "keep", "get", "have", "render", "want", "need", "like", "prefer", "love",
+        "fancy", "crave")},
     "empty": _v(A.EMPTY),
     **{w: _v(A.VAGUE) for w in (
         "tidy", "organize", "organise", "declutter", "straighten", "sort", "neaten")},
     **{w: _v(A.DIM) for w in ("dim", "darken", "blacken")},
     "brighten": _v(A.BRIGHTEN), "lighten": _v(A.BRIGHTEN),
 }
+
+#: verbs that name where things go: "shelve the book" is ``inside(Book, Shelf)``
+VERB_PLACES: dict[str, tuple[str, ...]] = {"shelve": ("Shelf", "ShelvingUnit")}
 
 #: (verb, particle) -> sense, where the particle changes what the verb means
 PARTICLE_VERBS: dict[tuple[str, str], VerbSense] = {
@@ -157,6 +164,7 @@ PARTICLE_VERBS: dict[tuple[str, str], VerbSense] = {
     ("chuck", "away"): _v(A.TRASH), ("chuck", "out"): _v(A.TRASH),
     ("dump", "out"): _v(A.TRASH), ("bin", "away"): _v(A.TRASH),
     ("pick", "up"): _v(A.HOLD), ("take", "out"): _v(A.HOLD), ("take", "up"): _v(A.HOLD),
+    ("get", "out"): _v(A.HOLD), ("pull", "out"): _v(A.HOLD),
     ("shut", "off"): _v(A.SWITCH_OFF), ("shut", "down"): _v(A.SWITCH_OFF),
     ("power", "up"): _v(A.SWITCH_ON), ("power", "down"): _v(A.SWITCH_OFF),
     ("put", "out"): _v(A.SWITCH_OFF), ("blow", "out"): _v(A.SWITCH_OFF),
@@ -166,6 +174,8 @@ PARTICLE_VERBS: dict[tuple[str, str], VerbSense] = {
     ("clean", "up"): _v(A.CLEAN), ("wash", "up"): _v(A.CLEAN),
     ("mess", "up"): _v(A.DIRTY), ("fill", "up"): _v(A.FILL), ("top", "up"): _v(A.FILL),
     ("whip", "up"): _v(A.MAKE),
+    **{(w, p): _v(A.CLEAN) for w in ("rinse", "wash", "wipe", "clean", "scrub")
+       for p in ("off", "out", "down")},
 }
 
 #: particles that may follow a verb (or its object)
@@ -257,7 +267,8 @@ MODALS = frozenset({"should", "must", "shall", "will", "would", "could", "can", 
 
 NUMBERS: dict[str, int] = {
     "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
-    "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "single": 1, "couple": 2, "pair": 2,
+    "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13, "fourteen": 14,
+    "fifteen": 15, "sixteen": 16, "twenty": 20, "single": 1, "couple": 2, "pair": 2,
     "both": 2, "few": 3, "several": 3, "dozen": 12, "half": 1,
 }
 #: counts that are estimates: clamp them to what the scene has
@@ -290,7 +301,12 @@ FILLER_WORDS = frozenset(["please", "kindly", "just", "now", "also", "too", "ok"
 
 #: ordinary English words that are not in the lexicon but must not be spelling-corrected
 #: into one of its words ("there" is one transposition from "three")
-COMMON_WORDS = FILLER_WORDS | frozenset(["the", "a", "an", "and", "or", "but", "nor", "not", "no", "is", "are", "was", "were", "am", "been", "being", "be", "do", "does", "did", "done", "doing", "have", "has", "had", "having", "it", "its", "they", "them", "their", "theirs", "this", "that", "these", "those", "there", "here", "where", "when", "while", "whilst", "after", "before", "once", "until", "than", "then", "so", "because", "since", "though", "although", "into", "onto", "upon", "over", "under", "above", "below", "across", "through", "about", "around", "near", "far", "out", "up", "down", "off", "away", "back", "every", "each", "all", "both", "some", "any", "many", "much", "more", "most", "less", "least", "few", "several", "other", "another", "same", "such", "own", "only", "very", "quite", "rather", "pretty", "fairly", "too", "enough", "almost", "big", "small", "large", "little", "tiny", "huge", "long", "short", "tall", "old", "new", "red", "green", "blue", "yellow", "black", "white", "brown", "pink", "purple", "orange", "grey", "gray", "silver", "gold", "wooden", "plastic", "metal", "glass", "left", "right", "top", "bottom", "middle", "front", "side", "near", "nearest", "closest", "first", "second", "third", "last", "next", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "dinner", "lunch", "breakfast", "supper", "meal", "food", "room", "house", "home", "kitchen", "bedroom", "bathroom", "living", "lounge", "office", "area", "place", "spot", "corner", "wall", "door", "doors", "today", "tonight", "tomorrow", "morning", "evening", "night", "later", "earlier", "day", "week", "minute", "minutes", "hour", "need", "needs", "want", "wants", "like", "likes", "love", "prefer", "make", "makes", "made", "get", "gets", "got", "take", "takes", "nobody", "nothing", "everything", "anything", "something", "somewhere", "anywhere", "everywhere", "nowhere", "reading", "sleeping", "working", "guests", "movie", "party", "tv", "ready", "done", "finished", "complete", "sure", "whoever", "whatever", "wherever", "however", "cause", "heading", "going", "coming", "leaving", "use", "used", "using", "there", "their", "theyre", "where", "were", "went", "wear", "ware", "think", "thought", "know", "knew", "mean", "meant", "say", "said", "tell", "told", "ask", "asked", "see", "saw", "look", "looks", "looking", "come", "came", "try", "tried", "wait", "feel", "felt", "seem", "seems", "hear", "heard", "remember", "forget", "forgot", "guess", "bother", "worry", "hurry", "rush", "call", "called", "thing", "stuff", "mess", "bit", "lot", "lots", "kind", "sort", "dear", "sweet"])
+COMMON_WORDS = FILLER_WORDS | frozenset(["the", "a", "an", "and", "or", "but", "nor", "not", "no", "is", "are", "was", "were", "am", "been", "being", "be", "do", "does", "did", "done", "doing", "have", "has", "had", "having", "it", "its", "they", "them", "their", "theirs", "this", "that", "these", "those", "there", "here", "where", "when", "while", "whilst", "after", "before", "once", "until", "than", "then", "so", "because", "since", "though", "although", "into", "onto", "upon", "over", "under", "above", "below", "across", "through", "about", "around", "near", "far", "out", "up", "down", "off", "away", "back", "every", "each", "all", "both", "some", "any", "many", "much", "more", "most", "less", "least", "few", "several", "other", "another", "same", "such", "own", "only", "very", "quite", "rather", "pretty", "fairly", "too", "enough", "almost", "big", "small", "large", "little", "tiny", "huge", "long", "short", "tall", "old", "new", "red", "green", "blue", "yellow", "black", "white", "brown", "pink", "purple", "orange", "grey", "gray", "silver", "gold", "wooden", "plastic", "metal", "glass", "left", "right", "top", "bottom", "middle", "front", "side", "near", "nearest", "closest", "first", "second", "third", "last", "next", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "dinner", "lunch", "breakfast", "supper", "meal", "food", "room", "house", "home", "kitchen", "bedroom", "bathroom", "living", "lounge", "office", "area", "place", "spot", "corner", "wall", "door", "doors", "today", "tonight", "tomorrow", "morning", "evening", "night", "later", "earlier", "day", "week", "minute", "minutes", "hour", "need", "needs", "want", "wants", "like", "likes", "love", "prefer", "make", "makes", "made", "get", "gets", "got", "take", "takes", "nobody", "nothing", "everything", "anything", "something", "somewhere", "anywhere", "everywhere", "nowhere", "reading", "sleeping", "working", "guests", "movie", "party", "tv", "ready", "done", "finished", "complete", "sure", "whoever", "whatever", "wherever", "however", "cause", "heading", "going", "coming", "leaving", "use", "used", "using", "there", "their", "theyre", "where", "were", "went", "wear", "ware", "think", "thought", "know", "knew", "mean", "meant", "say", "said", "tell", "told", "ask", "asked", "see", "saw", "look", "looks", "looking", "come", "came", "try", "tried", "wait", "feel", "felt", "seem", "seems", "hear", "heard", "remember", "forget", "forgot", "guess", "bother", "worry", "hurry", "rush", "call", "called", "thing", "stuff", "mess", "bit", "lot", "lots", "kind", "sort", "dear", "sweet", "spare", "extra", "remaining", "leftover", "fresh", "new", "used", "empty",
+    "other", "big", "biggest", "smaller", "smallest", "larger", "largest", "good", "quick",
+    "proper", "thorough", "decent", "nice", "bit", "while", "movie", "film", "show", "night",
+    "sleep", "headache", "guest", "visitors", "visitor", "check", "checked", "verify",
+    "confirm", "double", "minute", "minutes", "second", "seconds", "couple", "while",
+    "charge", "corner", "wall"])
 
 #: fixed expressions, rewritten before tagging (regular expressions on normalised text)
 IDIOMS: tuple[tuple[str, str], ...] = (
@@ -302,6 +318,9 @@ IDIOMS: tuple[tuple[str, str], ...] = (
     (r"\bmake (?:a |some |the )?(?:cup|mug|pot) of coffee\b", "make coffee"),
     (r"\bbrew (?:a |some )?coffee\b", "make coffee"),
     (r"\bwould you mind\b", "please"),
+    # daylight comes in through the blinds
+    (r"\blet (?:some |more |the |a bit of |a little )?(?:natural |day|sun|)(?:light|sunlight|"
+     r"sunshine) in\b", "open the blinds"),
 )
 
 #: chores with no single household reading: an instruction with one of them is refused
@@ -315,7 +334,9 @@ VAGUE_PHRASES: tuple[str, ...] = (
 #: a recipe: a dish whose household reading is clear
 RECIPES: dict[str, str] = {
     "coffee": "coffee", "espresso": "coffee", "latte": "coffee", "cappuccino": "coffee",
-    "americano": "coffee", "toast": "toast", "salad": "salad", "fried egg": "egg",
+    "americano": "coffee", "toast": "toast", "slice of toast": "toast", "salad": "salad",
+    "fried egg": "egg", "poached egg": "egg", "hard boiled egg": "egg", "soft boiled egg": "egg",
+    "jacket potato": "potato", "roast potato": "potato", "boiled potato": "potato",
     "boiled egg": "egg", "scrambled egg": "egg", "omelette": "egg", "omelet": "egg",
     "baked potato": "potato", "fries": "potato", "chips": "potato", "mashed potato": "potato",
 }
@@ -425,6 +446,11 @@ _NOUNS: dict[str, Concept] = {
     **{w: _ANY for w in ("everything", "item", "object", "stuff", "thing")},
     # --- kitchen
     "fridge": _obj("Fridge"), "refrigerator": _obj("Fridge"), "freezer": _obj("Fridge"),
+    # "the fridge door": opening and closing the door is opening and closing the fridge
+    "fridge door": _obj("Fridge"), "refrigerator door": _obj("Fridge"),
+    "freezer door": _obj("Fridge"), "microwave door": _obj("Microwave"),
+    "oven door": _obj("Microwave"), "cabinet door": _obj("Cabinet"),
+    "cupboard door": _obj("Cabinet"), "box lid": _obj("Box"), "laptop lid": _obj("Laptop"),
     "icebox": _obj("Fridge"), "refrigirator": _obj("Fridge"), "frig": _obj("Fridge"),
     "microwave oven": _obj("Microwave"), "oven": _obj("Microwave"),
     "coffee maker": _obj("CoffeeMachine"), "coffeemaker": _obj("CoffeeMachine"),
@@ -535,7 +561,10 @@ _NOUNS: dict[str, Concept] = {
     "vacuum": _obj("VacuumCleaner"), "hoover": _obj("VacuumCleaner"),
     "picture": _obj("Painting"), "artwork": _obj("Painting"), "frame": _obj("Painting"),
     "blind": _obj("Blinds"), "blinds": _obj("Blinds"), "shade": _obj("Blinds"),
-    "curtain": _obj("Curtains"), "curtains": _obj("Curtains"), "drape": _obj("Curtains"),
+    # AI2-THOR's curtains do not open or close: to draw "the curtains" of a room that has
+    # blinds is to close its blinds
+    "curtain": _obj("Curtains", "Blinds"), "curtains": _obj("Curtains", "Blinds"),
+    "drape": _obj("Curtains", "Blinds"),
     "figurine": _obj("Statue"), "sculpture": _obj("Statue"),
     "book": _obj("Book"), "novel": _obj("Book"), "textbook": _obj("Book"),
     "paper": _obj("Newspaper"), "magazine": _obj("Newspaper"),
@@ -572,6 +601,7 @@ _NOUNS: dict[str, Concept] = {
     "rag": _obj("Cloth"), "washcloth": _obj("Cloth"), "wash cloth": _obj("Cloth"),
     "dishcloth": _obj("Cloth", "DishSponge"), "dish cloth": _obj("Cloth", "DishSponge"),
     "cloth": _obj("Cloth"), "towel": _obj("Towel", fallback=("HandTowel",)),
+    "roll": _obj("ToiletPaper", fallback=("PaperTowelRoll",)),
     "ground": _obj("Floor"),
 }
 
@@ -581,7 +611,17 @@ PLURAL_NOUNS: dict[str, Concept] = {
     "towels": _TOWELS, "things": _ANY, "items": _ANY, "objects": _ANY,
     "supplies": _CLEANING, "salt and pepper shakers": _SEASONING, "shakers": _SEASONING,
     "lights": _LIGHTS, "tables": _TABLES, "knives": _obj("Knife", "ButterKnife"),
+    # the type names are plural, the words too: "the blinds" are all of them
+    "blinds": _obj("Blinds"), "curtains": _obj("Curtains", "Blinds"), "shades": _obj("Blinds"),
+    "drapes": _obj("Curtains", "Blinds"),
 }
+
+#: measure and collective words: "a roll of foil", "two loaves of bread", "a head of
+#: lettuce", "a pair of boots" name the thing after "of"
+MEASURE_WORDS = frozenset({
+    "roll", "rolls", "loaf", "loaves", "bar", "bars", "head", "heads", "pair", "pairs",
+    "bunch", "bunches", "packet", "packets", "pack", "packs", "stick", "sticks", "sheet",
+    "sheets", "stack", "stacks", "pile", "piles"})
 
 #: "a plate containing an egg": the words that introduce what a container holds
 CONTAINING = frozenset({"containing", "contains", "holding", "carrying"})
@@ -592,7 +632,7 @@ MASS_NOUNS = frozenset({
     "silverware", "flatware", "produce", "food", "groceries", "electronics", "decor",
     "dishware", "crockery", "tableware", "dinnerware", "cookware", "kitchenware",
     "stationery", "seating", "toiletries", "cleaning supplies", "valuables", "belongings",
-    "fruit and vegetable", "fruit and veggie"})
+    "fruit and vegetable", "fruit and veggie", "salt and pepper"})
 
 #: words that name a piece of something ("a slice of bread", "apple slices")
 PIECE_WORDS = frozenset({"slice", "piece", "chunk", "wedge", "bit", "half", "segment",
@@ -643,6 +683,7 @@ def vocabulary() -> frozenset[str]:
     words |= {w for p in SEQUENCE_MARKERS for w in p.split()}
     words |= set(LIQUIDS) | set(IRREGULAR_VERBS) | DETERMINERS | QUANTIFIERS | PRONOUNS
     words |= NEGATIONS | COPULAS | set(ORDINALS) | ROBOT_WORDS | COMMON_WORDS | CONTAINING
+    words |= MEASURE_WORDS
     return frozenset(words)
 
 

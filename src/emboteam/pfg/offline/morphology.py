@@ -54,8 +54,9 @@ def verb_lemma(word: str) -> tuple[str, str] | None:
             continue
         stem = word[: -len(suffix)]
         cands = [stem, stem + "e"]
-        if len(stem) > 2 and stem[-1] == stem[-2]:
-            cands.append(stem[:-1])          # chopping -> chop
+        if len(stem) > 2 and stem[-1] == stem[-2] and stem[-1] not in "aeiou" \
+                and suffix in ("ing", "ed"):
+            cands.append(stem[:-1])          # chopping -> chop (not good -> go)
         if stem.endswith("i"):
             cands.append(stem[:-1] + "y")     # fried -> fry
         if form == "ing" and stem.endswith("y"):

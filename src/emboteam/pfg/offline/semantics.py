@@ -5,19 +5,20 @@ The verb -> condition table of docs/offline_parser.md lives here: put X in Y is
 intermediate step that puts X in the running microwave), toast is ``sliced`` then
 ``cooked``, wash is ``clean`` for dirtyable objects and otherwise a rinse (the object in
 the sink basin under the running faucet) ... Pronouns are resolved here too, because
-what the verb needs ("switch it on": something that switches) decides the antecedent.
+what the verb needs ("switch it on": something that switches) decides the antecedent
+(:mod:`~emboteam.pfg.offline.discourse` keeps the mentions).
 """
 
 from __future__ import annotations
 
-import contextlib
 import itertools
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.discourse import Discourse, Mention
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
-from emboteam.pfg.offline.frames import Frame, Head, Target
-from emboteam.pfg.offline.grounding import Grounder, Ref
+from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
+from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
 from emboteam.pfg.offline.tagger import NounReading
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, ObjectRef, Predicate
@@ -26,6 +27,7 @@ from emboteam.world.state import ObjectState
 Act = lx.Act
 Stat = lx.Stat
 P = Predicate
+_names = ref_types
 
 
 @dataclass
@@ -39,16 +41,9 @@ class Draft:
     after: list[int] = field(default_factory=list)
     #: a means to an end (the rinse before "put it on the counter", the microwave step)
     intermediate: bool = False
-
-
-@dataclass
-class Mention:
-    ref: Ref
-    head: Head
-    clause: int
-    group: int
-    #: "object" (what a verb acts on) or "place" (where things go, where they are)
-    role: str = "object"
+    #: a state wished for an object ("I'd love a warm slice of bread"): dropped when a
+    #: later clause's act brings it about ("... toast some for me")
+    wished: bool = False
 
 
 #: which capability a role needs, for grounding and for choosing a pronoun's antecedent
@@ -105,82 +100,62 @@ class Semantics:
     def __init__(self, grounder: Grounder) -> None:
         self.g = grounder
         self.cat = load_catalogue()
-        self.history: list[Mention] = []
+        self.discourse = Discourse(grounder)
+        #: every mention so far (shared with the discourse, which resolves pronouns)
+        self.history: list[Mention] = self.discourse.history
         self._group = 0
-
-    # ---- pronouns ------------------------------------------------------------------
-    def _fits(self, ref: Ref, need: str | None) -> bool:
-        return need is None or any(self.g.can(t, need) for t in ref.type_names())
-
-    def resolve(self, head: Head, need: str | None, prefer: str = "object") -> Ref:
-        """The antecedent of "it", "them", "some", "the slices"."""
-        if not self.history:
-            raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
-                                    phrase=head.label())
-        plural = head.pron in ("them", "they", "these", "those", "themselves", "ones")
-        if head.piece and head.pron is None:
-            # "the slices": pieces of the last thing that can be cut
-            for m in reversed(self.history):
-                if any(self.cat.slice_product(t) for t in m.ref.type_names()):
-                    product = [self.cat.slice_product(t) for t in m.ref.type_names()]
-                    types = tuple(p[0] for p in product if p is not None)
-                    n = head.count or 1
-                    return Ref(head.label(), ((ObjectRef(types=types), n),), n > 1)
-        if plural:
-            last_group = self.history[-1].group
-            for m in reversed(self.history):
-                group = [x for x in self.history if x.group == m.group and x.head.pron is None
-                         and self._fits(x.ref, need)]
-                if len(group) > 1 or (m.ref.plural and self._fits(m.ref, need)):
-                    if len(group) > 1:
-                        return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
-                    return m.ref
-                del last_group
-                break
-        # what the last clauses acted on before where they put it ("put the lettuce in the
-        # fridge after washing it": the lettuce), unless only a place fits ("close it")
-        for role in ("object", "place") if prefer == "object" else ("place", "object"):
-            for m in reversed(self.history):
-                if m.role == role and self._fits(m.ref, need) and m.head.noun is not None and \
-                        m.head.noun.concept.kind not in ("room", "anything"):
-                    return m.ref
-        for m in reversed(self.history):
-            if self._fits(m.ref, need):
-                return m.ref
-        raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
 
     def ground(self, head: Head, need: str | None, group: int, clause: int,
                role: str = "object") -> Ref:
         if head.pron is not None or (head.piece and head.noun is None):
-            ref = self.resolve(head, need, role)
+            ref = self.discourse.resolve(head, need, role)
+        elif head.container_of is not None:
+            ref = self.discourse.container(head, need)
         else:
             ref = self.g.ground(head, need)
             if head.alternatives:
                 alts = [self.g.ground(a, need) for a in head.alternatives if a.pron is None]
                 types = tuple(dict.fromkeys([*ref.type_names(), *(t for a in alts for t in a.type_names())]))
                 ref = Ref(head.label(), ((ObjectRef(types=types), 1),))
+            elif role == "object":
+                ref = self.discourse.bind_salient(ref, head)
         self.history.append(Mention(ref, head, clause, group, role))
+        self.discourse.remember_places(ref, head)
         return ref
 
-    def note(self, head: Head, clause: int, role: str = "object") -> None:
-        """Record a mention of a clause that produced nothing (for later pronouns)."""
+    def note(self, head: Head, clause: int, role: str | None = None) -> None:
+        """Record a mention of a clause that produced nothing (for later pronouns):
+        "There's a bottle of wine in the cupboard. Put it in the fridge." """
         if head.pron is not None or head.noun is None:
             return
-        with contextlib.suppress(GroundingError):   # an unknown word is no antecedent
-            self.history.append(Mention(self.g.ground(head, None), head, clause, -1, role))
+        try:
+            ref = self.g.ground(head, None)
+        except GroundingError as exc:
+            # an unknown or absent object is no antecedent; if a later "it" finds nothing
+            # else, this is why ("my phone is on the counter. Get it." with no phone)
+            self.discourse.unresolved.append(exc)
+            return
+        self.history.append(Mention(ref, head, clause, -1 - clause, role or head.role))
+        self.discourse.remember_places(ref, head)
 
     # ---- frames ----------------------------------------------------------------------
     def frame(self, frame: Frame, clause: int) -> list[Draft]:
         self._group += 1
         act = frame.act
         state = frame.state
+        if act in (Act.VAGUE, Act.CLEAN) and self._umbrella(frame):
+            # "straighten up in here - laptop on the dresser, remote on the sofa": the
+            # placements listed after the umbrella verb are what it asks
+            placed = [t for t in frame.targets if t.dest]
+            return self._act(replace(frame, act=Act.PLACE, verb="put", targets=placed),
+                             Act.PLACE, clause)
         if act in (Act.VAGUE,):
             raise OfflineParseError(
                 f"{frame.verb!r} is too vague for the offline parser: say which objects go "
-                "where (e.g. 'put the book on the shelf')", phrase=frame.verb)
+                "where (e.g. 'put the book on the shelf')", phrase=frame.verb, vague=True)
         if act is Act.EMPTY:
             raise OfflineParseError("emptying a container cannot be stated as a goal here",
-                                    phrase=frame.verb)
+                                    phrase=frame.verb, vague=True)
         # complaints and negations turn into the opposite state
         flip = frame.negated
         if frame.report or frame.too:
@@ -205,21 +180,51 @@ class Semantics:
             drafts = concat(drafts, self._each(pred, self.g.light_sources(positive)))
         return drafts
 
+    def _umbrella(self, frame: Frame) -> bool:
+        """Is the act an umbrella over the placements listed after it? A vague verb, or
+        cleaning something that is no object ("clean up the desk, pen in the drawer"),
+        followed by objects with places."""
+        if not any(t.dest for t in frame.targets):
+            return False
+        if frame.act is Act.VAGUE:
+            return True
+        first = frame.targets[0]
+        if first.dest or first.head.noun is None:
+            return False
+        try:
+            return not any(self.g.can(t, "hold") for t in self.g.candidate_types(first.head, None))
+        except GroundingError:
+            return first.head.noun.concept.kind == "room"
+
     def _targets(self, frame: Frame) -> list[Target]:
         return [t for t in frame.targets if not t.head.is_empty or t.head.pron is not None]
 
     def _state(self, frame: Frame, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
-        stat, positive = state
-        if flip:
-            if stat not in lx.INVERTIBLE:
-                return []
-            positive = not positive
         out: list[Draft] = []
         for t in self._targets(frame):
+            # "leave the fridge closed and the light on": each object its own state
+            stat, positive = t.state or state
+            if flip:
+                if stat not in lx.INVERTIBLE:
+                    continue
+                positive = not positive
             head = t.head
             if stat is Stat.BRIGHT or (head.noun is not None and head.noun.concept.kind == "room"):
-                ref = self._light_ref(head, clause, positive)
-                out += self._each(P.switched_on if positive else P.switched_off, ref)
+                if self._is_light(head):
+                    ref = self.ground(head, "switch", self._group, clause)
+                    out += self._each(P.switched_on if positive else P.switched_off, ref)
+                else:
+                    out += self._lighting(positive)
+                continue
+            if _is_everything(head) and (stat, positive) in _ALL_OF:
+                out += self._everything(stat)
+                continue
+            if head.noun is None and head.recipe is not None:
+                # "I want my coffee hot": the dish, then the state of what it is served in
+                out += self._recipe(head.recipe, clause, head)
+                pred = _stat_predicate(stat, positive)
+                if pred is not None:
+                    out += self._each(pred, self.history[-1].ref)
                 continue
             if stat is Stat.TOASTED:
                 out += self._act(Frame(Act.TOAST, "toast", [t]), Act.TOAST, clause)
@@ -233,19 +238,32 @@ class Semantics:
                 continue
             liquid = "water" if pred is P.filled else None
             out += self._each(pred, ref, liquid=liquid)
-        if not out and stat is Stat.BRIGHT:
-            ref = self.g.light_sources(positive)
-            out += self._each(P.switched_on if positive else P.switched_off, ref)
+        if not out and state[0] is Stat.BRIGHT and not self._targets(frame):
+            out += self._lighting(state[1] != flip)
         return out
 
-    def _light_ref(self, head: Head, clause: int, on: bool) -> Ref:
-        """"the lamp is too bright": that lamp; "it is too dark", "the room is dark": every
-        light of the room."""
+    @staticmethod
+    def _is_light(head: Head) -> bool:
+        """"the lamp is too bright", "dim the lights": the lights named, not the room."""
         concept = head.noun.concept if head.noun is not None else None
-        if concept is not None and (concept.kind in ("lights", "lamps") or concept.types[:1] in (
-                ("LightSwitch",), ("DeskLamp",), ("FloorLamp",))):
-            return self.ground(head, "switch", self._group, clause)
-        return self.g.light_sources(on)
+        return concept is not None and (concept.kind in ("lights", "lamps") or concept.types[:1] in (
+            ("LightSwitch",), ("DeskLamp",), ("FloorLamp",)))
+
+    def _lighting(self, bright: bool) -> list[Draft]:
+        """"make it dark": every light source off and the blinds closed where the room has
+        them (daylight counts); "make it bright": the main light on (minimal sufficient)."""
+        out = self._each(P.switched_on if bright else P.switched_off, self.g.light_sources(bright))
+        blinds = self.g.every_instance(("Blinds",))
+        if not bright and blinds is not None:
+            out += self._each(P.closed, blinds)
+        return out
+
+    def _everything(self, stat: Stat) -> list[Draft]:
+        """"turn everything off", "close everything": every switchable object that is on
+        (every openable one that is open) now, all instances of each such type."""
+        ref = self.g.all_that_are(stat)
+        pred = P.switched_off if stat is Stat.SWITCH else P.closed
+        return self._each(pred, ref)
 
     def _each(self, pred: Predicate, ref: Ref, *others: Ref, receptacle: ObjectRef | None = None,
               liquid: str | None = None) -> list[Draft]:
@@ -268,33 +286,42 @@ class Semantics:
         targets = self._targets(frame)
         g = self._group
         if act in (Act.DIM, Act.BRIGHTEN) and not targets:
-            ref = self.g.light_sources(act is Act.BRIGHTEN)
-            pred = P.switched_off if act is Act.DIM else P.switched_on
-            return self._each(pred, ref)
+            return self._lighting(act is Act.BRIGHTEN)
         if act is Act.WATER and not targets:
             targets = [Target(Head(text="plant", noun=_noun("plant")))]
         if act is Act.MAKE:
             return self._make(frame, targets, clause)
         if act is Act.POUR:
             return self._pour(frame, targets, clause)
-        if act is Act.CAUSE:
-            if any(t.dest for t in targets):
+        if act is Act.CAUSE and not (frame.wish or frame.ready or frame.recipient
+                                     or frame.verb == "get") and not any(
+                t.dest or t.head.recipe or t.head.contents or (t.head.liquid and t.head.noun is None)
+                for t in targets):
+            for t in targets:      # "keep the apple": nothing asked of it
+                self.note(t.head, clause)
+            return []
+        if not targets and self.history and act is not Act.CAUSE and (
+                act not in (Act.PLACE, Act.GO) or frame.means is not None):
+            # "wash the apple and put in the fridge", "the bread needs to be sliced and put
+            # on a plate", "the vases - all four - go in the box": the object is elided, it
+            # is the one just acted on
+            last = next((m for m in reversed(self.history) if m.role == "object"), None)
+            word = "them" if last is not None and last.ref.plural else "it"
+            elided = Head(text=word, pron=word)
+            if act is Act.GO:
                 act = Act.PLACE
-            elif any(t.head.recipe or t.head.contents or (t.head.liquid and t.head.noun is None)
-                     for t in targets):
-                return self._make(frame, targets, clause)   # "get a mug of coffee going"
-            elif frame.recipient or frame.verb == "get":
-                act = Act.HOLD
-            else:
-                for t in targets:
-                    self.note(t.head, clause)
-                return []
+            place = [frame.means] if act is Act.PLACE and frame.means is not None else []
+            if place:
+                place[0].role = "dest"
+                frame.means = None
+            targets = [Target(elided, place, "in" if place else None)]
         if not targets:
             if act in (Act.SWITCH_OFF, Act.SWITCH_ON) and frame.verb in ("dim", "kill"):
                 ref = self.g.light_sources()
                 return self._each(P.switched_off, ref)
+            # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
-                                    f"{frame.verb}ed?", phrase=frame.text)
+                                    f"{frame.verb}ed?", phrase=frame.text, vague=True)
         if act is Act.GO:
             act = Act.PLACE if any(t.dest for t in targets) else act
             if act is Act.GO:
@@ -306,14 +333,84 @@ class Semantics:
                 t.dest, t.prep = prev.dest, prev.prep
         out: list[Draft] = []
         for t in targets:
-            # "microwave a plate containing an egg": first the egg on the plate
+            wanted = self._wanted(frame, act, t.head)
+            said = t
+            if wanted:
+                t = Target(replace(t.head, filters=[f for f in t.head.filters if f not in wanted]),
+                           t.dest, t.prep)
+            one: Act | None = act
+            if act is Act.CAUSE:
+                one = self._wish_act(frame, t, wanted, clause)
+                if one is Act.MAKE:
+                    out = concat(out, self._make(frame, [said], clause))
+                    continue
+            # "microwave a plate containing an egg": first the egg on the plate; "bring me a
+            # chilled tomato on a plate": first the tomato cold
             before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
                       for c, held in self._contents(t, g, clause) for r, n in held.groups]
-            main = self._one(frame, act, t, g, clause)
+            if t.head.recipe is not None and t.head.pron is None and one in (
+                    Act.PLACE, Act.HOLD, Act.TRASH):
+                # "put the toast on a plate", "bring me a coffee": the dish is made first,
+                # then what it is served in is moved
+                before = concat(before, self._recipe(t.head.recipe, clause, t.head))
+                t = Target(Head(text=t.head.label(), pron="it"), t.dest, t.prep)
+            for stat, positive in wanted:
+                for d in self._state(Frame(None, frame.verb, [t]), (stat, positive), False, clause):
+                    d.wished = True
+                    before.append(d)
+            main = self._one(frame, one, t, g, clause) if one is not None else []
             for d in main:
                 d.after = [a + len(before) for a in d.after] + list(range(len(before)))
             out = concat(out, before + main)
         return out
+
+    def _wanted(self, frame: Frame, act: Act, head: Head) -> list[tuple[Stat, bool]]:
+        """States an object is asked *to have* rather than picked by: an indefinite noun
+        phrase in a wish, a request to bring or place ("I'd like a cold apple", "bring me a
+        chilled tomato", "put a clean plate on the table"); "the dirty mug" (definite) is
+        the one that is dirty."""
+        if head.definite or head.pron is not None or not head.filters:
+            return []
+        if not (frame.wish or frame.ready or frame.recipient
+                or act in (Act.PLACE, Act.HOLD, Act.CAUSE, Act.MAKE)):
+            return []
+        need = {Stat.CLEAN: "dirty", Stat.COOKED: "cook", Stat.FILLED: "fill"}
+        out: list[tuple[Stat, bool]] = []
+        for stat, positive in head.filters:
+            if stat not in DESIRABLE or not positive:
+                continue
+            try:
+                types = self.g.candidate_types(replace(head, filters=[]), need.get(stat))
+            except GroundingError:
+                continue       # "a clean apple": an apple is never dirty, nothing to ask
+            if types:
+                out.append((stat, positive))
+        return out
+
+    def _wish_act(self, frame: Frame, t: Target, wanted: list[tuple[Stat, bool]],
+                  clause: int) -> Act | None:
+        """What "I'd like X", "can I have X", "get X ready" asks for X: a placement when a
+        place is named, the dish when X is one, its wanted states, else X in hand."""
+        head = t.head
+        if t.dest:
+            return Act.PLACE
+        if head.pron is not None:
+            return Act.HOLD       # "get it out", "can I have it"
+        if head.recipe or head.contents or (head.liquid and head.noun is None):
+            return Act.MAKE
+        if wanted and not frame.recipient:
+            return None
+        if frame.ready and not wanted:
+            self.note(head, clause)
+            return None
+        try:
+            self.g.candidate_types(head, "hold")
+        except GroundingError:
+            if frame.recipient or frame.verb == "get":
+                raise
+            self.note(head, clause)     # "I'd like some light": not something to hand over
+            return None
+        return Act.HOLD
 
     def _contents(self, t: Target, g: int, clause: int) -> list[tuple[Ref, Ref]]:
         if not t.head.holds:
@@ -323,6 +420,8 @@ class Semantics:
 
     def _one(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         head = t.head
+        if act in (Act.SWITCH_ON, Act.SWITCH_OFF) and t.particle in ("on", "off"):
+            act = Act.SWITCH_ON if t.particle == "on" else Act.SWITCH_OFF
         if head.noun is None and head.liquid is not None and t.dest and act in (
                 Act.FILL, Act.PLACE, Act.POUR):
             # "fill water in the kettle", "put some water in the pot"
@@ -334,11 +433,16 @@ class Semantics:
         if head.noun is not None and head.noun.concept.kind == "room" and act in (
                 Act.CLEAN, Act.DIRTY):
             raise OfflineParseError(f"'{frame.verb} {head.label()}' is too vague for the offline "
-                                    "parser: say which objects to clean", phrase=head.label())
+                                    "parser: say which objects to clean", phrase=head.label(),
+                                    vague=True)
         if act in (Act.DIM, Act.BRIGHTEN) and head.noun is not None and \
                 head.noun.concept.kind == "room":
-            return self._each(P.switched_off if act is Act.DIM else P.switched_on,
-                              self.g.light_sources(act is Act.BRIGHTEN))
+            return self._lighting(act is Act.BRIGHTEN)
+        if _is_everything(head) and act in (Act.SWITCH_OFF, Act.CLOSE):
+            return self._everything(Stat.SWITCH if act is Act.SWITCH_OFF else Stat.OPEN)
+        blind = self._blinds_particle(frame, act, head)
+        if blind is not None:
+            return self._state(Frame(None, frame.verb, [t]), (Stat.OPEN, blind), False, clause)
         if act is Act.PLACE and not t.dest:
             if frame.state is not None:
                 return self._state(Frame(None, frame.verb, [t]), frame.state, False, clause)
@@ -348,6 +452,13 @@ class Semantics:
                            if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
                 dest = self.g.types_ref(holders, "its holder")
                 return self._each(P.inside, obj, dest, receptacle=dest.single())
+            if frame.verb in lx.VERB_PLACES:
+                # "shelve the book": the verb names the place
+                obj = self.ground(head, "hold", g, clause)
+                dest = self.g.types_ref(lx.VERB_PLACES[frame.verb], frame.verb)
+                return self._each(P.inside, obj, dest, receptacle=dest.single())
+            if frame.particle == "back":
+                return self._put_back(frame, t, g, clause)
             if frame.verb in _VERBS_TO_BIN:
                 act = Act.TRASH
             elif frame.verb in _VERBS_TO_HAND or frame.recipient:
@@ -355,9 +466,17 @@ class Semantics:
             else:
                 raise OfflineParseError(f"where should {head.label()!r} go? "
                                         f"('{frame.verb or 'put'} {head.label()} in/on ...')",
-                                        phrase=frame.text)
+                                        phrase=frame.text, vague=True)
+        if (act is Act.COOK and self._is_water(head)) or (
+                act is Act.HEAT and head.noun is None and head.liquid == "water"):
+            return self._boil(frame, t, g, clause)
         if act is Act.HOLD and t.dest:
             act = Act.PLACE
+        if act is Act.PLACE and frame.timed and t.dest and t.dest[0].noun is not None and \
+                "Microwave" in t.dest[0].noun.concept.types:
+            act = Act.MICROWAVE     # "pop the potato in the microwave for a couple of minutes"
+        if act in (Act.SLICE, Act.BREAK) and t.dest:
+            return self._cut_into(frame, act, t, g, clause)
         need = ACT_NEEDS.get(act)
         if act is Act.PLACE:
             return self._place(frame, t, g, clause)
@@ -378,23 +497,29 @@ class Semantics:
             sliceable = [w for w in wholes if any(self.cat.slice_product(x) for x in _names(w))]
             if sliceable:
                 drafts.append(self._draft([cond(P.sliced, w) for w in dict.fromkeys(sliceable)], obj))
-            cooked = self._draft([cond(P.cooked, _whole(r), n) for r, n in obj.groups], obj)
+            # one slice: cooked(Bread) (any slice of it); more: that many cooked slices
+            cooked = self._draft([cond(P.cooked, _whole(r) if n == 1 else r, n)
+                                  for r, n in obj.groups], obj)
             if drafts:
                 cooked.after = [0]
             return [*drafts, cooked]
-        if act in (Act.HEAT, Act.MICROWAVE):
-            obj = self.ground(head, None, g, clause)
-            hot = self._draft([cond(P.hot, r, n) for r, n in obj.groups], obj)
-            means = frame.means or (t.dest[0] if t.dest else None)
-            use_microwave = act is Act.MICROWAVE or (
-                means is not None and means.noun is not None and "Microwave" in means.noun.concept.types)
+        if act in (Act.HEAT, Act.MICROWAVE, Act.COOK):
+            # heat / cook X, with the microwave as the means when it is named ("in the
+            # microwave", "using the microwave", "the microwave is fine"): the appliance is
+            # an intermediate step, never a goal object
+            obj = self.ground(head, "cook" if act is Act.COOK else None, g, clause)
+            result = P.cooked if act is Act.COOK else P.hot
+            done = self._draft([cond(result, r, n) for r, n in obj.groups], obj)
+            means = [m for m in (frame.means, *(t.dest[:1]), *frame.instruments) if m is not None]
+            use_microwave = act is Act.MICROWAVE or any(
+                m.noun is not None and "Microwave" in m.noun.concept.types for m in means)
             if use_microwave and self.g.has_type("Microwave"):
                 mw = self.g.types_ref(("Microwave",), "microwave")
                 step = self._draft([*(cond(P.inside, r, n, mw.single()) for r, n in obj.groups),
                                     cond(P.switched_on, mw.single())], obj, mw, intermediate=True)
-                hot.after = [0]
-                return [step, hot]
-            return [hot]
+                done.after = [0]
+                return [step, done]
+            return [done]
         if act is Act.FILL:
             obj = self.ground(head, "fill", g, clause)
             liquid = frame.liquid or head.contents or "water"
@@ -411,7 +536,7 @@ class Semantics:
             return [self._draft(flipped, obj)]
         pred: Predicate | None = {
             Act.SLICE: P.sliced, Act.BREAK: P.broken, Act.OPEN: P.open, Act.CLOSE: P.closed,
-            Act.SWITCH_ON: P.switched_on, Act.SWITCH_OFF: P.switched_off, Act.COOK: P.cooked,
+            Act.SWITCH_ON: P.switched_on, Act.SWITCH_OFF: P.switched_off,
             Act.COOL: P.cold, Act.DIRTY: P.dirty, Act.HOLD: P.held,
             Act.DIM: P.switched_off, Act.BRIGHTEN: P.switched_on,
         }.get(act)
@@ -420,13 +545,74 @@ class Semantics:
         obj = self.ground(head, need, g, clause)
         return self._each(pred, obj)
 
-    def _objects(self, ref: ObjectRef) -> list[ObjectState]:
-        if ref.id is not None:
-            return [self.g.state.objects[ref.id]]
-        return [o for t in ref.types for o in self.g.instances(t)]
+    @staticmethod
+    def _blinds_particle(frame: Frame, act: Act, head: Head) -> bool | None:
+        """"pull the blinds down", "blinds up": up is open, down is closed."""
+        if frame.particle not in ("up", "down") or head.noun is None or \
+                "Blinds" not in head.noun.concept.types or act not in (
+                    Act.PLACE, Act.CAUSE, Act.HOLD, Act.OPEN, Act.CLOSE):
+            return None
+        return frame.particle == "up"
 
-    def _place(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
+    def _cut_into(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """"crack an egg into the pan", "slice the tomato into the bowl": cut, then the
+        pieces in the place."""
+        obj = self.ground(t.head, "slice", g, clause)
+        pieces = tuple(p[0] for x in obj.type_names() if (p := self.cat.slice_product(x)))
+        pieces = pieces or obj.type_names()     # already pieces: they are what goes there
+        cut = self._draft([cond(P.sliced, r, n) for r, n in obj.groups], obj)
+        slices = Ref(f"pieces of {obj.label}", ((ObjectRef(types=pieces), 1),))
+        placed = self._place(frame, Target(Head(text=slices.label), t.dest, t.prep), g, clause,
+                             slices)
+        for d in placed:
+            d.after = [0]
+        return [cut, *placed]
+
+    def _put_back(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
+        """"take the apple out of the fridge, slice it and put it back": back where it was
+        taken from (or said to be)."""
         obj = self.ground(t.head, "hold", g, clause)
+        origin = self.discourse.origins.get(obj.types)
+        if origin is None:
+            raise OfflineParseError(f"where should {t.head.label()!r} go back to? "
+                                    f"('put {t.head.label()} back in/on ...')",
+                                    phrase=frame.text, vague=True)
+        return self._place(frame, Target(t.head, [origin], "in"), g, clause, obj)
+
+    def _is_water(self, head: Head) -> bool:
+        """"boil water", "boil the kettle": water is no object, what holds it is."""
+        if head.noun is None:
+            return head.liquid == "water"
+        if head.contents is not None:
+            return False       # "boil the pot of coffee": the coffee is what is heated
+        try:
+            types = self.g.candidate_types(head, None)
+        except GroundingError:
+            return False
+        return all(self.g.can(x, "fill") and not self.g.can(x, "cook") for x in types)
+
+    def _boil(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
+        """"boil water in the pot": the pot filled with water and hot (a kettle, else a pot,
+        when no container is named)."""
+        if t.head.noun is not None:
+            vessel = self.ground(t.head, "fill", g, clause)
+        else:
+            named = [m for m in (*t.dest, frame.means, *frame.instruments) if m is not None]
+            if named:
+                vessel = self.ground(named[0], "fill", g, clause, "place")
+            else:
+                kinds = [k for k in ("Kettle", "Pot") if self.g.has_type(k)]
+                vessel = self.g.types_ref(kinds[:1] or ("Kettle",), "kettle")
+                self.history.append(Mention(vessel, Head(text="kettle"), clause, g))
+        return [self._draft([cond(P.filled, r, n, liquid="water"), cond(P.hot, r, n)], vessel)
+                for r, n in vessel.groups]
+
+    def _objects(self, ref: ObjectRef) -> list[ObjectState]:
+        return self.discourse.objects(ref)
+
+    def _place(self, frame: Frame, t: Target, g: int, clause: int,
+               obj: Ref | None = None) -> list[Draft]:
+        obj = obj if obj is not None else self.ground(t.head, "hold", g, clause)
         dest_heads = t.dest
         if t.prep == "under":
             raise OfflineParseError("'under' cannot be stated as a goal (only in/on)",
@@ -434,7 +620,7 @@ class Semantics:
         if t.prep == "near":
             dest = self._beside(dest_heads[0], g, clause)
         else:
-            refs = [self.ground(d, "receptacle", g, clause, "place") for d in dest_heads]
+            refs = [self.ground(d, "receptacle", g, clause, "dest") for d in dest_heads]
             types = tuple(dict.fromkeys(x for r in refs for x in r.type_names()))
             dest = Ref(" or ".join(r.label for r in refs),
                        ((ObjectRef(types=types), 1),) if len(refs) > 1 or len(refs[0].groups) > 1
@@ -471,6 +657,8 @@ class Semantics:
                 parent = getattr(o, "parent", None)
                 if parent is not None:
                     places.append(self.g.state.objects[parent].type)
+                elif self.g.has_type("Floor") and not o.has("pickupable"):
+                    places.append("Floor")      # "next to the toilet": on the floor by it
         if not places:
             raise GroundingError(f"cannot tell where {landmark.label()!r} stands",
                                  phrase=landmark.label())
@@ -483,6 +671,12 @@ class Semantics:
         out: list[Draft] = []
         if dirtyable:
             out += self._each(P.clean, Ref(obj.label, tuple(dirtyable)))
+        if rest and not all(self.g.can(x, "hold") for r, _ in rest for x in _names(r)):
+            # "clean up the desk", "wipe the counter": not a state the goal can name, an
+            # umbrella for whatever the other clauses say
+            raise OfflineParseError(f"'clean {head.label()}' is too vague for the offline "
+                                    "parser: say which objects to put where or wash",
+                                    phrase=head.label(), vague=True)
         if rest:
             basin, faucet = self._sink()
             conds = [cond(P.inside, r, n, basin) for r, n in rest]
@@ -514,13 +708,30 @@ class Semantics:
                 if frame.state is not None:
                     out += self._state(Frame(None, frame.verb, [t]), frame.state, False, clause)
                     continue
+                wanted = self._wanted(frame, Act.MAKE, t.head)
+                plain = Target(replace(t.head, filters=[]), t.dest, t.prep)
+                if t.head.contents is not None and t.head.noun is not None:
+                    # "a cold glass of water": the glass filled, then as wished
+                    out += self._one(frame, Act.FILL, plain, self._group, clause)
+                    for st in wanted:
+                        out += self._state(Frame(None, frame.verb, [plain]), st, False, clause)
+                    if frame.recipient:
+                        out += self._one(frame, Act.HOLD, plain, self._group, clause)
+                    continue
+                if wanted:
+                    # "make me a boiled egg": the egg, cooked
+                    for st in wanted:
+                        out += self._state(Frame(None, frame.verb, [plain]), st, False, clause)
+                    continue
                 raise OfflineParseError(
                     f"'{frame.verb} {t.head.label()}' is too vague for the offline parser",
-                    phrase=t.head.label())
-            out += self._recipe(recipe, clause)
+                    phrase=t.head.label(), vague=True)
+            out += self._recipe(recipe, clause, t.head)
         return out
 
-    def _recipe(self, recipe: str, clause: int) -> list[Draft]:
+    def _recipe(self, recipe: str, clause: int, head: Head | None = None) -> list[Draft]:
+        """The goal of a dish with a clear household reading; what it is served in (the
+        mug of coffee, the toast slices, the egg) becomes the antecedent of "it"/"them"."""
         g = self.g
         if recipe == "coffee":
             mug = g.types_ref(("Mug",), "mug")
@@ -530,9 +741,16 @@ class Semantics:
             return [self._draft([cond(P.filled, mug.single(), liquid="coffee"),
                                  cond(P.hot, mug.single())], mug)]
         if recipe == "toast":
+            # toast is cooked bread slices: "two slices of toast" are two of them
             bread = g.types_ref(("Bread",), "bread")
-            self.history.append(Mention(bread, Head(text="bread"), clause, self._group))
-            cooked = self._draft([cond(P.cooked, bread.single())], bread)
+            n = head.count if head is not None and head.count and not head.vague_count else 1
+            if n > g.count_available("BreadSliced"):
+                raise g.fail(f"{g.scene.floor_plan} cannot make {n} slices of toast", "toast")
+            slices = Ref("toast", ((ObjectRef(types=("BreadSliced",)), n),), n > 1)
+            self.history.append(Mention(slices, Head(text="toast", piece=True), clause, self._group))
+            done = cond(P.cooked, ObjectRef(types=("BreadSliced",)), n) if n > 1 else \
+                cond(P.cooked, bread.single())
+            cooked = self._draft([done], bread)
             cooked.after = [0]
             return [self._draft([cond(P.sliced, bread.single())], bread), cooked]
         if recipe == "salad":
@@ -547,6 +765,7 @@ class Semantics:
             return out
         if recipe in ("egg", "potato"):
             ref = g.types_ref((recipe.capitalize(),), recipe)
+            self.history.append(Mention(ref, Head(text=recipe), clause, self._group))
             return [self._draft([cond(P.cooked, ref.single())], ref)]
         raise OfflineParseError(f"no recipe for {recipe!r}", phrase=recipe)
 
@@ -574,10 +793,6 @@ def concat(first: list[Draft], second: list[Draft]) -> list[Draft]:
     return [*first, *second]
 
 
-def _names(ref: ObjectRef) -> tuple[str, ...]:
-    return ref.types if ref.id is None else (ref.id.split("_")[0],)
-
-
 def _whole(ref: ObjectRef) -> ObjectRef:
     """A slice type reference as its whole ("toast" is cooked bread)."""
     if ref.id is not None:
@@ -588,6 +803,17 @@ def _whole(ref: ObjectRef) -> ObjectRef:
 
 def _noun(phrase: str) -> NounReading:
     return NounReading(lx.nouns()[phrase], phrase, False)
+
+
+#: states that "everything" can be brought to: off, closed (the opposite would switch on
+#: every faucet and burner, open every cabinet: no household reading)
+_ALL_OF = frozenset({(Stat.SWITCH, False), (Stat.OPEN, False)})
+
+
+def _is_everything(head: Head) -> bool:
+    """"everything", "all the things" without a place ("everything on the table" is the
+    things there)."""
+    return head.noun is not None and head.noun.concept.kind == "anything" and not head.location
 
 
 def _stat_predicate(stat: Stat, positive: bool) -> Predicate | None:

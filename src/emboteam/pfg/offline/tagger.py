@@ -95,6 +95,13 @@ def _noun_at(words: list[str], i: int) -> tuple[int, NounReading] | None:
             phrase = " ".join([*span[:-1], last])
             if phrase in table:
                 return n, NounReading(table[phrase], phrase, True)
+        if n >= 3 and span[1] == "of":
+            # "two bottles of wine", "loaves of bread": the measure word is the plural one
+            for first in singular_candidates(span[0])[:-1]:
+                for last in singular_candidates(span[-1]):
+                    phrase = " ".join([first, *span[1:-1], last])
+                    if phrase in table:
+                        return n, NounReading(table[phrase], phrase, True)
     return None
 
 
@@ -192,8 +199,9 @@ def tag(text: str) -> list[Item]:
                 reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
             phrase = " ".join(words[i:i + n])
             item = Item(phrase, noun=reading)
-            if phrase in lx.RECIPES:
-                item.recipe = lx.RECIPES[phrase]
+            recipe = lx.RECIPES.get(phrase) or lx.RECIPES.get(reading.phrase)
+            if recipe is not None:
+                item.recipe = recipe
             items.append(item)
             i += n
             continue

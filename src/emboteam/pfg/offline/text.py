@@ -43,6 +43,8 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\bcant\b", "can not"), (r"\bisnt\b", "is not"), (r"\barent\b", "are not"),
     (r"\bshouldnt\b", "should not"), (r"\bwouldnt\b", "would not"), (r"\bim\b", "i am"),
     (r"\bthats\b", "that is"), (r"\blets\b", "let us"), (r"\bpls\b|\bplz\b", "please"),
+    # chat spellings
+    (r"\bu\b", "you"), (r"\bur\b", "your"), (r"\bthx\b|\bthnx\b|\bty\b", "thanks"),
 )
 
 

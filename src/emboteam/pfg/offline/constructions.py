@@ -1,0 +1,142 @@
+"""Constructions recognised around the clause grammar: light verbs ("give the plate a
+rinse"), clauses that only name the means ("the microwave is fine"), wishes that are only
+noun phrases ("a boiled egg, please"), "with" joining dishes in a wish ("toast with my
+coffee"), durations ("for a couple of minutes"), and reports of where things are
+("I left a book on the sofa": a place, not a destination).
+"""
+
+from __future__ import annotations
+
+import re
+
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
+from emboteam.pfg.offline.tagger import Item
+
+Act = lx.Act
+
+#: "for a couple of minutes", "for a bit": the act lasts (a loaded appliance is run)
+DURATION = re.compile(r"\bfor (?:a |an |about |around |roughly |just |another |a few |a couple of |"
+                       r"a little |\d+ |one |two |three |five |ten |twenty |thirty |few )*"
+                       r"(?:bit|while|minute|minutes|second|seconds|min|mins|sec|secs)\b")
+
+
+def with_as_and(items: list[Item]) -> list[Item]:
+    """"some toast with my coffee": in a wish, a dish "with" another is both wanted."""
+    out = list(items)
+    for k, it in enumerate(out):
+        if it.prep == "with" and k > 0:
+            head, _ = parse_np(out, k + 1)
+            if head is not None and head.recipe is not None:
+                out[k] = Item("and", conj="and")
+    return out
+
+
+def places_to_locations(frame: Frame) -> None:
+    """A report of where something is ("I left a book on the sofa", "the remote is in one
+    of the drawers") is no request: the place says where the object is, for later
+    pronouns and for picking the instance."""
+    for t in frame.targets:
+        if t.dest and t.prep in ("in", "on", "at", "to"):
+            place = t.dest[0]
+            place.role = "place"
+            t.head.location.append(("in" if t.prep != "on" else "on", place))
+            t.dest = []
+
+
+#: what a noun phrase can be said to be when it is only the means: "the microwave is fine"
+_INSTRUMENT_OK = frozenset({"fine", "ok", "okay", "good", "best", "better", "easiest",
+                            "quickest", "fastest", "faster", "available", "free", "enough",
+                            "handiest"})
+#: acts a noun can name in "give X a rinse", "the pan could do with a scrub"
+_LIGHT_ACTS = frozenset({Act.CLEAN, Act.HEAT, Act.MICROWAVE, Act.COOK, Act.TOAST, Act.COOL,
+                         Act.SLICE, Act.WATER})
+
+
+def instrument_clause(items: list[Item], mentions: list[Head]) -> Head | None:
+    """"the microwave is fine", "the stove will do", "use the big pan": a clause that only
+    names the means of the act of the clause next to it (the means is never a goal)."""
+    n = len(items)
+    if items[0].text in ("use", "using") and items[0].noun is None:
+        head, k = parse_np(items, 1)
+        if head is not None and head.noun is not None and skip_locative(items, k) >= n:
+            head.role = "place"
+            mentions.append(head)
+            return head
+        return None
+    head, k = parse_np(items, 0)
+    if head is None or head.noun is None or k >= n:
+        return None
+    m = k
+    while m < n and items[m].text in ("is", "are", "will", "would", "should", "be", "totally",
+                                      "perfectly", "just", "really", "also", "probably"):
+        m += 1
+    rest = {x.text for x in items[m:]}
+    if m > k and m < n and (items[m].text in _INSTRUMENT_OK or items[m].text == "do") \
+            and rest <= _INSTRUMENT_OK | {"do", "to", "use", "for", "this", "that", "it"}:
+        head.role = "place"
+        mentions.append(head)
+        return head
+    return None
+
+
+def _verbal_noun(items: list[Item], k: int) -> int | None:
+    """The index of V in "a [adjectives] V" at ``k`` ("a good scrub", "a quick rinse",
+    "some water") when V names an act."""
+    n = len(items)
+    if k >= n or items[k].text not in ("a", "an", "some"):
+        return None
+    m = k + 1
+    while m < n and items[m].verb is None and items[m].noun is None and items[m].prep is None \
+            and items[m].punct is None and items[m].conj is None and not items[m].det:
+        m += 1
+    verb = items[m].verb if m < n else None
+    if verb is None or verb.sense.act not in _LIGHT_ACTS:
+        return None
+    after = items[m + 1] if m + 1 < n else None
+    if after is not None and after.noun is not None and after.prep is None:
+        return None      # "a wash basin": a noun phrase, not an act
+    return m
+
+
+def light_verb(items: list[Item]) -> list[Item]:
+    """Light-verb constructions as the plain verb: "give the plate a rinse" -> "rinse the
+    plate"; "the pan could do with a good scrub", "the mug needs a wash" -> "scrub the
+    pan", "wash the mug"."""
+    first = items[0]
+    if first.verb is not None and first.verb.lemma == "give":
+        head, k = parse_np(items, 1)
+        if head is not None and k > 1:
+            v = _verbal_noun(items, k)
+            if v is not None:
+                return [items[v], *items[1:k], *items[v + 1:]]
+        return items
+    head, k = parse_np(items, 0)
+    if head is None or (head.noun is None and head.pron is None):
+        return items
+    k = skip_locative(items, k)       # "the pan on the stove needs a good scrub"
+    m = k
+    while m < len(items) and items[m].text in ("could", "would", "really", "definitely",
+                                               "badly", "do", "with", "use", "needs", "need",
+                                               "wants", "deserves", "is", "in", "of", "has",
+                                               "got", "want", "needed", "urgently"):
+        m += 1
+    if m == k:
+        return items
+    v = _verbal_noun(items, m)
+    if v is None:
+        return items
+    return [items[v], *items[:k], *items[v + 1:]]
+
+
+def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
+    """A clause that is only noun phrases naming a dish or a state: "a boiled egg,
+    please", "two slices of toast", "a cold apple would be great" (the politeness is
+    stripped before): what they name is wanted."""
+    heads = np_list(items)
+    if not heads or not any(h.recipe is not None or (not h.definite and any(
+            st in DESIRABLE for st, _ in h.filters)) for h in heads):
+        return None
+    mentions.extend(heads)
+    return Frame(Act.CAUSE, "want", [Target(h) for h in heads], wish=True,
+                 text=" ".join(x.text for x in items))

@@ -1,0 +1,170 @@
+"""Discourse: what the instruction has mentioned so far, for pronouns ("it", "them",
+"all three", "the lot", "the slices") and for singling out instances ("close the drawer
+again" after "the remote is in one of the drawers" is the drawer that holds the remote;
+"the cabinet it's in"; "put it back" returns it where it came from).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
+from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
+from emboteam.pfg.offline.phrases import Head
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import ObjectRef
+from emboteam.world.state import ObjectState
+
+_names = ref_types
+
+
+@dataclass
+class Mention:
+    ref: Ref
+    head: Head
+    clause: int
+    group: int
+    #: "object" (what a verb acts on), "dest" (where something was just put) or "place"
+    #: (where things are, what they come from, the means)
+    role: str = "object"
+
+
+class Discourse:
+    """The mention history of one instruction and the instances it singles out."""
+
+    def __init__(self, grounder: Grounder) -> None:
+        self.g = grounder
+        self.cat = load_catalogue()
+        self.history: list[Mention] = []
+        #: type -> the instance the conversation singles out ("the drawer" it is in)
+        self.salient: dict[str, str] = {}
+        #: where a mentioned object was taken from or said to be: "put it back" goes there
+        self.origins: dict[frozenset[str], Head] = {}
+        #: mentions that named nothing in the scene (the reason a later "it" fails)
+        self.unresolved: list[GroundingError] = []
+
+    def objects(self, ref: ObjectRef) -> list[ObjectState]:
+        """The objects of the state a reference stands for."""
+        if ref.id is not None:
+            return [self.g.state.objects[ref.id]]
+        return [o for t in ref.types for o in self.g.instances(t)]
+
+    def fits(self, ref: Ref, need: str | None) -> bool:
+        """Can the referent do what the verb asks ("switch it on": something switchable)?"""
+        return need is None or any(self.g.can(t, need) for t in ref.type_names())
+
+    def resolve(self, head: Head, need: str | None, prefer: str = "object") -> Ref:
+        """The antecedent of "it", "them", "some", "the slices"."""
+        if not self.history:
+            if self.unresolved:
+                raise self.unresolved[-1]
+            raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
+                                    phrase=head.label())
+        plural = head.pron in ("them", "they", "these", "those", "themselves", "ones")
+        if head.piece and head.pron is None:
+            # "the slices": pieces of the last thing that can be cut (of each of the things
+            # cut together: "slice the apple and the tomato, put the slices in a bowl")
+            for m in reversed(self.history):
+                if any(self.cat.slice_product(t) for t in m.ref.type_names()):
+                    cut = [x for x in self.history if x.group == m.group and x.role == "object"
+                           and any(self.cat.slice_product(t) for t in x.ref.type_names())]
+                    wholes = list(dict.fromkeys(t for x in cut or [m] for r, _ in x.ref.groups
+                                                for t in _names(r)
+                                                if self.cat.slice_product(t) is not None))
+                    if len(wholes) > 1 and head.count is None:
+                        groups = tuple((ObjectRef(types=(p[0],)), 1) for t in wholes
+                                       if (p := self.cat.slice_product(t)) is not None)
+                        return Ref(head.label(), groups, True)
+                    product = [self.cat.slice_product(t) for t in m.ref.type_names()]
+                    types = tuple(p[0] for p in product if p is not None)
+                    n = head.count or 1
+                    return Ref(head.label(), ((ObjectRef(types=types), n),), n > 1)
+        if need in ("open", "switch"):
+            # "put the books in the drawer and close it", "put the mug in the coffee machine
+            # and switch it on": where things just went
+            for m in reversed(self.history):
+                if m.role == "dest":
+                    if self.fits(m.ref, need):
+                        return m.ref
+                    break
+        if plural:
+            # the last coordinated objects ("the fork and the spoon ... them", "all three"),
+            # not the place they went to
+            m = next((x for x in reversed(self.history) if x.role == "object"), self.history[-1])
+            group = [x for x in self.history if x.group == m.group and x.head.pron is None
+                     and x.role == "object" and self.fits(x.ref, need)]
+            if len(group) > 1:
+                return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
+            if m.ref.plural and self.fits(m.ref, need):
+                return m.ref
+        # what the last clauses acted on before where they put it ("put the lettuce in the
+        # fridge after washing it": the lettuce), unless only a place fits ("close it")
+        for role in ("object", "place") if prefer == "object" else ("place", "object"):
+            for m in reversed(self.history):
+                kind = "place" if m.role == "dest" else m.role
+                if kind == role and self.fits(m.ref, need) and m.head.noun is not None and \
+                        m.head.noun.concept.kind not in ("room", "anything"):
+                    return m.ref
+        for m in reversed(self.history):
+            if self.fits(m.ref, need):
+                return m.ref
+        if self.unresolved:
+            raise self.unresolved[-1]
+        raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def remember_places(self, ref: Ref, head: Head) -> None:
+        """Where a mentioned object is said to be ("the remote is in one of the drawers",
+        "take the mug out of the cabinet"): the receptacle instance that holds it now
+        becomes *the* drawer / cabinet of the conversation, and the place it came from is
+        where "put it back" returns it."""
+        for prep, land in head.location:
+            if prep == "from":
+                self.origins[ref.types] = land
+            try:
+                place = self.g.ground(land, None)
+            except GroundingError:
+                continue
+            if prep != "from":
+                self.origins.setdefault(ref.types, land)
+            kinds = set(place.type_names())
+            found: dict[str, set[str]] = {}
+            for r, _ in ref.groups:
+                for o in self.objects(r):
+                    for anc in self.g.state.ancestors(o.id):
+                        t = self.g.state.objects[anc].type
+                        if t in kinds:
+                            found.setdefault(t, set()).add(anc)
+            for t, holders in found.items():
+                if len(holders) == 1:
+                    self.salient[t] = next(iter(holders))
+
+    def bind_salient(self, ref: Ref, head: Head) -> Ref:
+        """"close the drawer again" after "the remote is in one of the drawers": the drawer
+        that holds the remote (an instance id), not any drawer - ``closed(Drawer)`` may
+        already hold for another one and the planner would do nothing."""
+        if not head.definite or head.plural or head.count is not None or head.ordinal is not None \
+                or head.location or head.filters or head.quant is not None or len(ref.groups) != 1:
+            return ref
+        r, _ = ref.groups[0]
+        if r.id is not None:
+            return ref
+        hits = [t for t in r.types if t in self.salient and len(self.g.instances(t)) > 1]
+        if len(hits) != 1:
+            return ref
+        return Ref(ref.label, ((ObjectRef(id=self.salient[hits[0]]), 1),))
+
+    def container(self, head: Head, need: str | None) -> Ref:
+        """"the cabinet it's in", "the drawer they are in": the receptacle instance holding
+        what the pronoun refers to."""
+        types = set(self.g.candidate_types(head, need))
+        inner = head.container_of
+        assert inner is not None
+        held = self.resolve(inner, "hold") if inner.pron is not None else self.g.ground(inner, None)
+        holders: list[str] = []
+        for r, _ in held.groups:
+            for o in self.objects(r):
+                holders += [a for a in self.g.state.ancestors(o.id)
+                            if self.g.state.objects[a].type in types and a not in holders]
+        if len(holders) == 1:
+            return Ref(head.label(), ((ObjectRef(id=holders[0]), 1),))
+        return self.g.ground(replace(head, container_of=None), need)
