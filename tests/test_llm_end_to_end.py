@@ -1,0 +1,62 @@
+"""The LLM front end through the whole system and the ``emboteam`` command, against a
+real OpenAI-compatible HTTP server on loopback: happy path in two calls, a recorded
+cassette replayed without the server, and a misbehaving server ending in a clear
+``success: false`` within bounded time."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from llm_servers import Reply, ScriptedServer, cond, subtask, taskspec_answer
+
+EMBOTEAM = str(Path(sys.executable).parent / "emboteam")
+INSTRUCTION = "Put the apple in the fridge and turn off the light."
+SPEC = taskspec_answer(
+    subtask("s1", cond("inside", "Apple_1", receptacle="Fridge_1"), robot="robot1"),
+    subtask("s2", cond("switched_off", "LightSwitch_1"), robot="robot2"),
+)
+REVIEW_OK = {"verdict": "ok", "reason": "matches the instruction", "subtasks": []}
+
+
+def run_cli(*args: str) -> tuple[dict[str, object], subprocess.CompletedProcess[str]]:
+    env = {**os.environ, "OPENAI_API_KEY": "sk-loopback-test-key"}
+    proc = subprocess.run([EMBOTEAM, "run", INSTRUCTION, "--scene", "FloorPlan1", "--robots", "1,2", *args,
+                           "--json"], capture_output=True, text=True, timeout=300, env=env)
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout), proc
+
+
+def test_llm_happy_path_is_two_calls_then_replays_without_the_model(tmp_path: Path) -> None:
+    cassette = tmp_path / "cassette"
+    with ScriptedServer("openai", [Reply.answer(SPEC), Reply.answer(REVIEW_OK)]) as srv:
+        live, proc = run_cli("--llm", srv.spec("gpt-test"), "--llm-record", str(cassette))
+        assert len(srv.requests) == 2  # one PFG call, one HP validation call
+    assert live["success"] is True and live["llm_calls"] == 2 and int(str(live["tokens"])) > 0
+    assert "sk-loopback-test-key" not in proc.stderr
+    for f in cassette.rglob("*"):
+        if f.is_file():
+            assert "sk-loopback-test-key" not in f.read_text()  # keys never reach cassettes
+    replayed, _ = run_cli("--llm", f"replay:{cassette}")  # the server is gone now
+    keep = ("success", "gcr", "exec", "makespan", "actions", "llm_calls", "tokens")
+    assert {k: replayed[k] for k in keep} == {k: live[k] for k in keep}
+
+
+def test_a_hanging_server_ends_in_a_failed_episode_within_bounded_time() -> None:
+    with ScriptedServer("openai", default=Reply.hang(30)) as srv:
+        start = time.monotonic()
+        result, _ = run_cli("--llm", srv.spec("gpt-test"), "--llm-timeout", "0.5")
+        elapsed = time.monotonic() - start
+    assert result["success"] is False and "LLMTimeout" in str(result["error"])
+    assert elapsed < 25, f"took {elapsed:.1f} s"
+
+
+def test_garbage_from_the_server_is_a_clear_error_not_a_traceback() -> None:
+    with ScriptedServer("openai", default=Reply.answer("I would rather write a poem about fridges.")) as srv:
+        result, proc = run_cli("--llm", srv.spec("gpt-test"))
+    assert result["success"] is False and result["error"]
+    assert "Traceback" not in proc.stderr
