@@ -167,10 +167,14 @@ def tasks(
 @cli_errors
 def report(directory: Path = typer.Argument(..., help="a run's or a benchmark's --out DIR")) -> None:
     """(Re)build the HTML report of a run (report.html) or a benchmark (index.html)."""
+    from emboteam.bench.runner import store_path, write_reports
     from emboteam.report import write_report
 
-    for path in write_report(directory):
-        out.print(f"wrote {path}")
+    if store_path(directory).exists():  # a benchmark: tables and plots from its results store
+        for path in write_reports(directory):
+            out.print(f"wrote {path}")
+    pages = write_report(directory)
+    out.print(f"wrote {pages[-1]}" + (f" and {len(pages) - 1} episode report(s)" if len(pages) > 1 else ""))
 
 
 # ---- tasks, planning and runs ------------------------------------------------------

@@ -188,7 +188,8 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
     return Episode(
         task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
         robots=tuple(sorted(sim.state.robots)), category=task.category, mode=cfg.mode,
-        frontend=cfg.frontend, seed=cfg.seed, faults=cfg.fault_config(), fault_level=cfg.fault_level,
+        frontend=cfg.frontend, llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(),
+        fault_level=cfg.fault_level,
         llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
         plan_seconds=round(plan_seconds, 4), taskspec=spec,
         error=result.error, **fields,

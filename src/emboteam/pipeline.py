@@ -25,10 +25,10 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from emboteam.bench.jobs import MODES, Frontend, Mode
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import ConditionOutcome, Episode
@@ -40,10 +40,6 @@ from emboteam.world.robots import RobotProfile, parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 
-Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p"]
-FrontendName = Literal["oracle", "offline", "llm"]
-MODES: tuple[str, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p")
-
 
 class RunConfig(BaseModel):
     """How to run an episode: the mode, the front end, the LLM, faults, seed, limits."""
@@ -51,7 +47,7 @@ class RunConfig(BaseModel):
     model_config = ConfigDict(frozen=True)
 
     mode: Mode = "full"
-    frontend: FrontendName = "offline"
+    frontend: Frontend = "offline"
     llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL]")
     llm_timeout: float = 60.0
     llm_record: str | None = Field(None, description="cassette folder to record LLM calls into")
@@ -88,7 +84,7 @@ def _episode(task: BenchTask, cfg: RunConfig, **fields: object) -> Episode:
     base: dict[str, object] = dict(
         task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
         robots=tuple(p.name for p in team), category=task.category, mode=cfg.mode,
-        frontend=cfg.frontend, seed=cfg.seed, faults=cfg.fault_config(),
+        frontend=cfg.frontend, llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(),
         fault_level=cfg.fault_level,
     )
     base.update(fields)
@@ -125,3 +121,6 @@ def run_episode(task: BenchTask, cfg: RunConfig) -> Episode:
         episode = _episode(task, cfg, success=False, gcr=gcr, conditions=conds,
                            error=f"{type(exc).__name__}: {exc}")
     return episode.model_copy(update={"wall_seconds": round(time.perf_counter() - started, 4)})
+
+
+__all__ = ["MODES", "RunConfig", "adhoc_task", "check_config", "initial_state", "run_episode", "score"]

@@ -41,6 +41,7 @@ class Episode(BaseModel):
     category: str = ""
     mode: str = Field("full", description="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p")
     frontend: str = "offline"
+    llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL] of the LLM front end, if any")
     seed: int = 0
     faults: FaultConfig = FaultConfig()
     fault_level: float = 0.0

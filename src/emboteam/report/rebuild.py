@@ -23,25 +23,12 @@ TABLES_NAME = "tables.md"
 PLOT_SUFFIXES = (".png", ".svg")
 
 
-def basic_summary(episodes: list[Episode]) -> dict[str, Any]:
-    """Means over episodes, for a benchmark directory without ``summary.json``."""
-    n = len(episodes)
-
-    def mean(values: list[float]) -> float:
-        return round(sum(values) / len(values), 4) if values else 0.0
-
-    return {
-        "n": n, "sr": mean([float(e.success) for e in episodes]), "gcr": mean([e.gcr for e in episodes]),
-        "exec": mean([e.exec for e in episodes]), "makespan_mean": mean([e.makespan for e in episodes]),
-        "errors": sum(1 for e in episodes if e.error),
-        "note": "recomputed from the episodes (no summary.json)",
-    }
-
-
 def _summary(directory: Path, episodes: list[Episode]) -> dict[str, Any]:
     path = directory / SUMMARY_NAME
     if not path.exists():
-        return basic_summary(episodes)
+        from emboteam.bench.tables import bench_summary
+
+        return {**bench_summary(episodes).to_json(), "note": "recomputed from the episodes (no summary.json)"}
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
