@@ -168,19 +168,15 @@ def bootstrap_ci(groups: Sequence[Sequence[float]], *, level: float = 0.95, resa
     and the groups (a task's seeds) must be resampled together, since runs of one task
     are not independent.
     """
-    groups = [list(g) for g in groups if g]
-    if not groups:
+    totals = [(float(sum(g)), float(len(g))) for g in groups if g]
+    if not totals:
         return (0.0, 0.0)
     rng = random.Random(seed)
-    k = len(groups)
+    k = len(totals)
     means: list[float] = []
     for _ in range(resamples):
-        total = count = 0.0
-        for _ in range(k):
-            g = groups[rng.randrange(k)]
-            total += sum(g)
-            count += len(g)
-        means.append(total / count)
+        picks = rng.choices(totals, k=k)
+        means.append(sum(t for t, _ in picks) / sum(n for _, n in picks))
     means.sort()
     alpha = (1 - level) / 2
     lo = means[int(alpha * (resamples - 1))]
@@ -198,7 +194,8 @@ def _group(episodes: Sequence[Episode], seed: int) -> GroupSummary:
         sr=_mean([1.0 if e.success else 0.0 for e in episodes]),
         gcr=_mean([e.gcr for e in episodes]),
         exec=_mean(ran),
-        sr_ci=bootstrap_ci(list(by_task.values()), seed=seed),
+        # tasks in key order: the interval must not depend on the order episodes finished in
+        sr_ci=bootstrap_ci([by_task[task] for task in sorted(by_task)], seed=seed),
     )
 
 
