@@ -22,6 +22,7 @@ from emboteam.llm.client import LLMClient, make_client
 from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
+from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.scripted import scripted_action_lists
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.pipeline import RunConfig, initial_state, score
@@ -57,6 +58,12 @@ def planner_for(mode: str) -> HybridPlanner:
     return HybridPlanner(PLANNER_OF_MODE[mode])
 
 
+@cache
+def offline_frontend() -> OfflineFrontend:
+    """One parser per process: building its lexicon and spelling caches takes ~0.1 s."""
+    return OfflineFrontend()
+
+
 def make_llm(cfg: RunConfig) -> LLMClient | None:
     if cfg.llm is None:
         if cfg.frontend == "llm":
@@ -79,9 +86,7 @@ def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
 
         assert llm is not None
         return LLMFrontend(llm).decompose(task.instruction, scene, state, team)
-    from emboteam.pfg.offline import OfflineFrontend
-
-    return OfflineFrontend().decompose(task.instruction, scene, state, team)
+    return offline_frontend().decompose(task.instruction, scene, state, team)
 
 
 def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, state: WorldState,
