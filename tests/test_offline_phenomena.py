@@ -503,3 +503,14 @@ def test_any_word_salad_gives_a_spec_or_a_typed_error(words: list[str], fp: int)
         assert str(exc) and "\n" not in str(exc)
     else:
         assert spec.subtasks
+
+
+# ---- pronoun chains -------------------------------------------------------------------------
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Put the pen and the pencil into the box, close it, and put it on the bed.", 303,
+     {"inside(Pen, Box)", "inside(Pencil, Box)", "closed(Box)", "inside(Box, Bed)"}),
+    ("put the apple in the fridge and close it, then slice it", 1,  # a fridge cannot be sliced
+     {"inside(Apple, Fridge)", "closed(Fridge)", "sliced(Apple)"}),
+])
+def test_a_chain_of_it_keeps_its_referent_while_it_fits(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(text, fp) == expected

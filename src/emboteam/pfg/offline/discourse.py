@@ -87,6 +87,12 @@ class Discourse:
                     if self.fits(m.ref, need):
                         return m.ref
                     break
+        if not plural and head.pron == "it":
+            # a chain of "it"s keeps its referent ("pack the pens into the box, close it, and
+            # put it on the shelf": the box both times), as long as it fits the verb
+            last = next((x for x in reversed(self.history) if x.role == "object"), None)
+            if last is not None and last.head.pron == "it" and self.fits(last.ref, need):
+                return last.ref
         if plural:
             # the last coordinated objects ("the fork and the spoon ... them", "all three"),
             # not the place they went to
