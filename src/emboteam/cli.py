@@ -331,7 +331,7 @@ def bench(
     episodes = run_bench(cfg, expand_jobs(cfg, loaded.tasks))
     from emboteam.report import write_report
 
-    write_report(out_dir)
+    write_report(out_dir, refresh=False)
     summary = bench_summary(episodes, suite=suite)
     if as_json:
         print_json(summary.to_json())

@@ -46,9 +46,10 @@ def _plots(directory: Path) -> list[Path]:
     return found
 
 
-def write_report(directory: Path) -> list[Path]:
+def write_report(directory: Path, *, refresh: bool = True) -> list[Path]:
     """Rebuild every report page under ``directory``; return the pages written (a
-    benchmark: each episode's viewer, then the index last)."""
+    benchmark: each episode's viewer, then the index last). ``refresh=False`` keeps the
+    episode pages that exist (a resumed benchmark renders only its new episodes)."""
     directory = Path(directory)
     if (directory / "episode.json").is_file():
         return [write_episode_report(directory)]
@@ -60,7 +61,8 @@ def write_report(directory: Path) -> list[Path]:
     for sub in sorted(p for p in episodes_root.iterdir() if (p / "episode.json").is_file()):
         episode = load_episode_dir(sub)
         pairs.append((sub.name, episode))
-        written.append(save_episode_report(episode, sub))
+        if refresh or not (sub / "report.html").is_file():
+            written.append(save_episode_report(episode, sub))
     tables = directory / TABLES_NAME
     tables_md = tables.read_text(encoding="utf-8") if tables.is_file() else ""
     summary = _summary(directory, [ep for _, ep in pairs])
