@@ -60,3 +60,20 @@ def test_garbage_from_the_server_is_a_clear_error_not_a_traceback() -> None:
         result, proc = run_cli("--llm", srv.spec("gpt-test"))
     assert result["success"] is False and result["error"]
     assert "Traceback" not in proc.stderr
+
+
+def test_llm_merge_ordering_is_in_the_plan(tmp_path: Path) -> None:
+    """The paper's LLM merge: a third call proposes orderings; an acceptable one becomes a
+    dependency the formal merge honours (the light goes off only after the apple is in)."""
+    orderings = {"orderings": [{"before": "s1", "after": "s2", "reason": "light off last"}]}
+    with ScriptedServer("openai", [Reply.answer(SPEC), Reply.answer(REVIEW_OK), Reply.answer(orderings)]) as srv:
+        result, _ = run_cli("--llm", srv.spec("gpt-test"), "--llm-merge", "--out", str(tmp_path))
+        assert len(srv.requests) == 3
+    assert result["success"] is True and result["llm_calls"] == 3
+    episode = json.loads((tmp_path / "episode.json").read_text())
+    spec = {s["id"]: s for s in episode["taskspec"]["subtasks"]}
+    assert spec["s2"]["depends_on"] == ["s1"]
+    steps = episode["plan"]["steps"]
+    last_s1 = max(s["est_end"] for s in steps if s["subtask"] == "s1")
+    first_s2 = min(s["est_start"] for s in steps if s["subtask"] == "s2")
+    assert first_s2 >= last_s1 - 1e-6

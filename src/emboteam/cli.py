@@ -257,6 +257,7 @@ def run(
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     llm_record: str | None = typer.Option(None, "--llm-record", help="record LLM calls into this cassette dir"),
+    llm_merge: bool = typer.Option(False, "--llm-merge", help="the paper's LLM merge stage (one more call)"),
     faults: float = typer.Option(0.0, "--faults", min=0.0, max=1.0, help="per-action failure probability"),
     seed: int = typer.Option(0, "--seed", help="seed of the fault injection"),
     join: list[str] = typer.Option([], "--join", help="PROFILE@SECONDS: a robot joins mid-run (repeatable)"),
@@ -269,7 +270,7 @@ def run(
     from emboteam.views import episode_panel, plan_table, spec_table
 
     task = _resolve_task(target, scene_fp, robots_list)
-    cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record,
+    cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record, llm_merge=llm_merge,
                       fault_level=faults, seed=seed, joins=tuple(join))
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run

@@ -99,14 +99,24 @@ def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, sta
 
         spec = review_spec(llm, spec, task.instruction, scene, state, team).spec
     try:
-        return spec, planner.plan(spec, state)
+        plan = planner.plan(spec, state)
     except PlanningError as exc:
         if llm is None or cfg.frontend != "llm":
             raise
         from emboteam.pfg.llm_frontend import LLMFrontend
 
         spec = LLMFrontend(llm).repair(spec, str(exc), scene, state, team)
-        return spec, planner.plan(spec, state)
+        plan = planner.plan(spec, state)
+    if llm is not None and cfg.llm_merge:
+        # the paper's LLM merge: orderings it proposes become dependencies if they keep the
+        # subtasks acyclic, and the formal merge plans and validates the result
+        from emboteam.hp.llm_stages import apply_orderings, propose_orderings
+        from emboteam.views import plan_summary
+
+        ordered = apply_orderings(spec, propose_orderings(llm, spec, task.instruction, plan_summary(plan)))
+        if ordered != spec:
+            spec, plan = ordered, planner.plan(ordered, state)
+    return spec, plan
 
 
 def action_lists(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,

@@ -51,6 +51,7 @@ class RunConfig(BaseModel):
     llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL]")
     llm_timeout: float = 60.0
     llm_record: str | None = Field(None, description="cassette folder to record LLM calls into")
+    llm_merge: bool = Field(False, description="the paper's LLM merge stage: the LLM proposes orderings")
     fault_level: float = Field(0.0, ge=0, le=1)
     faults: FaultConfig | None = Field(None, description="explicit faults (overrides fault_level)")
     seed: int = 0

@@ -36,6 +36,16 @@ def plan_json(plan: MergedPlan) -> dict[str, object]:
     }
 
 
+def plan_summary(plan: MergedPlan) -> str:
+    """The plan as text for a prompt: per robot, its actions with subtask and waits."""
+    lines = []
+    for robot in plan.robots:
+        steps = [f"{s.action} [{s.subtask}{'; after ' + ','.join(s.after) if s.after else ''}]"
+                 for s in plan.for_robot(robot)]
+        lines.append(f"{robot}: " + " -> ".join(steps))
+    return "\n".join(lines)
+
+
 def spec_table(spec: TaskSpec) -> Table:
     table = Table(title="subtasks (PFG)", title_justify="left", expand=False)
     for col in ("id", "robot", "goal", "after"):
