@@ -7,6 +7,7 @@ describe the same tree.
 
 from __future__ import annotations
 
+import graphlib
 import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -106,30 +107,18 @@ def cross_robot_waits(plan: MergedPlan) -> dict[str, tuple[str, ...]]:
 
 def _check_acyclic(plan: MergedPlan, waits: Mapping[str, tuple[str, ...]]) -> None:
     """Each robot's order plus the cross-robot waits must form a DAG, or the tree would
-    wait forever (Kahn's algorithm: a cycle leaves steps unvisited)."""
-    succ: dict[str, list[str]] = {s.id: [] for s in plan.steps}
-    indeg = {s.id: 0 for s in plan.steps}
+    wait forever."""
+    before: dict[str, set[str]] = {s.id: set() for s in plan.steps}
     for robot in plan.robots:
-        seq = plan.for_robot(robot)
-        for a, b in itertools.pairwise(seq):
-            succ[a.id].append(b.id)
-            indeg[b.id] += 1
+        for a, b in itertools.pairwise(plan.for_robot(robot)):
+            before[b.id].add(a.id)
     for consumer, producers in waits.items():
-        for p in producers:
-            succ[p].append(consumer)
-            indeg[consumer] += 1
-    ready = [k for k, n in indeg.items() if n == 0]
-    seen = 0
-    while ready:
-        k = ready.pop()
-        seen += 1
-        for nxt in succ[k]:
-            indeg[nxt] -= 1
-            if indeg[nxt] == 0:
-                ready.append(nxt)
-    if seen != len(indeg):
-        stuck = sorted(k for k, n in indeg.items() if n > 0)
-        raise PlanCompileError(f"the plan's dependencies form a cycle through {', '.join(stuck[:6])}")
+        before[consumer].update(producers)
+    try:
+        graphlib.TopologicalSorter(before).prepare()
+    except graphlib.CycleError as exc:
+        cycle = exc.args[1]
+        raise PlanCompileError(f"the plan's dependencies form a cycle through {', '.join(cycle[:6])}") from None
 
 
 def _check_plan(plan: MergedPlan, state: WorldState | None) -> None:

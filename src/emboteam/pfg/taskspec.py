@@ -4,6 +4,8 @@ hybrid planner."""
 
 from __future__ import annotations
 
+import graphlib
+
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from emboteam.world.goals import Condition, Goal
@@ -42,23 +44,10 @@ class TaskSpec(BaseModel):
             missing = [d for d in s.depends_on if d not in known]
             if missing:
                 raise ValueError(f"subtask {s.id} depends on unknown {missing}")
-        # Kahn's algorithm: a cycle leaves nodes unvisited
-        indeg = {s.id: len(s.depends_on) for s in self.subtasks}
-        users: dict[str, list[str]] = {i: [] for i in ids}
-        for s in self.subtasks:
-            for d in s.depends_on:
-                users[d].append(s.id)
-        ready = [i for i, n in indeg.items() if n == 0]
-        seen = 0
-        while ready:
-            i = ready.pop()
-            seen += 1
-            for u in users[i]:
-                indeg[u] -= 1
-                if indeg[u] == 0:
-                    ready.append(u)
-        if seen != len(ids):
-            raise ValueError("subtask dependencies form a cycle")
+        try:
+            graphlib.TopologicalSorter({s.id: set(s.depends_on) for s in self.subtasks}).prepare()
+        except graphlib.CycleError as exc:
+            raise ValueError(f"subtask dependencies form a cycle: {' -> '.join(exc.args[1])}") from None
         return self
 
     def goal(self) -> Goal:
