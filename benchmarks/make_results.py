@@ -33,6 +33,11 @@ def bench_args(frontend: str, out: Path, workers: int) -> list[str]:
 
 
 def shown(args: list[str]) -> str:
+    """The command as a user types it (output under the default ``results/``)."""
+    args = list(args)
+    if "--out" in args:
+        i = args.index("--out") + 1
+        args[i] = "results/" + Path(args[i]).name
     return "emboteam " + " ".join(a if " " not in a else repr(a) for a in args)
 
 
@@ -112,9 +117,6 @@ measure: `emboteam bench --suite mace-thor --frontend llm --llm PROVIDER:MODEL[@
 {shown(runs["oracle"])}
 ```
 
-Overall: SR {summaries["oracle"]["sr"]:.3f}, GCR {summaries["oracle"]["gcr"]:.3f} over
-{summaries["oracle"]["n"]} episodes (all modes and fault rates together; see the tables).
-
 ![SR, GCR and Exec by category and mode](img/results/oracle_by_category.png)
 ![SR against fault rate](img/results/oracle_sr_vs_faults.png)
 
@@ -143,7 +145,7 @@ next section.
 parser's code or data, and never tuned against (docs/unseen_suite.md). Full mode, no faults:
 
 ```
-{" ".join(unseen_cmd[1:]).replace(str(ROOT) + "/", "")}
+.venv/bin/python benchmarks/unseen_offline.py --json
 ```
 
 | suite | n | SR | GCR | parse errors |
