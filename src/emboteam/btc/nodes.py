@@ -108,18 +108,26 @@ class RobotUp(Leaf):
         return Status.SUCCESS
 
 
-class FlagSet(Leaf):
-    """A producer step of another robot has ended with its effects observed."""
-
-    BTCPP_KIND = "Condition"
-    BTCPP_ID = "FlagSet"
-    DESCRIPTION = "a producer step's done flag is set (fails if the producer's branch failed)"
+class _ProducerFlag(Leaf):
+    """A node about another robot's step: its done flag and whether its branch failed."""
 
     def __init__(self, name: str, runtime: Runtime, robot: str, step: StepState, producer: str,
                  producer_robot: str) -> None:
         super().__init__(name, runtime, robot, step)
         self.producer = producer
         self.producer_robot = producer_robot
+
+    def ports(self) -> list[Port]:
+        return [Port("flag", flag_key(self.producer), ref="key"),
+                Port("producer_failed", failed_key(self.producer_robot), ref="key")]
+
+
+class FlagSet(_ProducerFlag):
+    """A producer step of another robot has ended with its effects observed."""
+
+    BTCPP_KIND = "Condition"
+    BTCPP_ID = "FlagSet"
+    DESCRIPTION = "a producer step's done flag is set (fails if the producer's branch failed)"
 
     def evaluate(self) -> Status:
         if self.runtime.flag_set(self.robot, self.producer):
@@ -130,10 +138,6 @@ class FlagSet(Leaf):
                                        f"{self.producer_robot} failed ({failed})"))
         return self.diagnose(Diagnosis(Strategy.WAIT_SYNC, self.producer,
                                        f"waiting for {self.producer}"))
-
-    def ports(self) -> list[Port]:
-        return [Port("flag", flag_key(self.producer), ref="key"),
-                Port("producer_failed", failed_key(self.producer_robot), ref="key")]
 
 
 class HoldsSpot(Leaf):
@@ -396,15 +400,9 @@ class GiveUp(Leaf):
         return [Port("diagnosis", "diagnosis", ref="local")]
 
 
-class WaitFlag(Leaf):
+class WaitFlag(_ProducerFlag):
     BTCPP_ID = "WaitFlag"
     DESCRIPTION = "RUNNING until a producer's done flag is set; FAILURE if its branch failed"
-
-    def __init__(self, name: str, runtime: Runtime, robot: str, step: StepState, producer: str,
-                 producer_robot: str) -> None:
-        super().__init__(name, runtime, robot, step)
-        self.producer = producer
-        self.producer_robot = producer_robot
 
     def evaluate(self) -> Status:
         if self.runtime.flag_set(self.robot, self.producer):
@@ -415,10 +413,6 @@ class WaitFlag(Leaf):
             self.step.fatal = f"dependency {self.producer} will not happen: {self.producer_robot} failed"
             return Status.FAILURE
         return Status.RUNNING
-
-    def ports(self) -> list[Port]:
-        return [Port("flag", flag_key(self.producer), ref="key"),
-                Port("producer_failed", failed_key(self.producer_robot), ref="key")]
 
 
 class AcquireSpot(Leaf):
