@@ -8,8 +8,11 @@ orderings that matter:
 
 - ``formal``: a step waits for another robot's step when they race on a state variable
   (causal links, threats and write conflicts, :mod:`emboteam.hp.dependencies`), and for
-  every step of the subtasks its subtask depends on; redundant (transitively implied)
-  waits are dropped, so each remaining one is a sync point;
+  what its subtask dependencies ask: by default every step of the subtasks its subtask
+  depends on; the planner passes the causal version instead
+  (:mod:`emboteam.hp.subtask_order`: only the steps that reach the subtask's goal or undo
+  its dependency's goal wait for the dependency). Redundant (transitively implied) waits are dropped, so each
+  remaining one is a sync point;
 - ``concatenate``: only the subtask dependencies (the paper's no-HP ablation);
 - ``sequential``: every step waits for the one before it (one robot at a time: the
   always-valid last resort).
@@ -20,7 +23,7 @@ use the fridge in either order, one at a time.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Literal as TypingLiteral
 
@@ -185,18 +188,28 @@ def _reduce(steps: Sequence[GroundedStep], preds: list[set[int]]) -> list[list[i
 
 
 def order(steps: Sequence[GroundedStep], depends_on: Mapping[str, Sequence[str]],
-          mode: MergeMode = "formal") -> list[list[int]]:
-    """Cross-robot waits of each step (indices of earlier steps), reduced."""
+          mode: MergeMode = "formal", *, dependency_waits: Sequence[Collection[int]] | None = None
+          ) -> list[list[int]]:
+    """Cross-robot waits of each step (indices of earlier steps), reduced.
+
+    ``dependency_waits`` (per step, earlier steps to wait for) replaces the whole-group
+    ordering ``depends_on`` implies, e.g. with :func:`emboteam.hp.subtask_order.dependency_waits`.
+    """
     if mode == "sequential":
         return [[j - 1] if j and steps[j - 1].robot != s.robot else [] for j, s in enumerate(steps)]
-    preds = _dependency_preds(steps, depends_on)
+    if dependency_waits is None:
+        preds = _dependency_preds(steps, depends_on)
+    else:
+        preds = [{i for i in w if i < j and steps[i].robot != steps[j].robot}
+                 for j, w in enumerate(dependency_waits)]
     if mode == "formal":
         for j, extra in enumerate(_conflict_preds(steps)):
             preds[j] |= extra
     return _reduce(steps, preds)
 
 
-def _reason(a: GroundedStep, b: GroundedStep, depends_on: Mapping[str, Sequence[str]]) -> str:
+def _reason(a: GroundedStep, b: GroundedStep, depends_on: Mapping[str, Sequence[str]],
+            dependency: str | None = None) -> str:
     fa, fb = a.footprint, b.footprint
     causal = sorted((fa.writes | fa.updates) & fb.reads)
     if causal:
@@ -207,14 +220,20 @@ def _reason(a: GroundedStep, b: GroundedStep, depends_on: Mapping[str, Sequence[
     threat = sorted(fa.reads & (fb.writes | fb.updates))
     if threat:
         return "must not change " + ", ".join(threat[:4]) + " before it is used"
+    if dependency:
+        return dependency
     if a.group in depends_on.get(b.group, ()):
         return f"subtask {b.subtask} depends on {a.subtask}"
     return "ordered"
 
 
 def assemble(steps: Sequence[GroundedStep], waits: Sequence[Sequence[int]], robots: Sequence[str],
-             depends_on: Mapping[str, Sequence[str]]) -> MergedPlan:
-    """The MergedPlan (times and statistics left for the caller to fill)."""
+             depends_on: Mapping[str, Sequence[str]], reasons: Mapping[tuple[int, int], str] | None = None
+             ) -> MergedPlan:
+    """The MergedPlan (times and statistics left for the caller to fill). ``reasons``
+    names why a (producer, consumer) wait exists when it is no race on a state variable
+    (a subtask dependency)."""
+    reasons = reasons or {}
     counters: dict[str, int] = {}
     ids: list[str] = []
     for s in steps:
@@ -226,7 +245,7 @@ def assemble(steps: Sequence[GroundedStep], waits: Sequence[Sequence[int]], robo
         after = tuple(ids[i] for i in waits[j])
         for i in waits[j]:
             sync.append(SyncPoint(producer=ids[i], consumer=ids[j],
-                                  reason=_reason(steps[i], s, depends_on)))
+                                  reason=_reason(steps[i], s, depends_on, reasons.get((i, j)))))
         out.append(PlanStep(id=ids[j], robot=s.robot, action=s.action, subtask=s.subtask, after=after,
                             resources=(s.spot,) if s.spot else (), pre=s.pre, post=s.post))
     return MergedPlan(robots=tuple(robots), steps=tuple(out), sync=tuple(sync))

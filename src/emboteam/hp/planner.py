@@ -13,8 +13,13 @@
    goal or breaks a goal accepted earlier goes back to the next round (with that goal
    protected); a unit Fast Downward cannot solve is retried with every candidate object and
    the whole team.
-3. Merge the accepted sequence into a partial order (:mod:`emboteam.hp.merge`) and
-   validate it in the simulator, robots concurrently (:mod:`emboteam.hp.validate`).
+3. Merge the accepted sequence into a partial order (:mod:`emboteam.hp.merge`), subtask
+   dependencies as causal orderings (:mod:`emboteam.hp.subtask_order`: only the steps
+   that reach the dependent subtask's goal or undo its dependency's goal wait for the
+   dependency), and
+   validate it in the simulator, robots concurrently (:mod:`emboteam.hp.validate`). A
+   dependency whose causal ordering fails there is made strict (the whole later subtask
+   after the earlier one), noted, and the plan validated again.
 4. If decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
    validate), plan the whole goal as ONE joint multi-robot problem, deorder it the same way,
    and mark the plan ``joint``.
@@ -56,6 +61,13 @@ from emboteam.hp.rounds import (
     make_units,
     polish,
     preparations,
+)
+from emboteam.hp.subtask_order import (
+    Dependency,
+    DependencyWaits,
+    ancestors,
+    dependency_waits,
+    subtask_dependencies,
 )
 from emboteam.hp.validate import estimate, simulate, with_times
 from emboteam.pddl.domain import Universe, domain_pddl
@@ -112,7 +124,12 @@ class _Fallback(Exception):
 
 
 class _Invalid(Exception):
-    """The merged plan failed in the simulator."""
+    """The merged plan failed in the simulator; ``index`` is the position of the failed
+    step in the merged sequence (None: no step failed, e.g. the goal did not hold)."""
+
+    def __init__(self, why: str, index: int | None = None) -> None:
+        super().__init__(why)
+        self.index = index
 
 
 class HybridPlanner:
@@ -264,11 +281,37 @@ class HybridPlanner:
                     continue
                 self._accept(u, grounded, forward, accepted, done, unit_of, protected, after=trial)
             pending = [t for t in pending if t.id not in done]
-        deps = _group_dependencies(spec, unit_of)
         try:
-            return self._finish(accepted, deps, team, start, spec.goal(), "formal")
+            return self._merge_causal(accepted, spec, unit_of, team, start, notes)
         except _Invalid as exc:
             raise _Fallback(f"the merged plan failed in the simulator: {exc}") from None
+
+    def _merge_causal(self, accepted: Sequence[GroundedStep], spec: TaskSpec, unit_of: Mapping[str, str],
+                      team: Sequence[str], start: WorldState, notes: list[str]) -> MergedPlan:
+        """Merge with the subtask dependencies as causal orderings
+        (:mod:`emboteam.hp.subtask_order`) and validate. When that plan fails in the
+        simulator, the dependencies involving the unit whose step failed (all remaining
+        ones if no step failed or none of those is still causal) become strict (every
+        step of the later subtask after the earlier one), noted, until the plan validates
+        or every dependency is strict (then :class:`_Invalid` propagates: the joint
+        fallback). Never returns an unvalidated plan (unless validation is off)."""
+        deps = subtask_dependencies(spec, unit_of)
+        groups = _group_dependencies(spec, unit_of)
+        strict: set[Dependency] = set()
+        while True:
+            waits = dependency_waits(start, accepted, deps, strict)
+            try:
+                return self._finish(accepted, groups, team, start, spec.goal(), "formal", waits)
+            except _Invalid as exc:
+                relaxed = [d for d in deps if d not in strict]
+                if not relaxed:
+                    raise
+                failed = accepted[exc.index].group if exc.index is not None else None
+                culprits = [d for d in relaxed if failed in (d.later_group, d.earlier_group)] or relaxed
+                strict.update(culprits)
+                notes.append(f"the causal ordering of {', '.join(str(d) for d in culprits)} failed in the "
+                             f"simulator ({exc}): strict ordering there (every step of the later subtask "
+                             "waits for the earlier one)")
 
     @staticmethod
     def _nothing_to_do(u: Unit, state: WorldState) -> bool:
@@ -376,7 +419,7 @@ class HybridPlanner:
         for level in levels:
             problems = []
             for t in level:
-                bases[t.id] = _lenient_state(start, [s for d in _ancestors(spec, t.id) for s in plans.get(d, [])])
+                bases[t.id] = _lenient_state(start, [s for d in ancestors(spec, t.id) for s in plans.get(d, [])])
                 away = [r for r in assigned[t.id] if r in used]
                 used.update(assigned[t.id])
                 problems.append(build_problem(bases[t.id], t.goal, assigned[t.id], name=t.id, elsewhere=away))
@@ -395,7 +438,7 @@ class HybridPlanner:
             except StepFailure as exc:
                 raise PlanValidationError(f"subtask {t.id}'s plan does not run: {exc}") from None
             grounded.extend(g)
-        deps = {t.id: tuple(_ancestors(spec, t.id)) for t in spec.subtasks}
+        deps = {t.id: tuple(ancestors(spec, t.id)) for t in spec.subtasks}
         if not self.config.validate:
             waits = order(grounded, deps, "concatenate")
             plan = assemble(grounded, waits, team, deps)
@@ -408,30 +451,22 @@ class HybridPlanner:
 
     # ---- merge + validate ---------------------------------------------------------------
     def _finish(self, grounded: Sequence[GroundedStep], deps: Mapping[str, Sequence[str]], team: Sequence[str],
-                start: WorldState, goal: Goal, mode: MergeMode) -> MergedPlan:
-        waits = order(grounded, deps, mode)
-        plan = assemble(grounded, waits, team, deps)
+                start: WorldState, goal: Goal, mode: MergeMode, dependencies: DependencyWaits | None = None
+                ) -> MergedPlan:
+        """Order, assemble and validate. ``dependencies`` replaces the whole-unit waits
+        ``deps`` implies (the causal subtask dependencies)."""
+        waits = order(grounded, deps, mode, dependency_waits=None if dependencies is None else dependencies.preds)
+        plan = assemble(grounded, waits, team, deps, None if dependencies is None else dependencies.reasons)
         if not self.config.validate:
             return estimate(plan, {s.id: g.seconds for s, g in zip(plan.steps, grounded, strict=True)})
         timing = simulate(plan, start, goal)
         if not timing.ok:
-            raise _Invalid(timing.failure)
+            index = next((k for k, s in enumerate(plan.steps) if s.id == timing.failed_step), None)
+            raise _Invalid(timing.failure, index)
         return with_times(plan, timing)
 
 
 # ---- helpers ------------------------------------------------------------------------------
-
-def _ancestors(spec: TaskSpec, sid: str) -> list[str]:
-    """Transitive dependencies of a subtask, in spec order."""
-    seen: set[str] = set()
-    frontier = list(spec.subtask(sid).depends_on)
-    while frontier:
-        d = frontier.pop()
-        if d not in seen:
-            seen.add(d)
-            frontier += spec.subtask(d).depends_on
-    return [t.id for t in spec.subtasks if t.id in seen]
-
 
 def _group_dependencies(spec: TaskSpec, unit_of: Mapping[str, str]) -> dict[str, tuple[str, ...]]:
     """Planning unit -> the units holding its subtasks' (transitive) dependencies."""
@@ -440,7 +475,7 @@ def _group_dependencies(spec: TaskSpec, unit_of: Mapping[str, str]) -> dict[str,
         u = unit_of.get(t.id)
         if u is None:
             continue
-        out.setdefault(u, set()).update(unit_of[d] for d in _ancestors(spec, t.id) if d in unit_of)
+        out.setdefault(u, set()).update(unit_of[d] for d in ancestors(spec, t.id) if d in unit_of)
     return {u: tuple(sorted(d - {u})) for u, d in out.items()}
 
 

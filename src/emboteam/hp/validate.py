@@ -25,6 +25,8 @@ from emboteam.world.state import WorldState
 class Timing:
     ok: bool
     failure: str = ""
+    #: id of the step that failed ("" when none did: a cycle, or the goal unmet at the end)
+    failed_step: str = ""
     times: dict[str, tuple[float, float]] = field(default_factory=dict)
     makespan: float = 0.0
     lower_bound: float = 0.0
@@ -83,7 +85,8 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
                 continue
             step = running.pop(outcome.robot)
             if not outcome.success:
-                return Timing(ok=False, failure=f"{step.id} {outcome}", times=times, final=sim.state)
+                return Timing(ok=False, failure=f"{step.id} {outcome}", failed_step=step.id, times=times,
+                              final=sim.state)
             ended.add(step.id)
             times[step.id] = (starts[step.id], outcome.end)
     left = [s.id for q in queues.values() for s in q]
