@@ -58,3 +58,17 @@ def test_a_robot_joining_mid_run_is_part_of_the_episode() -> None:
     task = get_task(TASK)
     ep = run_episode(task, RunConfig(mode="full", frontend="oracle", joins=("1@2",)))
     assert ep.success and "robot1" in ep.robots
+
+
+def test_an_intermediate_subtask_is_carried_out_even_when_the_final_goal_already_holds() -> None:
+    # the lettuce starts on a counter: "put it on the counter" holds from the start, the
+    # rinse (lettuce in the sink basin with the faucet running) must still happen first
+    task = adhoc_task("rinse the lettuce, then put it on the counter", "FloorPlan1", "1,2")
+    ep = run_episode(task, RunConfig())
+    assert ep.success and ep.taskspec is not None
+    assert any(not s.final for s in ep.taskspec.subtasks)
+    done = [e.data["action"] for e in ep.trace if e.kind == "action_end" and e.data.get("success")]
+    into_sink = next(i for i, a in enumerate(done) if a.startswith("PutObject(Lettuce_1, SinkBasin"))
+    water = next(i for i, a in enumerate(done) if a.startswith("SwitchOn(Faucet"))
+    onto_counter = next(i for i, a in enumerate(done) if a.startswith("PutObject(Lettuce_1, CounterTop"))
+    assert into_sink < onto_counter and water < onto_counter

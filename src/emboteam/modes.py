@@ -160,7 +160,8 @@ def literal_plan(lists: Mapping[str, Sequence[Action]], state: WorldState) -> Me
 
 
 def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: WorldState,
-            team: Sequence[RobotProfile], *, reactive: bool, replan: bool) -> tuple[ExecutionResult, Simulator]:
+            team: Sequence[RobotProfile], *, reactive: bool, replan: bool,
+            finish_plan: bool = False) -> tuple[ExecutionResult, Simulator]:
     sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
     if not reactive:
         return run_linear(sim, plan, goal, time_limit=cfg.time_limit), sim
@@ -168,7 +169,7 @@ def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: W
     joins = [Join.parse(j, names) for j in cfg.joins]
     replanner = planner_replanner(planner_for("full")) if replan else None
     executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
-                        time_limit=cfg.time_limit)
+                        time_limit=cfg.time_limit, finish_plan=finish_plan)
     return executor.run(), sim
 
 
@@ -194,8 +195,9 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
         spec, plan = plan_spec(spec, cfg, task, scene, state, team, llm)
         plan_seconds = time.perf_counter() - t0
         reactive = cfg.mode in ("full", "no-hp")
-        result, sim = execute(plan, spec.goal(), cfg, scene, state, team,
-                              reactive=reactive, replan=cfg.mode == "full")
+        result, sim = execute(plan, spec.goal(), cfg, scene, state, team, reactive=reactive,
+                              replan=cfg.mode == "full",
+                              finish_plan=any(not s.final for s in spec.subtasks))
     truth = task.goal if task.goal.conditions else (spec.goal() if spec else Goal(conditions=()))
     success, gcr, conditions = score(truth, sim.state)
     fields = result.episode_fields()

@@ -92,7 +92,7 @@ class Executor:
                  replanner: Replanner | None = None, time_limit: float = 600.0,
                  tick_limit: int = 200_000, joins: Sequence[Join | tuple[RobotProfile, float]] = (),
                  seed: int = 0, config: BTConfig | None = None, max_replans: int = 3,
-                 pose_interval: float = 0.5, record_nodes: bool = True) -> None:
+                 pose_interval: float = 0.5, record_nodes: bool = True, finish_plan: bool = False) -> None:
         if time_limit <= 0 or tick_limit <= 0 or max_replans < 0 or pose_interval < 0:
             raise ExecutionConfigError("time_limit and tick_limit must be positive, max_replans and "
                                        "pose_interval non-negative")
@@ -112,6 +112,10 @@ class Executor:
         self.seed = seed
         self.config = config or BTConfig()
         self.max_replans = max_replans
+        #: run the plan to its end even when the goal holds earlier: a plan with
+        #: intermediate subtasks ("rinse the lettuce, then put it on the counter") must not
+        #: stop because the final state happens to hold before the rinse
+        self.finish_plan = finish_plan
         self.recorder = TraceRecorder(env, nodes=record_nodes)
         self.driver = Driver(env, self.recorder, pose_interval=pose_interval)
         self.outcomes: list[ActionOutcome] = []
@@ -142,7 +146,7 @@ class Executor:
                 self._tick_until_quiet(tree)
                 rt = tree.runtime
                 self.failed_robots |= set(rt.branch_failures)
-                if self._goal_holds():
+                if self._goal_holds() and (not self.finish_plan or tree.root.status == Status.SUCCESS):
                     stop = "success"
                     break
                 if self.ticks >= self.tick_limit:
