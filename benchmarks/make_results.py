@@ -111,6 +111,10 @@ servers and a 135M-parameter local model, whose answers say nothing about qualit
 measure: `emboteam bench --suite mace-thor --frontend llm --llm PROVIDER:MODEL[@URL] ...`
 (add `--llm-record DIR` to a `run` to keep a cassette for exact replays).
 
+Planning time (`plan s (p50)`): each worker process plans a task once and serves later
+seeds and fault rates of it from the planner's cache, so the rows at fault rate 0 show
+uncached planning time and the rest mostly cache hits.
+
 ## Ground-truth goals (front end `oracle`)
 
 ```
