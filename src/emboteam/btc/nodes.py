@@ -172,18 +172,22 @@ class RobotIdle(Leaf):
         return Status.SUCCESS
 
 
-class LiteralsHold(Leaf):
+class _LiteralCheck(Leaf):
+    """A condition over some of a step's ground PDDL literals."""
+
+    def __init__(self, name: str, runtime: Runtime, robot: str, step: StepState,
+                 literals: Sequence[PddlLiteral]) -> None:
+        super().__init__(name, runtime, robot, step)
+        self.literals = tuple(literals)
+
+
+class LiteralsHold(_LiteralCheck):
     """The step's PDDL preconditions, evaluated on what the robot observes with the
     planner's own abstraction function (:func:`emboteam.pddl.vocabulary.evaluate`)."""
 
     BTCPP_KIND = "Condition"
     BTCPP_ID = "LiteralsHold"
     DESCRIPTION = "every ground PDDL literal holds on the observed state"
-
-    def __init__(self, name: str, runtime: Runtime, robot: str, step: StepState,
-                 literals: Sequence[PddlLiteral]) -> None:
-        super().__init__(name, runtime, robot, step)
-        self.literals = tuple(literals)
 
     def evaluate(self) -> Status:
         state = self.runtime.state()
@@ -220,17 +224,12 @@ class NoPendingFault(Leaf):
 
 # ---- Post -----------------------------------------------------------------------------
 
-class EffectsObserved(Leaf):
+class EffectsObserved(_LiteralCheck):
     """The step's observable effects hold after its core action."""
 
     BTCPP_KIND = "Condition"
     BTCPP_ID = "EffectsObserved"
     DESCRIPTION = "every observable effect literal holds on the observed state"
-
-    def __init__(self, name: str, runtime: Runtime, robot: str, step: StepState,
-                 literals: Sequence[PddlLiteral]) -> None:
-        super().__init__(name, runtime, robot, step)
-        self.literals = tuple(literals)
 
     def evaluate(self) -> Status:
         state = self.runtime.state()
