@@ -14,18 +14,14 @@ cassettes, not through seeds.
 from __future__ import annotations
 
 import json
-import os
 import time
 from typing import Any
 
 import anthropic
 
-from emboteam.llm.backend import TransientFailure, parse_retry_after, status_failure
-from emboteam.llm.errors import LLMConfigError
+from emboteam.llm.backend import TransientFailure, api_key, parse_retry_after, status_failure
 from emboteam.llm.messages import LLMRequest, LLMResponse
 from emboteam.llm.spec import LLMSpec
-
-_NO_KEY = "no-key-required"
 
 
 class AnthropicBackend:
@@ -33,11 +29,7 @@ class AnthropicBackend:
     (passed explicitly, so the client never falls back to profiles on disk)."""
 
     def __init__(self, spec: LLMSpec, *, timeout: float) -> None:
-        key = os.environ.get("ANTHROPIC_API_KEY")
-        if not key:
-            if spec.base_url is None:
-                raise LLMConfigError("ANTHROPIC_API_KEY is not set (needed for anthropic: without a base URL)")
-            key = _NO_KEY
+        key = api_key("ANTHROPIC_API_KEY", spec)
         self.name = str(spec)
         self.model = spec.model
         self._client = anthropic.Anthropic(api_key=key, base_url=spec.base_url, timeout=timeout, max_retries=0)

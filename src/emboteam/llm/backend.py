@@ -8,11 +8,14 @@ and recording live in :class:`emboteam.llm.client.LLMClient`, once for every bac
 
 from __future__ import annotations
 
+import os
 from datetime import datetime, timezone
 from email.utils import parsedate_to_datetime
 from typing import Literal, Protocol
 
+from emboteam.llm.errors import LLMConfigError
 from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.spec import LLMSpec
 
 TransientKind = Literal["rate_limit", "server", "timeout", "connection"]
 PermanentKind = Literal["auth", "request", "server", "timeout"]
@@ -76,3 +79,17 @@ def status_failure(status: int, message: str, retry_after: float | None) -> Tran
     if status in (401, 403):
         return PermanentFailure("auth", message, status=status)
     return PermanentFailure("request", message, status=status)
+
+
+#: sent to self-hosted servers that need no key (the official clients insist on one)
+NO_KEY = "no-key-required"
+
+
+def api_key(variable: str, spec: LLMSpec) -> str:
+    """The key from the environment only; a self-hosted server (a base URL) may need none."""
+    key = os.environ.get(variable)
+    if key:
+        return key
+    if spec.base_url is None:
+        raise LLMConfigError(f"{variable} is not set (needed for {spec.provider}: without a base URL)")
+    return NO_KEY

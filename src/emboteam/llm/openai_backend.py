@@ -12,15 +12,13 @@ model as feedback). The client's own retries are off (``max_retries=0``): see
 
 from __future__ import annotations
 
-import os
 import time
 from typing import Any
 from urllib.parse import urlsplit
 
 import openai
 
-from emboteam.llm.backend import TransientFailure, parse_retry_after, status_failure
-from emboteam.llm.errors import LLMConfigError
+from emboteam.llm.backend import TransientFailure, api_key, parse_retry_after, status_failure
 from emboteam.llm.messages import LLMRequest, LLMResponse
 from emboteam.llm.spec import LLMSpec
 
@@ -29,7 +27,6 @@ _UNPORTABLE = frozenset({"minLength", "maxLength", "minimum", "maximum", "exclus
                          "exclusiveMaximum", "minItems", "maxItems", "pattern", "format", "default"})
 
 #: what local servers get when no key is set: they ignore it, but the client insists on one
-_NO_KEY = "no-key-required"
 
 
 def strict_subset(schema: Any) -> Any:
@@ -49,11 +46,7 @@ class OpenAIBackend:
     """One OpenAI-compatible endpoint. The API key comes from ``OPENAI_API_KEY`` only."""
 
     def __init__(self, spec: LLMSpec, *, timeout: float) -> None:
-        key = os.environ.get("OPENAI_API_KEY")
-        if not key:
-            if spec.base_url is None:
-                raise LLMConfigError("OPENAI_API_KEY is not set (needed for openai: without a base URL)")
-            key = _NO_KEY
+        key = api_key("OPENAI_API_KEY", spec)
         self.name = str(spec)
         self.model = spec.model
         self._official = _is_openai_proper(spec.base_url)
