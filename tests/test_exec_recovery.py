@@ -194,6 +194,9 @@ def test_breakdown_without_replanner_fails_and_does_not_hang() -> None:
     assert set(res.failed_robots) == {"robot1", "robot2"}
     why = [e.data["why"] for e in res.trace if e.kind == "recovery" and e.robot == "robot2" and e.data.get("gave_up")]
     assert any("robot1.2 will not happen" in w for w in why)
+    gave_up = [(e.robot, e.data.get("step"), e.data["why"]) for e in res.trace
+               if e.kind == "recovery" and e.data.get("gave_up")]
+    assert len(gave_up) == len(set(gave_up)), gave_up  # each give-up is recorded once
     assert res.makespan < 30
 
 

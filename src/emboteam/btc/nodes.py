@@ -553,15 +553,17 @@ class Attempts(py_trees.decorators.Decorator):
             return status
         self.step.attempts += 1
         limit = self.runtime.config.max_attempts
-        if self.step.fatal is None and self.step.attempts >= limit:
+        exhausted = self.step.fatal is None and self.step.attempts >= limit
+        if exhausted:
             self.step.fatal = (f"{self.step.attempts} attempts failed, last: "
                                f"{self.step.fault}: {self.step.fault_message}")
         self.runtime.mark_progress()
         if self.step.fatal is not None:
             self.feedback_message = self.step.fatal
             self.runtime.failed_steps[self.step.robot] = self.step
-            self.runtime.emit("recovery", self.step.robot, step=self.step.step, strategy=None,
-                                   why=self.step.fatal, gave_up=True)
+            if exhausted:  # a recovery that gave up has already said so in the trace
+                self.runtime.emit("recovery", self.step.robot, step=self.step.step, strategy=None,
+                                  why=self.step.fatal, gave_up=True)
             return Status.FAILURE
         self.feedback_message = f"attempt {self.step.attempts} failed ({self.step.fault}); retrying"
         return Status.RUNNING
