@@ -72,6 +72,8 @@ def test_node_status_changes_are_traced() -> None:
     nodes = [e for e in res.trace if e.kind == "node"]
     core = [e.data["status"] for e in nodes if e.data["node"] == "GoToObject(Fridge_1)"]
     assert core[:2] == ["RUNNING", "SUCCESS"]
+    kinds = {e.data["node"]: e.data["type"] for e in nodes}
+    assert kinds["GoToObject(Fridge_1)"] == "Act" and kinds["team"] == "Parallel"  # the viewer tags them
     assert all(e.data["path"].startswith("team/isolate robot1") for e in nodes if e.robot)
     quiet = Executor(team_sim("FloorPlan1", "1"), plan, goal, record_nodes=False).run()
     assert not [e for e in quiet.trace if e.kind == "node"]

@@ -80,5 +80,5 @@ class TraceRecorder:
             self.events.append(TraceEvent(t=round(self.env.now, 6), kind="node",
                                           robot=robots.get(node.id),
                                           data={"node": node.name, "path": paths.get(node.id, node.name),
-                                                "status": status}))
+                                                "type": type(node).__name__, "status": status}))
         return visit
