@@ -534,18 +534,22 @@ class InReach(Leaf):
 
 # ---- decorators -----------------------------------------------------------------------
 
-class Attempts(py_trees.decorators.Decorator):
-    """Re-run a step's action sequence after a core failure, up to ``max_attempts``
-    times; give up at once when recovery declared the step lost."""
-
-    BTCPP_ID = "Attempts"
-    DESCRIPTION = "retries the action sequence after a core failure; fails at once when recovery gave up"
+class _StepDecorator(py_trees.decorators.Decorator):
+    """A decorator around one plan step's subtree, with the runtime and the step's state."""
 
     def __init__(self, name: str, child: py_trees.behaviour.Behaviour, runtime: Runtime,
                  step: StepState) -> None:
         super().__init__(name=name, child=child)
         self.runtime = runtime
         self.step = step
+
+
+class Attempts(_StepDecorator):
+    """Re-run a step's action sequence after a core failure, up to ``max_attempts``
+    times; give up at once when recovery declared the step lost."""
+
+    BTCPP_ID = "Attempts"
+    DESCRIPTION = "retries the action sequence after a core failure; fails at once when recovery gave up"
 
     def update(self) -> Status:
         status = self.decorated.status
@@ -572,19 +576,13 @@ class Attempts(py_trees.decorators.Decorator):
         return [Port("max_attempts", str(self.runtime.config.max_attempts))]
 
 
-class RecoverLoop(py_trees.decorators.Decorator):
+class RecoverLoop(_StepDecorator):
     """Recover: run the recovery subtree Pre's diagnosis calls for, then report RUNNING
     so the reactive Fallback re-checks Pre on the next tick (a recovery succeeds only by
     making Pre true). FAILURE only when the step is lost."""
 
     BTCPP_ID = "RecoverLoop"
     DESCRIPTION = "runs the diagnosed recovery and hands back to Pre; fails only when the step is lost"
-
-    def __init__(self, name: str, child: py_trees.behaviour.Behaviour, runtime: Runtime,
-                 step: StepState) -> None:
-        super().__init__(name=name, child=child)
-        self.runtime = runtime
-        self.step = step
 
     def update(self) -> Status:
         status = self.decorated.status
