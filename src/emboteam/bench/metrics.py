@@ -129,7 +129,7 @@ class GroupSummary(BaseModel):
 
 
 class BenchSummary(BaseModel):
-    """``emboteam bench --json``: the fields of docs/DESIGN.md in its order, plus ``sr_ci``."""
+    """``emboteam bench --json``: the fields of the command-line contract (docs/architecture.md) in its order, plus ``sr_ci``."""
 
     model_config = ConfigDict(frozen=True)
 

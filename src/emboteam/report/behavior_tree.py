@@ -7,7 +7,7 @@ Two sources, best first:
   ticked, so it shows the tree that actually ran whatever the compiler named its nodes;
 - otherwise the plan (episodes of modes without a behavior tree, or traces without node
   events): Parallel -> one Sequence per robot -> per step Sequence(Fallback(Pre,
-  Recover), Core, Post), as docs/DESIGN.md specifies, with statuses derived from the
+  Recover), Core, Post), as docs/architecture.md specifies, with statuses derived from the
   step's action events. The page says which source it shows.
 """
 
@@ -179,7 +179,7 @@ def _step_changes(step: PlanStep, bars: list[ActionBar]) -> dict[str, list[tuple
 
 def tree_from_plan(plan: MergedPlan, actions: Sequence[ActionBar], success: bool | None,
                    end: float) -> BehaviorTree:
-    """DESIGN.md's tree shape for ``plan``, with statuses derived from executed actions."""
+    """The tree shape of docs/architecture.md for ``plan``, with statuses derived from executed actions."""
     by_step: dict[str, list[ActionBar]] = {}
     for a in actions:
         if a.step is not None:

@@ -2,7 +2,7 @@
 
 Pure functions of (state, robot, action), no time and no faults: the simulator adds
 those. Each check returns a typed :class:`Failure` or ``None``; :func:`apply_action`
-assumes the check passed. Rules follow docs/THOR_SEMANTICS.md; choices where AI2-THOR is
+assumes the check passed. Rules follow AI2-THOR 5.x (docs/world.md, docs/architecture.md); choices where AI2-THOR is
 silent are documented on the function that makes them and in docs/world.md.
 """
 
@@ -171,7 +171,7 @@ def apply_action(state: WorldState, robot: str, action: Action) -> None:
     - SliceObject spawns the catalogue's pieces on the whole's receptacle; the whole is
       deactivated (``gone``), as AI2-THOR does. Breaking an Egg cracks it the same way.
     - ThrowObject lands the held object in the nearest GarbageCan within reach whatever the
-      placement rules (THOR_SEMANTICS: "the held object ends in a GarbageCan").
+      placement rules (AI2-THOR semantics, docs/world.md: "the held object ends in a GarbageCan").
     - DropHandObject drops it on the floor under the robot.
     - BreakObject switches a running object off (a broken Television or Laptop cannot be
       switched on again, see :func:`check_action`).
