@@ -160,7 +160,7 @@ def test_task_files_in_floor_plan_order(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize(("line", "value"), [
     ('{"a": None, "b": [1, 2,],}', {"a": None, "b": [1, 2]}),
-    ('{"a": null, "b": true, "c": false}', {"a": None, "b": True, "c": False}),
+    ('{"a": Null, "b": True, "c": false}', {"a": None, "b": True, "c": False}),
     ('{"a": [{"x": 1}, {"y": 2}', {"a": [{"x": 1}, {"y": 2}]}),
     ('{"s": [{"n": "Box"},{"n": "Sofa"}, "trans":0, "max_trans":0}', {"s": [{"n": "Box"}, {"n": "Sofa"}],
                                                                        "trans": 0, "max_trans": 0}),
@@ -196,3 +196,75 @@ def test_name_resolution() -> None:
     assert resolve_type("Laptop", scene) == ("Laptop", None)
     assert resolve_type("Spaceship", scene)[0] is None
     assert resolve_type(None, scene)[0] is None
+
+
+# ---- valid files read faithfully ------------------------------------------------------------
+
+
+def _line(task: str, states: list[dict[str, object]], robots: tuple[int, ...] = (1, 2)) -> str:
+    import json
+
+    return json.dumps({"task": task, "robot list": list(robots), "object_states": states})
+
+
+def test_strict_json_is_read_as_json_without_repairs() -> None:
+    value, repairs = read_record('{"task": "wipe the table and\\/or the sink", "state": null, "ok": true}')
+    assert value == {"task": "wipe the table and/or the sink", "state": None, "ok": True}
+    assert repairs == []  # a valid null is not a repair
+
+
+def test_a_valid_file_imports_without_repair_notes_and_unescapes(tmp_path: Path) -> None:
+    (tmp_path / "FloorPlan1.json").write_text(
+        '{"task": "Put the apple in the fridge and\\/or turn off the light", "robot list": [1, 2], '
+        '"object_states": [{"name": "Fridge", "contains": ["Apple"], "state": null}, '
+        '{"name": "LightSwitch", "contains": [], "state": "OFF"}]}\n')
+    suite = import_smart_llm(tmp_path)
+    (task,) = suite.tasks
+    assert task.instruction == "Put the apple in the fridge and/or turn off the light"
+    assert "repaired" not in task.notes and suite.problems == ()
+
+
+def test_repeated_contained_items_are_counted(tmp_path: Path) -> None:
+    # FloorPlan1 has two vases and one egg
+    (tmp_path / "FloorPlan1.json").write_text("\n".join([
+        _line("two vases and an apple in the fridge",
+              [{"name": "Fridge", "contains": ["Vase", "Apple", "vase"], "state": None}]),
+        _line("two eggs in the fridge, and the tomato",
+              [{"name": "Fridge", "contains": ["Egg", "Egg", "Tomato"], "state": None}]),
+    ]) + "\n")
+    suite = import_smart_llm(tmp_path)
+    tasks = {t.id: t for t in suite.tasks}
+    assert goal_text(tasks["FloorPlan1-1"].goal) == ["inside(2 of Vase, Fridge)", "inside(Apple, Fridge)"]
+    # the scene has one egg: asking for two is reported, not quietly made one
+    assert goal_text(tasks["FloorPlan1-2"].goal) == ["inside(Tomato, Fridge)"]
+    assert any(p.startswith("FloorPlan1.json:2: inside(2 of Egg, Fridge): FloorPlan1 has only 1 Egg")
+               for p in suite.problems), suite.problems
+
+
+def test_a_line_whose_goal_already_holds_is_a_problem_line(tmp_path: Path) -> None:
+    # in FloorPlan1 the egg starts in the fridge and the light starts on
+    (tmp_path / "FloorPlan1.json").write_text("\n".join([
+        _line("keep the egg in the fridge with the light on",
+              [{"name": "Fridge", "contains": ["Egg"], "state": None},
+               {"name": "LightSwitch", "contains": [], "state": "ON"}]),
+        _line("keep the egg in the fridge and turn off the light",
+              [{"name": "Fridge", "contains": ["Egg"], "state": None},
+               {"name": "LightSwitch", "contains": [], "state": "OFF"}]),
+    ]) + "\n")
+    suite = import_smart_llm(tmp_path)
+    assert [t.id for t in suite.tasks] == ["FloorPlan1-2"]  # one condition left to do is a task
+    (problem,) = suite.problems
+    assert problem.startswith("FloorPlan1.json:1: every goal condition already holds at the start")
+    assert "free success" in problem and "task skipped" in problem
+
+
+def test_names_resolve_against_the_scene_first(tmp_path: Path) -> None:
+    # FloorPlan301 (a bedroom) has a DeskLamp and no FloorLamp; FloorPlan1 has neither
+    assert resolve_type("lamp", load_scene("FloorPlan301")) == ("DeskLamp", "'lamp' -> DeskLamp")
+    assert resolve_type("Lamp", load_scene("FloorPlan1"))[0] == "FloorLamp"  # the alias, then validation
+    (tmp_path / "FloorPlan301.json").write_text(
+        _line("turn off the lamp", [{"name": "lamp", "contains": [], "state": "OFF"}], robots=(1,)) + "\n")
+    suite = import_smart_llm(tmp_path)
+    (task,) = suite.tasks
+    assert goal_text(task.goal) == ["switched_off(DeskLamp)"]
+    assert "'lamp' -> DeskLamp" in task.notes

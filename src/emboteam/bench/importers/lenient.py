@@ -11,6 +11,7 @@ is reported, so an importer can say what it changed.
 from __future__ import annotations
 
 import ast
+import json
 import re
 from typing import Any
 
@@ -102,7 +103,15 @@ def repair(text: str) -> tuple[str, list[str]]:
 
 
 def read_record(text: str) -> tuple[Any, list[str]]:
-    """Parse one record leniently: (value, repairs). Raises :class:`RecordSyntaxError`."""
+    """Parse one record leniently: (value, repairs). Raises :class:`RecordSyntaxError`.
+
+    Strict JSON is tried first: a valid line needs no repair, and only the JSON reader
+    gets its escapes right (``\\/`` is ``/`` in JSON, a backslash and a slash to
+    :func:`ast.literal_eval`)."""
+    try:
+        return json.loads(text), []
+    except (ValueError, RecursionError):  # JSONDecodeError is a ValueError
+        pass
     try:
         fixed, repairs = repair(text)
     except RecordSyntaxError as exc:

@@ -10,21 +10,26 @@ Every ``FloorPlanN*.json`` file beneath PATH holds one task per line::
 The floor plan comes from the file name, ``robot list`` indexes the 28 SMART-LLM profiles
 (1-based, as :mod:`emboteam.world.robots` numbers them), and each ``object_states`` entry
 becomes goal conditions: its ``state`` one condition (``OFF`` -> ``switched_off(LightSwitch)``),
-each item it ``contains`` one ``inside(Item, Name)`` (one condition per item, so GCR stays a
-share; see docs/metrics.md).
+each item type it ``contains`` one ``inside(Item, Name)`` (one condition per item type, so GCR
+stays a share; see docs/metrics.md); an item listed twice is counted, ``["Egg", "Egg"]`` ->
+``inside(2 of Egg, Fridge)``.
 
-The files are hand-written: lines are repaired leniently (:mod:`.lenient`), names are
-normalised ("CoffeeTable," -> CoffeeTable, "cabinet" -> Cabinet, "trash" -> GarbageCan,
-"Labtop" -> Laptop). What cannot be used is reported in :attr:`Suite.problems` as
-``FILE:LINE: why`` and left out, never fatal: a line without ground truth drops its task, an
-unusable entry drops its condition. A task kept with a condition the simulator's rules or
-its team cannot achieve is kept as the peers wrote it and flagged ("kept: ...").
+The files are hand-written: a line that is strict JSON is read as JSON, any other is repaired
+leniently (:mod:`.lenient`); names are resolved against the scene's types first ("lamp" is the
+DeskLamp of a room without a FloorLamp), then normalised ("CoffeeTable," -> CoffeeTable,
+"cabinet" -> Cabinet, "trash" -> GarbageCan, "Labtop" -> Laptop). What cannot be used is
+reported in :attr:`Suite.problems` as ``FILE:LINE: why`` and left out, never fatal: a line
+without ground truth, or whose conditions all hold already at the start (a free success),
+drops its task; an unusable entry drops its condition. A task with a condition the
+simulator's rules or its team cannot achieve is kept as the peers wrote it and flagged
+("kept: ...").
 """
 
 from __future__ import annotations
 
 import difflib
 import re
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +38,7 @@ from emboteam.bench.suites import Suite, UnknownSuiteError
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.checker import GoalValidationError, validate_goal
+from emboteam.world.checker import GoalValidationError, check_goal, validate_goal
 from emboteam.world.goals import Condition, Goal, ObjectRef, Predicate
 from emboteam.world.robots import robot_profile
 from emboteam.world.scene import Scene, load_scene, normalize_floor_plan
@@ -83,16 +88,29 @@ def _floor_number(p: Path) -> int:
 
 
 def resolve_type(raw: object, scene: Scene) -> tuple[str | None, str | None]:
-    """(AI2-THOR type, note on the repair) for a peer's name, or (None, why not)."""
+    """(AI2-THOR type, note on the repair) for a peer's name, or (None, why not).
+
+    The scene's own types are tried first, so a generic name means what the floor plan
+    holds: "lamp" is the DeskLamp of a room that has a DeskLamp and no FloorLamp. Only a
+    name the scene cannot explain falls back to the aliases and the whole catalogue (and
+    then :func:`validate_goal` says the scene lacks it)."""
     if not isinstance(raw, str) or not raw.strip():
         return None, f"not a name: {raw!r}"
     letters = re.sub(r"[^A-Za-z]", "", raw)
     key = letters.lower()
+    if not key:
+        return None, f"not a name: {raw!r}"
     present = sorted(scene.types())
-    cat = load_catalogue()
     by_lower = {t.lower(): t for t in present}
-    by_lower_all = {t.lower(): t for t in cat.types}
-    found = NAME_ALIASES.get(key) or by_lower.get(key) or by_lower_all.get(key)
+    by_lower_all = {t.lower(): t for t in load_catalogue().types}
+    alias = NAME_ALIASES.get(key)
+    # a generic word the scene's types end with ("lamp" -> DeskLamp, "table" -> SideTable)
+    endings = [t for t in present if t.lower().endswith(key)]
+    found = (by_lower.get(key)
+             or (alias if alias in by_lower.values() else None)
+             or (endings[0] if len(endings) == 1 else None)
+             or (alias if alias in endings else None)
+             or alias or by_lower_all.get(key))
     if found is None:
         close = difflib.get_close_matches(key, list(by_lower), n=1, cutoff=0.8)
         found = by_lower[close[0]] if close else None
@@ -126,6 +144,7 @@ def _conditions(entry: object, scene: Scene, where: str, problems: list[str],
     if not isinstance(contains, list):
         problems.append(f"{where}: {name}: 'contains' is not a list ({contains!r}); ignored")
         contains = []
+    wanted: Counter[str] = Counter()  # a repeated item means that many of it: ["Egg", "Egg"]
     for item in contains:
         item_type, item_note = resolve_type(item, scene)
         if item_type is None:
@@ -133,8 +152,10 @@ def _conditions(entry: object, scene: Scene, where: str, problems: list[str],
             continue
         if item_note:
             notes.append(item_note)
+        wanted[item_type] += 1
+    for item_type, count in wanted.items():
         out.append(Condition(predicate=Predicate.inside, subject=ObjectRef(types=(item_type,)),
-                             receptacle=ObjectRef(types=(name,))))
+                             receptacle=ObjectRef(types=(name,)), count=count))
     if not out and state in _NO_STATE and not contains:
         problems.append(f"{where}: {name}: no state and contains nothing: nothing to check; entry ignored")
     usable: list[Condition] = []
@@ -192,6 +213,11 @@ def _task(record: Any, *, task_id: str, suite: str, scene: Scene, where: str,
     task = BenchTask(id=task_id, suite=suite, floor_plan=scene.floor_plan, robots=team,
                      category="imported", instruction=instruction.strip(),
                      goal=Goal(conditions=tuple(conditions)), notes="; ".join(notes))
+    if check_goal(task.goal, task.initial_state()).success:
+        problems.append(f"{where}: every goal condition already holds at the start in {task.floor_plan} "
+                        f"({', '.join(str(c) for c in conditions)}): it would score as a free success; "
+                        "task skipped")
+        return None
     _flag_unachievable(task, where, problems)
     return task
 
