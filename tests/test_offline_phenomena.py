@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import GroundingError, OfflineFrontend, OfflineParseError
 from emboteam.pfg.offline.evaluate import initial_state
-from emboteam.pfg.offline.frontend import ParseResult
+from emboteam.pfg.reading import Reading
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
@@ -23,7 +23,7 @@ from emboteam.world.scene import load_scene
 FRONTEND = OfflineFrontend()
 
 
-def run(text: str, fp: int = 1, setup: list[dict[str, Any]] | None = None) -> ParseResult:
+def run(text: str, fp: int = 1, setup: list[dict[str, Any]] | None = None) -> Reading:
     scene = load_scene(fp)
     team = parse_team("1,2")
     state = initial_state({"setup": setup or []}, scene, team)
@@ -110,7 +110,7 @@ def test_a_vague_clause_is_skipped_with_a_note_when_others_say_what_to_do(
         text: str, fp: int, expected: set[str]) -> None:
     result = run(text, fp)
     assert {str(c) for c in result.spec.goal().conditions} == expected
-    assert result.notes and all(n.startswith("skipped:") and "vague" in n for n in result.notes)
+    assert result.notes and all(n.kind == "vague" and "vague" in n.reason for n in result.notes)
 
 
 def test_a_clear_instruction_has_no_notes() -> None:

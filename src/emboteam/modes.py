@@ -23,6 +23,7 @@ from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
 from emboteam.pfg.offline import OfflineFrontend
+from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.pipeline import RunConfig, initial_state, score
@@ -73,8 +74,10 @@ def make_llm(cfg: RunConfig) -> LLMClient | None:
 
 
 def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
-               team: Sequence[RobotProfile], llm: LLMClient | None) -> TaskSpec:
-    """The PFG: the instruction as a TaskSpec, by the configured front end."""
+               team: Sequence[RobotProfile], llm: LLMClient | None,
+               notes: list[str] | None = None) -> TaskSpec:
+    """The PFG: the instruction as a TaskSpec, by the configured front end. ``notes``, if
+    given, receives what the front end could not read or read with doubt (for the user)."""
     if cfg.frontend == "oracle":
         from emboteam.pfg.oracle import OracleFrontend
 
@@ -86,7 +89,16 @@ def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
 
         assert llm is not None
         return LLMFrontend(llm).decompose(task.instruction, scene, state, team)
-    return offline_frontend().decompose(task.instruction, scene, state, team)
+    reading = offline_frontend().parse(task.instruction, scene, state, team)
+    if notes is not None:
+        notes.extend(reading_notes(reading))
+    return reading.spec
+
+
+def reading_notes(reading: Reading) -> list[str]:
+    """A reading's notes and unsure conditions, one line each, as the user sees them."""
+    return [*(str(n) for n in reading.notes),
+            *(f"unsure {c}: chosen with doubt" for c in reading.unsure)]
 
 
 def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, state: WorldState,
@@ -180,6 +192,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
     llm = make_llm(cfg)
     t0 = time.perf_counter()
     spec: TaskSpec | None = None
+    notes: list[str] = []
     if cfg.mode in ("no-pfg-hp", "smart-llm"):
         lists = action_lists(task, cfg, scene, state, team, llm)
         plan_seconds = time.perf_counter() - t0
@@ -191,7 +204,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
             result, sim = execute(literal_plan(lists, state), goal, cfg, scene, state, team,
                                   reactive=True, replan=False)
     else:
-        spec = understand(task, cfg, scene, state, team, llm)
+        spec = understand(task, cfg, scene, state, team, llm, notes)
         spec, plan = plan_spec(spec, cfg, task, scene, state, team, llm)
         plan_seconds = time.perf_counter() - t0
         reactive = cfg.mode in ("full", "no-hp")
@@ -208,7 +221,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
         frontend=cfg.frontend, llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(),
         fault_level=cfg.fault_level,
         llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
-        plan_seconds=round(plan_seconds, 4), taskspec=spec,
+        plan_seconds=round(plan_seconds, 4), taskspec=spec, notes=tuple(notes),
         error=result.error, **fields,
     )
 

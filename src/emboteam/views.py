@@ -90,6 +90,8 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
     for c in episode.conditions:
         conds.add_row("[green]✓[/green]" if c.holds else "[red]✗[/red]", c.condition)
     body: list[object] = [metrics, Text(""), conds]
+    if episode.notes:      # what the front end could not read, or read with doubt
+        body += [Text("")] + [Text(f"note: {n}", style="yellow") for n in episode.notes]
     if episode.error:
         body += [Text(""), Text(f"error: {episode.error}", style="red")]
     if out_dir:

@@ -59,6 +59,8 @@ class Episode(BaseModel):
     plan_seconds: float = Field(0.0, description="wall-clock seconds in PFG + HP")
     wall_seconds: float = 0.0
     error: str | None = Field(None, description="the typed error that ended the episode early")
+    notes: tuple[str, ...] = Field((), description="what the front end could not read, or read "
+                                   "with doubt, one line each (span and why)")
 
     conditions: tuple[ConditionOutcome, ...] = ()
     taskspec: TaskSpec | None = None
@@ -72,6 +74,7 @@ class Episode(BaseModel):
             "exec": round(self.exec, 4), "makespan": round(self.makespan, 2),
             "actions": self.actions, "llm_calls": self.llm_calls, "tokens": self.tokens,
             "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
+            "notes": list(self.notes),
         }
 
     def save(self, directory: Path) -> None:

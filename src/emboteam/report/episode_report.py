@@ -97,7 +97,7 @@ def episode_view(episode: Episode) -> dict[str, Any]:
             "room": scene.room if scene else "", "robots": list(episode.robots), "category": episode.category,
             "mode": episode.mode, "frontend": episode.frontend, "seed": episode.seed,
             "fault_level": episode.fault_level, "faults": episode.faults.model_dump(mode="json"),
-            "error": episode.error,
+            "error": episode.error, "notes": list(episode.notes),
         },
         "metrics": {
             "success": episode.success, "gcr": episode.gcr, "exec": episode.exec,

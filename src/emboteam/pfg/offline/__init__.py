@@ -1,7 +1,8 @@
 """The offline parser: the PFG's embedded default front end (rule-based, no LLM).
 
 ``OfflineFrontend().decompose(instruction, scene, state, team) -> TaskSpec``;
-``OfflineFrontend().parse(...) -> ParseResult`` also gives the notes on skipped clauses.
+``OfflineFrontend().parse(...) -> Reading`` also gives a note per unread span and the
+conditions chosen with doubt.
 Errors are :class:`OfflineParseError` and its subclass :class:`GroundingError`. See
 docs/offline_parser.md.
 """

@@ -105,18 +105,29 @@ class Discourse:
                 return m.ref
         # what the last clauses acted on before where they put it ("put the lettuce in the
         # fridge after washing it": the lettuce), unless only a place fits ("close it")
-        for role in ("object", "place") if prefer == "object" else ("place", "object"):
+        order = ("object", "place") if prefer == "object" else ("place", "object")
+        for role in order:
             for m in reversed(self.history):
                 kind = "place" if m.role == "dest" else m.role
                 if kind == role and self.fits(m.ref, need) and m.head.noun is not None and \
                         m.head.noun.concept.kind not in ("room", "anything"):
+                    if role != order[0]:    # not what the verb prefers: maybe a guess
+                        self._doubt_unless_alone(m.ref, need)
                     return m.ref
         for m in reversed(self.history):
             if self.fits(m.ref, need):
+                self._doubt_unless_alone(m.ref, need)    # the last resort
                 return m.ref
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _doubt_unless_alone(self, ref: Ref, need: str | None) -> None:
+        """A pronoun resolved by a fallback is a guess when something else mentioned
+        could also be meant: its references are recorded as doubtful."""
+        others = {x.ref.groups for x in self.history if self.fits(x.ref, need)} - {ref.groups}
+        if others:
+            self.g.doubts.update(r for r, _ in ref.groups)
 
     def remember_places(self, ref: Ref, head: Head) -> None:
         """Where a mentioned object is said to be ("the remote is in one of the drawers",

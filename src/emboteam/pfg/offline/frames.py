@@ -339,6 +339,14 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
             continue
         if (it.particle is not None or it.state is not None) and (
                 j + 1 >= n or not np_start(items[j + 1]) or (items[j + 1].pron == "it" and False)):
+            if it.particle in ("on", "off") and pending and j > 0 and items[j - 1].conj == "and" \
+                    and all(t.particle not in (None, it.particle) for t in pending):
+                # "switch the lamp on and off": both, for the same objects (a contradiction
+                # the front end reports)
+                pending.extend(Target(t.head, t.dest, t.prep, it.particle,
+                                      (Stat.SWITCH, it.particle == "on")) for t in list(pending))
+                j += 1
+                continue
             if it.particle in ("on", "off") or it.state is not None:
                 if it.state is not None:
                     frame.state = it.state

@@ -5,10 +5,11 @@ from __future__ import annotations
 import logging
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.clauses import Clause, segment
+from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
@@ -19,8 +20,9 @@ from emboteam.pfg.offline.phrases import Head, ParsedClause, Target
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.offline.text import normalize
+from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.world.goals import Predicate
+from emboteam.world.goals import ObjectRef, Predicate
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -29,13 +31,23 @@ _MAX_CHARS = 2000
 log = logging.getLogger(__name__)
 
 
-@dataclass(frozen=True)
-class ParseResult:
-    """A parse and what the parser left out on purpose, one line each ("skipped 'tidy
-    up the kitchen': too vague ..."): a skipped clause is reported, never silently lost."""
+#: the offline parser's parse is a :class:`~emboteam.pfg.reading.Reading` (kept under
+#: its old name for callers that import it)
+ParseResult = Reading
 
-    spec: TaskSpec
-    notes: tuple[str, ...] = ()
+
+def _note(exc: OfflineParseError) -> ReadingNote:
+    """A skipped clause as the note the user sees: the span and why."""
+    return ReadingNote(exc.phrase or "", exc.message, "vague" if exc.vague else "unread")
+
+
+def _unsure(spec: TaskSpec, doubts: set[ObjectRef]) -> tuple[str, ...]:
+    """The spec's conditions that name a reference chosen with doubt."""
+    out: list[str] = []
+    for c in spec.goal().conditions:
+        if (c.subject in doubts or c.receptacle in doubts) and str(c) not in out:
+            out.append(str(c))
+    return tuple(out)
 
 
 def _vague_phrase(clause: Clause) -> str | None:
@@ -61,6 +73,25 @@ def _attach_means(parsed: list[ParsedClause]) -> None:
                 for f in other.frames:
                     f.means = f.means or p.means
                 break
+
+
+#: acts whose object may be left out on purpose ("dim", "water" the plants, "go")
+_NO_OBJECT_ACTS = frozenset({lexicon.Act.DIM, lexicon.Act.BRIGHTEN, lexicon.Act.WATER,
+                             lexicon.Act.GO, lexicon.Act.MAKE, lexicon.Act.VAGUE})
+
+
+def _share_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
+    """"open and close the fridge", "wash and dry the mug": a verb without an object,
+    coordinated with the next clause of its sentence, shares that clause's objects."""
+    for k in range(len(parsed) - 1):
+        p, nxt = parsed[k], parsed[k + 1]
+        if clauses[k + 1].sentence != clauses[k].sentence or clauses[k + 1].link != "and" \
+                or len(p.frames) != 1 or not nxt.frames or not nxt.frames[0].targets:
+            continue
+        frame = p.frames[0]
+        if frame.targets or frame.act is None or frame.act in _NO_OBJECT_ACTS or frame.report:
+            continue
+        frame.targets = [Target(t.head, [], None) for t in nxt.frames[0].targets]
 
 
 def _repeat_for_also(parsed: list[ParsedClause]) -> None:
@@ -143,8 +174,9 @@ class OfflineFrontend:
         return self.parse(instruction, scene, state, team).spec
 
     def parse(self, instruction: str, scene: Scene, state: WorldState,
-              team: Sequence[RobotProfile]) -> ParseResult:
-        """The TaskSpec and the notes on what was skipped (also logged at INFO)."""
+              team: Sequence[RobotProfile]) -> Reading:
+        """The TaskSpec, a note per span that was skipped (also logged at INFO) and the
+        conditions chosen with doubt."""
         text = instruction.strip()
         if not text:
             raise OfflineParseError("empty instruction")
@@ -156,6 +188,7 @@ class OfflineFrontend:
         drafts: dict[int, list[Draft]] = {}
         unknown: list[str] = []
         skipped: list[OfflineParseError] = []
+        failed: list[OfflineParseError] = []
         verbs_seen = False
         parsed_clauses: list[ParsedClause] = []
         for k, c in enumerate(clauses):
@@ -166,6 +199,7 @@ class OfflineFrontend:
                 c.sentence and c.link == "and"
             parsed_clauses.append(parse_clause(c, directive=inherit))
         _attach_means(parsed_clauses)
+        _share_objects(clauses, parsed_clauses)
         _repeat_for_also(parsed_clauses)
         for ci, (clause, parsed) in enumerate(zip(clauses, parsed_clauses, strict=True)):
             chore = _vague_phrase(clause)
@@ -189,11 +223,10 @@ class OfflineFrontend:
                     out = concat(out, semantics.frame(frame, ci))
                 except OfflineParseError as exc:
                     # "when you get a chance": small talk; "dim things", "tidy up": too
-                    # vague, maybe said better by another clause
-                    if frame.weak or exc.vague:
-                        skipped.append(exc)
-                        continue
-                    raise
+                    # vague, maybe said better by another clause; anything else that cannot
+                    # be read is skipped with a note when another act can be
+                    (skipped if frame.weak or exc.vague else failed).append(exc)
+                    continue
             if out:
                 drafts[ci] = out
                 continue
@@ -203,12 +236,16 @@ class OfflineFrontend:
                 unknown.extend(parsed.unknown)
         _drop_fulfilled_wishes(drafts)
         if not drafts:
+            if failed:
+                raise failed[0]
             self._nothing_actionable(text, scene.floor_plan, semantics, unknown, skipped,
                                      verbs_seen)
-        notes = tuple(f"skipped: {e.message}" for e in skipped)
+        notes = tuple(_note(e) for e in [*skipped, *failed, *semantics.skipped])
         for note in notes:
             log.info("offline parser: %s", note)
-        return ParseResult(assemble(text, clauses, drafts, team), notes)
+        check_consistent(clauses, drafts)
+        spec = assemble(text, clauses, drafts, team)
+        return Reading(spec, notes, _unsure(spec, semantics.g.doubts))
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,

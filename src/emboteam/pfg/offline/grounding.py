@@ -80,6 +80,10 @@ class Grounder:
         live = [o for o in state.objects.values() if not o.gone]
         self.present: set[str] = {o.type for o in live} | scene.types()
         self._live = live
+        #: references chosen with doubt (a fallback type, one instance picked among several
+        #: that match, a vague count made concrete): their conditions are reported unsure
+        self.doubts: set[ObjectRef] = set()
+        self._fell_back = False
 
     # ---- helpers -------------------------------------------------------------------
     def instances(self, t: str) -> list[ObjectState]:
@@ -168,6 +172,7 @@ class Grounder:
             present = [t for t in concept.fallback if self.has_type(t)]
             able = [t for t in present if need is None or self.can(t, need)]
             types = (able or present)[:1]
+            self._fell_back = bool(types)
         if not types:
             names = "/".join(concept.types)
             noun = head.noun.phrase
@@ -229,8 +234,17 @@ class Grounder:
         return True
 
     def ground(self, head: Head, need: str | None) -> Ref:
-        """The references a (non-pronoun) noun phrase stands for."""
+        """The references a (non-pronoun) noun phrase stands for; a reference chosen with
+        doubt is also added to :attr:`doubts`."""
+        self._fell_back = False
+        ref = self._ground(head, need)
+        if self._fell_back:
+            self.doubts.update(r for r, _ in ref.groups)
+        return ref
+
+    def _ground(self, head: Head, need: str | None) -> Ref:
         types = self.candidate_types(head, need)
+        fell_back = self._fell_back
         label = head.label()
         places = []
         for _, land in head.location:
@@ -238,6 +252,7 @@ class Grounder:
                 places.append(self.ground(land, None))
             except GroundingError:
                 continue   # a place we cannot find does not make the object unknown
+        self._fell_back = fell_back     # the places' grounding does not make this one doubtful
         selective = bool(head.filters or places)
         if selective and not head.piece:
             pool = [o for t in types for o in self.instances(t)]
@@ -247,6 +262,8 @@ class Grounder:
                 picked = chosen if many else chosen[:1]
                 if head.count is not None and many:
                     picked = chosen[: head.count]
+                if len(picked) < len(chosen):
+                    self.doubts.update(ObjectRef(id=o.id) for o in picked)
                 return Ref(label, tuple((ObjectRef(id=o.id), 1) for o in picked), many)
         if head.ordinal is not None and not head.piece:
             pool = [o for t in types for o in self.instances(t)]
@@ -258,6 +275,7 @@ class Grounder:
             n = head.count
             if head.vague_count:
                 n = max(1, min(n, available))
+                self.doubts.add(ObjectRef(types=tuple(types)))
             if n > available:
                 raise self.fail(f"{self.scene.floor_plan} has only {available} {label!r} "
                                 f"({'/'.join(types)}), not {n}", label)

@@ -104,6 +104,8 @@ class Semantics:
         #: every mention so far (shared with the discourse, which resolves pronouns)
         self.history: list[Mention] = self.discourse.history
         self._group = 0
+        #: objects of an act that could not be read while the act's other objects could
+        self.skipped: list[OfflineParseError] = []
 
     def ground(self, head: Head, need: str | None, group: int, clause: int,
                role: str = "object") -> Ref:
@@ -332,37 +334,50 @@ class Semantics:
             if prev.dest and not t.dest and act in (Act.PLACE, Act.CAUSE, Act.HOLD):
                 t.dest, t.prep = prev.dest, prev.prep
         out: list[Draft] = []
+        failed: list[OfflineParseError] = []
         for t in targets:
-            wanted = self._wanted(frame, act, t.head)
-            said = t
-            if wanted:
-                t = Target(replace(t.head, filters=[f for f in t.head.filters if f not in wanted]),
-                           t.dest, t.prep)
-            one: Act | None = act
-            if act is Act.CAUSE:
-                one = self._wish_act(frame, t, wanted, clause)
-                if one is Act.MAKE:
-                    out = concat(out, self._make(frame, [said], clause))
-                    continue
-            # "microwave a plate containing an egg": first the egg on the plate; "bring me a
-            # chilled tomato on a plate": first the tomato cold
-            before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
-                      for c, held in self._contents(t, g, clause) for r, n in held.groups]
-            if t.head.recipe is not None and t.head.pron is None and one in (
-                    Act.PLACE, Act.HOLD, Act.TRASH):
-                # "put the toast on a plate", "bring me a coffee": the dish is made first,
-                # then what it is served in is moved
-                before = concat(before, self._recipe(t.head.recipe, clause, t.head))
-                t = Target(Head(text=t.head.label(), pron="it"), t.dest, t.prep)
-            for stat, positive in wanted:
-                for d in self._state(Frame(None, frame.verb, [t]), (stat, positive), False, clause):
-                    d.wished = True
-                    before.append(d)
-            main = self._one(frame, one, t, g, clause) if one is not None else []
-            for d in main:
-                d.after = [a + len(before) for a in d.after] + list(range(len(before)))
-            out = concat(out, before + main)
+            try:
+                out = concat(out, self._target(frame, act, t, g, clause))
+            except OfflineParseError as exc:
+                # "put the apple in the frobnicator and the tomato in the fridge": one
+                # object or place that cannot be read does not sink the others
+                failed.append(exc)
+        if failed and not out:
+            raise failed[0]
+        self.skipped.extend(failed)
         return out
+
+    def _target(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """The drafts of one object of an act: what it must be first (its wanted states,
+        its contents, the dish it is), then the act itself."""
+        wanted = self._wanted(frame, act, t.head)
+        said = t
+        if wanted:
+            t = Target(replace(t.head, filters=[f for f in t.head.filters if f not in wanted]),
+                       t.dest, t.prep)
+        one: Act | None = act
+        if act is Act.CAUSE:
+            one = self._wish_act(frame, t, wanted, clause)
+            if one is Act.MAKE:
+                return self._make(frame, [said], clause)
+        # "microwave a plate containing an egg": first the egg on the plate; "bring me a
+        # chilled tomato on a plate": first the tomato cold
+        before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
+                  for c, held in self._contents(t, g, clause) for r, n in held.groups]
+        if t.head.recipe is not None and t.head.pron is None and one in (
+                Act.PLACE, Act.HOLD, Act.TRASH):
+            # "put the toast on a plate", "bring me a coffee": the dish is made first,
+            # then what it is served in is moved
+            before = concat(before, self._recipe(t.head.recipe, clause, t.head))
+            t = Target(Head(text=t.head.label(), pron="it"), t.dest, t.prep)
+        for stat, positive in wanted:
+            for d in self._state(Frame(None, frame.verb, [t]), (stat, positive), False, clause):
+                d.wished = True
+                before.append(d)
+        main = self._one(frame, one, t, g, clause) if one is not None else []
+        for d in main:
+            d.after = [a + len(before) for a in d.after] + list(range(len(before)))
+        return before + main
 
     def _wanted(self, frame: Frame, act: Act, head: Head) -> list[tuple[Stat, bool]]:
         """States an object is asked *to have* rather than picked by: an indefinite noun

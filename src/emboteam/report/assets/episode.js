@@ -69,6 +69,11 @@
       b.hidden = false;
       b.textContent = "Episode ended with an error: " + m.error;
     }
+    if (m.notes && m.notes.length) {     // spans the front end did not read, or read with doubt
+      var notes = document.getElementById("reading-notes");
+      notes.hidden = false;
+      m.notes.forEach(function (n) { el("li", {}, notes, n); });
+    }
     var box = document.getElementById("metrics");
     function card(label, value, cls, title) {
       var c = el("div", { class: "metric", title: title || null }, box);

@@ -1,0 +1,59 @@
+"""Contradictions: an instruction that asks, in one breath, for a state and its opposite
+of one object ("open and close the fridge", "turn the TV on and off").
+
+Only acts of one step (coordinated by "and", not sequenced by "then", "after that",
+"first ... finally") can contradict each other: "turn off the light, then turn it back
+on" and "open the fridge, then take out the apple, then close it" are sequences whose end
+state is the last one. A means to an end (the running microwave of "cook the potato in
+the microwave") is no request, and an act between the two ("open the fridge, take out
+the apple and close it") gives the first state a purpose.
+Otherwise neither end state can be the one meant, and the parser names both readings
+instead of silently keeping the last.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+
+from emboteam.pfg.offline.clauses import Clause
+from emboteam.pfg.offline.decompose import refs_overlap, steps
+from emboteam.pfg.offline.errors import OfflineParseError
+from emboteam.pfg.offline.semantics import Draft
+from emboteam.world.goals import Condition, Predicate
+
+P = Predicate
+#: state predicates that exclude each other (moves are not here: an object may be carried
+#: from one place to another on purpose)
+_EXCLUSIVE = frozenset({
+    frozenset({P.switched_on, P.switched_off}), frozenset({P.open, P.closed}),
+    frozenset({P.clean, P.dirty}),
+})
+
+
+class ContradictoryInstruction(OfflineParseError):
+    """The instruction asks for a state and its opposite of the same object; ``readings``
+    are the two conflicting requests, in the order written."""
+
+    def __init__(self, first: Draft, second: Draft, a: Condition, b: Condition) -> None:
+        self.readings = (first.description, second.description)
+        super().__init__(
+            f"the instruction asks both to {first.description!r} ({a}) and to "
+            f"{second.description!r} ({b}) at once: say which end state you want",
+            phrase=f"{first.description} / {second.description}")
+
+
+def _opposed(a: Condition, b: Condition) -> bool:
+    return frozenset({a.predicate, b.predicate}) in _EXCLUSIVE and refs_overlap(a.subject, b.subject)
+
+
+def check_consistent(clauses: Sequence[Clause], drafts: dict[int, list[Draft]]) -> None:
+    """Raise :class:`ContradictoryInstruction` for the first two requests of one step,
+    next to each other, that ask for opposite states of one object (an act between them,
+    "open the fridge, take out the apple and close it", gives the first state a purpose)."""
+    for group in steps(clauses):
+        step = [d for ci in sorted(group) for d in drafts.get(ci, []) if not d.intermediate]
+        for first, second in itertools.pairwise(step):
+            for a, b in itertools.product(first.conditions, second.conditions):
+                if _opposed(a, b):
+                    raise ContradictoryInstruction(first, second, a, b)
