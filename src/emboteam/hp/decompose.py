@@ -17,7 +17,7 @@ from emboteam.world.state import WorldState
 
 def group_indices(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str]) -> list[list[int]]:
     """Indices of conditions grouped by shared candidate objects (union-find), in order."""
-    slices = slicing_targets(conditions, state)
+    slices = slicing_targets(conditions, state, robots)
     parent = list(range(len(conditions)))
 
     def find(i: int) -> int:

@@ -81,6 +81,15 @@ def _opener(state: WorldState, oid: str) -> list[Role]:
     return [_role(f"open {hider}", [S.OpenObject])] if hider else []
 
 
+def _cutter(state: WorldState, oid: str) -> list[Role]:
+    """A piece not cut yet: someone slices its whole first (with a knife in hand)."""
+    if oid in state.objects:
+        return []
+    whole = _anchor(state, oid)
+    crack = [[S.BreakObject]] if whole in state.objects and state.objects[whole].type == "Egg" else []
+    return [_role(f"slice {whole}", [S.SliceObject, S.PickupObject], *crack)]
+
+
 def _heater_for(state: WorldState, oid: str) -> str | None:
     cat = load_catalogue()
     t = state.objects[oid].type if oid in state.objects else None
@@ -119,12 +128,12 @@ def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
     if pred in (Predicate.inside, Predicate.held):
         place = part.places[0] if part.places else None
         if pred is Predicate.held:
-            roles = [_role(f"hold {s}", [S.PickupObject], mass=lightest, certain=True), *opener]
+            roles = [_role(f"hold {s}", [S.PickupObject], mass=lightest, certain=True), *opener, *_cutter(state, s)]
             return Need(cond, (tuple(roles),), (s,), a[S.PickupObject], part)
         options = [[S.PickupObject, S.PutObject]]
         if place is not None and state.objects[place].type == "GarbageCan":
             options.append([S.PickupObject, S.ThrowObject])
-        roles = [_role(f"carry {s}", *options, mass=mass), *opener,
+        roles = [_role(f"carry {s}", *options, mass=mass), *opener, *_cutter(state, s),
                  _role(f"move {cond.subject}", [S.PickupObject], mass=lightest, certain=True)]
         if place is not None:
             roles += _opener(state, place)
@@ -171,7 +180,7 @@ def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
         return Need(cond, (tuple(roles),), (s, h) if h else (s,), 4.0, part)
     if pred is Predicate.cold:
         fridge = next((f.id for f in state.of_type("Fridge")), None)
-        roles = [carry, *opener]
+        roles = [carry, *opener, *_cutter(state, s)]
         if fridge is not None and not state.objects[fridge].is_open:
             roles.append(_role(f"open {fridge}", [S.OpenObject]))
         return Need(cond, (tuple(roles),), (s, fridge) if fridge else (s,), 3.5, part)

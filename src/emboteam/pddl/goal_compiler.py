@@ -7,7 +7,15 @@ disjunction over the candidates, "N of types" a disjunction of conjunctions over
 N-subsets (or, past :data:`MAX_COMBINATIONS`, the N most promising candidates). Every
 formula mirrors :func:`emboteam.world.checker.check_condition`: a sliced whole no longer
 counts (only ``sliced`` looks at it), ``inside`` is transitive, "Sink" means Sink or
-SinkBasin.
+SinkBasin, a cracked egg counts as broken.
+
+Completeness against the checker: every way the checker accepts a condition must be a
+way the compiled problem can reach it. So a whole that cannot satisfy a condition itself
+but whose pieces can is cut (``inside(Bread, Toaster)``: only bread slices go in a
+toaster; too heavy to lift whole; ``cooked(Egg)``: only a cracked egg cooks), and an
+object that cannot go in/on the receptacle directly may get there in a *vessel* that can
+(a lettuce slice on a plate in the microwave, an egg in a pan on a burner), since
+``inside`` counts contents of contents.
 """
 
 from __future__ import annotations
@@ -18,11 +26,15 @@ from dataclasses import dataclass, field
 from itertools import combinations
 
 from emboteam.pddl.domain import pending_pieces
-from emboteam.pddl.errors import ImpossibleGoalError, UnknownGoalObjectError
+from emboteam.pddl.errors import ImpossibleGoalError, PlanningError, UnknownGoalObjectError
+from emboteam.world.actions import Skill
 from emboteam.world.catalogue import load_catalogue, place_types
 from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.state import ObjectState, WorldState
+
+#: most vessels offered per condition (nearest first)
+MAX_VESSELS = 2
 
 #: past this many N-subsets, "N of types" commits to the N most promising candidates
 MAX_COMBINATIONS = 20
@@ -38,6 +50,8 @@ _NEEDS: dict[Predicate, str] = {
     Predicate.held: "pickupable", Predicate.inside: "pickupable", Predicate.hot: "pickupable",
     Predicate.cold: "pickupable",
 }
+#: predicates whose subject a robot must usually carry (to the receptacle, the heater, ...)
+_CARRIED = frozenset({Predicate.inside, Predicate.held, Predicate.hot, Predicate.cold, Predicate.cooked})
 
 
 @dataclass(frozen=True)
@@ -55,6 +69,8 @@ class GoalPart:
     satisfied: bool = False
     #: the subjects the formula commits to when it had to choose (N of many)
     chosen: tuple[str, ...] = field(default=())
+    #: containers a subject may ride in to reach ``places`` (it cannot go there directly)
+    vessels: tuple[str, ...] = field(default=())
 
 
 class _View:
@@ -75,11 +91,46 @@ class _View:
     def pieces_of(self, whole: str) -> list[str]:
         return [p.id for p in self.objects.values() if p.source == whole]
 
+    def goes_directly(self, otype: str, places: Sequence[str]) -> bool:
+        cat = load_catalogue()
+        return any(cat.can_place(otype, self.state.objects[p].type) for p in places)
+
+    def vessels(self, o: ObjectState, places: Sequence[str]) -> list[str]:
+        """Movable containers that take ``o`` and may go in/on one of ``places``, or
+        already are within one (nearest to ``o`` first)."""
+        cat = load_catalogue()
+        state = self.state
+        anchor = o.source if o.id in self.pending and o.source is not None else o.id
+        out = []
+        for v in state.objects.values():
+            if (v.gone or not v.has("receptacle") or v.id in (o.id, anchor) or v.id in places
+                    or not cat.can_place(o.type, v.type)
+                    or (anchor in state.objects and anchor in state.ancestors(v.id))):
+                continue
+            within = any(state.is_within(v.id, p) for p in places)
+            if within or (v.has("pickupable") and self.goes_directly(v.type, places)):
+                out.append(v.id)
+        here = state.objects[anchor].position if anchor in state.objects else o.position
+
+        def far(v: str) -> float:
+            there = state.objects[v].position
+            return math.hypot(there[0] - here[0], there[2] - here[2])
+
+        return sorted(out, key=lambda v: (far(v), v))
+
+    def reaches(self, o: ObjectState, places: Sequence[str]) -> bool:
+        """Can ``o`` end up within one of ``places`` (directly, or in a vessel)?"""
+        if o.id in self.state.objects and any(self.state.is_within(o.id, p) for p in places):
+            return True
+        return self.goes_directly(o.type, places) or bool(self.vessels(o, places))
+
 
 def _pred_atom(pred: Predicate, o: str, places: Sequence[str], robots: Sequence[str],
                liquid: str | None) -> str:
     if pred is Predicate.sliced:
         return f"(sliced {o})"
+    if pred is Predicate.broken:
+        return f"(broken {o})"  # breaking an egg cracks it: no longer available, still broken
     if pred is Predicate.inside:
         body = " ".join(f"(within {o} {p})" for p in places if p != o)
         core = f"(or {body})" if len(places) > 1 else body
@@ -100,14 +151,20 @@ def _pred_atom(pred: Predicate, o: str, places: Sequence[str], robots: Sequence[
     return f"(and (available {o}) {core})"
 
 
-def slicing_targets(conditions: Sequence[Condition], state: WorldState) -> set[str]:
-    """Wholes a goal asks to slice, or whose pieces it names or needs (``cooked(Bread)``:
-    only bread slices cook)."""
+def slicing_targets(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str] = ()) -> set[str]:
+    """Wholes a goal asks to slice, or whose pieces it names or needs: ``cooked(Bread)``
+    (only bread slices cook), ``inside(Bread, Toaster)`` (only slices go in a toaster,
+    even in a container), a whole too heavy for every robot of ``robots`` that can pick
+    up when its pieces are not."""
     view = _View(state)
     cat = load_catalogue()
+    lifters = [state.robots[r].profile.mass_capacity for r in robots
+               if r in state.robots and state.robots[r].profile.can(Skill.PickupObject)]
+    lift = max(lifters, default=None)
     out: set[str] = set()
     for cond in conditions:
         ref = cond.subject
+        places: list[str] | None = None
         for o in _raw_subjects(ref, view):
             if o.source is not None:
                 named = ref.id == o.id or (ref.types and o.type in ref.types)
@@ -120,9 +177,26 @@ def slicing_targets(conditions: Sequence[Condition], state: WorldState) -> set[s
             named_piece = bool(ref.types) and product[0] in ref.types and o.type not in ref.types
             if cond.predicate is Predicate.sliced or named_piece:
                 out.add(o.id)
-            else:
-                need = _NEEDS.get(cond.predicate)
-                if need is not None and not o.has(need) and need in cat.type(product[0]).properties:
+                continue
+            need = _NEEDS.get(cond.predicate)
+            if need is not None and not o.has(need) and need in cat.type(product[0]).properties:
+                out.add(o.id)
+                continue
+            pieces = view.pieces_of(o.id)
+            if not pieces:
+                continue
+            piece = view.objects[pieces[0]]
+            if (cond.predicate in _CARRIED and lift is not None and o.mass > lift >= piece.mass
+                    and not check_condition(cond, state).holds):
+                out.add(o.id)
+                continue
+            if cond.predicate is Predicate.inside:
+                if places is None:
+                    try:
+                        places = _places(cond, view)
+                    except PlanningError:
+                        places = []
+                if places and not view.reaches(o, places) and view.reaches(piece, places):
                     out.add(o.id)
     return out
 
@@ -149,6 +223,10 @@ def _places(cond: Condition, view: _View) -> list[str]:
         types = place_types(ref.types)
         found = [o.id for o in state.objects.values() if not o.gone and view.matches_types(o, types)]
     places = [p for p in found if state.objects[p].has("receptacle")]
+    # "in the sink" is also in the basin within it: receptacles within a named
+    # non-receptacle count (the checker reads every container around an object)
+    places += [d.id for p in found if not state.objects[p].has("receptacle")
+               for d in state.descendants(p) if d.has("receptacle") and not d.gone and d.id not in places]
     if not found:
         raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has no {ref}")
     if not places:
@@ -175,7 +253,7 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
     now (small problems; the caller retries without ``narrow`` if that proves unsolvable).
     """
     view = _View(state)
-    slices = slices if slices is not None else slicing_targets([cond], state)
+    slices = slices if slices is not None else slicing_targets([cond], state, robots)
     pred = cond.predicate
     result = check_condition(cond, state)
     raw = _raw_subjects(cond.subject, view)
@@ -185,6 +263,8 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
     def usable(o: ObjectState) -> bool:
         if pred is Predicate.sliced:
             return o.source is None and o.has("sliceable") and load_catalogue().slice_product(o.type) is not None
+        if pred is Predicate.broken and o.gone and o.is_broken:
+            return True  # a cracked egg: gone, but the checker counts it as broken
         if o.gone:
             return False
         if o.id in view.pending and o.source not in slices:
@@ -209,6 +289,14 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
     if len(subjects) < cond.count:
         raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has only {len(subjects)} {cond.subject}")
     places = _places(cond, view) if pred is Predicate.inside else []
+    if places:
+        # those that can get there (directly, in a vessel) first; if none seems to, let
+        # the planner have the last word
+        subjects = [s for s in subjects if s in result.witnesses or view.reaches(view.objects[s], places)
+                    ] or subjects
+        if len(subjects) < cond.count:
+            raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has only {len(subjects)} {cond.subject} "
+                                      f"that can go in/on {cond.receptacle}")
 
     holders = list(dict.fromkeys([*robots, *(view.objects[s].held_by for s in subjects
                                               if s in state.objects and state.objects[s].held_by)]))
@@ -240,6 +328,18 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
         chosen = tuple(subjects[:cond.count])
         formula = "(and " + " ".join(atoms[s] for s in chosen) + ")"
         subjects = list(chosen)
+    # where a subject must get to: the goal's receptacles, or a fridge to cool it (heat
+    # has its own pans and pots: pddl.problem._heat_support)
+    targets = places if pred is Predicate.inside else (
+        [f.id for f in state.of_type("Fridge") if f.has("isColdSource")] if pred is Predicate.cold else [])
+    vessels: list[str] = []
+    if targets and not (narrow and satisfied and not doomed):
+        for sid in subjects:
+            o = view.objects[sid]
+            if sid in result.witnesses or view.goes_directly(o.type, targets):
+                continue
+            vessels += [v for v in view.vessels(o, targets)[:MAX_VESSELS] if v not in vessels]
+        vessels = vessels[:MAX_VESSELS + 1]
     cut: set[str] = set()
     for sid in subjects:
         o = view.objects[sid]
@@ -248,11 +348,11 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
         elif sid in view.pending and o.source is not None:
             cut.add(o.source)
     return GoalPart(condition=cond, formula=formula, subjects=tuple(subjects), places=tuple(places),
-                    slices=tuple(sorted(cut)), satisfied=satisfied, chosen=chosen)
+                    slices=tuple(sorted(cut)), satisfied=satisfied, chosen=chosen, vessels=tuple(vessels))
 
 
 def compile_goal(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str], *,
                  narrow: bool = True) -> list[GoalPart]:
     """Compile conditions that one problem must satisfy together."""
-    slices = slicing_targets(conditions, state)
+    slices = slicing_targets(conditions, state, robots)
     return [compile_condition(c, state, robots, slices=slices, narrow=narrow) for c in conditions]

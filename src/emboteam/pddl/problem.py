@@ -151,6 +151,7 @@ def relevant_objects(state: WorldState, parts: Sequence[GoalPart], active: Seque
     for part in parts:
         add(part.subjects)
         add(part.places)
+        add(part.vessels)
         slices.update(part.slices)
         pred = part.condition.predicate
         support: list[str] = []
@@ -171,7 +172,10 @@ def relevant_objects(state: WorldState, parts: Sequence[GoalPart], active: Seque
         add(support)
         for s in part.subjects:
             allow(s, part.places)
+            allow(s, part.vessels)
             allow(s, [r for r in support if objects[r].has("receptacle")])
+        for v in part.vessels:  # a lettuce slice on a plate in the microwave, a knife on one in the fridge
+            allow(v, [*part.places, *(r for r in support if objects[r].has("receptacle"))])
         for c in support:
             if objects[c].type in ("Pan", "Pot"):
                 allow(c, [b for b in support if objects[b].type == "StoveBurner"])
