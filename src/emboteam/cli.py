@@ -14,10 +14,20 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
+from rich.text import Text
 
 from emboteam.bench.task import BenchTask
-from emboteam.errors import EmboTeamError
+from emboteam.errors import (
+    EXIT_BAD_INPUT,
+    EXIT_FAILED,
+    EXIT_INTERNAL,
+    EXIT_INTERRUPTED,
+    EXIT_OK,
+    EmboTeamError,
+    exit_code_of,
+)
 from emboteam.world.actions import Skill
 from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
@@ -33,30 +43,85 @@ app = typer.Typer(
 out = Console()
 err = Console(stderr=True)
 
+
+def _version(value: bool) -> None:
+    if value:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            text = version("emboteam")
+        except PackageNotFoundError:  # run from a source tree that was never installed
+            text = "unknown (not installed)"
+        sys.stdout.write(f"emboteam {text}\n")
+        raise typer.Exit(EXIT_OK)
+
+
+@app.callback()
+def _options(
+    _show_version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="print the version and exit"),
+) -> None:
+    """EmboTeam: household instructions -> PDDL -> multi-robot plan -> reactive behavior trees.
+
+    Exit codes: 0 goal reached (run) / job done; 1 the episode ran and did not reach its
+    goal; 2 bad input or configuration; 3 a service (the LLM endpoint) could not be used;
+    70 internal error; 130 interrupted."""
+
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+def fail(message: str, code: int, *, as_json: bool = False, label: str = "error") -> typer.Exit:
+    """Report a failure as the contract says (one line on stderr; with ``--json`` also one
+    JSON object on stdout) and return the exit to raise. The message is escaped: it
+    often holds brackets ('emboteam[ray]', the '[pfg]' stage tag) that Rich would eat as
+    markup."""
+    line = " ".join(message.split())  # one line, whatever the message holds
+    if as_json:
+        print_json({"success": False, "error": line, "exit_code": code})
+    err.print(f"[red]{label}:[/red] {escape(line)}", highlight=False, soft_wrap=True)
+    return typer.Exit(code)
+
+
 def cli_errors(fn: F) -> F:
-    """Turn expected errors into one line on stderr and a non-zero exit."""
+    """Turn expected errors into one line on stderr and the exit code of their family
+    (emboteam.errors.EXIT_CODES); every command has it, so new options inherit it."""
 
     @wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
+        as_json = bool(kwargs.get("as_json"))
         try:
             return fn(*args, **kwargs)
         except EmboTeamError as exc:
-            err.print(f"[red]error:[/red] {exc}", highlight=False, soft_wrap=True)
-            raise typer.Exit(exc.exit_code) from None
-        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+            raise fail(str(exc), exc.exit_code, as_json=as_json) from None
+        except (typer.Exit, typer.Abort):
             raise
+        except KeyboardInterrupt:
+            raise fail("interrupted", EXIT_INTERRUPTED, as_json=as_json) from None
+        except OSError as exc:  # the machine, not EmboTeam: a full disk, a file that vanished
+            if os.environ.get("EMBOTEAM_DEBUG"):
+                raise
+            where = f" ({exc.filename})" if exc.filename else ""
+            raise fail(f"{exc.strerror or exc}{where}", EXIT_BAD_INPUT, as_json=as_json) from None
         except Exception as exc:  # a bug: one line for the user, the traceback on request
             if os.environ.get("EMBOTEAM_DEBUG"):
                 raise
-            err.print(f"[red]internal error:[/red] {type(exc).__name__}: {exc} "
-                      "(set EMBOTEAM_DEBUG=1 for the traceback; please report it)",
-                      highlight=False, soft_wrap=True)
-            raise typer.Exit(70) from None
+            raise fail(f"{type(exc).__name__}: {exc} (set EMBOTEAM_DEBUG=1 for the traceback; please "
+                       "report it)", EXIT_INTERNAL, as_json=as_json, label="internal error") from None
 
     return wrapper  # type: ignore[return-value]
+
+
+def episode_exit_code(success: bool, error: str | None) -> int:
+    """``run``'s exit code: 0 goal reached; else the code of the error that ended the
+    episode (recorded as ``"ClassName: message"``: 2 bad input, 3 a service), and 1 for an
+    episode that ran and did not reach its goal."""
+    if success:
+        return EXIT_OK
+    if error:
+        code = exit_code_of(error.split(":", 1)[0].strip())
+        if code is not None and code != EXIT_OK:
+            return code
+    return EXIT_FAILED
 
 
 def print_json(payload: Any) -> None:
@@ -145,7 +210,7 @@ def tasks(
 
     loaded = load_suite(suite)
     for problem in loaded.problems:
-        err.print(f"[yellow]skipped:[/yellow] {problem}", highlight=False, soft_wrap=True)
+        err.print(f"[yellow]import:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
     if as_json:
         print_json({"tasks": [
             {"id": t.key, "scene": t.floor_plan, "category": t.category, "instruction": t.instruction,
@@ -154,12 +219,14 @@ def tasks(
         ]})
         return
     counts = ", ".join(f"{n} {cat}" for cat, n in loaded.categories().items())
-    table = Table(title=f"{loaded.name}: {len(loaded.tasks)} tasks ({counts})")
+    # every column folds rather than truncates (ids and numbers stay whole, split over
+    # lines on a narrow terminal); the instruction gets the room that is left
+    table = Table(title=escape(f"{loaded.name}: {len(loaded.tasks)} tasks ({counts})"))
     for col in ("task", "scene", "category", "robots"):
-        table.add_column(col, no_wrap=True)
-    table.add_column("instruction", overflow="fold")
+        table.add_column(col, overflow="fold")
+    table.add_column("instruction", overflow="fold", ratio=1, min_width=16)
     for t in loaded.tasks:
-        table.add_row(t.key, t.floor_plan, t.category, ",".join(t.robots), t.instruction)
+        table.add_row(*(Text(x) for x in (t.key, t.floor_plan, t.category, ",".join(t.robots), t.instruction)))
     out.print(table)
 
 
@@ -172,14 +239,28 @@ def report(directory: Path = typer.Argument(..., help="a run's or a benchmark's 
 
     if store_path(directory).exists():  # a benchmark: tables and plots from its results store
         for path in write_reports(directory):
-            out.print(f"wrote {path}")
-    pages = write_report(directory)
-    out.print(f"wrote {pages[-1]}" + (f" and {len(pages) - 1} episode report(s)" if len(pages) > 1 else ""))
+            out.print(f"wrote {path}", markup=False, highlight=False)
+    skipped: list[str] = []
+    pages = write_report(directory, problems=skipped)
+    for problem in skipped:  # what was broken is listed, the rest is built
+        err.print(f"[yellow]skipped:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
+    out.print(f"wrote {pages[-1]}" + (f" and {len(pages) - 1} episode report(s)" if len(pages) > 1 else ""),
+              markup=False, highlight=False)
 
 
 # ---- tasks, planning and runs ------------------------------------------------------
 FRONTEND_HELP = "oracle (ground-truth goals) | offline (embedded parser) | llm (needs --llm)"
 LLM_HELP = "PROVIDER:MODEL[@BASE_URL]: openai, anthropic, llamacpp (MODEL = .gguf path), replay (MODEL = cassette dir)"
+
+
+def probability(value: float) -> float:
+    """``--faults P``: a probability in [0, 1]; click's range check lets ``nan`` through and
+    would tell ``inf`` it "should be <= 1"."""
+    import math
+
+    if not math.isfinite(value) or not 0.0 <= value <= 1.0:
+        raise typer.BadParameter(f"{value:g} is not a probability: give a number in [0, 1], e.g. 0.2")
+    return value
 
 
 def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) -> BenchTask:
@@ -191,6 +272,9 @@ def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) ->
         if scene_fp is None or robots_list is None:
             raise EmboTeamError("an instruction needs both --scene FLOORPLAN and --robots LIST")
         return adhoc_task(target, scene_fp, robots_list)
+    if len(target.split()) > 1:  # task ids have no spaces: this is an instruction
+        raise EmboTeamError(f"the instruction {target!r} needs --scene FLOORPLAN and --robots LIST "
+                            "(or give a task SUITE/ID, e.g. mace-thor/fp1-toast)")
     return get_task(target)
 
 
@@ -240,7 +324,8 @@ def plan(
                     "subtasks": spec_json(spec), **plan_json(merged), "plan_seconds": round(seconds, 4),
                     "llm_calls": client.usage.calls if client else 0})
         return
-    out.print(f"[bold]{task.key}[/bold] {task.floor_plan}: {task.instruction}")
+    out.print(f"[bold]{escape(task.key)}[/bold] {escape(task.floor_plan)}: {escape(task.instruction)}",
+              highlight=False)
     out.print(spec_table(spec))
     out.print(plan_table(merged))
     out.print(f"planned in {seconds:.2f} s")
@@ -258,7 +343,7 @@ def run(
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     llm_record: str | None = typer.Option(None, "--llm-record", help="record LLM calls into this cassette dir"),
     llm_merge: bool = typer.Option(False, "--llm-merge", help="the paper's LLM merge stage (one more call)"),
-    faults: float = typer.Option(0.0, "--faults", min=0.0, max=1.0, help="per-action failure probability"),
+    faults: float = typer.Option(0.0, "--faults", callback=probability, help="per-action failure probability"),
     seed: int = typer.Option(0, "--seed", help="seed of the fault injection"),
     join: list[str] = typer.Option([], "--join", help="PROFILE@SECONDS: a robot joins mid-run (repeatable)"),
     out_dir: Path | None = typer.Option(None, "--out", help="write episode.json, trace.jsonl, report.html here"),
@@ -266,30 +351,43 @@ def run(
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join
+    from emboteam.outputs import ensure_out_dir, write_error
     from emboteam.pipeline import check_config, run_episode
     from emboteam.views import episode_panel, plan_table, spec_table
 
+    for flag, given in (("--llm-merge", llm_merge), ("--llm-record", llm_record is not None)):
+        if given and llm is None:
+            raise EmboTeamError(f"{flag} needs --llm PROVIDER:MODEL (without an LLM there is nothing to "
+                                f"{'merge with' if flag == '--llm-merge' else 'record'})")
     task = _resolve_task(target, scene_fp, robots_list)
     cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record, llm_merge=llm_merge,
                       fault_level=faults, seed=seed, joins=tuple(join))
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run
     check_config(cfg)
+    if out_dir is not None:
+        ensure_out_dir(out_dir)  # before the run, not after it: a bad --out is bad input
     episode = run_episode(task, cfg)
     if out_dir is not None:
         from emboteam.report import save_episode_report
 
-        episode.save(out_dir)
-        save_episode_report(episode, out_dir)
+        try:
+            episode.save(out_dir)
+            save_episode_report(episode, out_dir)
+        except OSError as exc:
+            raise write_error(out_dir, exc) from None
+    code = episode_exit_code(episode.success, episode.error)
     if as_json:
         print_json(episode.summary())
-        return
-    out.print(f"[bold]{task.key}[/bold] {task.floor_plan}: {task.instruction}")
+        raise typer.Exit(code)
+    out.print(f"[bold]{escape(task.key)}[/bold] {escape(task.floor_plan)}: {escape(task.instruction)}",
+              highlight=False)
     if episode.taskspec is not None:
         out.print(spec_table(episode.taskspec))
     if episode.plan is not None:
         out.print(plan_table(episode.plan))
     out.print(episode_panel(episode, out_dir=str(out_dir) if out_dir else None))
+    raise typer.Exit(code)
 
 
 @app.command()
@@ -306,43 +404,100 @@ def bench(
     workers: int = typer.Option(2, "--workers", min=1, help="parallel episodes"),
     executor: str = typer.Option("local", "--executor", help="local (process pool) | ray"),
     ray_address: str | None = typer.Option(None, "--ray-address", help="Ray cluster address (default: local)"),
-    out_dir: Path = typer.Option(Path("bench-out"), "--out", help="results store, tables, plots, index.html"),
-    resume: bool = typer.Option(False, "--resume", help="continue a killed run in --out"),
+    out_dir: Path | None = typer.Option(None, "--out", help="results store, tables, plots, index.html "
+                                        "(default: a new folder bench-out/SUITE_CONFIGURATION_TIME)"),
+    resume: bool = typer.Option(False, "--resume", help="continue a killed run in --out DIR"),
     as_json: bool = typer.Option(False, "--json", help="one JSON summary object on stdout"),
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
     from emboteam.bench.jobs import BenchConfig, expand_jobs, modes_from_options, parse_fault_levels
-    from emboteam.bench.runner import run_bench
+    from emboteam.bench.runner import BenchInterrupted, run_bench
     from emboteam.bench.suites import load_suite
     from emboteam.bench.tables import bench_summary
 
     loaded = load_suite(suite)
     for problem in loaded.problems:
-        err.print(f"[yellow]skipped:[/yellow] {problem}", highlight=False, soft_wrap=True)
+        err.print(f"[yellow]import:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
     frontends = ["llm" if (llm and f == "offline" and len(frontend) == 1) else f for f in frontend]
     cfg = BenchConfig.build(
         suite=suite, modes=modes_from_options(ablation, baseline), frontends=frontends, llm=llm,
         seeds=seeds, fault_levels=parse_fault_levels(faults), workers=workers, executor=executor,
-        ray_address=ray_address, out_dir=out_dir, resume=resume, llm_timeout=llm_timeout,
+        ray_address=ray_address, out_dir=out_dir or BENCH_ROOT, resume=resume, llm_timeout=llm_timeout,
     )
     from emboteam.pipeline import RunConfig, check_config
 
     for f in cfg.frontends:
         check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout))
-    episodes = run_bench(cfg, expand_jobs(cfg, loaded.tasks))
+    cfg = _bench_out(cfg, out_dir)
+    out_dir = cfg.out_dir
+    jobs = expand_jobs(cfg, loaded.tasks)
+    try:
+        episodes = run_bench(cfg, jobs)
+    except BenchInterrupted as exc:
+        raise fail(f"{exc}; continue with: {resume_command(exc.out_dir)}", exc.exit_code,
+                   as_json=as_json) from None
     from emboteam.report import write_report
 
-    write_report(out_dir, refresh=False)
+    skipped: list[str] = []
+    write_report(out_dir, refresh=False, problems=skipped)
+    for problem in skipped:
+        err.print(f"[yellow]skipped:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
     summary = bench_summary(episodes, suite=suite)
     if as_json:
         print_json(summary.to_json())
         return
     tables = out_dir / "tables.md"
     if tables.exists():
-        from rich.markdown import Markdown
+        from emboteam.bench.tables import terminal_tables
 
-        out.print(Markdown(tables.read_text()))
-    out.print(f"results: {out_dir}/results.sqlite · report: {out_dir}/index.html")
+        for renderable in terminal_tables(tables.read_text(), width=out.width):
+            out.print(renderable)
+    out.print(f"results: {out_dir}/results.sqlite · report: {out_dir}/index.html", markup=False,
+              highlight=False)
+
+
+BENCH_ROOT = Path("bench-out")
+#: the arguments ``main()`` was called with (what a resume command repeats)
+_invocation: list[str] | None = None
+
+
+def _bench_out(cfg: Any, out_dir: Path | None) -> Any:
+    """The run's folder: ``--out DIR`` as given (strict: it must not hold another run's
+    results unless ``--resume``), or a new folder under bench-out/ named by suite,
+    configuration and time."""
+    from emboteam.bench.runner import default_out_dir
+    from emboteam.outputs import ensure_out_dir
+
+    if out_dir is None:
+        if cfg.resume:
+            raise EmboTeamError("--resume needs --out DIR, the folder of the run to continue")
+        if BENCH_ROOT.exists() and not BENCH_ROOT.is_dir():
+            raise EmboTeamError(f"{BENCH_ROOT} is a file: pass --out DIR")
+        BENCH_ROOT.mkdir(exist_ok=True)
+        cfg = cfg.model_copy(update={"out_dir": default_out_dir(cfg, root=BENCH_ROOT)})
+    ensure_out_dir(cfg.out_dir)
+    return cfg
+
+
+def resume_command(out_dir: Path) -> str:
+    """The command that continues an interrupted run: the same arguments, with
+    ``--resume --out DIR`` (the default folder is new each run, so it must be named)."""
+    import shlex
+
+    args = list(_invocation) if _invocation is not None else ["bench"]
+    kept: list[str] = []
+    skip = False
+    for arg in args:
+        if skip:
+            skip = False
+            continue
+        if arg == "--out":
+            skip = True
+            continue
+        if arg.startswith("--out=") or arg == "--resume":
+            continue
+        kept.append(arg)
+    return shlex.join(["emboteam", *kept, "--resume", "--out", str(out_dir)])
 
 
 @app.command("export-bt")
@@ -359,11 +514,17 @@ def export_bt(
     """Export a task's behavior tree: BehaviorTree.CPP v4 XML (Groot2), Graphviz DOT or ASCII."""
     from emboteam.btc.export import render, to_ascii, to_btcpp_xml, to_dot
     from emboteam.modes import make_llm, plan_spec, understand
+    from emboteam.outputs import check_out_file, write_error
     from emboteam.pipeline import initial_state
     from emboteam.world.scene import load_scene
 
     if fmt not in ("btcpp", "dot", "ascii"):
         raise EmboTeamError(f"unknown format {fmt!r}: btcpp, dot or ascii")
+    if out_file is not None:
+        if out_file.suffix.lower() in (".png", ".svg") and fmt != "dot":
+            raise EmboTeamError(f"--out {out_file} is an image, but --format {fmt} writes text: use "
+                                f"--format dot for a {out_file.suffix.lower()}, or another file name")
+        check_out_file(out_file)
     task = _resolve_task(target, scene_fp, robots_list)
     cfg = _run_config("full", frontend, llm)
     state, team = initial_state(task)
@@ -372,20 +533,67 @@ def export_bt(
     spec = understand(task, cfg, scene, state, team, client)
     _, merged = plan_spec(spec, cfg, task, scene, state, team, client)
     if fmt == "dot" and out_file is not None and out_file.suffix.lower() in (".png", ".svg"):
-        render(merged, out_file, state=state)
-        err.print(f"wrote {out_file}")
+        try:
+            render(merged, out_file, state=state)
+        except OSError as exc:
+            raise write_error(out_file, exc) from None
+        err.print(f"wrote {out_file}", markup=False, highlight=False)
         return
     text = {"btcpp": to_btcpp_xml, "dot": to_dot, "ascii": to_ascii}[fmt](merged, state=state)
     if out_file is None:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
     else:
-        out_file.write_text(text)
-        err.print(f"wrote {out_file}")
+        try:
+            out_file.write_text(text)
+        except OSError as exc:
+            raise write_error(out_file, exc) from None
+        err.print(f"wrote {out_file}", markup=False, highlight=False)
 
 
-def main() -> None:
-    """Entry point of the ``emboteam`` console script."""
-    app()
+def _click_exceptions() -> Any:
+    """Click's exception classes: recent typer releases ship their own copy of click (typer._click)
+    and raise those; older typer raises click's."""
+    try:
+        from typer._click import exceptions
+    except ImportError:  # an older typer on plain click
+        from click import exceptions  # type: ignore[no-redef]
+    return exceptions
+
+
+def _usage_message(exc: Any) -> str:
+    """Click's message, with where to look: ``--help`` of the command that was called."""
+    message = str(exc.format_message())
+    ctx = getattr(exc, "ctx", None)
+    if isinstance(exc, _click_exceptions().UsageError) and ctx is not None:
+        message += f" (see '{ctx.command_path} --help')"
+    return message
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Entry point of the ``emboteam`` console script.
+
+    Click is run with ``standalone_mode=False`` so that its own errors (an unknown option,
+    a value out of range, a missing argument) follow the same contract as ours: one line
+    on stderr, exit 2, and with ``--json`` one JSON object on stdout, instead of the
+    multi-line box typer draws."""
+    global _invocation
+    args = sys.argv[1:] if argv is None else list(argv)
+    _invocation = args
+    as_json = "--json" in args
+    ce = _click_exceptions()
+    try:
+        code = app(args=args, prog_name="emboteam", standalone_mode=False)
+    except ce.UsageError as exc:
+        if type(exc).__name__ == "NoArgsIsHelpError":  # bare `emboteam`: the help is the answer
+            exc.show()
+            code = EXIT_BAD_INPUT
+        else:
+            code = fail(_usage_message(exc), EXIT_BAD_INPUT, as_json=as_json).exit_code
+    except ce.ClickException as exc:
+        code = fail(exc.format_message(), exc.exit_code or EXIT_BAD_INPUT, as_json=as_json).exit_code
+    except (ce.Abort, KeyboardInterrupt):
+        code = fail("interrupted", EXIT_INTERRUPTED, as_json=as_json).exit_code
+    sys.exit(code if isinstance(code, int) else EXIT_OK)
 
 
 if __name__ == "__main__":

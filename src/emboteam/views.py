@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from rich.console import Group
+from rich.markup import escape
 from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
@@ -52,15 +53,20 @@ def spec_table(spec: TaskSpec) -> Table:
         table.add_column(col)
     for s in spec.subtasks:
         goal = "\n".join(str(c) for c in s.goal) + ("" if s.final else "  (intermediate)")
-        table.add_row(s.id, s.robot or "[dim]any[/dim]", goal, ", ".join(s.depends_on))
+        table.add_row(escape(s.id), escape(s.robot) if s.robot else "[dim]any[/dim]", escape(goal),
+                      escape(", ".join(s.depends_on)))
     return table
 
 
 def plan_table(plan: MergedPlan) -> Table:
     how = "joint problem (fallback)" if plan.joint else "per subtask, merged"
-    table = Table(title=f"plan (HP, {how}): makespan {plan.makespan:.1f} s, lower bound "
-                        f"{plan.lower_bound:.1f} s, {plan.planner_calls} Fast Downward call(s)",
-                  title_justify="left")
+    if plan.planner_calls == 0 and plan.makespan == 0:
+        # action lists taken as written (smart-llm, no-pfg-hp): nothing was planned or scheduled
+        title = f"plan ({len(plan.steps)} actions as written, not planned: no Fast Downward call, no makespan estimate)"
+    else:
+        title = (f"plan (HP, {how}): makespan {plan.makespan:.1f} s, lower bound {plan.lower_bound:.1f} s, "
+                 f"{plan.planner_calls} Fast Downward call(s)")
+    table = Table(title=escape(title), title_justify="left")
     table.add_column("robot", no_wrap=True)
     table.add_column("actions  (⏳ waits for another robot's step)")
     for robot in plan.robots:
@@ -88,7 +94,7 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
     conds.add_column()
     conds.add_column()
     for c in episode.conditions:
-        conds.add_row("[green]✓[/green]" if c.holds else "[red]✗[/red]", c.condition)
+        conds.add_row("[green]✓[/green]" if c.holds else "[red]✗[/red]", Text(c.condition))
     body: list[object] = [metrics, Text(""), conds]
     if episode.notes:      # what the front end could not read, or read with doubt
         body += [Text("")] + [Text(f"note: {n}", style="yellow") for n in episode.notes]
@@ -96,8 +102,8 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
         body += [Text(""), Text(f"error: {episode.error}", style="red")]
     if out_dir:
         body += [Text(""), Text(f"report: {out_dir}/report.html", style="cyan")]
-    return Panel(Group(*body), title=f"{episode.task} {verdict}",  # type: ignore[arg-type]
-                 subtitle=f"{episode.floor_plan} · {', '.join(episode.robots)}")
+    return Panel(Group(*body), title=f"{escape(episode.task)} {verdict}",  # type: ignore[arg-type]
+                 subtitle=escape(f"{episode.floor_plan} · {', '.join(episode.robots)}"))
 
 
 def robots_line(names: Sequence[str]) -> str:

@@ -19,6 +19,7 @@ import logging
 from typing import Any
 
 from emboteam.bench.jobs import BenchConfigError, EpisodeFn, Job, JobResult, execute_job, failed_episode
+from emboteam.errors import ServiceUnavailableError
 
 log = logging.getLogger(__name__)
 
@@ -42,8 +43,9 @@ class RayExecutor:
             try:
                 ray.init(address=address, include_dashboard=False, log_to_driver=False)
             except (ConnectionError, RuntimeError, ValueError) as exc:
-                where = address or "a local instance"
-                raise BenchConfigError(f"cannot start or reach Ray ({where}): {exc}") from None
+                if address:  # a cluster that does not answer is a service problem (exit 3)
+                    raise ServiceUnavailableError(f"cannot reach the Ray cluster at {address}: {exc}") from None
+                raise BenchConfigError(f"cannot start a local Ray instance: {exc}") from None
         self._workers = workers
         self._fn_ref = ray.put(episode_fn)
         self._remote = ray.remote(execute_job).options(num_cpus=num_cpus_per_job, max_retries=1)

@@ -22,6 +22,9 @@ import logging
 import multiprocessing
 import os
 import pickle
+import re
+import signal
+import sys
 import threading
 import time
 from collections import deque
@@ -54,6 +57,7 @@ from emboteam.bench.jobs import (
     resolve_episode_fn,
 )
 from emboteam.bench.store import ResultStore, ResultStoreError
+from emboteam.errors import EXIT_INTERRUPTED, EmboTeamError
 from emboteam.exec.episode import Episode
 
 log = logging.getLogger(__name__)
@@ -138,6 +142,7 @@ class ProcessExecutor:
         # spawn, not fork: the runner has threads (the progress bar), and forking a
         # threaded process can deadlock the child
         self._ctx = multiprocessing.get_context("spawn")
+        _quiet_resource_tracker()
         self._pool = self._new_pool()
         self._generation = 0  # which pool a future belongs to: only a broken pool's jobs are lost
         self._running: dict[Future[JobResult], tuple[Job, int]] = {}
@@ -219,12 +224,33 @@ class ProcessExecutor:
         self._pool.shutdown(wait=True, cancel_futures=True)
 
 
+_TRACKER_WARNING = "ignore:resource_tracker:UserWarning"
+
+
+def _quiet_resource_tracker() -> None:
+    """Keep the resource tracker from warning about "leaked semaphore objects" when the
+    runner is SIGKILLed (or Ctrl-C kills its workers mid-queue).
+
+    The pool's queues hold POSIX semaphores that a killed process cannot release; the
+    tracker process is there to release them, and does, but says so on the terminal after
+    the shell prompt is back. It starts with the runner's ``-W`` options
+    (``multiprocessing.util._args_from_interpreter_flags``), so this filter, added before
+    the first pool starts it, silences only that message of that process; the clean-up
+    itself still runs."""
+    if _TRACKER_WARNING not in sys.warnoptions:
+        sys.warnoptions.append(_TRACKER_WARNING)
+
+
 def _exit_with_parent(parent: int, every: float = 0.5) -> None:
     """Worker initializer: end this worker when the runner dies.
 
     A worker of a SIGKILLed runner would otherwise wait on its task queue for ever (it
     holds both ends of the pipe, so it never sees end-of-file) and keep running episodes
     nobody records."""
+
+    # Ctrl-C reaches the whole process group: the runner handles it (it stops the
+    # workers and says what is saved); a worker would only add a KeyboardInterrupt trace
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
     def watch() -> None:
         while os.getppid() == parent:
@@ -327,6 +353,35 @@ def store_path(out_dir: Path) -> Path:
     return Path(out_dir) / STORE_NAME
 
 
+class BenchInterrupted(EmboTeamError):
+    """Ctrl-C during a run. The episodes finished so far are stored; ``saved`` says how
+    many, so the user knows what ``--resume`` will skip."""
+
+    exit_code = EXIT_INTERRUPTED
+
+    def __init__(self, out_dir: Path, saved: int, total: int) -> None:
+        super().__init__(f"interrupted: {saved} of {total} episodes are saved in {out_dir}")
+        self.out_dir, self.saved, self.total = Path(out_dir), saved, total
+
+
+def default_out_dir(config: BenchConfig, *, root: Path = Path("bench-out"), now: float | None = None) -> Path:
+    """``bench-out/<suite>_<modes>_<front ends>_f<faults>_s<seeds>_<YYYYmmdd-HHMMSS>``: a
+    new folder per run without ``--out``, so a second run never meets the first one's
+    results (``--out DIR`` stays strict). ``-2``, ``-3`` ... if that second is taken."""
+    stamp = time.strftime("%Y%m%d-%H%M%S", time.localtime(now))
+    suite = Path(config.suite.removeprefix("smart-llm:").rstrip("/")).name or config.suite
+    if config.suite.startswith("smart-llm:"):
+        suite = f"smart-llm-{suite}"
+    parts = [suite, "+".join(config.modes), "+".join(config.frontends),
+             "f" + "+".join(f"{p:g}" for p in config.fault_levels), f"s{config.seeds}", stamp]
+    name = "_".join(re.sub(r"[^A-Za-z0-9.+=-]+", "-", part) for part in parts)
+    candidate, n = root / name, 1
+    while candidate.exists():
+        n += 1
+        candidate = root / f"{name}-{n}"
+    return candidate
+
+
 def run_bench(config: BenchConfig, jobs: Sequence[Job], episode_fn: EpisodeFn = PIPELINE_EPISODE_FN,
               *, progress: bool = True, reports: bool = True) -> list[Episode]:
     """Run every job not yet in ``config.out_dir``'s store; return the episodes of all
@@ -338,6 +393,36 @@ def run_bench(config: BenchConfig, jobs: Sequence[Job], episode_fn: EpisodeFn = 
     out_dir = Path(config.out_dir)
     unique = list({job.key: job for job in jobs}.values())
     resolve_episode_fn(episode_fn)  # a bad import path fails here, before any worker starts
+    if config.executor == "ray":  # fail before the store exists when Ray is not installed
+        from emboteam.bench.ray_executor import _import_ray
+
+        _import_ray()
+    fresh = not store_path(out_dir).exists()
+    try:
+        episodes = _run_stored(config, unique, episode_fn, out_dir, progress)
+    except EmboTeamError as exc:
+        if fresh and not isinstance(exc, BenchInterrupted):
+            _drop_empty_store(out_dir)  # a refused run (an executor that cannot start) leaves nothing
+        raise
+    if reports:
+        write_reports(out_dir)
+    return episodes
+
+
+def _drop_empty_store(out_dir: Path) -> None:
+    path = store_path(out_dir)
+    if not path.exists():
+        return
+    with ResultStore(path) as store:
+        if len(store):
+            return
+    for leftover in (path, path.with_name(path.name + "-wal"), path.with_name(path.name + "-shm"),
+                     path.with_name(path.name + "-journal")):
+        leftover.unlink(missing_ok=True)
+
+
+def _run_stored(config: BenchConfig, unique: list[Job], episode_fn: EpisodeFn, out_dir: Path,
+                progress: bool) -> list[Episode]:
     with ResultStore(store_path(out_dir)) as store:
         stored = len(store)
         if stored and not config.resume:
@@ -353,12 +438,14 @@ def run_bench(config: BenchConfig, jobs: Sequence[Job], episode_fn: EpisodeFn = 
         store.set_meta("config", config.model_dump_json())
         previous = store.episodes(keys={j.key for j in unique})
         if pending:
-            _run_pending(config, pending, episode_fn, store, out_dir, _Progress(len(unique), previous, progress))
+            try:
+                _run_pending(config, pending, episode_fn, store, out_dir,
+                             _Progress(len(unique), previous, progress))
+            except KeyboardInterrupt:
+                saved = len(store.done_keys() & {j.key for j in unique})
+                raise BenchInterrupted(out_dir, saved, len(unique)) from None
         by_key = {r.key: r.episode for r in store.results(keys={j.key for j in unique})}
-        episodes = [by_key[job.key] for job in unique]
-    if reports:
-        write_reports(out_dir)
-    return episodes
+        return [by_key[job.key] for job in unique]
 
 
 def _check_same_llm(store: ResultStore, config: BenchConfig) -> None:

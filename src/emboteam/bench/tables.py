@@ -21,6 +21,7 @@ import json
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from emboteam.bench.jobs import ABLATIONS, MODES
 from emboteam.bench.metrics import CATEGORY_ORDER, BenchSummary, GroupSummary, summarize
@@ -215,3 +216,84 @@ def write_summary(episodes: Sequence[Episode], path: Path, *, suite: str = "") -
     path = Path(path)
     path.write_text(json.dumps(bench_summary(episodes, suite=suite).to_json(), indent=1) + "\n")
     return path
+
+
+# --------------------------------------------------------------------------- the terminal
+
+def _cells(line: str) -> list[str]:
+    return [c.strip().strip("`") for c in line.strip().strip("|").split("|")]
+
+
+def _split_columns(widths: Sequence[int], keys: int, width: int) -> list[list[int]]:
+    """Column groups that each fit ``width`` with the ``keys`` label columns repeated: a
+    table too wide for the terminal is shown as several tables, never with a cell cut."""
+    def table_width(cols: Sequence[int]) -> int:
+        return sum(widths[c] + 3 for c in cols) + 1  # a cell's padding and border: 3
+
+    label = list(range(keys))
+    groups: list[list[int]] = []
+    current: list[int] = []
+    for col in range(keys, len(widths)):
+        if current and table_width(label + current + [col]) > width:
+            groups.append(current)
+            current = []
+        current.append(col)
+    if current or not groups:
+        groups.append(current)
+    return [label + g for g in groups]
+
+
+def _rich_table(rows: list[list[str]], align: list[str], width: int) -> list[Any]:
+    from rich.table import Table
+    from rich.text import Text
+
+    header, body = rows[0], rows[1:]
+    n = len(header)
+    numeric = [a.endswith(":") for a in align] + [False] * (n - len(align))
+    keys = next((i for i, num in enumerate(numeric) if num), n) or 1  # the leading label columns
+    # a header may wrap at its spaces; a value never does
+    widths = [max([max((len(w) for w in header[c].split()), default=1)]
+                  + [len(r[c]) for r in body if c < len(r)]) for c in range(n)]
+    out: list[Any] = []
+    for cols in _split_columns(widths, keys, width):
+        table = Table(show_lines=False, pad_edge=True)
+        for c in cols:
+            table.add_column(Text(header[c]), justify="right" if numeric[c] else "left",
+                             min_width=widths[c], overflow="fold")
+        for r in body:
+            table.add_row(*(Text(r[c] if c < len(r) else "") for c in cols))
+        out.append(table)
+    return out
+
+
+def terminal_tables(markdown: str, *, width: int) -> list[Any]:
+    """``tables.md`` as Rich renderables for a terminal ``width`` columns wide.
+
+    Rich's Markdown squeezes a wide table into the terminal by cutting cells
+    (``Paral…``, ``100…``); here every table keeps whole numbers and labels, and one too
+    wide is split into several that repeat its label columns."""
+    from rich.text import Text
+
+    out: list[Any] = []
+    lines = markdown.splitlines()
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        if line.lstrip().startswith("|"):
+            block: list[str] = []
+            while i < len(lines) and lines[i].lstrip().startswith("|"):
+                block.append(lines[i])
+                i += 1
+            rows = [_cells(b) for b in block]
+            align = rows[1] if len(rows) > 1 and all(set(c) <= set(":-") for c in rows[1]) else []
+            body = [rows[0], *rows[2:]] if align else rows
+            out += _rich_table(body, align, width)
+            continue
+        if line.startswith("#"):
+            out.append(Text(line.lstrip("#").strip().replace("`", ""), style="bold"))
+        elif line.strip():
+            out.append(Text(line.replace("`", "")))
+        else:
+            out.append(Text(""))
+        i += 1
+    return out

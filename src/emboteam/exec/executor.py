@@ -72,8 +72,8 @@ class Join(BaseModel):
             at = float(at_text)
         except ValueError:
             raise ExecutionConfigError(f"--join {text!r}: {at_text!r} is not a number of seconds") from None
-        if not at >= 0:
-            raise ExecutionConfigError(f"--join {text!r}: the time must be >= 0 seconds")
+        if not 0 <= at < float("inf"):  # nan and inf too: a robot that never joins is a typo
+            raise ExecutionConfigError(f"--join {text!r}: the time must be a number of seconds >= 0")
         profile = robot_profile(profile_text)
         taken = set(team)
         name, k = profile.name, 0

@@ -8,7 +8,7 @@ reason and carry on. All derive from :class:`LLMError`, itself an
 
 from __future__ import annotations
 
-from emboteam.errors import EmboTeamError
+from emboteam.errors import EXIT_FAILED, EXIT_SERVICE, EmboTeamError
 
 
 class LLMError(EmboTeamError):
@@ -26,17 +26,25 @@ class LLMConfigError(LLMError):
 class LLMUnreachable(LLMError):
     """The server could not be reached (connection refused, DNS, TLS) after retries."""
 
+    exit_code = EXIT_SERVICE
+
 
 class LLMTimeout(LLMError):
     """Every attempt outlived the configured time-out."""
+
+    exit_code = EXIT_SERVICE
 
 
 class LLMRateLimited(LLMError):
     """The server kept answering 429 after the retries (or asked to wait too long)."""
 
+    exit_code = EXIT_SERVICE
+
 
 class LLMServerError(LLMError):
     """A 5xx answer after the retries, or a 4xx the request cannot recover from."""
+
+    exit_code = EXIT_SERVICE
 
     def __init__(self, message: str, *, stage: str = "", status: int | None = None) -> None:
         super().__init__(message, stage=stage)
@@ -46,9 +54,13 @@ class LLMServerError(LLMError):
 class LLMRefusal(LLMError):
     """The model declined to answer (the provider's refusal signal)."""
 
+    exit_code = EXIT_FAILED  # the service answered; the task was not done
+
 
 class LLMMalformedOutput(LLMError):
     """The answer still broke the schema or the scene's rules after the repair rounds."""
+
+    exit_code = EXIT_FAILED  # the service answered; the task was not done
 
 
 class LLMReplayMiss(LLMError):

@@ -62,6 +62,10 @@ def parse_llm_spec(text: str) -> LLMSpec:
     model = rest.strip()
     if not model:
         raise LLMConfigError(f"bad LLM spec {raw!r}: the model is missing after '{provider}:'")
+    if base_url is None and provider in ("openai", "anthropic") and "@" in model:
+        # their model names have no '@': this is a base URL without its scheme
+        raise LLMConfigError(f"bad LLM spec {raw!r}: the base URL after '@' must start with http:// or "
+                             f"https:// (e.g. {provider}:{model.rpartition('@')[0]}@http://127.0.0.1:8080/v1)")
     if base_url is not None:
         parts = urlsplit(base_url)
         if not parts.hostname:

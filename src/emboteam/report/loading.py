@@ -28,8 +28,12 @@ def _first_error(exc: ValidationError) -> str:
     return f"{where}: {err['msg']}{more}"
 
 
-def read_trace(path: Path) -> list[TraceEvent]:
-    """The events of ``trace.jsonl``, in file order; a bad line is reported by number."""
+def read_trace(path: Path, problems: list[str] | None = None) -> list[TraceEvent]:
+    """The events of ``trace.jsonl``, in file order; a bad line is reported by number.
+
+    With a ``problems`` list, a bad line is skipped and described there instead: a run
+    that crashed mid-write leaves a truncated last line, and the events before it are
+    still worth a report."""
     events: list[TraceEvent] = []
     try:
         text = path.read_text(encoding="utf-8")
@@ -41,15 +45,21 @@ def read_trace(path: Path) -> list[TraceEvent]:
         try:
             events.append(TraceEvent.model_validate(json.loads(line)))
         except json.JSONDecodeError as exc:
-            raise ReportError(f"{path}:{number}: not JSON ({exc.msg})") from None
+            why = f"{path}:{number}: not JSON ({exc.msg})"
         except ValidationError as exc:
-            raise ReportError(f"{path}:{number}: not a trace event: {_first_error(exc)}") from None
+            why = f"{path}:{number}: not a trace event: {_first_error(exc)}"
+        else:
+            continue
+        if problems is None:
+            raise ReportError(why)
+        problems.append(f"{why}; line left out of the report")
     return events
 
 
-def load_episode_dir(directory: Path) -> Episode:
+def load_episode_dir(directory: Path, problems: list[str] | None = None) -> Episode:
     """The episode saved in ``directory`` by :meth:`Episode.save`, with its trace (a
-    missing ``trace.jsonl`` means an episode that ended before acting: empty trace)."""
+    missing ``trace.jsonl`` means an episode that ended before acting: empty trace).
+    ``problems``: see :func:`read_trace`."""
     if not directory.is_dir():
         raise ReportError(f"{directory} is not a directory")
     path = directory / "episode.json"
@@ -64,7 +74,7 @@ def load_episode_dir(directory: Path) -> Episode:
     if not isinstance(data, dict):
         raise ReportError(f"{path}: expected a JSON object, found {type(data).__name__}")
     trace_path = directory / "trace.jsonl"
-    trace = read_trace(trace_path) if trace_path.exists() else []
+    trace = read_trace(trace_path, problems) if trace_path.exists() else []
     try:
         return Episode.model_validate({**data, "trace": trace})
     except ValidationError as exc:

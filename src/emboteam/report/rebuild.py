@@ -15,7 +15,7 @@ from typing import Any
 
 from emboteam.exec.episode import Episode
 from emboteam.report.bench_index import EPISODES_DIR, write_bench_index
-from emboteam.report.episode_report import save_episode_report, write_episode_report
+from emboteam.report.episode_report import save_episode_report
 from emboteam.report.loading import ReportError, load_episode_dir
 
 SUMMARY_NAME = "summary.json"
@@ -23,12 +23,16 @@ TABLES_NAME = "tables.md"
 PLOT_SUFFIXES = (".png", ".svg")
 
 
+def _summary_of(episodes: list[Episode]) -> dict[str, Any]:
+    from emboteam.bench.tables import bench_summary
+
+    return {**bench_summary(episodes).to_json(), "note": "recomputed from the episodes (no summary.json)"}
+
+
 def _summary(directory: Path, episodes: list[Episode]) -> dict[str, Any]:
     path = directory / SUMMARY_NAME
     if not path.exists():
-        from emboteam.bench.tables import bench_summary
-
-        return {**bench_summary(episodes).to_json(), "note": "recomputed from the episodes (no summary.json)"}
+        return _summary_of(episodes)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
@@ -46,25 +50,45 @@ def _plots(directory: Path) -> list[Path]:
     return found
 
 
-def write_report(directory: Path, *, refresh: bool = True) -> list[Path]:
+def write_report(directory: Path, *, refresh: bool = True, problems: list[str] | None = None) -> list[Path]:
     """Rebuild every report page under ``directory``; return the pages written (a
     benchmark: each episode's viewer, then the index last). ``refresh=False`` keeps the
-    episode pages that exist (a resumed benchmark renders only its new episodes)."""
+    episode pages that exist (a resumed benchmark renders only its new episodes).
+
+    With a ``problems`` list, what is broken is skipped and described there and the rest
+    is built: an episode whose episode.json cannot be read is left out of the index, a
+    bad trace.jsonl line is left out of its episode's viewer. Without it, the first
+    problem raises :class:`ReportError`."""
     directory = Path(directory)
     if (directory / "episode.json").is_file():
-        return [write_episode_report(directory)]
+        episode = load_episode_dir(directory, problems)
+        return [save_episode_report(episode, directory)]
     episodes_root = directory / EPISODES_DIR
     if not episodes_root.is_dir():
         raise ReportError(f"{directory} holds neither episode.json (a run) nor {EPISODES_DIR}/ (a benchmark)")
     written: list[Path] = []
     pairs: list[tuple[str, Episode]] = []
     for sub in sorted(p for p in episodes_root.iterdir() if (p / "episode.json").is_file()):
-        episode = load_episode_dir(sub)
+        try:
+            episode = load_episode_dir(sub, problems)
+        except ReportError as exc:
+            if problems is None:
+                raise
+            problems.append(f"{exc}; episode left out of the index")
+            continue
         pairs.append((sub.name, episode))
         if refresh or not (sub / "report.html").is_file():
             written.append(save_episode_report(episode, sub))
     tables = directory / TABLES_NAME
     tables_md = tables.read_text(encoding="utf-8") if tables.is_file() else ""
-    summary = _summary(directory, [ep for _, ep in pairs])
+    if problems:  # the index says what it is missing, not only the terminal
+        tables_md += "\n\n## Left out of this report\n\n" + "".join(f"- `{p}`\n" for p in problems)
+    try:
+        summary = _summary(directory, [ep for _, ep in pairs])
+    except ReportError as exc:
+        if problems is None:
+            raise
+        problems.append(f"{exc}; summary recomputed from the episodes")
+        summary = _summary_of([ep for _, ep in pairs])
     written.append(write_bench_index(directory, pairs, summary, tables_md, _plots(directory)))
     return written

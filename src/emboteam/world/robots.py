@@ -105,9 +105,11 @@ def parse_team(spec: str | list[int] | list[str]) -> tuple[RobotProfile, ...]:
     becomes ``robot5b``, so names stay unique within a team.
     """
     items = [s for s in spec.split(",")] if isinstance(spec, str) else [str(s) for s in spec]
-    items = [s.strip() for s in items if s.strip()]
-    if not items:
+    items = [s.strip() for s in items]
+    if not any(items):
         raise UnknownRobotError("empty robot list")
+    if not all(items):  # "1,,2" is a typo, not a team of two: say so rather than guess
+        raise UnknownRobotError(f"robot list {spec!r} has an empty item: write profiles as 1,2,3")
     team: list[RobotProfile] = []
     seen: dict[str, int] = {}
     for item in items:

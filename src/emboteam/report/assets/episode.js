@@ -514,7 +514,11 @@
       el("span", {}, it, s[1]);
     });
     if (!T.nodes.length) {
-      el("div", { class: "empty" }, box, "No behavior tree: mode " + D.meta.mode + " executes without one, or the episode ended before planning.");
+      // full, no-hp and no-pfg-hp execute behavior trees; the other modes run action lists
+      var treeMode = ["full", "no-hp", "no-pfg-hp"].indexOf(D.meta.mode) >= 0;
+      el("div", { class: "empty" }, box, treeMode
+        ? "No behavior tree: the episode ended before its tree was built (see the outcome above)."
+        : "No behavior tree: mode " + D.meta.mode + " executes action lists, not a tree.");
       document.getElementById("tree-expand").hidden = true;
       document.getElementById("tree-collapse").hidden = true;
       return;
