@@ -401,6 +401,18 @@ def bench(
     baseline: list[str] = typer.Option([], "--baseline", help="smart-llm | lamma-p (repeatable)"),
     faults: list[str] = typer.Option(["0"], "--faults", help="fault level(s): 0.2 or 0,0.1,0.2 (repeatable)"),
     seeds: int = typer.Option(1, "--seeds", min=1, help="seeds 0..N-1 per task"),
+    breakdown: list[str] = typer.Option([], "--breakdown", help="WHO@WHEN: a robot stops for good, e.g. "
+                                        "random@0.3 (drawn by the seed, at 30% of the nominal makespan), "
+                                        "robot2@12s (repeatable)"),
+    join: list[str] = typer.Option([], "--join", help="PROFILE@WHEN: a robot joins mid-run, e.g. 5@30 (30 s, "
+                                   "as run), random@0.3 (a copy of a team member) (repeatable)"),
+    moves: list[str] = typer.Option([], "--moves", help="WHAT@WHEN: someone moves an object the plan uses "
+                                    "to a random valid place (closed receptacles too), e.g. random@0.5, "
+                                    "Apple_1@20s (repeatable)"),
+    msg_loss: float = typer.Option(0.0, "--msg-loss", help="probability that a blackboard lock release is "
+                                   "lost (the lock's lease then times out)"),
+    msg_delay: float = typer.Option(0.0, "--msg-delay", help="up to this many simulated seconds late a robot "
+                                    "reads another's sync flag"),
     workers: int = typer.Option(2, "--workers", min=1, help="parallel episodes"),
     executor: str = typer.Option("local", "--executor", help="local (process pool) | ray"),
     ray_address: str | None = typer.Option(None, "--ray-address", help="Ray cluster address (default: local)"),
@@ -411,6 +423,7 @@ def bench(
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
     from emboteam.bench.jobs import BenchConfig, expand_jobs, modes_from_options, parse_fault_levels
+    from emboteam.sim.disturbances import Disturbances
     from emboteam.bench.runner import BenchInterrupted, run_bench
     from emboteam.bench.suites import load_suite
     from emboteam.bench.tables import bench_summary
@@ -422,6 +435,8 @@ def bench(
     cfg = BenchConfig.build(
         suite=suite, modes=modes_from_options(ablation, baseline), frontends=frontends, llm=llm,
         seeds=seeds, fault_levels=parse_fault_levels(faults), workers=workers, executor=executor,
+        disturbance=Disturbances.parse(breakdown=breakdown, join=join, moves=moves, msg_loss=msg_loss,
+                                       msg_delay=msg_delay),
         ray_address=ray_address, out_dir=out_dir or BENCH_ROOT, resume=resume, llm_timeout=llm_timeout,
     )
     from emboteam.pipeline import RunConfig, check_config

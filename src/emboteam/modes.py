@@ -13,7 +13,7 @@ from functools import cache
 
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
-from emboteam.exec import Executor, Join, planner_replanner, run_linear, run_sequences
+from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, run_sequences
 from emboteam.exec.episode import Episode
 from emboteam.exec.result import ExecutionResult
 from emboteam.hp.plan import MergedPlan, PlanStep
@@ -175,13 +175,14 @@ def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: W
             team: Sequence[RobotProfile], *, reactive: bool, replan: bool,
             finish_plan: bool = False) -> tuple[ExecutionResult, Simulator]:
     sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
+    joins = parse_joins(cfg.joins, [p.name for p in team])
+    messages = cfg.fault_config().messages
     if not reactive:
-        return run_linear(sim, plan, goal, time_limit=cfg.time_limit), sim
-    names = [p.name for p in team]
-    joins = [Join.parse(j, names) for j in cfg.joins]
+        return run_linear(sim, plan, goal, time_limit=cfg.time_limit, joins=[(j.profile, j.at) for j in joins],
+                          messages=messages, seed=cfg.seed), sim
     replanner = planner_replanner(planner_for("full")) if replan else None
     executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
-                        time_limit=cfg.time_limit, finish_plan=finish_plan)
+                        time_limit=cfg.time_limit, finish_plan=finish_plan, messages=messages)
     return executor.run(), sim
 
 
@@ -189,6 +190,12 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
     """Plan and execute one task in ``cfg.mode``; typed errors propagate to the caller."""
     scene = load_scene(task.floor_plan)
     state, team = initial_state(task)
+    prepared = None
+    if cfg.disturbance.any:  # breakdowns, joins, moves, message faults placed in this task
+        from emboteam.bench.ceiling import prepare
+
+        prepared = prepare(task, cfg, state, team)
+        cfg = prepared.cfg
     llm = make_llm(cfg)
     t0 = time.perf_counter()
     spec: TaskSpec | None = None
@@ -199,7 +206,8 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
         goal = task.goal if task.goal.conditions else Goal(conditions=())
         if cfg.mode == "smart-llm":
             sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
-            result = run_sequences(sim, lists, goal, time_limit=cfg.time_limit)
+            joins = [(j.profile, j.at) for j in parse_joins(cfg.joins, [p.name for p in team])]
+            result = run_sequences(sim, lists, goal, time_limit=cfg.time_limit, joins=joins)
         else:
             result, sim = execute(literal_plan(lists, state), goal, cfg, scene, state, team,
                                   reactive=True, replan=False)
@@ -215,6 +223,14 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
     success, gcr, conditions = score(truth, sim.state)
     fields = result.episode_fields()
     fields.update(success=success, gcr=gcr, conditions=conditions)
+    error = result.error
+    if prepared is not None:
+        from emboteam.bench.ceiling import disturbance_outcome
+
+        outcome = disturbance_outcome(task, prepared, sim, result, success, state)
+        fields["disturbance"] = outcome
+        if not success and outcome.savable is False and error is None:
+            error = outcome.ceiling  # the typed reason an unsavable episode ended with
     return Episode(
         task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
         robots=tuple(sorted(sim.state.robots)), category=task.category, mode=cfg.mode,
@@ -222,7 +238,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
         fault_level=cfg.fault_level,
         llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
         plan_seconds=round(plan_seconds, 4), taskspec=spec, notes=tuple(notes),
-        error=result.error, **fields,
+        error=error, **fields,
     )
 
 

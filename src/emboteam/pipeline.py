@@ -32,6 +32,7 @@ from emboteam.bench.jobs import MODES, Frontend, Mode
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import ConditionOutcome, Episode
+from emboteam.sim.disturbances import Disturbances
 from emboteam.sim.faults import FaultConfig
 from emboteam.sim.setup import apply_changes
 from emboteam.world.checker import check_goal
@@ -57,6 +58,8 @@ class RunConfig(BaseModel):
     seed: int = 0
     time_limit: float = Field(900.0, description="simulated seconds")
     joins: tuple[str, ...] = Field((), description="PROFILE@SECONDS: robots joining mid-run")
+    disturbance: Disturbances = Field(default_factory=Disturbances,
+                                      description="benchmark disturbances, placed per task (bench/ceiling.py)")
 
     def fault_config(self) -> FaultConfig:
         return self.faults if self.faults is not None else FaultConfig.level(self.fault_level)

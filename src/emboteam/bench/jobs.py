@@ -26,6 +26,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import Episode
+from emboteam.sim.disturbances import Disturbances
 from emboteam.sim.faults import FaultConfig
 from emboteam.world.robots import parse_team
 
@@ -58,6 +59,9 @@ class Job(BaseModel):
     llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL]")
     seed: int = Field(0, ge=0)
     fault_level: float = Field(0.0, ge=0, le=1)
+    #: breakdowns, joins, moved objects, blackboard message faults (bench --breakdown/--join/
+    #: --moves/--msg-loss/--msg-delay); in the key only when something is disturbed
+    disturbance: Disturbances = Field(default_factory=Disturbances)
     #: not part of the key: it changes how long a call may take, not what is measured
     llm_timeout: float = Field(60.0, gt=0)
 
@@ -79,8 +83,11 @@ class Job(BaseModel):
     def key(self) -> str:
         """``SUITE/ID|mode|frontend|llm|seed=N|faults=P``: stable across runs and machines
         (``repr`` of a float round-trips, so two different fault levels never share a key)."""
-        return "|".join((self.task.key, self.mode, self.frontend, self.llm or "-",
-                         f"seed={self.seed}", f"faults={float(self.fault_level)!r}"))
+        parts = [self.task.key, self.mode, self.frontend, self.llm or "-",
+                 f"seed={self.seed}", f"faults={float(self.fault_level)!r}"]
+        if self.disturbance.any:  # undisturbed keys stay as they were (existing stores stay valid)
+            parts.append(f"disturb={self.disturbance.label}")
+        return "|".join(parts)
 
     @property
     def dirname(self) -> str:
@@ -114,6 +121,8 @@ class BenchConfig(BaseModel):
     out_dir: Path = Path("bench-out")
     resume: bool = False
     llm_timeout: float = Field(60.0, gt=0)
+
+    disturbance: Disturbances = Field(default_factory=Disturbances)
 
     @field_validator("modes", "frontends", "fault_levels")
     @classmethod
@@ -201,7 +210,7 @@ def expand_jobs(config: BenchConfig, tasks: Sequence[BenchTask]) -> list[Job]:
             raise BenchConfigError(f"task {task.key} appears twice in the suite")
         seen.add(task.key)
     return [
-        Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed,
+        Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed, disturbance=config.disturbance,
             fault_level=level, llm_timeout=config.llm_timeout)
         for mode in config.modes
         for frontend in config.frontends

@@ -26,6 +26,7 @@ from typing import Protocol
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from emboteam.bench.disturbance_metrics import DisturbanceSummary, disturbance_by_mode, summarize_disturbance
 from emboteam.exec.episode import Episode
 from emboteam.exec.trace import TraceEvent
 from emboteam.world.actions import ActionOutcome, Skill
@@ -146,10 +147,19 @@ class BenchSummary(BaseModel):
     llm_calls_mean: float = 0.0
     tokens_mean: float = 0.0
     errors: int = Field(0, description="episodes ended by a typed error")
+    disturbance: DisturbanceSummary | None = Field(
+        None, description="breakdowns, joins, moves, message faults: SR of savable, savable share (None: "
+                          "no episode was disturbed by options)")
+    disturbance_by_mode: dict[str, DisturbanceSummary] = Field(
+        default_factory=dict, description="the same per mode")
 
     def to_json(self) -> dict[str, object]:
-        """The bench ``--json`` object."""
-        return self.model_dump(mode="json")
+        """The bench ``--json`` object (the disturbance fields only when a run was disturbed,
+        so the contract of an undisturbed run is unchanged)."""
+        data = self.model_dump(mode="json")
+        if self.disturbance is None:
+            del data["disturbance"], data["disturbance_by_mode"]
+        return data
 
 
 #: categories in the paper's order; others follow alphabetically
@@ -218,4 +228,5 @@ def summarize(episodes: Iterable[Episode], *, suite: str = "", seed: int = CI_SE
         llm_calls_mean=_mean([float(e.llm_calls) for e in eps]),
         tokens_mean=_mean([float(e.tokens) for e in eps]),
         errors=sum(1 for e in eps if e.error),
+        disturbance=summarize_disturbance(eps), disturbance_by_mode=disturbance_by_mode(eps),
     )

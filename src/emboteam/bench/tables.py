@@ -193,6 +193,10 @@ def render_tables(episodes: Sequence[Episode] | GroupSummaries, *, title: str = 
                     *category_table(summaries, frontend, level, ABLATIONS, ABLATION_LABELS, "Variant"), ""]
     if len(summaries.fault_levels()) > 1:
         out += ["## Success rate against fault rate", "", *fault_sweep_table(summaries), ""]
+    # the disturbance section (bench --breakdown/--join/--moves/--msg-*)
+    from emboteam.bench.disturbance_table import disturbance_section
+
+    out += disturbance_section(eps)
     out += ["## All runs", "", *runs_table(summaries), ""]
     return "\n".join(out)
 

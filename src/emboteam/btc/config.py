@@ -20,3 +20,7 @@ class BTConfig(BaseModel):
     max_waits: int = Field(20, ge=0)
     #: simulated seconds of one back-off wait
     wait_seconds: float = Field(1.0, gt=0)
+    #: simulated seconds a spot lock stays valid after its holder stopped renewing it (a
+    #: holder renews its locks while it works; a lost release or a broken-down holder
+    #: stops that, and a waiting robot takes the lock over once the lease has run out)
+    lock_lease: float = Field(5.0, gt=0)

@@ -25,6 +25,7 @@ from py_trees.common import Access
 from emboteam.btc.config import BTConfig
 from emboteam.btc.keys import failed_key, flag_key, lock_key
 from emboteam.btc.recovery import Diagnosis
+from emboteam.sim.faults import FaultConfig, FaultInjector, MessageFaults
 from emboteam.world.actions import Action, ActionOutcome
 from emboteam.world.environment import Environment
 from emboteam.world.state import WorldState
@@ -149,8 +150,25 @@ class Runtime:
     """The environment binding and shared services of one compiled tree."""
 
     def __init__(self, env: Environment | None, *, config: BTConfig | None = None,
-                 sink: TraceSink | None = None, plan_index: int = 0) -> None:
+                 sink: TraceSink | None = None, plan_index: int = 0,
+                 messages: MessageFaults | None = None, seed: int = 0) -> None:
         self._env = env
+        #: the blackboard as a lossy network (``--msg-loss``/``--msg-delay``); the draws are
+        #: seeded per message, so the same run loses and delays the same messages
+        self.messages = messages or MessageFaults()
+        self._net = FaultInjector(FaultConfig(messages=self.messages), seed)
+        #: step -> (writer, simulated time) of its done flag
+        self._flag_written: dict[str, tuple[str, float]] = {}
+        #: spot -> (holder, time) of a lock whose release was lost: its lease runs out
+        #: ``config.lock_lease`` seconds later, since the holder no longer renews it
+        self._stale: dict[str, tuple[str, float]] = {}
+        self._releases: dict[tuple[str, str], int] = {}
+        self._spot_of_key: dict[str, str] = {}
+        self._late: set[tuple[str, str]] = set()
+        #: counts of the network's effects (recorded with the episode)
+        self.lost_releases = 0
+        self.lock_timeouts = 0
+        self.late_reads = 0
         #: which plan of the run this tree executes (0: the first, k: the k-th replan);
         #: recorded with every action so step ids of different plans stay apart
         self.plan_index = plan_index
@@ -260,9 +278,26 @@ class Runtime:
 
     # ---- blackboard protocol ----------------------------------------------------------
     def flag_set(self, robot: str, step: str) -> bool:
-        return bool(self.board.read(robot, flag_key(step), False))
+        """Has ``robot`` received the step's done flag? With a flag delay, another robot's
+        flag arrives late: until then the reader sees it unset and asks to be woken."""
+        if not self.board.read(robot, flag_key(step), False):
+            return False
+        written = self._flag_written.get(step)
+        if written is None or written[0] == robot or not self.messages.flag_delay:
+            return True
+        arrives = written[1] + self._net.flag_delay(f"{self.plan_index}|{step}", robot)
+        if self.now + 1e-9 >= arrives:
+            return True
+        if (step, robot) not in self._late:
+            self._late.add((step, robot))
+            self.late_reads += 1
+            self.emit("network", robot, what="late_read", key=flag_key(step), arrives=round(arrives, 6))
+        self.wake_at(arrives)
+        return False
 
     def set_flag(self, robot: str, step: str) -> None:
+        if step not in self._flag_written:
+            self._flag_written[step] = (robot, self.now if self.attached else 0.0)
         self.board.write(robot, flag_key(step), True)
         self.mark_progress()
 
@@ -286,18 +321,44 @@ class Runtime:
         no further synchronisation."""
         holder = self.holder(robot, spot)
         if holder == robot:
+            self._stale.pop(spot, None)  # its own lock: it renews the lease again
             return True
         if holder is not None:
-            return False
+            stale = self._stale.get(spot)
+            if stale is None or stale[0] != holder:
+                return False
+            expires = stale[1] + self.config.lock_lease
+            if self.now + 1e-9 < expires:
+                self.wake_at(expires)
+                return False
+            # the holder's lease ran out (its release was lost): the lock is taken over
+            del self._stale[spot]
+            self.lock_timeouts += 1
+            self.emit("network", robot, what="lock_timeout", key=lock_key(spot), holder=holder,
+                      since=round(stale[1], 6))
+        self._spot_of_key[lock_key(spot)] = spot
         self.board.write(robot, lock_key(spot), robot)
         self.mark_progress()
         return True
 
+    def _release(self, robot: str, spot: str) -> None:
+        """The robot lets the spot go; the message may be lost (the lock then stays on the
+        board until its lease expires)."""
+        n = self._releases.get((robot, spot), 0)
+        self._releases[(robot, spot)] = n + 1
+        self.mark_progress()
+        if self._net.release_lost(f"{self.plan_index}|{robot}", spot, n):
+            self._stale[spot] = (robot, self.now if self.attached else 0.0)
+            self.lost_releases += 1
+            self.emit("network", robot, what="release_lost", key=lock_key(spot),
+                      lease_ends=round(self._stale[spot][1] + self.config.lock_lease, 6))
+            return
+        self.board.write(robot, lock_key(spot), None)
+
     def release(self, robot: str, spots: Iterable[str]) -> None:
         for spot in spots:
-            if self.holder(robot, spot) == robot:
-                self.board.write(robot, lock_key(spot), None)
-                self.mark_progress()
+            if self.holder(robot, spot) == robot and spot not in self._stale:
+                self._release(robot, spot)
 
     def release_all(self, robot: str) -> None:
         """Free every spot the robot holds (its branch ended or failed)."""
@@ -305,8 +366,12 @@ class Runtime:
         keys = [k.rsplit("/", 1)[-1] for k in (*c.write, *c.exclusive)]
         for key in keys:
             if key.startswith("lock_") and self.board.read(robot, key) == robot:
-                self.board.write(robot, key, None)
-                self.mark_progress()
+                spot = self._spot_of_key.get(key)
+                if spot is None:
+                    self.board.write(robot, key, None)
+                    self.mark_progress()
+                elif spot not in self._stale:
+                    self._release(robot, spot)
 
     def fail_branch(self, robot: str, reason: str) -> None:
         self.branch_failures[robot] = reason

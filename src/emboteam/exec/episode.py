@@ -14,6 +14,7 @@ from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from emboteam.exec.disturbance import DisturbanceOutcome
 from emboteam.exec.trace import TraceEvent, read_jsonl, write_jsonl
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
@@ -62,6 +63,8 @@ class Episode(BaseModel):
     notes: tuple[str, ...] = Field((), description="what the front end could not read, or read "
                                    "with doubt, one line each (span and why)")
 
+    disturbance: DisturbanceOutcome | None = Field(None, description="what a benchmark disturbance did "
+                                                   "(bench --breakdown/--join/--moves/--msg-*)")
     conditions: tuple[ConditionOutcome, ...] = ()
     taskspec: TaskSpec | None = None
     plan: MergedPlan | None = None

@@ -38,6 +38,8 @@ from emboteam.exec.recorder import TraceRecorder
 from emboteam.exec.replan import Replanner
 from emboteam.exec.result import ExecutionResult, StopReason
 from emboteam.hp.plan import MergedPlan
+from emboteam.pddl.errors import ImpossibleGoalError, MissingSkillError, UnsolvableSubtaskError
+from emboteam.sim.faults import MessageFaults
 from emboteam.world.actions import ActionOutcome
 from emboteam.world.checker import GoalReport, check_goal
 from emboteam.world.environment import Environment
@@ -51,6 +53,17 @@ MAX_TICKS_PER_INSTANT = 200
 
 class ExecutionConfigError(EmboTeamError):
     """An executor configuration that cannot run (negative limits, a join in the past)."""
+
+
+class UnsavableTaskError(EmboTeamError):
+    """After a disturbance (a robot broke down, an object was moved) the planner proves the
+    goal out of reach of the robots left: the run stops at once instead of running out the
+    clock."""
+
+
+#: planner errors that say the goal cannot be reached (not "the planner gave up")
+UNREACHABLE_ERRORS: tuple[type[EmboTeamError], ...] = (ImpossibleGoalError, MissingSkillError,
+                                                       UnsolvableSubtaskError)
 
 
 class Join(BaseModel):
@@ -85,6 +98,18 @@ class Join(BaseModel):
         return cls(profile=profile, at=at)
 
 
+def parse_joins(texts: Sequence[str], team: Sequence[str]) -> list[Join]:
+    """``--join`` values, each named apart from the team and from the joins before it
+    (two copies of profile 5 joining a team with robot5: robot5b, robot5c)."""
+    taken = list(team)
+    joins = []
+    for text in texts:
+        j = Join.parse(text, taken)
+        taken.append(j.profile.name)
+        joins.append(j)
+    return joins
+
+
 class Executor:
     """Run a merged plan as a behavior tree. See the module docstring."""
 
@@ -92,7 +117,8 @@ class Executor:
                  replanner: Replanner | None = None, time_limit: float = 600.0,
                  tick_limit: int = 200_000, joins: Sequence[Join | tuple[RobotProfile, float]] = (),
                  seed: int = 0, config: BTConfig | None = None, max_replans: int = 3,
-                 pose_interval: float = 0.5, record_nodes: bool = True, finish_plan: bool = False) -> None:
+                 pose_interval: float = 0.5, record_nodes: bool = True, finish_plan: bool = False,
+                 messages: MessageFaults | None = None) -> None:
         if time_limit <= 0 or tick_limit <= 0 or max_replans < 0 or pose_interval < 0:
             raise ExecutionConfigError("time_limit and tick_limit must be positive, max_replans and "
                                        "pose_interval non-negative")
@@ -128,6 +154,12 @@ class Executor:
         self.recoveries = 0
         self.error: str | None = None
         self.replan_error: str | None = None
+        #: the blackboard's message faults (``--msg-loss``/``--msg-delay``), seeded by ``seed``
+        self.messages = messages or MessageFaults()
+        #: lost releases, lock timeouts, late flag reads over every tree of the run
+        self.network = {"lost_releases": 0, "lock_timeouts": 0, "late_reads": 0}
+        #: set when the planner proves the goal unreachable after a disturbance
+        self.unsavable: str | None = None
 
     # ---- the loop ----------------------------------------------------------------------
     def run(self) -> ExecutionResult:
@@ -152,6 +184,9 @@ class Executor:
                 if self.ticks >= self.tick_limit:
                     stop = "tick_limit"
                     break
+                if self.unsavable is not None:
+                    stop = "unsavable"
+                    break
                 if self.joins and self.joins[0].at <= env.now + 1e-9:
                     tree = self._join_due(tree)
                     continue
@@ -161,10 +196,14 @@ class Executor:
                     handled_failures |= fresh
                     reason = "goal unmet at the end of the plan" if done and not fresh else \
                         "; ".join(f"{r}: {rt.branch_failures[r]}" for r in sorted(fresh))
-                    replaced = self._replan_if_possible(tree, reason, budgeted=True)
+                    # a breakdown gets its own replan, as a join does: it is not the plan's fault
+                    broken = any(self._is_down(r) for r in fresh)
+                    replaced = self._replan_if_possible(tree, reason, budgeted=not broken)
                     if replaced is not None:
                         tree, handled_failures = replaced, set()
                         continue
+                    if self.unsavable is not None:
+                        continue  # stops at the top of the loop
                     if self._goal_holds():
                         stop = "success"
                         break
@@ -178,7 +217,7 @@ class Executor:
                     if replaced is not None:
                         tree, handled_failures = replaced, set()
                         continue
-                    stop = "stalled"
+                    stop = "unsavable" if self.unsavable is not None else "stalled"
                     break
                 if next_t > deadline + 1e-9:
                     self._advance(tree, deadline)
@@ -189,27 +228,41 @@ class Executor:
             self.error = str(exc)
             stop = "error"
         finally:
-            self.recoveries += tree.runtime.recoveries
-            self.failed_robots |= set(tree.runtime.branch_failures)
-            tree.close()
+            self._retire(tree)
         for r in env.observe().robots:
             self.recorder.pose(r, force=True)
         report = check_goal(self.goal, env.observe())
         state = env.observe()
         if not report.success and self.error is None:
-            self.error = self.replan_error
+            self.error = self.unsavable or self.replan_error
         return ExecutionResult(
             mode="bt", seed=self.seed, success=report.success, stop_reason=stop, report=report,
             makespan=round(env.now - start, 6), ticks=self.ticks, replans=self.replans,
             recoveries=self.recoveries, failed_robots=tuple(sorted(self.failed_robots)),
             broken_robots=tuple(sorted(r for r, s in state.robots.items() if s.down)),
             joined_robots=tuple(self.joined), outcomes=tuple(self.outcomes), plans=tuple(self.plans),
-            error=self.error, trace=tuple(self.recorder.events),
+            error=self.error, trace=tuple(self.recorder.events), network=dict(self.network),
+            wall_after_disturbance=self.recorder.wall_since_disturbance(),
         )
 
     # ---- pieces ------------------------------------------------------------------------
+    def _retire(self, tree: CompiledTree) -> None:
+        """Close a tree, keeping what its runtime counted."""
+        rt = tree.runtime
+        self.recoveries += rt.recoveries
+        self.failed_robots |= set(rt.branch_failures)
+        self.network["lost_releases"] += rt.lost_releases
+        self.network["lock_timeouts"] += rt.lock_timeouts
+        self.network["late_reads"] += rt.late_reads
+        tree.close()
+
+    def _is_down(self, robot: str) -> bool:
+        r = self.env.observe().robots.get(robot)
+        return r is not None and r.down
+
     def _compile(self, plan: MergedPlan) -> CompiledTree:
-        runtime = Runtime(self.env, config=self.config, sink=self.recorder, plan_index=len(self.plans))
+        runtime = Runtime(self.env, config=self.config, sink=self.recorder, plan_index=len(self.plans),
+                          messages=self.messages, seed=self.seed)
         try:
             return compile_plan(plan, runtime)
         except BaseException:
@@ -273,6 +326,8 @@ class Executor:
         data = {"reason": reason, "unmet": [str(c) for c in unmet.conditions], "robots": robots}
         if not robots:
             self.recorder.emit("replan", None, **data, error="no robot is left working")
+            if self.recorder.disturbed:
+                self.unsavable = f"{UnsavableTaskError.__name__}: no robot is left working"
             return None
         try:
             plan = self.replanner(state.copy(), self.goal, robots)
@@ -280,13 +335,14 @@ class Executor:
         except EmboTeamError as exc:
             self.recorder.emit("replan", None, **data, error=str(exc))
             self.replan_error = f"replanning failed: {exc}"
+            if isinstance(exc, UNREACHABLE_ERRORS) and self.recorder.disturbed:
+                self.unsavable = (f"{UnsavableTaskError.__name__}: the goal is out of reach of "
+                                  f"{', '.join(robots)} after the disturbance: {exc}")
             return None
         self.recorder.emit("replan", None, **data, error=None, steps=len(plan.steps))
         self.replans += 1
         self.plans.append(plan)
-        self.recoveries += tree.runtime.recoveries
-        self.failed_robots |= set(tree.runtime.branch_failures)
-        tree.close()
+        self._retire(tree)
         return new_tree
 
     def _join_due(self, tree: CompiledTree) -> CompiledTree:

@@ -22,10 +22,12 @@ from emboteam.exec.executor import ExecutionConfigError
 from emboteam.exec.recorder import TraceRecorder
 from emboteam.exec.result import ExecutionResult, StopReason
 from emboteam.hp.plan import MergedPlan, PlanStep
+from emboteam.sim.faults import FaultConfig, FaultInjector, MessageFaults
 from emboteam.world.actions import Action, ActionOutcome
 from emboteam.world.checker import check_goal
 from emboteam.world.environment import Environment
 from emboteam.world.goals import Goal
+from emboteam.world.robots import RobotProfile
 
 
 def _check_team(env: Environment, robots: Sequence[str]) -> None:
@@ -35,8 +37,15 @@ def _check_team(env: Environment, robots: Sequence[str]) -> None:
 
 
 def run_linear(env: Environment, plan: MergedPlan, goal: Goal | None = None, *, time_limit: float = 600.0,
-               pose_interval: float = 0.5, mode: str = "linear") -> ExecutionResult:
-    """Execute the merged plan linearly (see the module docstring)."""
+               pose_interval: float = 0.5, mode: str = "linear",
+               joins: Sequence[tuple[RobotProfile, float]] = (), messages: MessageFaults | None = None,
+               seed: int = 0) -> ExecutionResult:
+    """Execute the merged plan linearly (see the module docstring).
+
+    ``joins``: robots that enter the team mid-run; nothing replans, so they stay idle.
+    ``messages``: with a flag delay, a robot learns that a producer step ended only that
+    much later (the same seeded draw as the behavior trees' flags); there are no locks here
+    to lose releases of."""
     if time_limit <= 0:
         raise ExecutionConfigError("time_limit must be positive")
     _check_team(env, plan.robots)
@@ -46,33 +55,64 @@ def run_linear(env: Environment, plan: MergedPlan, goal: Goal | None = None, *, 
     waits = cross_robot_waits(plan)
     queues = {r: list(plan.for_robot(r)) for r in plan.robots}
     running: dict[str, PlanStep] = {}
-    ended: set[str] = set()
+    ended: dict[str, float] = {}
+    owner = {s.id: s.robot for s in plan.steps}
+    pending_joins = sorted(joins, key=lambda j: j[1])
+    joined: list[str] = []
+    net = FaultInjector(FaultConfig(messages=messages or MessageFaults()), seed)
+    late: set[tuple[str, str]] = set()
+    network = {"lost_releases": 0, "lock_timeouts": 0, "late_reads": 0}
     outcomes: list[ActionOutcome] = []
     recorder.pull_sim_events()
     for r in env.observe().robots:
         recorder.pose(r, force=True)
     stop: StopReason = "plan_done"
+
+    def known_at(producer: str, reader: str) -> float:
+        """When ``reader`` learns that ``producer`` ended."""
+        if owner.get(producer) == reader:
+            return ended[producer]
+        return ended[producer] + net.flag_delay(f"0|{producer}", reader)
+
     while True:
+        while pending_joins and pending_joins[0][1] <= env.now + 1e-9:
+            profile, _ = pending_joins.pop(0)
+            env.add_robot(profile)
+            joined.append(profile.name)
+            recorder.pull_sim_events()
+            recorder.pose(profile.name, force=True)
+        wake: list[float] = []
         for robot in plan.robots:
             q = queues[robot]
             if robot in running or not q or env.busy(robot):
                 continue
             step = q[0]
-            if all(p in ended for p in waits[step.id]):
-                q.pop(0)
-                running[robot] = step
-                recorder.emit("action_start", robot, step=step.id, action=str(step.action),
-                              skill=step.action.skill.value, target=step.action.target,
-                              receptacle=step.action.receptacle, spot=_spot(env, step.action),
-                              recovery=False, strategy=None)
-                env.start(robot, step.action)
-        if not running:
+            if not all(p in ended for p in waits[step.id]):
+                continue
+            arrives = max([known_at(p, robot) for p in waits[step.id]] + [env.now])
+            if arrives > env.now + 1e-9:
+                wake.append(arrives)
+                if (step.id, robot) not in late:
+                    late.add((step.id, robot))
+                    network["late_reads"] += 1
+                    recorder.emit("network", robot, what="late_read", key=step.id, arrives=round(arrives, 6))
+                continue
+            q.pop(0)
+            running[robot] = step
+            recorder.emit("action_start", robot, step=step.id, action=str(step.action),
+                          skill=step.action.skill.value, target=step.action.target,
+                          receptacle=step.action.receptacle, spot=_spot(env, step.action),
+                          recovery=False, strategy=None)
+            env.start(robot, step.action)
+        if not running and not wake:
             stop = "plan_done" if not any(queues.values()) else "stalled"
             break
-        t = env.next_event_time()
-        if t is None:
+        times = [x for x in (env.next_event_time(), *wake,
+                             pending_joins[0][1] if pending_joins and running else None) if x is not None]
+        if not times:
             stop = "stalled"
             break
+        t = max(env.now, min(times))
         if t > deadline + 1e-9:
             driver.advance_to(deadline)
             stop = "time_limit"
@@ -82,7 +122,7 @@ def run_linear(env: Environment, plan: MergedPlan, goal: Goal | None = None, *, 
             step_or_none = running.get(out.robot)
             if step_or_none is not None and step_or_none.action == out.action:
                 del running[out.robot]
-                ended.add(step_or_none.id)
+                ended[step_or_none.id] = out.end
             recorder.emit("action_end", out.robot, step=step_or_none.id if step_or_none else None,
                           action=str(out.action), success=out.success,
                           reason=out.reason.value if out.reason else None, message=out.message,
@@ -95,7 +135,8 @@ def run_linear(env: Environment, plan: MergedPlan, goal: Goal | None = None, *, 
         mode=mode, success=bool(report and report.success), stop_reason=stop, report=report,
         makespan=round(env.now - start, 6),
         broken_robots=tuple(sorted(r for r, s in state.robots.items() if s.down)),
-        outcomes=tuple(outcomes), plans=(plan,), trace=tuple(recorder.events),
+        joined_robots=tuple(joined), outcomes=tuple(outcomes), plans=(plan,), trace=tuple(recorder.events),
+        network=network, wall_after_disturbance=recorder.wall_since_disturbance(),
     )
 
 
@@ -113,7 +154,9 @@ def sequences_plan(sequences: Mapping[str, Sequence[Action]]) -> MergedPlan:
 
 
 def run_sequences(env: Environment, sequences: Mapping[str, Sequence[Action]], goal: Goal | None = None, *,
-                  time_limit: float = 600.0, pose_interval: float = 0.5) -> ExecutionResult:
-    """SMART-LLM's execution: every robot runs its own list, no sync, no checks."""
+                  time_limit: float = 600.0, pose_interval: float = 0.5,
+                  joins: Sequence[tuple[RobotProfile, float]] = ()) -> ExecutionResult:
+    """SMART-LLM's execution: every robot runs its own list, no sync, no checks (so no
+    message can be lost or late; a robot that joins stays idle)."""
     return run_linear(env, sequences_plan(sequences), goal, time_limit=time_limit,
-                      pose_interval=pose_interval, mode="sequences")
+                      pose_interval=pose_interval, mode="sequences", joins=joins)

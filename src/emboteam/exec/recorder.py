@@ -7,12 +7,16 @@ reactive executor and the linear baselines, so every mode writes the same trace 
 
 from __future__ import annotations
 
+import time
 from typing import Any
 
 import py_trees
 
 from emboteam.exec.trace import TraceEvent
 from emboteam.world.environment import Environment
+
+#: simulator events that disturb the run from outside (not the seeded action faults)
+DISTURBANCE_KINDS = frozenset({"breakdown", "join", "moved"})
 
 
 class TraceRecorder:
@@ -23,6 +27,18 @@ class TraceRecorder:
         self._sim_seen = 0
         self._poses: dict[str, tuple[float, float, str | None]] = {}
         self._status: dict[object, str] = {}
+        self._disturbed_wall: float | None = None
+
+    @property
+    def disturbed(self) -> bool:
+        """Has a robot broken down, joined, or an object been moved so far?"""
+        return self._disturbed_wall is not None
+
+    def wall_since_disturbance(self) -> float | None:
+        """Wall-clock seconds since the first disturbance was seen (None: there was none)."""
+        if self._disturbed_wall is None:
+            return None
+        return round(time.perf_counter() - self._disturbed_wall, 4)
 
     def emit(self, kind: str, robot: str | None, **data: Any) -> None:
         self.events.append(TraceEvent.model_validate(
@@ -62,6 +78,8 @@ class TraceRecorder:
             return
         for ev in events[self._sim_seen:]:
             kind, detail = getattr(ev, "kind", "event"), getattr(ev, "detail", str(ev))
+            if kind in DISTURBANCE_KINDS and self._disturbed_wall is None:
+                self._disturbed_wall = time.perf_counter()
             robot = detail if kind in ("breakdown", "join") else None
             self.events.append(TraceEvent(t=round(float(getattr(ev, "t", self.env.now)), 6), kind="sim",
                                           robot=robot, data={"kind": kind, "detail": detail}))

@@ -12,7 +12,8 @@ from emboteam.hp.plan import MergedPlan
 from emboteam.world.actions import ActionOutcome
 from emboteam.world.checker import GoalReport
 
-StopReason = Literal["success", "plan_done", "failed", "stalled", "time_limit", "tick_limit", "error"]
+StopReason = Literal["success", "plan_done", "failed", "stalled", "time_limit", "tick_limit", "error",
+                     "unsavable"]
 
 
 class ExecutionResult(BaseModel):
@@ -36,6 +37,16 @@ class ExecutionResult(BaseModel):
     plans: tuple[MergedPlan, ...] = Field((), description="the initial plan, then each replan's")
     error: str | None = None
     trace: tuple[TraceEvent, ...] = ()
+    network: dict[str, int] = Field(default_factory=dict,
+                                    description="lost_releases, lock_timeouts, late_reads of the blackboard")
+    wall_after_disturbance: float | None = Field(
+        None, description="wall-clock seconds from the first breakdown, join or move to the end of the run")
+
+    @property
+    def joiner_actions(self) -> int:
+        """Actions the robots that joined mid-run carried out successfully."""
+        joined = set(self.joined_robots)
+        return sum(1 for o in self.outcomes if o.success and o.robot in joined)
 
     @property
     def gcr(self) -> float:

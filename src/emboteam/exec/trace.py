@@ -13,6 +13,9 @@ Kinds (``data`` fields in brackets):
 - ``recovery``                         robot, [step, strategy, object, why, fault, gave_up]
   (a recovery subtree starts, or a step gives up; its actions are ``action_*`` events
   with ``recovery`` true)
+- ``network``                          robot, [what, key, ...] the blackboard as a lossy network:
+  ``release_lost`` (a lock release did not arrive), ``lock_timeout`` (a waiter took over a
+  lock whose lease ran out), ``late_read`` (a done flag reaches this robot late)
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict
 
 EventKind = Literal["action_start", "action_end", "node", "blackboard", "pose", "sim", "replan",
-                    "recovery"]
+                    "recovery", "network"]
 
 
 class TraceEvent(BaseModel):

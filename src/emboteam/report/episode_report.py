@@ -97,6 +97,7 @@ def episode_view(episode: Episode) -> dict[str, Any]:
             "room": scene.room if scene else "", "robots": list(episode.robots), "category": episode.category,
             "mode": episode.mode, "frontend": episode.frontend, "seed": episode.seed,
             "fault_level": episode.fault_level, "faults": episode.faults.model_dump(mode="json"),
+            "disturbance": episode.disturbance.model_dump(mode="json") if episode.disturbance else None,
             "error": episode.error, "notes": list(episode.notes),
         },
         "metrics": {

@@ -253,6 +253,12 @@ class _Builder:
                                         value=_short(ev.data.get("value"))))
         elif ev.kind == "sim":
             self.sim(ev)
+        elif ev.kind == "network":  # a lost lock release, a lock taken over, a flag read late
+            key = str(ev.data.get("key", "?"))
+            what = str(ev.data.get("what", "network"))
+            rest = {k: v for k, v in ev.data.items() if k not in ("what", "key", "plan")}
+            self.events.append(LogEvent(t=ev.t, category=classify_key(key), robot=robot,
+                                        key=f"{what.replace('_', ' ')}: {key}", value=_short(rest) if rest else ""))
         elif ev.kind == "replan":
             reason = str(ev.data.get("reason", "replan"))
             rest = {k: v for k, v in ev.data.items() if k != "reason"}

@@ -84,6 +84,9 @@ class Simulator:
         self.events: list[SimEvent] = []
         for b in self.faults.breakdowns:
             self._schedule(b.at, "breakdown", b.robot)
+        #: (time, kind, detail, state right after) of every breakdown, join and move: the
+        #: states a benchmark's ceiling plans from (bench/ceiling.py)
+        self.disturbances: list[tuple[float, str, str, WorldState]] = []
         for m in self.faults.moves:
             for oid in (m.object, m.to):
                 if oid is not None and not self._may_exist(oid):
@@ -108,6 +111,7 @@ class Simulator:
         pos = self.scene.robot_start(len(self.state.robots))
         self.state.robots[profile.name] = RobotState(profile.name, profile, pos)
         self.events.append(SimEvent(t=self._now, kind="join", detail=profile.name))
+        self.disturbances.append((self._now, "join", profile.name, self.state.copy()))
 
     def start(self, robot: str, action: Action) -> None:
         if robot not in self.state.robots:
@@ -297,6 +301,7 @@ class Simulator:
             self.state.move_object(held, floors[0].id if floors else None,
                                    position=(r.position[0], 0.0, r.position[1]))
             self.events.append(SimEvent(t=self._now, kind="drop", detail=f"{robot} dropped {held}"))
+        self.disturbances.append((self._now, "breakdown", robot, self.state.copy()))
         if run is None:
             return None
         if run.spot is not None and self._locks.get(run.spot) == robot:
@@ -308,10 +313,11 @@ class Simulator:
         return outcome
 
     def _move_object(self, move: ObjectMove) -> None:
-        o = self.state.objects.get(move.object)
+        oid = move.object if move.object is not None else self._draw_moved(move)
+        o = self.state.objects.get(oid) if oid is not None else None
         if (o is None or o.held_by is not None or o.gone
                 or (move.to is not None and move.to not in self.state.objects)):
-            self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=move.object))
+            self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=oid or "nothing movable"))
             return
         cat = load_catalogue()
         to = move.to
@@ -320,12 +326,25 @@ class Simulator:
                 r.id for r in self.state.objects.values()
                 if r.has("receptacle") and r.id != o.id and r.id != o.parent and not r.gone
                 and r.held_by is None and cat.can_place(o.type, r.type)
-                and (r.type not in cat.must_be_open or r.is_open)
-                and self.state.enclosing_closed(r.id) is None  # not the bowl in a shut fridge
+                and (move.into_closed or r.type not in cat.must_be_open or r.is_open)
+                # not the bowl in a shut fridge, unless the mover may open things
+                and (move.into_closed or self.state.enclosing_closed(r.id) is None)
                 and o.id not in self.state.ancestors(r.id)
             )
             if not options:
+                self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=f"{o.id}: nowhere to put it"))
                 return
-            to = self.injector.choice(f"move|{o.id}|{move.at}", options)
+            to = self.injector.choice(f"move|{o.id}|{move.at}|{move.draw}", options)
         self.state.move_object(o.id, to)
-        self.events.append(SimEvent(t=self._now, kind="moved", detail=f"{o.id} -> {to}"))
+        closed = self.state.enclosing_closed(o.id)
+        self.events.append(SimEvent(t=self._now, kind="moved",
+                                    detail=f"{o.id} -> {to}" + (f" (closed {closed})" if closed else "")))
+        self.disturbances.append((self._now, "moved", f"{o.id} -> {to}", self.state.copy()))
+
+    def _draw_moved(self, move: ObjectMove) -> str | None:
+        """The object a ``random`` move takes: one of the candidates that exists now, lies
+        somewhere (not held, not gone) and is not already where the draw would put it."""
+        options = sorted(c for c in move.candidates
+                         if c in self.state.objects and self.state.objects[c].held_by is None
+                         and not self.state.objects[c].gone)
+        return self.injector.choice(f"moved|{move.at}|{move.draw}", options) if options else None

@@ -62,6 +62,7 @@
                 "mode " + m.mode, "front end " + m.frontend, "seed " + m.seed];
     if (m.category) bits.splice(1, 0, m.category);
     if (m.fault_level) bits.push("faults " + m.fault_level);
+    if (m.disturbance) bits.push("disturbance " + m.disturbance.spec);
     document.getElementById("meta-line").textContent = bits.join(" · ");
     document.getElementById("instruction").textContent = m.instruction;
     if (m.error) {
@@ -79,6 +80,17 @@
       var c = el("div", { class: "metric", title: title || null }, box);
       el("div", { class: "label" }, c, label);
       el("div", { class: "value " + (cls || "") }, c, value);
+    }
+    var dist = m.disturbance;   // bench --breakdown/--join/--moves/--msg-*: what happened, the ceiling
+    if (dist) {
+      var db = document.getElementById("disturbance-banner");
+      db.hidden = false;
+      var what = dist.events.map(function (e) { return e.kind + " " + e.detail + " at " + e.t.toFixed(1) + " s"; });
+      Object.keys(dist.network || {}).forEach(function (k) { what.push(dist.network[k] + " " + k.replace(/_/g, " ")); });
+      db.textContent = "Disturbance " + dist.spec + ": " + (what.length ? what.join("; ") : "none happened before the end") +
+        ". Ceiling: " + (dist.savable === true ? "savable" : dist.savable === false ? "unsavable" : "unknown") +
+        " (" + dist.ceiling + ")" + (dist.joined.length ? ". Joined: " + dist.joined.join(", ") + ", " + dist.joiner_actions + " action(s) carried out" : "") +
+        (dist.wall_after !== null ? ". Ended " + dist.wall_after.toFixed(2) + " s (wall) after the disturbance, stop: " + dist.stop_reason : "") + ".";
     }
     card("SR", k.success ? "1" : "0", k.success ? "ok" : "bad", "success: every goal condition holds at the end");
     card("GCR", ET.pct(k.gcr), k.gcr >= 0.9995 ? "ok" : "", "goal-condition recall");
@@ -408,7 +420,8 @@
         if (ev.category === "replan") {
           var g = svg("g", { class: "replan" }, markLayer);
           svg("line", { x1: x(ev.t), x2: x(ev.t), y1: top, y2: height - bottom }, g);
-          svg("text", { x: x(ev.t) + 3, y: top + 9 }, g, "replan");
+          // name what caused the replan: a breakdown, a joiner, a lost object, the plan ending
+          svg("text", { x: x(ev.t) + 3, y: top + 9 }, g, "replan" + (ev.key ? ": " + (ev.key.length > 28 ? ev.key.slice(0, 27) + "…" : ev.key) : ""));
           svg("title", {}, g, "replan at " + ev.t.toFixed(2) + " s: " + ev.key + " " + ev.value);
         } else if (ev.category === "recovery" && ev.robot in rowOf) {
           var ry = top + rowOf[ev.robot] * rowH + rowH - 3, rx = x(ev.t);
@@ -419,6 +432,10 @@
           var cy = ri >= 0 ? top + ri * rowH + 4 : top + 2;
           var tri = svg("path", { class: "simmark", d: "M" + (x(ev.t) - 5) + "," + (cy - 4) + " L" + (x(ev.t) + 5) + "," + (cy - 4) + " L" + x(ev.t) + "," + (cy + 5) + " z" }, markLayer);
           svg("title", {}, tri, ev.key + " at " + ev.t.toFixed(2) + " s: " + ev.value);
+          // the disturbances a benchmark injects are labelled on the chart, not only in the tooltip
+          var label = ev.key === "breakdown" ? "✕ " + ev.value + " down" : ev.key === "join" ? "+ " + ev.value + " joins"
+            : ev.key === "moved" ? "moved " + ev.value.split(" ")[0] : null;
+          if (label) svg("text", { class: "simlabel", x: x(ev.t) + 7, y: cy + 4 }, markLayer, label);
         }
       });
       state.cursor = svg("line", { class: "cursor", x1: x(clock.t), x2: x(clock.t), y1: top - 4, y2: height - bottom }, root);
@@ -497,6 +514,11 @@
       el("span", {}, rc, "recovery started");
     }
     if (markers.some(function (e) { return e.category === "replan"; })) item("#7b3294", "replan", "");
+    if (markers.some(function (e) { return e.key === "breakdown" || e.key === "join" || e.key === "moved"; })) {
+      var dm = el("span", { class: "item" }, legend);
+      el("span", { style: "color:#555;font-size:12px" }, dm, "▼");
+      el("span", {}, dm, "disturbance (breakdown, joiner, moved object)");
+    }
   }
 
   /* ---------------- behavior tree ---------------- */
