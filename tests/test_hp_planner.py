@@ -233,8 +233,14 @@ def test_unsolvable_subtask_is_named(hp: HybridPlanner) -> None:
 
 def test_planner_limits_and_input_errors_are_typed() -> None:
     task = spec(("s1", "inside(Apple, Fridge)", None, ()))
+    # with 1 s overall the driver leaves the translator no time
     with pytest.raises(PlannerTimeoutError):
-        HybridPlanner(PlannerConfig(time_limit=1)).plan(task, fresh("1"))
+        HybridPlanner(PlannerConfig(time_limit=1, planner_input="pddl")).plan(task, fresh("1"))
+    # our own SAS task needs no translator: a blind search on a big joint goal runs out
+    big = spec(("s1", "inside(Apple, Fridge) & sliced(Bread) & hot(Potato) & cold(Tomato) & broken(Vase) & "
+                "open(Cabinet_5) & filled(Bowl, water) & inside(Egg, Pan)", None, ()))
+    with pytest.raises(PlannerTimeoutError):
+        HybridPlanner(PlannerConfig(alias="astar(blind())", time_limit=1)).plan(big, fresh("1,2,3,4"))
     with pytest.raises(PlannerInputError, match="unknown alias"):
         HybridPlanner(PlannerConfig(alias="no-such-alias")).plan(task, fresh("1"))
     with pytest.raises(PlanningError):

@@ -41,7 +41,7 @@ def test_a_solvable_problem_yields_a_plan() -> None:
 
 
 def test_an_unsolvable_problem_is_reported_not_raised() -> None:
-    text = problem_text("inside(Apple, Fridge)", team="7")  # robot7 lifts 0.08 kg
+    text = problem_text("inside(Pot, Fridge)", team="7")  # robot7 lifts 0.08 kg
     result = FastDownward().solve(domain_pddl(), text)
     assert result.status == "unsolvable" and result.exit_code in (10, 11)
     assert "unsolvable" in result.message

@@ -330,6 +330,16 @@ class Universe:
             return None
         a, b = (binding.get(x, x) for x in atom.args)
         s = self.state
+        if atom.pred == "at" and not a.startswith("?") and b == var:
+            # what a robot reaches (goto forgets it all): one distance test per object,
+            # not a grounding pass per object; the condition is still tested on each
+            if a not in s.robots:
+                return []
+            return [o for o in self.objects if o in s.objects and s.in_reach(a, o)]
+        if atom.pred == "at" and a == var and not b.startswith("?"):
+            if b not in s.objects:
+                return []
+            return [r for r in self.robots if r in s.robots and s.in_reach(r, b)]
         allowed = set(self.objects)
         if atom.pred in ("within", "in") and a == var and not b.startswith("?"):
             found = s.descendants(b) if atom.pred == "within" else s.children(b)

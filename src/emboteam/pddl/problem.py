@@ -54,6 +54,10 @@ class Problem:
     parts: tuple[GoalPart, ...]
     can_place: frozenset[tuple[str, str]]
     names: dict[str, str]
+    #: the initial facts (``(in Apple_1 Fridge_1)``) and goal formulas of ``text``, kept
+    #: apart so the SAS emitter grounds them without parsing the whole problem
+    facts: tuple[str, ...] = ()
+    goals: tuple[str, ...] = ()
 
     def universe(self, state: WorldState) -> Universe:
         return Universe(state, self.objects, self.robots, can_place=self.can_place)
@@ -265,15 +269,17 @@ def build_problem(state: WorldState, conditions: Sequence[Condition], robots: Se
     if release and not any(p.condition.predicate is Predicate.held for p in parts):
         goal += [f"(hand-empty {r})" for r in active
                  if start.robots[r].profile.can(Skill.PutObject) or start.robots[r].profile.can(Skill.DropHandObject)]
+    init = sorted(set(facts))
     text = "\n".join([
         f"(define (problem {name}) (:domain {DOMAIN_NAME})",
         "  (:objects " + " ".join(robot_names) + " - robot",
         "            " + " ".join(objects) + " - thing)",
-        "  (:init\n    " + "\n    ".join(sorted(set(facts))) + ")",
+        "  (:init\n    " + "\n    ".join(init) + ")",
         "  (:goal (and\n    " + "\n    ".join(goal or ["(and)"]) + ")))",
     ]) + "\n"
     return Problem(name=name, text=text, objects=tuple(objects), robots=tuple(robot_names),
-                   active=tuple(active), parts=tuple(parts), can_place=can_place, names=names)
+                   active=tuple(active), parts=tuple(parts), can_place=can_place, names=names,
+                   facts=tuple(init), goals=tuple(goal))
 
 
 def _nearest_can(state: WorldState, robot: str, can: str) -> bool:

@@ -2,11 +2,22 @@
 and a pool of parallel calls.
 
 Fast Downward is GPL-licensed: it runs as a separate process, never imported into ours
-(``import up_fast_downward`` would also fail without ``unified_planning``). The driver
-script is located through the installed ``up_fast_downward`` package and run with our
-interpreter. Exit codes follow Fast Downward's documentation
+(``import up_fast_downward`` would also fail without ``unified_planning``). Two inputs:
+
+- ``"sas"`` (default): we ground the problem ourselves (:mod:`emboteam.pddl.sas`) and pipe
+  the finite-domain task into the *search binary* (``builds/release/bin/downward``), with
+  the CPU-time and address-space limits the driver would set (``driver/limits.py``),
+  applied with ``prlimit`` before the task is written to its stdin. No driver, no
+  translator, no second interpreter: a call costs the search itself plus process start.
+- ``"pddl"``: the driver script (``fast-downward.py``) with domain and problem files, run
+  with our interpreter; the translator grounds. Kept as the reference the SAS path is
+  tested against (``tests/test_pddl_sas.py``).
+
+Both executables are located through the installed ``up_fast_downward`` package. Exit
+codes follow Fast Downward's documentation
 (https://www.fast-downward.org/latest/documentation/exit-codes/, mirrored in the
-driver's ``returncodes.py``).
+driver's ``returncodes.py``); the search binary returns the same codes the driver
+passes on.
 """
 
 from __future__ import annotations
@@ -15,6 +26,8 @@ import hashlib
 import importlib.util
 import json
 import math
+import os
+import resource
 import signal
 import subprocess
 import sys
@@ -26,7 +39,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 from emboteam.pddl.errors import (
     PlannerInputError,
@@ -36,7 +49,25 @@ from emboteam.pddl.errors import (
     PlanningError,
 )
 
+if TYPE_CHECKING:
+    from emboteam.pddl.problem import Problem
+
 Status = Literal["solved", "unsolvable"]
+#: what Fast Downward is given: our own SAS task (search binary only) or PDDL (driver)
+PlannerInput = Literal["pddl", "sas"]
+PLANNER_INPUTS: tuple[str, ...] = ("sas", "pddl")
+
+#: driver aliases that are one search configuration, as the installed driver defines them
+#: (``driver/aliases.py`` of Fast Downward 26.6); with SAS input the search binary gets the
+#: configuration itself. Other aliases are portfolios or driver features: use PDDL input.
+SEARCH_ALIASES: dict[str, tuple[str, ...]] = {
+    "lama-first": (
+        "--search",
+        "let(hlm, eval_modify_costs(landmark_sum(lm_factory=lm_reasonable_orders_hps(lm_rhw()),pref=false),"
+        "cost_type=one),let(hff, eval_modify_costs(ff(),cost_type=one),"
+        "lazy_greedy([hff,hlm],preferred=[hff,hlm],cost_type=one,reopen_closed=false)))"),
+    "seq-opt-lmcut": ("--search", "astar(lmcut())"),
+}
 
 #: exit codes, from the driver's returncodes.py
 SOLVED = frozenset({0, 1, 2, 3})  # 1-3: a plan was found, a later portfolio run hit a limit
@@ -80,6 +111,30 @@ def driver_path() -> Path:
         if candidate.is_file():
             return candidate
     raise PlannerInputError("Fast Downward is not installed: pip install up-fast-downward")
+
+
+_POOLS: dict[int, ThreadPoolExecutor] = {}
+_POOLS_LOCK = threading.Lock()
+
+
+def _pool(workers: int) -> ThreadPoolExecutor:
+    """One long-lived thread pool per size: starting threads per call cost more than a
+    small search (the pool's threads only wait on Fast Downward processes or ground)."""
+    with _POOLS_LOCK:
+        pool = _POOLS.get(workers)
+        if pool is None:
+            pool = _POOLS[workers] = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="emboteam-fd")
+        return pool
+
+
+@cache
+def search_path() -> Path:
+    """Fast Downward's compiled search binary inside the installed package."""
+    candidate = driver_path().parent / "builds" / "release" / "bin" / "downward"
+    if not candidate.is_file() or not os.access(candidate, os.X_OK):
+        raise PlannerInputError(f"Fast Downward's search binary is missing at {candidate}: "
+                                "reinstall up-fast-downward")
+    return candidate
 
 
 class PlanCache:
@@ -140,9 +195,13 @@ class FastDownward:
     """
 
     def __init__(self, alias: str = "lama-first", *, time_limit: float = 30.0,
-                 memory_limit_mb: int = 2048, cache: PlanCache | None = None) -> None:
+                 memory_limit_mb: int = 2048, cache: PlanCache | None = None,
+                 planner_input: PlannerInput = "sas") -> None:
         if time_limit <= 0 or memory_limit_mb <= 0:
             raise PlannerInputError("planner time and memory limits must be positive")
+        if planner_input not in PLANNER_INPUTS:
+            raise PlannerInputError(f"planner input must be 'sas' or 'pddl', not {planner_input!r}")
+        self.planner_input = planner_input
         self.alias = alias
         self.time_limit = time_limit
         self.memory_limit_mb = memory_limit_mb
@@ -151,6 +210,8 @@ class FastDownward:
         self.calls = 0
         self.cache_hits = 0
         self.seconds = 0.0
+        #: time spent grounding and writing SAS tasks (SAS input only)
+        self.ground_seconds = 0.0
 
     @property
     def config(self) -> str:
@@ -164,21 +225,116 @@ class FastDownward:
             return [*base, domain_file, problem_file, "--search", self.alias]
         return [*base, "--alias", self.alias, domain_file, problem_file]
 
+    def search_args(self) -> list[str]:
+        """The search binary's configuration for ``alias`` (SAS input)."""
+        if "(" in self.alias:
+            return ["--search", self.alias]
+        if self.alias not in SEARCH_ALIASES:
+            raise PlannerInputError(f"unknown alias {self.alias!r} for SAS input (known: "
+                                    f"{', '.join(SEARCH_ALIASES)}; or give a search string such as "
+                                    "'astar(hmax())', or use PDDL input, which knows all driver aliases)")
+        return list(SEARCH_ALIASES[self.alias])
+
+    def _cached(self, key: str) -> SolveResult | None:
+        if self.cache is None:
+            return None
+        hit = self.cache.get(key)
+        if hit is None:
+            return None
+        with self._lock:
+            self.cache_hits += 1
+        return SolveResult(status=hit.status, plan=hit.plan, exit_code=hit.exit_code, cached=True,
+                           message=hit.message)
+
     def solve(self, domain: str, problem: str) -> SolveResult:
-        """Solve one problem; raise :class:`PlannerLimitError` or :class:`PlannerInputError`
-        when Fast Downward cannot answer."""
+        """Solve one PDDL problem with the driver (translator, then search); raise
+        :class:`PlannerLimitError` or :class:`PlannerInputError` when Fast Downward cannot
+        answer."""
         key = PlanCache.key(self.config, domain, problem)
-        if self.cache is not None:
-            hit = self.cache.get(key)
-            if hit is not None:
-                with self._lock:
-                    self.cache_hits += 1
-                return SolveResult(status=hit.status, plan=hit.plan, exit_code=hit.exit_code,
-                                   cached=True, message=hit.message)
+        hit = self._cached(key)
+        if hit is not None:
+            return hit
         result = self._run(domain, problem)
         if self.cache is not None:
             self.cache.put(key, result)
         return result
+
+    def solve_problem(self, problem: Problem) -> SolveResult:
+        """Solve a rendered problem with this runner's input (SAS or PDDL)."""
+        if self.planner_input == "pddl":
+            from emboteam.pddl.domain import domain_pddl
+
+            return self.solve(domain_pddl(), problem.text)
+        from emboteam.pddl.sas import EMITTER_VERSION, emit
+
+        key = PlanCache.key(f"{self.config}|{EMITTER_VERSION}", "sas", problem.text)
+        hit = self._cached(key)
+        if hit is not None:
+            return hit
+        args = self.search_args()  # an unknown alias fails before any work
+        t0 = time.perf_counter()
+        task = emit(problem)
+        with self._lock:
+            self.ground_seconds += time.perf_counter() - t0
+        if task.verdict == "trivial":
+            result = SolveResult(status="solved", plan=(), message="the goal holds in every state")
+        elif task.verdict == "unreachable":
+            result = SolveResult(status="unsolvable", exit_code=10,
+                                 message="relaxed reachability proves the goal unreachable")
+        else:
+            result = self.solve_sas(task.text, args)
+        if self.cache is not None:
+            self.cache.put(key, result)
+        return result
+
+    def solve_problems(self, problems: Sequence[Problem], workers: int = 2) -> list[SolveResult | PlanningError]:
+        """:meth:`solve_problem` for several problems in parallel (grounding of one overlaps
+        the search of another); each slot holds the result or the typed error."""
+        def one(p: Problem) -> SolveResult | PlanningError:
+            try:
+                return self.solve_problem(p)
+            except PlanningError as exc:
+                return exc
+        if len(problems) <= 1 or workers <= 1:
+            return [one(p) for p in problems]
+        return list(_pool(workers).map(one, problems))
+
+    def solve_sas(self, sas: str, args: Sequence[str] | None = None) -> SolveResult:
+        """Run the search binary on a SAS task (``output.sas`` text) given on its stdin."""
+        cmd = [str(search_path()), *(args if args is not None else self.search_args()),
+               "--internal-plan-file", "sas_plan"]
+        seconds_limit = max(1, math.ceil(self.time_limit))
+        with tempfile.TemporaryDirectory(prefix="emboteam-fd-") as tmp:
+            work = Path(tmp)
+            t0 = time.perf_counter()
+            try:
+                proc = subprocess.Popen(cmd, cwd=work, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                        stderr=subprocess.PIPE, text=True)
+            except OSError as exc:
+                raise PlannerInputError(f"cannot run Fast Downward's search: {exc}") from None
+            try:
+                # the limits driver/limits.py sets; applied from outside (prlimit) because a
+                # preexec_fn is unsafe with the threads solve_problems uses. The search reads
+                # nothing before its stdin, which is written only after this.
+                resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
+                memory = self.memory_limit_mb * 1024 * 1024
+                resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
+            except (ProcessLookupError, PermissionError, ValueError, OSError):
+                pass  # it already exited (bad options): its exit code says why
+            try:
+                out, err = proc.communicate(sas, timeout=self.time_limit + 30.0)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.communicate()
+                raise PlannerTimeoutError(f"Fast Downward did not stop within {self.time_limit:g} s "
+                                          "and was killed") from None
+            seconds = time.perf_counter() - t0
+            with self._lock:
+                self.calls += 1
+                self.seconds += seconds
+            done = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+            return interpret(proc.returncode, _read_plan(work), _excerpt(done), seconds=seconds,
+                             time_limit=self.time_limit, memory_limit_mb=self.memory_limit_mb)
 
     def solve_many(self, jobs: Sequence[tuple[str, str]], workers: int = 2
                    ) -> list[SolveResult | PlanningError]:
@@ -191,8 +347,7 @@ class FastDownward:
                 return exc
         if len(jobs) <= 1 or workers <= 1:
             return [one(j) for j in jobs]
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            return list(pool.map(one, jobs))
+        return list(_pool(workers).map(one, jobs))
 
     def _run(self, domain: str, problem: str) -> SolveResult:
         with tempfile.TemporaryDirectory(prefix="emboteam-fd-") as tmp:
