@@ -70,7 +70,7 @@ from emboteam.hp.subtask_order import (
     subtask_dependencies,
 )
 from emboteam.hp.validate import estimate, simulate, with_times
-from emboteam.pddl.domain import Universe, domain_pddl
+from emboteam.pddl.domain import Universe
 from emboteam.pddl.errors import PlannerLimitError, PlanningError, PlanValidationError, UnsolvableSubtaskError
 from emboteam.pddl.problem import Problem, build_problem, planning_state
 from emboteam.pddl.runner import FastDownward, PlanCache, SolveResult
@@ -109,6 +109,9 @@ class PlannerConfig:
     merge: TypingLiteral["formal", "concatenate"] = "formal"
     #: most conditions one planning unit takes
     unit_conditions: int = 8
+    #: what Fast Downward reads: "sas" (our own grounding, the search binary alone) or
+    #: "pddl" (the driver: translator, then search); see pddl/runner.py
+    planner_input: TypingLiteral["sas", "pddl"] = "sas"
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:
@@ -117,6 +120,8 @@ class PlannerConfig:
             raise PlanningError("planner workers and unit_conditions must be at least 1")
         if self.merge not in ("formal", "concatenate"):
             raise PlanningError(f"merge must be 'formal' or 'concatenate', not {self.merge!r}")
+        if self.planner_input not in ("sas", "pddl"):
+            raise PlanningError(f"planner_input must be 'sas' or 'pddl', not {self.planner_input!r}")
 
 
 class _Fallback(Exception):
@@ -140,7 +145,8 @@ class HybridPlanner:
         self.config = config or PlannerConfig()
         self.cache = PlanCache(self.config.cache_dir)
         self.fd = FastDownward(self.config.alias, time_limit=self.config.time_limit,
-                               memory_limit_mb=self.config.memory_limit_mb, cache=self.cache)
+                               memory_limit_mb=self.config.memory_limit_mb, cache=self.cache,
+                               planner_input=self.config.planner_input)
 
     # ---- public API ---------------------------------------------------------------------
     def plan(self, spec: TaskSpec, state: WorldState) -> MergedPlan:
@@ -175,7 +181,7 @@ class HybridPlanner:
 
     # ---- Fast Downward ------------------------------------------------------------------
     def _solve(self, problems: Sequence[Problem]) -> list[SolveResult]:
-        results = self.fd.solve_many([(domain_pddl(), p.text) for p in problems], self.config.workers)
+        results = self.fd.solve_problems(problems, self.config.workers)
         for r in results:
             if isinstance(r, PlanningError):
                 raise r
@@ -244,7 +250,7 @@ class HybridPlanner:
                     problem = build_problem(base, u.conditions, u.robots, name=u.id, narrow=u.narrow,
                                             protect=u.protect)
                 todo.append((u, problem))
-            results = self.fd.solve_many([(domain_pddl(), p.text) for _, p in todo], self.config.workers)
+            results = self.fd.solve_problems([p for _, p in todo], self.config.workers)
             for (u, problem), result in zip(todo, results, strict=True):
                 if isinstance(result, PlannerLimitError) and len(u.subtasks) > 1:
                     for t in u.subtasks:  # too big to solve at once: one subtask at a time
