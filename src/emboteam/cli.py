@@ -33,6 +33,7 @@ from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
 
 if TYPE_CHECKING:
+    from emboteam.bench.jobs import EnvName
     from emboteam.pipeline import RunConfig
 
 app = typer.Typer(
@@ -278,6 +279,16 @@ def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) ->
     return get_task(target)
 
 
+ENV_HELP = ("sim (the symbolic simulator) | ai2thor (a live AI2-THOR 5.x: pip install 'emboteam[ai2thor]', "
+            "a display or Vulkan; docs/ai2thor.md)")
+
+
+def _env(value: str) -> EnvName:
+    if value == "sim" or value == "ai2thor":
+        return value
+    raise EmboTeamError(f"unknown environment {value!r}: sim or ai2thor")
+
+
 def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConfig:
     from emboteam.pipeline import MODES, RunConfig
 
@@ -346,6 +357,7 @@ def run(
     faults: float = typer.Option(0.0, "--faults", callback=probability, help="per-action failure probability"),
     seed: int = typer.Option(0, "--seed", help="seed of the fault injection"),
     join: list[str] = typer.Option([], "--join", help="PROFILE@SECONDS: a robot joins mid-run (repeatable)"),
+    env: str = typer.Option("sim", "--env", help=ENV_HELP),
     out_dir: Path | None = typer.Option(None, "--out", help="write episode.json, trace.jsonl, report.html here"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
 ) -> None:
@@ -361,7 +373,7 @@ def run(
                                 f"{'merge with' if flag == '--llm-merge' else 'record'})")
     task = _resolve_task(target, scene_fp, robots_list)
     cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record, llm_merge=llm_merge,
-                      fault_level=faults, seed=seed, joins=tuple(join))
+                      fault_level=faults, seed=seed, joins=tuple(join), env=_env(env))
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run
     check_config(cfg)
@@ -416,6 +428,7 @@ def bench(
     workers: int = typer.Option(2, "--workers", min=1, help="parallel episodes"),
     executor: str = typer.Option("local", "--executor", help="local (process pool) | ray"),
     ray_address: str | None = typer.Option(None, "--ray-address", help="Ray cluster address (default: local)"),
+    env: str = typer.Option("sim", "--env", help=ENV_HELP),
     out_dir: Path | None = typer.Option(None, "--out", help="results store, tables, plots, index.html "
                                         "(default: a new folder bench-out/SUITE_CONFIGURATION_TIME)"),
     resume: bool = typer.Option(False, "--resume", help="continue a killed run in --out DIR"),
@@ -437,10 +450,12 @@ def bench(
         seeds=seeds, fault_levels=parse_fault_levels(faults), workers=workers, executor=executor,
         disturbance=Disturbances.parse(breakdown=breakdown, join=join, moves=moves, msg_loss=msg_loss,
                                        msg_delay=msg_delay),
-        ray_address=ray_address, out_dir=out_dir or BENCH_ROOT, resume=resume, llm_timeout=llm_timeout,
+        ray_address=ray_address, out_dir=out_dir or BENCH_ROOT, resume=resume, env=_env(env), llm_timeout=llm_timeout,
     )
     from emboteam.pipeline import RunConfig, check_config
 
+    if cfg.env != "sim":  # fails fast when AI2-THOR cannot start here, before any job
+        check_config(RunConfig(env=cfg.env, fault_level=max(cfg.fault_levels), disturbance=cfg.disturbance))
     for f in cfg.frontends:
         check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout))
     cfg = _bench_out(cfg, out_dir)

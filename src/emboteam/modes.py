@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 from functools import cache
 
 from emboteam.bench.task import BenchTask
+from emboteam.environments import ExecutionEnvironment, make_environment
 from emboteam.errors import EmboTeamError
 from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, run_sequences
 from emboteam.exec.episode import Episode
@@ -173,8 +174,8 @@ def literal_plan(lists: Mapping[str, Sequence[Action]], state: WorldState) -> Me
 
 def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: WorldState,
             team: Sequence[RobotProfile], *, reactive: bool, replan: bool,
-            finish_plan: bool = False) -> tuple[ExecutionResult, Simulator]:
-    sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
+            finish_plan: bool = False) -> tuple[ExecutionResult, ExecutionEnvironment]:
+    sim = make_environment(cfg, scene, team, state)  # the simulator, or AI2-THOR (--env)
     joins = parse_joins(cfg.joins, [p.name for p in team])
     messages = cfg.fault_config().messages
     if not reactive:
@@ -205,7 +206,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
         plan_seconds = time.perf_counter() - t0
         goal = task.goal if task.goal.conditions else Goal(conditions=())
         if cfg.mode == "smart-llm":
-            sim = Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
+            sim = make_environment(cfg, scene, team, state)
             joins = [(j.profile, j.at) for j in parse_joins(cfg.joins, [p.name for p in team])]
             result = run_sequences(sim, lists, goal, time_limit=cfg.time_limit, joins=joins)
         else:
@@ -227,6 +228,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
     if prepared is not None:
         from emboteam.bench.ceiling import disturbance_outcome
 
+        assert isinstance(sim, Simulator)  # disturbances are the simulator's (check_thor_config)
         outcome = disturbance_outcome(task, prepared, sim, result, success, state)
         fields["disturbance"] = outcome
         if not success and outcome.savable is False and error is None:

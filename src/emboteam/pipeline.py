@@ -28,7 +28,7 @@ from collections.abc import Sequence
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from emboteam.bench.jobs import MODES, Frontend, Mode
+from emboteam.bench.jobs import MODES, EnvName, Frontend, Mode
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import ConditionOutcome, Episode
@@ -58,6 +58,7 @@ class RunConfig(BaseModel):
     seed: int = 0
     time_limit: float = Field(900.0, description="simulated seconds")
     joins: tuple[str, ...] = Field((), description="PROFILE@SECONDS: robots joining mid-run")
+    env: EnvName = Field("sim", description="execute in the symbolic simulator or a live AI2-THOR")
     disturbance: Disturbances = Field(default_factory=Disturbances,
                                       description="benchmark disturbances, placed per task (bench/ceiling.py)")
 
@@ -110,6 +111,10 @@ def check_config(cfg: RunConfig) -> None:
     from emboteam.modes import make_llm
 
     make_llm(cfg)
+    if cfg.env == "ai2thor":
+        from emboteam.environments import check_thor_config
+
+        check_thor_config(cfg)  # fails fast, in a second or so, when AI2-THOR cannot start here
 
 
 def run_episode(task: BenchTask, cfg: RunConfig) -> Episode:

@@ -33,6 +33,8 @@ from emboteam.world.robots import parse_team
 Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p"]
 Frontend = Literal["oracle", "offline", "llm"]
 ExecutorName = Literal["local", "ray", "inline"]
+#: where episodes execute: the symbolic simulator, or a live AI2-THOR (emboteam.thor)
+EnvName = Literal["sim", "ai2thor"]
 
 #: every mode, in the order the tables list them
 MODES: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p")
@@ -59,6 +61,8 @@ class Job(BaseModel):
     llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL]")
     seed: int = Field(0, ge=0)
     fault_level: float = Field(0.0, ge=0, le=1)
+    #: the Environment it executes in; in the key only when not the simulator
+    env: EnvName = "sim"
     #: breakdowns, joins, moved objects, blackboard message faults (bench --breakdown/--join/
     #: --moves/--msg-loss/--msg-delay); in the key only when something is disturbed
     disturbance: Disturbances = Field(default_factory=Disturbances)
@@ -87,6 +91,8 @@ class Job(BaseModel):
                  f"seed={self.seed}", f"faults={float(self.fault_level)!r}"]
         if self.disturbance.any:  # undisturbed keys stay as they were (existing stores stay valid)
             parts.append(f"disturb={self.disturbance.label}")
+        if self.env != "sim":  # likewise: simulator keys stay as they were
+            parts.append(f"env={self.env}")
         return "|".join(parts)
 
     @property
@@ -118,6 +124,7 @@ class BenchConfig(BaseModel):
     workers: int = Field(default_factory=lambda: max(1, os.cpu_count() or 1), ge=1)
     executor: ExecutorName = "local"
     ray_address: str | None = Field(None, description="ray.init address; None starts Ray locally")
+    env: EnvName = "sim"
     out_dir: Path = Path("bench-out")
     resume: bool = False
     llm_timeout: float = Field(60.0, gt=0)
@@ -211,6 +218,7 @@ def expand_jobs(config: BenchConfig, tasks: Sequence[BenchTask]) -> list[Job]:
         seen.add(task.key)
     return [
         Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed, disturbance=config.disturbance,
+            env=config.env,
             fault_level=level, llm_timeout=config.llm_timeout)
         for mode in config.modes
         for frontend in config.frontends

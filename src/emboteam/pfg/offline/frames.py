@@ -110,7 +110,32 @@ _WISH = re.compile(r"^(?:make sure|ensure|see to it|check that|verify that|what 
 _ASK_FOR = re.compile(r"^(?:can|could|may|might) (?:i|we) (?:please )?(?:have|get|grab)\b")
 
 
+#: sentence adverbs and hesitations that may come before the verb ("maybe throw the CD
+#: away", "um, like, wash the mug", "honestly just close it")
+_LEADING_ADVERBS = frozenset({"maybe", "perhaps", "possibly", "probably", "actually",
+                              "basically", "honestly", "seriously", "like", "um", "uh", "erm",
+                              "so", "well", "just", "anyway", "anyways", "really", "simply",
+                              "also", "please", "kindly", "quickly", "carefully", "now"})
+
+
+def _drop_leading_adverbs(items: list[Item], flags: dict[str, bool]) -> list[Item]:
+    """The clause without the adverbs before its verb (only when a verb follows them).
+    A leading "also" before objects alone ("after that, also the candle") marks the act
+    before repeated on them."""
+    k = 0
+    while k < len(items) and (items[k].text in _LEADING_ADVERBS or items[k].punct is not None) \
+            and items[k].noun is None:
+        k += 1
+    if 0 < k < len(items) and items[k].verb is not None and items[k].noun is None:
+        return items[k:]
+    if 0 < k < len(items) and any(x.text == "also" for x in items[:k]) and np_list(items[k:]):
+        flags["also"] = True
+        return items[k:]
+    return items
+
+
 def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
+    items = _drop_leading_adverbs(items, flags)
     changed = True
     while changed and items:
         changed = False
@@ -190,7 +215,8 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
                                 "all", "nice", "and", "both", "completely", "fully",
                                 "properly", "totally", "pretty", "bit", "a", "little",
                                 "somewhat", "quite", "rather", "extremely", "super", "well",
-                                "nicely", "brightly"):
+                                "nicely", "brightly", "wide", "slightly", "partly", "partially",
+                                "entirely", "absolutely", "literally", "even", "just"):
             pass
         else:
             break
@@ -241,11 +267,15 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                     continue
                 break
             continue
-        if it.neg:
-            # "on the holder, not on the counter": a rejected alternative
-            j += 1
+        if it.neg or (it.text == "instead" and j + 1 < n and items[j + 1].text == "of"):
+            # "on the holder, not on the counter", "the tomato, not the apple", "but not the
+            # CD", "instead of the cup": a rejected alternative, neither object nor mention
+            j += 2 if it.text == "instead" else 1
             if j < n and items[j].prep is not None:
                 _, j = parse_np(items, j + 1)
+            elif j < n and np_start(items[j]) and items[j].verb is None:
+                _, k = parse_np(items, j)
+                j = max(k, j + 1)
             continue
         if it.prep == "in" and j + 1 < n and is_piece_word(items[j + 1]) and (
                 j + 2 >= n or items[j + 2].noun is None):
@@ -419,6 +449,16 @@ def _verb_frame(items: list[Item], v: int, flags: dict[str, bool], mentions: lis
     return frame
 
 
+def _state_word_at(items: list[Item], k: int) -> bool:
+    """Is the predicate at ``k`` a bare state ("sliced", "off"), the predicate of its own
+    list item ("the apple in the fridge, the bread sliced"), not one the list shares ("the
+    bread on the counter and the egg on the table need to go ...")?"""
+    if k >= len(items):
+        return False
+    it = items[k]
+    return it.state is not None and not it.copula and (it.verb is None or it.verb.form == "ed")
+
+
 def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool]) -> list[Frame]:
     """``NP [aux] predicate (, NP [aux] predicate)*``"""
     frames: list[Frame] = []
@@ -443,7 +483,8 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             # "the bread on the counter and the egg on the table need to go ...": a place
             # inside a list of subjects that a predicate follows describes its subject
             if j + 1 < n and items[j].prep in MODIFIER_PREPS and np_start(items[j + 1]) \
-                    and predicate_at(items, list_end(items, j)):
+                    and predicate_at(items, list_end(items, j)) \
+                    and not _state_word_at(items, list_end(items, j)):
                 land, m = parse_np(items, j + 1)
                 if land is not None and m < n and (items[m].conj == "and" or items[m].punct == ","):
                     land.role = "place"

@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
+from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
 from emboteam.pfg.offline.clauses import Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.corrections import apply_corrections
@@ -39,6 +40,17 @@ ParseResult = Reading
 def _note(exc: OfflineParseError) -> ReadingNote:
     """A skipped clause as the note the user sees: the span and why."""
     return ReadingNote(exc.phrase or "", exc.message, "vague" if exc.vague else "unread")
+
+
+def _unread(clause: Clause, parsed: ParsedClause) -> bool:
+    """Did a clause that gave no act say something the parser could not read? A statement
+    ("my phone is on the bed", "there's a potato on the counter") introduces objects, and
+    thanks and small talk carry no content words; "then wibble the tomato" does."""
+    if parsed.means is not None or parsed.also or any(i.copula for i in clause.items):
+        return False
+    if clause.items and (clause.items[0].neg or clause.items[0].text in ("instead", "rather")):
+        return False     # "not the apple", "instead of the cup": a rejected alternative
+    return bool(parsed.unknown) or any(i.verb is not None or i.noun is not None for i in clause.items)
 
 
 def _unsure(spec: TaskSpec, doubts: set[ObjectRef]) -> tuple[str, ...]:
@@ -183,12 +195,13 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        clauses = segment(apply_corrections(tag(text)))
+        clauses = segment(drop_time_adjuncts(apply_corrections(tag(text))))
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
         unknown: list[str] = []
         skipped: list[OfflineParseError] = []
         failed: list[OfflineParseError] = []
+        unread: list[ReadingNote] = []
         verbs_seen = False
         parsed_clauses: list[ParsedClause] = []
         for k, c in enumerate(clauses):
@@ -215,6 +228,8 @@ class OfflineFrontend:
                 for h in parsed.mentions:
                     semantics.note(h, ci)
                 unknown.extend(parsed.unknown)
+                if _unread(clause, parsed):
+                    unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
                 continue
             out: list[Draft] = []
             for frame in parsed.frames:
@@ -240,7 +255,7 @@ class OfflineFrontend:
                 raise failed[0]
             self._nothing_actionable(text, scene.floor_plan, semantics, unknown, skipped,
                                      verbs_seen)
-        notes = tuple(_note(e) for e in [*skipped, *failed, *semantics.skipped])
+        notes = (*(_note(e) for e in [*skipped, *failed, *semantics.skipped]), *unread)
         for note in notes:
             log.info("offline parser: %s", note)
         check_consistent(clauses, drafts)

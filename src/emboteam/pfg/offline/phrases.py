@@ -155,6 +155,8 @@ def parse_np(items: list[Item], i: int) -> tuple[Head | None, int]:
             break
         if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
             break
+        if it.text == "instead" and nxt is not None and nxt.text == "of":
+            break      # "the mug instead of the cup": a rejected alternative follows
         if it.text in lx.MEASURE_WORDS and h.noun is None and h.pron is None and nxt is not None \
                 and nxt.text == "of" and j + 2 < n and np_start(items[j + 2]):
             # "a roll of foil", "the three rolls of foil", "a head of lettuce": the

@@ -1,0 +1,63 @@
+"""Time adjuncts: "tonight", "before lunch", "at some point this afternoon", "by tomorrow
+morning", "all day" say *when*, never *what*: the robots act now, and the goal is the
+same. They are taken out of the word sequence before clauses are found, so that a time
+word is never read as an object ("put the apple in the fridge tonight") and a
+subordinator before a meal ("before lunch and the tomato in the microwave") does not
+open a clause that swallows the next conjunct.
+
+A time adjunct is a run of time words (:data:`TIME_POINTS`, a closed word class, not a
+list of sentences) with the words that introduce and modify it: a preposition or
+subordinator ("before", "by", "at", "until"), determiners and time modifiers ("this",
+"next", "some", "every"). Durations ("for two minutes") are kept: they say how long an
+appliance runs.
+"""
+
+from __future__ import annotations
+
+from emboteam.pfg.offline.tagger import Item
+
+#: nouns and adverbs that name a point or stretch of time (not a duration unit)
+TIME_POINTS = frozenset({
+    "today", "tonight", "tomorrow", "yesterday", "morning", "afternoon", "evening", "night",
+    "noon", "midnight", "later", "earlier", "weekend", "week", "month", "year", "day",
+    "monday", "tuesday", "wednesday", "thursday", "friday", "saturday", "sunday",
+    "breakfast", "brunch", "lunch", "dinner", "supper", "bedtime", "lunchtime", "dinnertime",
+    "afterwards", "tomorrows", "mornings", "evenings", "nights",
+})
+#: words that introduce a time adjunct
+_INTRODUCERS = frozenset({"before", "after", "by", "until", "till", "at", "on", "in", "during",
+                          "around", "over", "from", "since", "for", "later"})
+#: words that modify a time noun ("this afternoon", "next week", "all day", "at some point")
+_MODIFIERS = frozenset({"this", "next", "last", "every", "each", "all", "the", "a", "some",
+                        "any", "one", "tomorrow", "later", "early", "late", "that"})
+#: "at some point", "at any time": a vague point in time
+_VAGUE_POINTS = frozenset({"point", "time", "stage"})
+
+
+def _time_run(items: list[Item], k: int) -> int:
+    """The index after the time words (with their modifiers) starting at ``k``; ``k`` if
+    none start there."""
+    m = k
+    while m < len(items) and items[m].text in _MODIFIERS and items[m].noun is None:
+        m += 1
+    end = m
+    while end < len(items) and items[end].noun is None and (
+            items[end].text in TIME_POINTS
+            or (items[end].text in _VAGUE_POINTS and end > k and items[end - 1].text in ("some", "any"))):
+        end += 1
+    return end if end > m else k
+
+
+def drop_time_adjuncts(items: list[Item]) -> list[Item]:
+    """The items without their time adjuncts (see the module docstring)."""
+    out: list[Item] = []
+    k = 0
+    while k < len(items):
+        start = k + 1 if items[k].text in _INTRODUCERS else k
+        end = _time_run(items, start)
+        if end > start and (end >= len(items) or items[end].text != "of"):
+            k = end        # "the morning of ..." aside: the whole adjunct goes
+            continue
+        out.append(items[k])
+        k += 1
+    return out

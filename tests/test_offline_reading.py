@@ -1,0 +1,147 @@
+"""The offline parser degrades instead of failing (docs/offline_parser.md, "Reading"): what
+it cannot read becomes a note and the rest is acted on; contradictions are a typed error;
+time adjuncts and rejected alternatives are read by structure; the reading says which
+conditions it chose with doubt."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from emboteam.pfg.offline import GroundingError, OfflineFrontend, OfflineParseError
+from emboteam.pfg.offline.consistency import ContradictoryInstruction
+from emboteam.pfg.offline.evaluate import evaluate, initial_state, load_records
+from emboteam.pfg.reading import Reading
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+
+FRONTEND = OfflineFrontend()
+DATA = Path(__file__).parent / "data"
+
+
+def read(text: str, fp: int = 1, setup: list[dict[str, Any]] | None = None) -> Reading:
+    scene = load_scene(fp)
+    team = parse_team("1,2")
+    return FRONTEND.parse(text, scene, initial_state({"setup": setup or []}, scene, team), team)
+
+
+def goal(reading: Reading) -> set[str]:
+    return {str(c) for c in reading.spec.goal().conditions}
+
+
+@pytest.mark.parametrize(("text", "fp", "expected", "span"), [
+    ("Put the apple in the frobnicator and the tomato in the fridge.", 1,
+     {"inside(Tomato, Fridge)"}, "frobnicator"),
+    ("Put the apple in the fridge and the xylophone on the counter.", 1,
+     {"inside(Apple, Fridge)"}, "xylophone"),
+    ("Put the apple in the fridge. Then wibble the tomato.", 1,
+     {"inside(Apple, Fridge)"}, "wibble the tomato"),
+])
+def test_an_unreadable_part_is_a_note_and_the_rest_is_acted_on(
+        text: str, fp: int, expected: set[str], span: str) -> None:
+    reading = read(text, fp)
+    assert goal(reading) == expected
+    assert [n.span for n in reading.notes] == [span]
+    assert reading.notes[0].reason and reading.doubtful
+
+
+def test_an_instruction_with_nothing_readable_is_still_an_error() -> None:
+    with pytest.raises(GroundingError, match="frobnicator"):
+        read("put the apple in the frobnicator")
+    with pytest.raises(OfflineParseError):
+        read("wibble wobble")
+
+
+@pytest.mark.parametrize(("text", "fp"), [
+    ("Open and close the fridge.", 1),
+    ("Turn on and turn off the TV.", 201),
+    ("Switch the lamp on and off.", 303),
+    ("Switch on the coffee machine and switch it off.", 6),
+])
+def test_a_contradiction_is_a_typed_error_naming_both_readings(text: str, fp: int) -> None:
+    with pytest.raises(ContradictoryInstruction) as err:
+        read(text, fp)
+    first, second = err.value.readings
+    assert first != second
+    assert first in str(err.value) and second in str(err.value)
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("First open the fridge, then take out the apple, and finally close the fridge.",
+     {"held(Apple)", "closed(Fridge)"}),
+    ("Turn off the light, then turn it back on.", {"switched_on(LightSwitch)"}),
+    ("Open the microwave and then shut the microwave.", {"closed(Microwave)"}),
+    ("Cook the potato in the microwave and switch the microwave off when it's done.",
+     {"cooked(Potato)", "switched_off(Microwave)"}),
+])
+def test_a_sequence_of_opposite_states_is_no_contradiction(text: str, expected: set[str]) -> None:
+    assert goal(read(text)) == expected
+
+
+def test_a_complaint_about_states_asks_for_the_opposite() -> None:
+    reading = read("The fridge is wide open and the light is still on, sort it out.", 1,
+                   [{"object": "Fridge_1", "is_open": True}])
+    assert goal(reading) == {"closed(Fridge)", "switched_off(LightSwitch)"}
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Put the tomato in the fridge, not the apple.", 1, {"inside(Tomato, Fridge)"}),
+    ("Put the tomato, not the apple, in the fridge.", 1, {"inside(Tomato, Fridge)"}),
+    ("Grab the mug, not the cup, and put it in the sink.", 1, {"inside(Mug, SinkBasin)"}),
+    ("Put the mug instead of the cup in the sink.", 1, {"inside(Mug, SinkBasin)"}),
+    ("Put the pen and the pencil in the drawer, but not the CD.", 303,
+     {"inside(Pen, Drawer)", "inside(Pencil, Drawer)"}),
+])
+def test_a_rejected_alternative_is_neither_object_nor_antecedent(
+        text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Could you pop the apple in the fridge for me tonight?", {"inside(Apple, Fridge)"}),
+    ("Put the apple in the fridge before lunch and the tomato in the microwave after dinner.",
+     {"inside(Apple, Fridge)", "inside(Tomato, Microwave)"}),
+    ("Slice the bread by noon, please.", {"sliced(Bread)"}),
+    ("Later tonight, could you slice the tomato?", {"sliced(Tomato)"}),
+])
+def test_time_adjuncts_say_when_not_what(text: str, expected: set[str]) -> None:
+    reading = read(text)
+    assert goal(reading) == expected and reading.notes == ()
+
+
+def test_a_duration_is_kept() -> None:
+    spec = read("Microwave the potato for two minutes.").spec
+    assert "hot(Potato)" in {str(c) for c in spec.goal().conditions}
+
+
+def test_fillers_before_the_verb_and_a_leading_also() -> None:
+    assert goal(read("Could you, um, maybe throw the CD in the bin?", 303)) == {
+        "inside(CD, GarbageCan)"}
+    assert goal(read("Put the soap bar in the sink. After that, also the candle.", 414)) == {
+        "inside(SoapBar, SinkBasin)", "inside(Candle, SinkBasin)"}
+
+
+def test_a_list_item_with_its_own_place_is_a_placement() -> None:
+    reading = read("I need three things: the apple in the fridge, the bread sliced and the light off.")
+    assert goal(reading) == {"inside(Apple, Fridge)", "sliced(Bread)", "switched_off(LightSwitch)"}
+
+
+def test_a_clear_reading_is_sure_and_a_fallback_choice_is_unsure() -> None:
+    sure = read("Put the apple in the fridge.")
+    assert sure.unsure == () and not sure.doubtful
+    # FloorPlan1 has no dining table: "the table" falls back to the counter, a default the
+    # hybrid front end should have checked
+    unsure = read("Put the mug on the table and the apple in the fridge.")
+    assert goal(unsure) == {"inside(Mug, CounterTop)", "inside(Apple, Fridge)"}
+    assert unsure.unsure == ("inside(Mug, CounterTop)",) and unsure.doubtful
+
+
+def test_the_natural_development_set_stays_read() -> None:
+    """tests/data/offline_dev_natural.jsonl (written before the parser was changed for it,
+    docs/unseen_suite.md): at least 90 % of its goals read exactly."""
+    outcomes = evaluate(load_records(DATA / "offline_dev_natural.jsonl"))
+    assert sum(o.correct for o in outcomes) / len(outcomes) >= 0.9, json.dumps(
+        [o.id for o in outcomes if not o.correct])
