@@ -289,6 +289,17 @@ def _env(value: str) -> EnvName:
     raise EmboTeamError(f"unknown environment {value!r}: sim or ai2thor")
 
 
+PLANNER_INPUT_HELP = ("what Fast Downward reads: sas (our own grounded task, search binary only; default) "
+                      "| pddl (its driver and translator)")
+
+
+def _with_planner_input(cfg: Any, planner_input: str) -> Any:
+    """A RunConfig or BenchConfig with ``--planner-input`` set (checked here: one line)."""
+    if planner_input not in ("sas", "pddl"):
+        raise EmboTeamError(f"--planner-input takes sas or pddl, not {planner_input!r}")
+    return cfg.model_copy(update={"planner_input": planner_input})
+
+
 def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConfig:
     from emboteam.pipeline import MODES, RunConfig
 
@@ -312,6 +323,7 @@ def plan(
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
+    planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
 ) -> None:
     """Decompose and plan a task (PFG + HP) without executing it."""
     import time
@@ -326,6 +338,7 @@ def plan(
     state, team = initial_state(task)
     scene = load_scene(task.floor_plan)
     client = make_llm(cfg)
+    cfg = _with_planner_input(cfg, planner_input)
     t0 = time.perf_counter()
     spec = understand(task, cfg, scene, state, team, client)
     spec, merged = plan_spec(spec, cfg, task, scene, state, team, client)
@@ -360,6 +373,7 @@ def run(
     env: str = typer.Option("sim", "--env", help=ENV_HELP),
     out_dir: Path | None = typer.Option(None, "--out", help="write episode.json, trace.jsonl, report.html here"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
+    planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join
@@ -374,6 +388,7 @@ def run(
     task = _resolve_task(target, scene_fp, robots_list)
     cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record, llm_merge=llm_merge,
                       fault_level=faults, seed=seed, joins=tuple(join), env=_env(env))
+    cfg = _with_planner_input(cfg, planner_input)
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run
     check_config(cfg)
@@ -433,6 +448,7 @@ def bench(
                                         "(default: a new folder bench-out/SUITE_CONFIGURATION_TIME)"),
     resume: bool = typer.Option(False, "--resume", help="continue a killed run in --out DIR"),
     as_json: bool = typer.Option(False, "--json", help="one JSON summary object on stdout"),
+    planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
     from emboteam.bench.jobs import BenchConfig, expand_jobs, modes_from_options, parse_fault_levels
@@ -458,6 +474,7 @@ def bench(
         check_config(RunConfig(env=cfg.env, fault_level=max(cfg.fault_levels), disturbance=cfg.disturbance))
     for f in cfg.frontends:
         check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout))
+    cfg = _with_planner_input(cfg, planner_input)
     cfg = _bench_out(cfg, out_dir)
     out_dir = cfg.out_dir
     jobs = expand_jobs(cfg, loaded.tasks)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from functools import cache
 
 from emboteam.bench.task import BenchTask
@@ -23,6 +24,7 @@ from emboteam.llm.client import LLMClient, make_client
 from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
+from emboteam.pddl.runner import PlannerInput
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
@@ -55,9 +57,9 @@ PLANNER_OF_MODE: dict[str, PlannerConfig] = {
 
 
 @cache
-def planner_for(mode: str) -> HybridPlanner:
+def planner_for(mode: str, planner_input: PlannerInput = "sas") -> HybridPlanner:
     """One planner per mode and process, so its plan cache serves every episode."""
-    return HybridPlanner(PLANNER_OF_MODE[mode])
+    return HybridPlanner(replace(PLANNER_OF_MODE[mode], planner_input=planner_input))
 
 
 @cache
@@ -106,7 +108,7 @@ def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, sta
               team: Sequence[RobotProfile], llm: LLMClient | None) -> tuple[TaskSpec, MergedPlan]:
     """The HP. With an LLM front end in the full system, the paper's LLM validation stage
     reviews the TaskSpec first, and one planner error goes back to the LLM for repair."""
-    planner = planner_for(cfg.mode)
+    planner = planner_for(cfg.mode, cfg.planner_input)
     if llm is not None and cfg.frontend == "llm" and cfg.mode == "full":
         from emboteam.hp.llm_stages import review_spec
 
@@ -181,7 +183,7 @@ def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: W
     if not reactive:
         return run_linear(sim, plan, goal, time_limit=cfg.time_limit, joins=[(j.profile, j.at) for j in joins],
                           messages=messages, seed=cfg.seed), sim
-    replanner = planner_replanner(planner_for("full")) if replan else None
+    replanner = planner_replanner(planner_for("full", cfg.planner_input)) if replan else None
     executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
                         time_limit=cfg.time_limit, finish_plan=finish_plan, messages=messages)
     return executor.run(), sim

@@ -32,6 +32,7 @@ from emboteam.bench.jobs import MODES, EnvName, Frontend, Mode
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import ConditionOutcome, Episode
+from emboteam.pddl.runner import PlannerInput
 from emboteam.sim.disturbances import Disturbances
 from emboteam.sim.faults import FaultConfig
 from emboteam.sim.setup import apply_changes
@@ -53,6 +54,8 @@ class RunConfig(BaseModel):
     llm_timeout: float = 60.0
     llm_record: str | None = Field(None, description="cassette folder to record LLM calls into")
     llm_merge: bool = Field(False, description="the paper's LLM merge stage: the LLM proposes orderings")
+    planner_input: PlannerInput = Field("sas", description="what Fast Downward reads: our own SAS task "
+                                        "(search binary only) or PDDL (driver and translator)")
     fault_level: float = Field(0.0, ge=0, le=1)
     faults: FaultConfig | None = Field(None, description="explicit faults (overrides fault_level)")
     seed: int = 0

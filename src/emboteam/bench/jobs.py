@@ -26,6 +26,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import Episode
+from emboteam.pddl.runner import PlannerInput
 from emboteam.sim.disturbances import Disturbances
 from emboteam.sim.faults import FaultConfig
 from emboteam.world.robots import parse_team
@@ -66,6 +67,8 @@ class Job(BaseModel):
     #: breakdowns, joins, moved objects, blackboard message faults (bench --breakdown/--join/
     #: --moves/--msg-loss/--msg-delay); in the key only when something is disturbed
     disturbance: Disturbances = Field(default_factory=Disturbances)
+    #: --planner-input (pddl/runner.py); in the key only when not the default (plans may differ)
+    planner_input: PlannerInput = "sas"
     #: not part of the key: it changes how long a call may take, not what is measured
     llm_timeout: float = Field(60.0, gt=0)
 
@@ -89,6 +92,8 @@ class Job(BaseModel):
         (``repr`` of a float round-trips, so two different fault levels never share a key)."""
         parts = [self.task.key, self.mode, self.frontend, self.llm or "-",
                  f"seed={self.seed}", f"faults={float(self.fault_level)!r}"]
+        if self.planner_input != "sas":
+            parts.append(f"planner-input={self.planner_input}")
         if self.disturbance.any:  # undisturbed keys stay as they were (existing stores stay valid)
             parts.append(f"disturb={self.disturbance.label}")
         if self.env != "sim":  # likewise: simulator keys stay as they were
@@ -127,6 +132,7 @@ class BenchConfig(BaseModel):
     env: EnvName = "sim"
     out_dir: Path = Path("bench-out")
     resume: bool = False
+    planner_input: PlannerInput = "sas"
     llm_timeout: float = Field(60.0, gt=0)
 
     disturbance: Disturbances = Field(default_factory=Disturbances)
@@ -218,6 +224,7 @@ def expand_jobs(config: BenchConfig, tasks: Sequence[BenchTask]) -> list[Job]:
         seen.add(task.key)
     return [
         Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed, disturbance=config.disturbance,
+            planner_input=config.planner_input,
             env=config.env,
             fault_level=level, llm_timeout=config.llm_timeout)
         for mode in config.modes

@@ -75,6 +75,7 @@ def pipeline_episode(job: Job) -> Episode:
     from emboteam.pipeline import RunConfig, run_episode
 
     cfg = RunConfig(mode=job.mode, frontend=job.frontend, llm=job.llm, llm_timeout=job.llm_timeout,
+                    planner_input=job.planner_input,
                     fault_level=job.fault_level, seed=job.seed, disturbance=job.disturbance, env=job.env)
     return run_episode(job.task, cfg)
 
