@@ -48,6 +48,20 @@ def test_an_unreadable_part_is_a_note_and_the_rest_is_acted_on(
     assert reading.notes[0].reason and reading.doubtful
 
 
+@pytest.mark.parametrize(("text", "fp", "expected", "span"), [
+    ("I reckon you should chuck the egg in the bin.", 1, {"inside(Egg, GarbageCan)"},
+     "i reckon you should"),
+    ("Swap the TV off.", 201, {"switched_off(Television)"}, "swap"),
+    ("No rush, but the potato should be cooked.", 1, {"cooked(Potato)"}, "no rush but"),
+])
+def test_words_before_what_can_be_read_are_a_note_and_the_reading_is_unsure(
+        text: str, fp: int, expected: set[str], span: str) -> None:
+    reading = read(text, fp)
+    assert goal(reading) == expected
+    assert [n.span for n in reading.notes] == [span]
+    assert set(reading.unsure) == expected
+
+
 def test_an_instruction_with_nothing_readable_is_still_an_error() -> None:
     with pytest.raises(GroundingError, match="frobnicator"):
         read("put the apple in the frobnicator")

@@ -284,8 +284,10 @@ ENV_HELP = ("sim (the symbolic simulator) | ai2thor (a live AI2-THOR 5.x: pip in
 
 
 def _env(value: str) -> EnvName:
-    if value == "sim" or value == "ai2thor":
-        return value
+    if value == "sim":
+        return "sim"
+    if value == "ai2thor":
+        return "ai2thor"
     raise EmboTeamError(f"unknown environment {value!r}: sim or ai2thor")
 
 

@@ -17,7 +17,7 @@ from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.morphology import warm_spelling
-from emboteam.pfg.offline.phrases import Head, ParsedClause, Target
+from emboteam.pfg.offline.phrases import Head, ParsedClause, Target, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.offline.text import normalize
@@ -42,13 +42,38 @@ def _note(exc: OfflineParseError) -> ReadingNote:
     return ReadingNote(exc.phrase or "", exc.message, "vague" if exc.vague else "unread")
 
 
+#: forms of "be": a clause with one and no act is a statement about how things are
+_BE = frozenset({"is", "are", "was", "were", "am", "be", "been", "being", "s", "re", "m"})
+#: "should be", "needs to be": a wished state, not a statement
+_MODAL_BEFORE_BE = frozenset({"should", "must", "could", "would", "will", "can", "might", "may",
+                              "shall", "to"})
+
+
+def _reread_after_prefix(clause: Clause, directive: bool) -> tuple[ParsedClause, str] | None:
+    """The clause read from the first word after which the grammar finds an act or a
+    state (a verb, or a noun phrase with its state: "the TV off"), and the words skipped;
+    None when no suffix reads."""
+    items = clause.items
+    for k in range(1, len(items)):
+        if items[k].verb is None and not np_start(items[k]):
+            continue
+        rest = replace(clause, items=items[k:])
+        parsed = parse_clause(rest, directive=directive)
+        if any(f.act is not None or f.state is not None for f in parsed.frames):
+            return parsed, " ".join(i.corrected_from or i.text for i in items[:k] if i.punct is None)
+    return None
+
+
 def _unread(clause: Clause, parsed: ParsedClause) -> bool:
     """Did a clause that gave no act say something the parser could not read? A statement
     ("my phone is on the bed", "there's a potato on the counter") introduces objects, and
     thanks and small talk carry no content words; "then wibble the tomato" does."""
-    if parsed.means is not None or parsed.also or any(i.copula for i in clause.items):
+    items = clause.items
+    stated = any(it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
+                 for k, it in enumerate(items))      # "is", not the "be" of "should be"
+    if parsed.means is not None or parsed.also or stated:
         return False
-    if clause.items and (clause.items[0].neg or clause.items[0].text in ("instead", "rather")):
+    if items and items[0].text in ("not", "instead", "rather"):
         return False     # "not the apple", "instead of the cup": a rejected alternative
     return bool(parsed.unknown) or any(i.verb is not None or i.noun is not None for i in clause.items)
 
@@ -202,6 +227,7 @@ class OfflineFrontend:
         skipped: list[OfflineParseError] = []
         failed: list[OfflineParseError] = []
         unread: list[ReadingNote] = []
+        guessed: set[int] = set()       # clauses read without their unreadable first words
         verbs_seen = False
         parsed_clauses: list[ParsedClause] = []
         for k, c in enumerate(clauses):
@@ -210,7 +236,18 @@ class OfflineFrontend:
             before = parsed_clauses[-1] if parsed_clauses else None
             inherit = before is not None and before.directive and clauses[k - 1].sentence == \
                 c.sentence and c.link == "and"
-            parsed_clauses.append(parse_clause(c, directive=inherit))
+            parsed = parse_clause(c, directive=inherit)
+            if not parsed.frames and _unread(c, parsed):
+                # "I reckon you should chuck the egg in the bin", "swap the TV off": read
+                # from the first place the grammar can read, the words before it are a note
+                # and what it gives is unsure
+                reread = _reread_after_prefix(c, inherit)
+                if reread is not None:
+                    parsed, dropped = reread
+                    guessed.add(k)
+                    unread.append(ReadingNote(dropped, "not understood; read the rest of the "
+                                                       "clause without it"))
+            parsed_clauses.append(parsed)
         _attach_means(parsed_clauses)
         _share_objects(clauses, parsed_clauses)
         _repeat_for_also(parsed_clauses)
@@ -260,7 +297,10 @@ class OfflineFrontend:
             log.info("offline parser: %s", note)
         check_consistent(clauses, drafts)
         spec = assemble(text, clauses, drafts, team)
-        return Reading(spec, notes, _unsure(spec, semantics.g.doubts))
+        unsure = _unsure(spec, semantics.g.doubts)
+        unsure += tuple(dict.fromkeys(str(c) for ci in sorted(guessed) for d in drafts.get(ci, [])
+                                      for c in d.conditions if str(c) not in unsure))
+        return Reading(spec, notes, unsure)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,
