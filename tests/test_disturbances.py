@@ -54,7 +54,7 @@ def test_specs_and_their_canonical_label() -> None:
     assert d.breakdowns == (BreakdownSpec(robot="random", at=When(value=0.3, unit="fraction")),)
     assert d.joins[0] == JoinSpec(profile="5", at=When(value=30, unit="seconds"))
     assert d.moves[1] == MoveSpec(object="Apple_1", at=When(value=20, unit="seconds"))
-    assert d.label == "breakdown=random@0.3;join=5@30s,random@0.4;moves=random@0.5,Apple_1@20s;" \
+    assert d.label == "breakdown=random@0.3;join=5@30s,random@40%;moves=random@0.5,Apple_1@20s;" \
                       "msg-loss=0.5;msg-delay=2"
     assert Disturbances.parse(breakdown=["RANDOM@30%"]).label == "breakdown=random@0.3"
     assert not Disturbances().any and Disturbances().label == ""
@@ -244,7 +244,7 @@ def test_a_lossy_blackboard_still_succeeds() -> None:
 
 
 def test_a_joining_robot_gets_work() -> None:
-    ep = _episode(TASKS[1], 0, join=["random@0.1"])
+    ep = _episode(TASKS[1], 0, join=["random@20%"])
     d = ep.disturbance
     assert ep.success and d is not None and d.joined
     assert d.joiner_actions >= 1

@@ -433,8 +433,9 @@ def bench(
     breakdown: list[str] = typer.Option([], "--breakdown", help="WHO@WHEN: a robot stops for good, e.g. "
                                         "random@0.3 (drawn by the seed, at 30% of the nominal makespan), "
                                         "robot2@12s (repeatable)"),
-    join: list[str] = typer.Option([], "--join", help="PROFILE@WHEN: a robot joins mid-run, e.g. 5@30 (30 s, "
-                                   "as run), random@0.3 (a copy of a team member) (repeatable)"),
+    join: list[str] = typer.Option([], "--join", help="PROFILE@WHEN: a robot joins mid-run, e.g. 5@30 (at 30 s, "
+                                   "as run has it), random@30% (a second unit of a team member's profile, at "
+                                   "30% of the nominal makespan) (repeatable)"),
     moves: list[str] = typer.Option([], "--moves", help="WHAT@WHEN: someone moves an object the plan uses "
                                     "to a random valid place (closed receptacles too), e.g. random@0.5, "
                                     "Apple_1@20s (repeatable)"),

@@ -117,7 +117,9 @@ class JoinSpec(BaseModel):
         return cls(profile=who.lower(), at=parse_when(when, bare="seconds", option="--join"))
 
     def __str__(self) -> str:
-        return f"{self.profile}@{self.at}"
+        # a bare number means seconds here, so a fraction is written as a percentage
+        at = f"{100 * self.at.value:g}%" if self.at.unit == "fraction" else str(self.at)
+        return f"{self.profile}@{at}"
 
 
 class MoveSpec(BaseModel):

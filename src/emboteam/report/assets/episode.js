@@ -339,6 +339,18 @@
     return edges;
   }
 
+  // what caused a replan, in a few words: a breakdown, a joiner, the plan ending, a lost step
+  function replanCause(reason) {
+    if (!reason) return "";
+    var m = /(\S+) is down/.exec(reason) || /(\S+) broke down/.exec(reason);
+    if (m) return ": " + m[1] + " down";
+    m = /^(.+) joined$/.exec(reason);
+    if (m) return ": " + m[1] + " joined";
+    if (/goal unmet/.test(reason)) return ": goal unmet";
+    if (/^stalled/.test(reason)) return ": stalled";
+    return ": " + (reason.length > 28 ? reason.slice(0, 27) + "…" : reason);
+  }
+
   function buildGantt() {
     var box = document.getElementById("gantt");
     var robots = TL.robots;
@@ -421,7 +433,7 @@
           var g = svg("g", { class: "replan" }, markLayer);
           svg("line", { x1: x(ev.t), x2: x(ev.t), y1: top, y2: height - bottom }, g);
           // name what caused the replan: a breakdown, a joiner, a lost object, the plan ending
-          svg("text", { x: x(ev.t) + 3, y: top + 9 }, g, "replan" + (ev.key ? ": " + (ev.key.length > 28 ? ev.key.slice(0, 27) + "…" : ev.key) : ""));
+          svg("text", { x: x(ev.t) + 3, y: top + 9 }, g, "replan" + replanCause(ev.key));
           svg("title", {}, g, "replan at " + ev.t.toFixed(2) + " s: " + ev.key + " " + ev.value);
         } else if (ev.category === "recovery" && ev.robot in rowOf) {
           var ry = top + rowOf[ev.robot] * rowH + rowH - 3, rx = x(ev.t);
