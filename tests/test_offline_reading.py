@@ -159,3 +159,27 @@ def test_the_natural_development_set_stays_read() -> None:
     outcomes = evaluate(load_records(DATA / "offline_dev_natural.jsonl"))
     assert sum(o.correct for o in outcomes) / len(outcomes) >= 0.9, json.dumps(
         [o.id for o in outcomes if not o.correct])
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Nobody closed the fridge.", 1, {"closed(Fridge)"}),
+    ("No one turned off the light.", 1, {"switched_off(LightSwitch)"}),
+    ("The bread isn't sliced yet.", 1, {"sliced(Bread)"}),
+    ("Why is the fridge open?", 1, {"closed(Fridge)"}),
+    ("Nobody is watching the TV.", 201, {"switched_off(Television)"}),
+])
+def test_a_complaint_about_what_was_not_done_asks_for_it(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected
+
+
+def test_an_unreadable_object_of_a_state_list_does_not_sink_the_others() -> None:
+    reading = read("Ugh, the light is on again.")
+    assert goal(reading) == {"switched_off(LightSwitch)"}
+    assert [n.span for n in reading.notes] == ["ugh"]
+
+
+def test_except_rejects_and_a_bare_topic_is_no_note() -> None:
+    with pytest.raises(GroundingError):        # "everything" alone is too vague, never the apple
+        read("Put everything except the apple in the fridge.")
+    reading = read("The bread. Slice it, please.")
+    assert goal(reading) == {"sliced(Bread)"} and reading.notes == ()

@@ -267,10 +267,14 @@ def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                     continue
                 break
             continue
-        if it.neg or (it.text == "instead" and j + 1 < n and items[j + 1].text == "of"):
+        if it.neg or it.text == "except" or (it.text in ("instead", "apart")
+                                             and j + 1 < n and items[j + 1].text in ("of", "from")):
             # "on the holder, not on the counter", "the tomato, not the apple", "but not the
-            # CD", "instead of the cup": a rejected alternative, neither object nor mention
-            j += 2 if it.text == "instead" else 1
+            # CD", "instead of the cup", "except the apple": a rejected alternative, neither
+            # object nor mention
+            j += 1 if it.neg or it.text == "except" else 2
+            if j < n and items[j].text == "for":
+                j += 1     # "except for the apple"
             if j < n and items[j].prep is not None:
                 _, j = parse_np(items, j + 1)
             elif j < n and np_start(items[j]) and items[j].verb is None:
@@ -669,9 +673,13 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
         items = items[:-1]
     if clause.link in ("after", "before", "if", "by", "purpose", "while"):
         flags["directive"] = True
-    # leading negation: "don't leave the lights on", "never turn on ..."
-    while items and (items[0].neg or (items[0].text in ("do", "does", "did")
-                     and len(items) > 1 and items[1].neg)):
+    items = _why_question(items)
+    # leading negation: "don't leave the lights on", "never turn on ..." ("nobody", "no
+    # one" are subjects: "nobody closed the fridge" is read with its verb below)
+    nobody = bool(items) and (items[0].text == "nobody" or (
+        items[0].text == "no" and len(items) > 1 and items[1].text == "one"))
+    while items and not nobody and (items[0].neg or (items[0].text in ("do", "does", "did")
+                                    and len(items) > 1 and items[1].neg)):
         if items[0].neg:
             flags["neg"] = not flags.get("neg", False)
         items = items[1:]
@@ -733,6 +741,7 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
             elif not flags.get("modal") and v.verb.form in ("ed", "ing", "s") and \
                     clause.link not in ("if", "after", "before", "by"):
                 frame.report = True
+                frame.past = v.verb.form == "ed"
             frames.append(frame)
     elif first.verb is not None and (
             (first.verb.form in ("base", "ing") and (first.noun is None or _takes_object(items)))
@@ -762,6 +771,17 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
         if f.report:
             places_to_locations(f)
     return ParsedClause(clause, frames, mentions, unknown_words(mentions))
+
+
+def _why_question(items: list[Item]) -> list[Item]:
+    """"Why is the fridge open?", "why are the lights still on": a question about a state
+    is a complaint about it, read as the statement "the fridge is open"."""
+    if len(items) < 3 or items[0].text != "why" or items[1].text not in ("is", "are"):
+        return items
+    _, end = parse_np(items, 2)
+    if end == 2:
+        return items
+    return [*items[2:end], items[1], *items[end:]]
 
 
 def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:

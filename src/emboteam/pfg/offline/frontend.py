@@ -17,7 +17,7 @@ from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.morphology import warm_spelling
-from emboteam.pfg.offline.phrases import Head, ParsedClause, Target, np_start
+from emboteam.pfg.offline.phrases import Head, ParsedClause, Target, np_list, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.offline.text import normalize
@@ -73,8 +73,13 @@ def _unread(clause: Clause, parsed: ParsedClause) -> bool:
                  for k, it in enumerate(items))      # "is", not the "be" of "should be"
     if parsed.means is not None or parsed.also or stated:
         return False
-    if items and items[0].text in ("not", "instead", "rather"):
+    if items and items[0].text in ("not", "instead", "rather", "except"):
         return False     # "not the apple", "instead of the cup": a rejected alternative
+    words = [i for i in items if i.punct is None]
+    if np_list(words) and all(i.noun is not None or i.det or i.quant is not None or i.pron
+                              or i.number is not None or i.text in lexicon.COMMON_WORDS
+                              for i in words):
+        return False     # "The bread. Slice it.": a topic for what follows
     return bool(parsed.unknown) or any(i.verb is not None or i.noun is not None for i in clause.items)
 
 

@@ -103,6 +103,8 @@ class Frame:
     ready: bool = False
     #: "for a couple of minutes": the act lasts (an appliance is run, not just loaded)
     timed: bool = False
+    #: a report of a past act ("someone left the fridge open", "nobody closed it")
+    past: bool = False
 
 
 @dataclass
@@ -155,7 +157,8 @@ def parse_np(items: list[Item], i: int) -> tuple[Head | None, int]:
             break
         if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
             break
-        if it.text == "instead" and nxt is not None and nxt.text == "of":
+        if it.text == "except" or (it.text in ("instead", "apart") and nxt is not None
+                                   and nxt.text in ("of", "from")):
             break      # "the mug instead of the cup": a rejected alternative follows
         if it.text in lx.MEASURE_WORDS and h.noun is None and h.pron is None and nxt is not None \
                 and nxt.text == "of" and j + 2 < n and np_start(items[j + 2]):

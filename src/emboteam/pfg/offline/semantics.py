@@ -163,7 +163,7 @@ class Semantics:
         if frame.report or frame.too:
             flip = not flip if not (frame.report and frame.too) else True
             if frame.report and frame.negated:
-                return []      # "nobody is watching it": a remark, not a wish
+                return self._missing(frame, clause)
         if (act in (None, Act.CAUSE, Act.MAKE) and state is not None) or (act is Act.SWITCH and state):
             return self._state(frame, state, flip, clause)
         if act is None:
@@ -181,6 +181,20 @@ class Semantics:
             pred = P.switched_on if positive else P.switched_off
             drafts = concat(drafts, self._each(pred, self.g.light_sources(positive)))
         return drafts
+
+    def _missing(self, frame: Frame, clause: int) -> list[Draft]:
+        """A complaint that something was not done or is not so asks for it: "nobody
+        closed the fridge" (a past act not done), "the bread isn't sliced yet" (a state
+        missing); "nobody is watching the TV" (an act not going on) asks for the state that
+        ends it (the TV off)."""
+        if frame.act is not None and frame.past and frame.state is None:
+            return self._act(frame, frame.act, clause)
+        if frame.act is None and frame.state is not None:
+            return self._state(frame, frame.state, False, clause)
+        st = lx.ACT_STATE.get(frame.act) if frame.act is not None else None
+        if st is None or st[0] not in lx.INVERTIBLE:
+            return []
+        return self._state(frame, (st[0], not st[1]), False, clause)
 
     def _umbrella(self, frame: Frame) -> bool:
         """Is the act an umbrella over the placements listed after it? A vague verb, or
@@ -203,45 +217,58 @@ class Semantics:
 
     def _state(self, frame: Frame, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
         out: list[Draft] = []
+        failed: list[OfflineParseError] = []
         for t in self._targets(frame):
-            # "leave the fridge closed and the light on": each object its own state
-            stat, positive = t.state or state
-            if flip:
-                if stat not in lx.INVERTIBLE:
-                    continue
-                positive = not positive
-            head = t.head
-            if stat is Stat.BRIGHT or (head.noun is not None and head.noun.concept.kind == "room"):
-                if self._is_light(head):
-                    ref = self.ground(head, "switch", self._group, clause)
-                    out += self._each(P.switched_on if positive else P.switched_off, ref)
-                else:
-                    out += self._lighting(positive)
-                continue
-            if _is_everything(head) and (stat, positive) in _ALL_OF:
-                out += self._everything(stat)
-                continue
-            if head.noun is None and head.recipe is not None:
-                # "I want my coffee hot": the dish, then the state of what it is served in
-                out += self._recipe(head.recipe, clause, head)
-                pred = _stat_predicate(stat, positive)
-                if pred is not None:
-                    out += self._each(pred, self.history[-1].ref)
-                continue
-            if stat is Stat.TOASTED:
-                out += self._act(Frame(Act.TOAST, "toast", [t]), Act.TOAST, clause)
-                continue
-            if stat is Stat.CLEAN and positive:
-                out += self._act(Frame(Act.CLEAN, "clean", [t]), Act.CLEAN, clause)
-                continue
-            ref = self.ground(head, STAT_NEEDS[stat], self._group, clause)
-            pred = _stat_predicate(stat, positive)
-            if pred is None:
-                continue
-            liquid = "water" if pred is P.filled else None
-            out += self._each(pred, ref, liquid=liquid)
+            try:
+                out += self._state_of(t, state, flip, clause)
+            except OfflineParseError as exc:
+                failed.append(exc)      # "ugh, the light is on": the light still is
+        if failed and not out:
+            raise failed[0]
+        self.skipped.extend(failed)
         if not out and state[0] is Stat.BRIGHT and not self._targets(frame):
             out += self._lighting(state[1] != flip)
+        return out
+
+    def _state_of(self, t: Target, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
+        """The drafts that give one object its state ("leave the fridge closed and the
+        light on": each object its own state)."""
+        out: list[Draft] = []
+        stat, positive = t.state or state
+        if flip:
+            if stat not in lx.INVERTIBLE:
+                return []
+            positive = not positive
+        head = t.head
+        if stat is Stat.BRIGHT or (head.noun is not None and head.noun.concept.kind == "room"):
+            if self._is_light(head):
+                ref = self.ground(head, "switch", self._group, clause)
+                out += self._each(P.switched_on if positive else P.switched_off, ref)
+            else:
+                out += self._lighting(positive)
+            return out
+        if _is_everything(head) and (stat, positive) in _ALL_OF:
+            out += self._everything(stat)
+            return out
+        if head.noun is None and head.recipe is not None:
+            # "I want my coffee hot": the dish, then the state of what it is served in
+            out += self._recipe(head.recipe, clause, head)
+            pred = _stat_predicate(stat, positive)
+            if pred is not None:
+                out += self._each(pred, self.history[-1].ref)
+            return out
+        if stat is Stat.TOASTED:
+            out += self._act(Frame(Act.TOAST, "toast", [t]), Act.TOAST, clause)
+            return out
+        if stat is Stat.CLEAN and positive:
+            out += self._act(Frame(Act.CLEAN, "clean", [t]), Act.CLEAN, clause)
+            return out
+        ref = self.ground(head, STAT_NEEDS[stat], self._group, clause)
+        pred = _stat_predicate(stat, positive)
+        if pred is None:
+            return out
+        liquid = "water" if pred is P.filled else None
+        out += self._each(pred, ref, liquid=liquid)
         return out
 
     @staticmethod
