@@ -245,24 +245,47 @@ class DomainError(EmboTeamError):
     """An action the domain cannot ground (unknown skill arguments, missing knife...)."""
 
 
+#: pending pieces by what they are computed from (every problem, goal compilation and
+#: universe asks for them, mostly about the same few states)
+_PIECES: dict[tuple[object, ...], dict[str, ObjectState]] = {}
+
+
 def pending_pieces(state: WorldState, wholes: Sequence[str] | None = None) -> dict[str, ObjectState]:
     """The pieces slicing (or cracking) each whole *would* spawn, as they would be born:
-    declared ahead so a plan can name them (``Apple_1_Slice_2``)."""
+    declared ahead so a plan can name them (``Apple_1_Slice_2``). The result is shared
+    between calls with equal inputs: treat its objects as read-only."""
     cat = load_catalogue()
-    out: dict[str, ObjectState] = {}
-    for oid in wholes if wholes is not None else list(state.objects):
+    ids = wholes if wholes is not None else list(state.objects)
+    cut: list[ObjectState] = []
+    for oid in ids:
         o = state.objects.get(oid)
         if o is None or o.source is not None or o.is_sliced:
             continue
+        if cat.slice_product(o.type) is None or not (o.has("sliceable") or o.type == "Egg"):
+            continue
+        cut.append(o)
+    key = (state.floor_plan, *((o.id, o.type, o.properties, o.mass, o.position) for o in cut))
+    hit = _PIECES.get(key)
+    if hit is None:
+        hit = _pieces_of(cut)
+        if len(_PIECES) > 512:
+            _PIECES.clear()
+        _PIECES[key] = hit
+    return {p: piece for p, piece in hit.items() if p not in state.objects}
+
+
+def _pieces_of(wholes: Sequence[ObjectState]) -> dict[str, ObjectState]:
+    cat = load_catalogue()
+    out: dict[str, ObjectState] = {}
+    for o in wholes:
         product = cat.slice_product(o.type)
-        if product is None or not (o.has("sliceable") or o.type == "Egg"):
+        if product is None:
             continue
         ptype, n = product
         props = cat.type(ptype).properties | {"pickupable"}
         for pid in piece_ids(o.id, n):
-            if pid not in state.objects:
-                out[pid] = ObjectState(id=pid, type=ptype, properties=props, mass=round(o.mass / n, 4),
-                                       position=o.position, parent=None, is_sliced=True, source=o.id)
+            out[pid] = ObjectState(id=pid, type=ptype, properties=props, mass=round(o.mass / n, 4),
+                                   position=o.position, parent=None, is_sliced=True, source=o.id)
     return out
 
 
