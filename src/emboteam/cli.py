@@ -207,6 +207,8 @@ def tasks(
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
 ) -> None:
     """List a suite's tasks: id, floor plan, category, instruction."""
+    from rich.padding import Padding
+
     from emboteam.bench.suites import load_suite
 
     loaded = load_suite(suite)
@@ -220,14 +222,26 @@ def tasks(
         ]})
         return
     counts = ", ".join(f"{n} {cat}" for cat, n in loaded.categories().items())
-    # every column folds rather than truncates (ids and numbers stay whole, split over
-    # lines on a narrow terminal); the instruction gets the room that is left
-    table = Table(title=escape(f"{loaded.name}: {len(loaded.tasks)} tasks ({counts})"))
-    for col in ("task", "scene", "category", "robots"):
-        table.add_column(col, overflow="fold")
-    table.add_column("instruction", overflow="fold", ratio=1, min_width=16)
-    for t in loaded.tasks:
-        table.add_row(*(Text(x) for x in (t.key, t.floor_plan, t.category, ",".join(t.robots), t.instruction)))
+    # ids, not SUITE/ID keys: a smart-llm key holds the whole path and would crowd out the
+    # instruction (the title says how to name a task). A table while the short columns fit
+    # whole with 30 columns left for the instruction; on a narrower terminal one entry per
+    # task, the instruction on its own lines: nothing is cut either way.
+    rows = [(t.id, t.floor_plan, t.category, ",".join(t.robots), t.instruction) for t in loaded.tasks]
+    heads = ("id", "scene", "category", "robots")
+    fixed = sum(max([len(h), *(len(r[i]) for r in rows)]) + 3 for i, h in enumerate(heads)) + 1
+    title = Text(f"{loaded.name}: {len(loaded.tasks)} tasks ({counts}); a task is named {loaded.name}/ID")
+    if fixed + 30 > out.width:
+        out.print(title, style="bold")
+        for task_id, fp, category, team, instruction in rows:
+            out.print(Text(f"{task_id}  {fp}  {category}  robots {team}", style="bold"))
+            out.print(Padding(Text(instruction), (0, 0, 0, 2)), overflow="fold")
+        return
+    table = Table(title=title)
+    for col in heads:
+        table.add_column(col, no_wrap=True)
+    table.add_column("instruction", overflow="fold")
+    for row in rows:
+        table.add_row(*(Text(x) for x in row))
     out.print(table)
 
 
