@@ -271,3 +271,19 @@ def test_bench_without_out_twice_makes_two_folders(tmp_path: Path, monkeypatch: 
     assert runner.invoke(app, [*args, "--out", str(runs[0])]).exit_code == 2
     result = runner.invoke(app, [*args, "--resume"])
     assert result.exit_code == 2 and "--resume needs --out DIR" in result.stderr
+
+
+def test_a_refused_executor_leaves_no_results_store(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import emboteam.bench.runner as runner_module
+    from emboteam.bench.jobs import BenchConfigError, expand_jobs
+    from emboteam.bench.runner import run_bench, store_path
+    from test_bench_runner import config, make_task
+
+    def refuse(*_: object) -> None:
+        raise BenchConfigError("cannot start a local Ray instance: no")
+
+    monkeypatch.setattr(runner_module, "make_executor", refuse)
+    cfg = config(tmp_path / "run")
+    with pytest.raises(BenchConfigError, match="cannot start"):
+        run_bench(cfg, expand_jobs(cfg, [make_task("t1")]), "test_bench_runner:scripted_episode", progress=False)
+    assert not store_path(tmp_path / "run").exists()
