@@ -69,6 +69,15 @@ def test_plan_json_has_subtasks_robots_sync_and_timing() -> None:
     assert data["sync"], "a temporal task has cross-robot sync points"
 
 
+def test_what_the_parser_could_not_read_reaches_the_user_as_notes() -> None:
+    instruction = "Put the apple in the frobnicator and the tomato in the fridge."
+    data = one_json(cli("plan", instruction, "--scene", "FloorPlan1", "--robots", "1,2", "--json"))
+    assert [str(c) for s in data["subtasks"] for c in s["goal"]] == ["inside(Tomato, Fridge)"]
+    assert len(data["notes"]) == 1 and "frobnicator" in data["notes"][0]
+    run = one_json(cli("run", instruction, "--scene", "FloorPlan1", "--robots", "1,2", "--json"))
+    assert run["success"] is True and run["notes"] == data["notes"]
+
+
 def test_export_bt_btcpp_is_behaviortree_cpp_v4_xml() -> None:
     proc = cli("export-bt", "mace-thor/fp1-fridge-apple-tomato", "--frontend", "oracle", "--format", "btcpp")
     assert proc.returncode == 0, proc.stderr

@@ -356,17 +356,20 @@ def plan(
     client = make_llm(cfg)
     cfg = _with_planner_input(cfg, planner_input)
     t0 = time.perf_counter()
-    spec = understand(task, cfg, scene, state, team, client)
+    notes: list[str] = []        # what the front end could not read, or read with doubt
+    spec = understand(task, cfg, scene, state, team, client, notes)
     spec, merged = plan_spec(spec, cfg, task, scene, state, team, client)
     seconds = time.perf_counter() - t0
     if as_json:
         print_json({"task": task.key, "instruction": task.instruction, "scene": task.floor_plan,
                     "subtasks": spec_json(spec), **plan_json(merged), "plan_seconds": round(seconds, 4),
-                    "llm_calls": client.usage.calls if client else 0})
+                    "llm_calls": client.usage.calls if client else 0, "notes": notes})
         return
     out.print(f"[bold]{escape(task.key)}[/bold] {escape(task.floor_plan)}: {escape(task.instruction)}",
               highlight=False)
     out.print(spec_table(spec))
+    for note in notes:
+        out.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
     out.print(plan_table(merged))
     out.print(f"planned in {seconds:.2f} s")
 
