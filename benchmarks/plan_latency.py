@@ -44,6 +44,7 @@ from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
+from emboteam.pddl.runner import PlannerInput
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.goals import Goal
 from emboteam.world.robots import parse_team
@@ -59,12 +60,18 @@ SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
 LAMMA_P = "astar(hmax())"
 
 
-def ours() -> HybridPlanner:
-    return HybridPlanner(PlannerConfig())
+#: what our planner gives Fast Downward (--planner-input): our own SAS task or PDDL
+PLANNER_INPUT: list[PlannerInput] = ["sas"]
+
+
+def ours(planner_input: PlannerInput | None = None) -> HybridPlanner:
+    return HybridPlanner(PlannerConfig(planner_input=planner_input or PLANNER_INPUT[0]))
 
 
 def lamma_p() -> HybridPlanner:
-    return HybridPlanner(PlannerConfig(alias=LAMMA_P, workers=1, merge="concatenate", validate=False))
+    # LaMMA-P writes PDDL and calls Fast Downward on it: the driver and its translator
+    return HybridPlanner(PlannerConfig(alias=LAMMA_P, workers=1, merge="concatenate", validate=False,
+                                       planner_input="pddl"))
 
 
 @dataclass
@@ -159,6 +166,177 @@ def sweep(progress: Progress, scenes: Sequence[str], robots: Sequence[int], cond
         rows.append(Row(f"{scene} {n}x{k}", scene, n, len(conds), k, run, base))
         progress.advance(job)
     return rows
+
+
+# ---- our SAS task against the translator, and replanning under faults ---------------------------
+
+@dataclass
+class InputRow:
+    """One MACE-THOR task planned with each planner input (same planner otherwise)."""
+
+    task: str
+    seconds: dict[str, float]
+    steps: dict[str, int]
+    makespan: dict[str, float]
+
+
+def inputs(progress: Progress) -> list[InputRow]:
+    """Plan every MACE-THOR task with SAS and with PDDL input: times and plan sizes side
+    by side (the plans may differ: lama-first is not optimal)."""
+    from emboteam.bench.suites import load_suite
+    from emboteam.pfg.oracle import OracleFrontend
+
+    tasks = load_suite("mace-thor").tasks
+    job = progress.add_task("SAS vs PDDL input", total=len(tasks))
+    rows: list[InputRow] = []
+    for task in tasks:
+        state = task.initial_state()
+        spec = OracleFrontend(task.goal).decompose(task.instruction, load_scene(task.floor_plan), state, task.team())
+        row = InputRow(task.id, {}, {}, {})
+        for name in ("sas", "pddl"):
+            t0 = time.perf_counter()
+            try:
+                plan = ours(name).plan(spec, state)  # type: ignore[arg-type]
+            except EmboTeamError:
+                row.seconds[name], row.steps[name], row.makespan[name] = time.perf_counter() - t0, -1, 0.0
+                continue
+            row.seconds[name] = time.perf_counter() - t0
+            row.steps[name], row.makespan[name] = len(plan.steps), plan.makespan
+        rows.append(row)
+        progress.advance(job)
+    return rows
+
+
+@dataclass
+class ReplanRun:
+    task: str
+    seed: int
+    success: bool
+    #: (seconds, planned?) of each replanning call the executor made
+    calls: list[tuple[float, bool]] = field(default_factory=list)
+
+
+def replanning(progress: Progress, level: float, seeds: int, planner_input: PlannerInput) -> list[ReplanRun]:
+    """Execute every MACE-THOR task with per-action faults at ``level`` and, where two
+    robots have steps, a breakdown: the executor replans from the state it finds
+    (``HybridPlanner.plan_goal``, the robots left); each call is timed."""
+    from emboteam.bench.suites import load_suite
+    from emboteam.exec import Executor, planner_replanner
+    from emboteam.pfg.oracle import OracleFrontend
+    from emboteam.sim.faults import Breakdown, FaultConfig
+    from emboteam.sim.simulator import Simulator
+
+    tasks = load_suite("mace-thor").tasks
+    job = progress.add_task(f"replanning, faults {level:g} ({planner_input})", total=len(tasks) * seeds)
+    runs: list[ReplanRun] = []
+    for task in tasks:
+        scene = load_scene(task.floor_plan)
+        for seed in range(seeds):
+            state = task.initial_state()
+            spec = OracleFrontend(task.goal).decompose(task.instruction, scene, state, task.team())
+            planner = ours(planner_input)
+            run = ReplanRun(task.id, seed, False)
+            inner = planner_replanner(planner)
+
+            def timed(s: WorldState, g: Goal, robots: Sequence[str], inner=inner, run=run) -> MergedPlan:  # type: ignore[no-untyped-def]
+                t0 = time.perf_counter()
+                try:
+                    plan = inner(s, g, robots)
+                except EmboTeamError:
+                    run.calls.append((time.perf_counter() - t0, False))
+                    raise
+                run.calls.append((time.perf_counter() - t0, True))
+                return plan
+            try:
+                plan = planner.plan(spec, state)
+                # retries absorb most action failures: a breakdown at 30% of the makespan of
+                # the working robot with the fewest steps (the team's only able robot is
+                # often the busiest) makes every episode with two working robots replan
+                steps = {r: sum(s.robot == r for s in plan.steps) for r in plan.robots}
+                working = sorted((n, r) for r, n in steps.items() if n)
+                down = (Breakdown(robot=working[0][1], at=0.3 * plan.makespan),) if len(working) > 1 else ()
+                faults = FaultConfig(action_failure=level, occlusion=level / 2, breakdowns=down)
+                sim = Simulator(scene, task.team(), seed=seed, faults=faults, state=state)
+                result = Executor(sim, plan, task.goal, replanner=timed, seed=seed, time_limit=900.0).run()
+                run.success = bool(result.success)
+            except EmboTeamError:
+                pass
+            runs.append(run)
+            progress.advance(job)
+    return runs
+
+
+def _quantile(xs: Sequence[float], q: float) -> float:
+    s = sorted(xs)
+    return s[min(len(s) - 1, int(q * (len(s) - 1)))] if s else 0.0
+
+
+def targets(tasks: Sequence[Row], cells: Sequence[Row], compared: Sequence[InputRow],
+            replans: dict[str, list[ReplanRun]]) -> dict[str, object]:
+    """The latency numbers issue 15 is checked by, from this run."""
+    ok = [r.ours.seconds for r in tasks if not r.ours.error]
+    base = [r.base.seconds for r in tasks if r.base is not None and not r.base.error]
+    p50 = statistics.median(ok) if ok else None
+    base_p50 = statistics.median(base) if base else None
+    out: dict[str, object] = {
+        "planner_input": PLANNER_INPUT[0],
+        "plan_p50": p50, "plan_p90": _quantile(ok, 0.9) if ok else None,
+        "lamma_p_p50": base_p50,
+        "speedup_vs_lamma_p": (base_p50 / p50) if p50 and base_p50 else None,
+        "target_p50": 0.05, "target_speedup": 5.0,
+        "sweep_seconds": {f"{r.scene} {r.robots}x{r.conditions}": round(r.ours.seconds, 4) for r in cells},
+    }
+    big = [r for r in cells if r.scene == "FloorPlan1" and r.robots == 32 and r.conditions >= 96]
+    if big:
+        out["fp1_32_robots_max_conditions"] = {"conditions": big[-1].conditions, "seconds": big[-1].ours.seconds,
+                                               "target": 1.0}
+    if compared:
+        for name in ("sas", "pddl"):
+            xs = [r.seconds[name] for r in compared if r.steps[name] >= 0]
+            out[f"{name}_input_p50"] = statistics.median(xs) if xs else None
+        out["inputs_steps_equal"] = sum(r.steps["sas"] == r.steps["pddl"] for r in compared)
+        out["inputs_tasks"] = len(compared)
+    for name, runs in replans.items():
+        planned = [c for r in runs for c, ok in r.calls if ok]
+        failed = [c for r in runs for c, ok in r.calls if not ok]
+        out[f"replan_{name}"] = {"episodes": len(runs), "successes": sum(r.success for r in runs),
+                                 "calls": len(planned) + len(failed), "planned": len(planned),
+                                 "p50": _quantile(planned, 0.5), "p90": _quantile(planned, 0.9),
+                                 "failed_p50": _quantile(failed, 0.5)}
+    return out
+
+
+def target_lines(t: dict[str, object], compared: Sequence[InputRow]) -> list[str]:
+    lines: list[str] = []
+    if t.get("plan_p50") is not None:
+        ratio = t.get("speedup_vs_lamma_p")
+        lines.append(f"- Targets (issue 15, {t['planner_input']} input): planner p50 per MACE-THOR task "
+                     f"{t['plan_p50']:.3f} s (target <= 0.05 s)"
+                     + (f", {ratio:.1f}x faster than the LaMMA-P-like pipeline's p50 {t['lamma_p_p50']:.3f} s "
+                        "(target >= 5x)" if isinstance(ratio, float) else "") + ".")
+    big = t.get("fp1_32_robots_max_conditions")
+    if isinstance(big, dict):
+        lines.append(f"- FloorPlan1, 32 robots x {big['conditions']} conditions: {big['seconds']:.2f} s (target < 1 s).")
+    if compared:
+        lines.append(f"- SAS vs PDDL input on MACE-THOR (same planner): p50 {t['sas_input_p50']:.3f} s vs "
+                     f"{t['pddl_input_p50']:.3f} s; equal plan length on {t['inputs_steps_equal']}/{t['inputs_tasks']} "
+                     f"tasks, {sum(r.steps['sas'] for r in compared)} vs {sum(r.steps['pddl'] for r in compared)} "
+                     "steps in all.")
+    for name in ("sas", "pddl"):
+        r = t.get(f"replan_{name}")
+        if isinstance(r, dict):
+            lines.append(f"- Replanning under faults and a breakdown ({name} input): {r['calls']} replanning calls in "
+                         f"{r['episodes']} episodes ({r['successes']} episodes succeeded); {r['planned']} calls "
+                         f"returned a plan, latency p50 {r['p50']:.3f} s, p90 {r['p90']:.3f} s; the others failed "
+                         f"(no plan for the robots left) in {r['failed_p50']:.3f} s (p50).")
+    return lines
+
+
+def input_table(rows: Sequence[InputRow]) -> tuple[list[str], list[list[str]]]:
+    head = ["task", "SAS s", "SAS steps", "SAS makespan", "PDDL s", "PDDL steps", "PDDL makespan"]
+    body = [[r.task, *(c for n in ("sas", "pddl") for c in (_f(r.seconds[n], 3), str(r.steps[n]),
+                                                             _f(r.makespan[n], 1)))] for r in rows]
+    return head, body
 
 
 # ---- reporting ------------------------------------------------------------------------------
@@ -286,7 +464,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--no-baseline", action="store_true", help="skip the LaMMA-P-like pipeline")
     ap.add_argument("--no-docs", action="store_true", help=f"do not rewrite {DOCS.relative_to(ROOT)}")
     ap.add_argument("--json", type=Path, help="also write the raw numbers here")
+    ap.add_argument("--planner-input", choices=("sas", "pddl"), default="sas",
+                    help="what our planner gives Fast Downward (the LaMMA-P-like pipeline always uses PDDL)")
+    ap.add_argument("--compare-inputs", action="store_true",
+                    help="also plan every MACE-THOR task with both inputs, side by side")
+    ap.add_argument("--replan-faults", type=float, default=0.0,
+                    help="also execute MACE-THOR with this per-action fault level and time every replanning call")
+    ap.add_argument("--replan-seeds", type=int, default=1, help="seeds per task for --replan-faults")
     args = ap.parse_args(argv)
+    PLANNER_INPUT[0] = args.planner_input
     if args.quick:
         args.robots, args.conditions, args.repeat = "2,8,32", "8,32,128", 1
     robots = [int(x) for x in args.robots.split(",")]
@@ -301,6 +487,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         tasks = [] if args.no_suite else mace_thor(progress, args.repeat, not args.no_baseline)
         cells = [] if args.no_sweep else sweep(progress, scenes, robots, conditions, not args.no_baseline,
                                                args.seed)
+        compared = inputs(progress) if args.compare_inputs else []
+        replans = {name: replanning(progress, args.replan_faults, args.replan_seeds, name)  # type: ignore[arg-type]
+                   for name in (("sas", "pddl") if args.compare_inputs else (args.planner_input,))
+                   } if args.replan_faults > 0 else {}
     load1 = os.getloadavg()
     out = Console(width=240)
     sections: list[str] = []
@@ -318,6 +508,17 @@ def main(argv: Sequence[str] | None = None) -> int:
             t.add_row(*row)
         out.print(t)
         sections.append(f"### {title}\n\n{markdown(head, body)}")
+    goals = targets(tasks, cells, compared, replans)
+    lines = target_lines(goals, compared) + lines
+    if compared:
+        head, body = input_table(compared)
+        t = Table(title="MACE-THOR, SAS vs PDDL input")
+        for h in head:
+            t.add_column(h)
+        for row in body:
+            t.add_row(*row)
+        out.print(t)
+        sections.append(f"### MACE-THOR, SAS vs PDDL input\n\n{markdown(head, body)}")
     for line in lines:
         out.print(line)
     shown = _shown_args(list(argv if argv is not None else sys.argv[1:]))
@@ -327,7 +528,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         write_docs(text)
         console.print(f"wrote {DOCS.relative_to(ROOT)}")
     if args.json:
-        args.json.write_text(json.dumps({"machine": machine, "tasks": [asdict(r) for r in tasks],
+        args.json.write_text(json.dumps({"machine": machine, "targets": goals,
+                                         "inputs": [asdict(r) for r in compared],
+                                         "replanning": {k: [asdict(r) for r in v] for k, v in replans.items()},
+                                         "tasks": [asdict(r) for r in tasks],
                                          "sweep": [asdict(r) for r in cells]}, indent=1))
     return 0
 
