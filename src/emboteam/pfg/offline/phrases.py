@@ -12,6 +12,7 @@ counter") from a destination.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
@@ -143,169 +144,286 @@ def np_start(it: Item) -> bool:
 _HUMAN_OBJECTS = frozenset({"me", "us", "here", "over here", "him", "her", "my hand"})
 
 
+@dataclass
+class _NP:
+    """A noun phrase being read: the words, where the reader is, what it found so far."""
+
+    items: list[Item]
+    j: int
+    h: Head = field(default_factory=Head)
+    words: list[str] = field(default_factory=list)
+
+    @property
+    def it(self) -> Item:
+        return self.items[self.j]
+
+    @property
+    def nxt(self) -> Item | None:
+        return self.items[self.j + 1] if self.j + 1 < len(self.items) else None
+
+    def take(self, text: str, k: int = 1) -> str:
+        """Keep ``text`` as part of the phrase and move on ``k`` items."""
+        self.words.append(text)
+        self.j += k
+        return _NEXT
+
+    def skip_of(self) -> None:
+        if self.j < len(self.items) and self.items[self.j].text == "of":
+            self.j += 1
+
+
+#: what a noun-phrase rule decides: the word belongs to the phrase (go on), the phrase
+#: ended, or (None) the rule does not apply
+_NEXT, _STOP = "next", "stop"
+NPRule = Callable[[_NP], str | None]
+
+
+def _ends_phrase(s: _NP) -> str | None:
+    """Punctuation, a conjunction, a sequence word, a robot, "containing", a negation, a
+    copula, "instead of", "except": the phrase ends before them."""
+    it, nxt = s.it, s.nxt
+    if it.punct is not None or it.conj is not None or it.seq is not None or it.robot is not None \
+            or it.text in lx.CONTAINING:
+        return _STOP
+    if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
+        return _STOP
+    if it.text == "except" or (it.text in ("instead", "apart") and nxt is not None
+                               and nxt.text in ("of", "from")):
+        return _STOP      # "the mug instead of the cup": a rejected alternative follows
+    return None
+
+
+def _measure_of(s: _NP) -> str | None:
+    """"a roll of foil", "the three rolls of foil", "a head of lettuce": the measure counts
+    the thing named after "of"."""
+    it, nxt, h = s.it, s.nxt, s.h
+    if it.text in lx.MEASURE_WORDS and h.noun is None and h.pron is None and nxt is not None \
+            and nxt.text == "of" and s.j + 2 < len(s.items) and np_start(s.items[s.j + 2]):
+        h.plural = h.plural or it.text.endswith("s")
+        return s.take(f"{it.text} of", 2)
+    return None
+
+
+def _the_lot(s: _NP) -> str | None:
+    """"the lot", "the whole lot": everything just listed."""
+    it, nxt = s.it, s.nxt
+    if it.text == "lot" and s.h.noun is None and (nxt is None or not np_start(nxt)):
+        s.h.pron = "them"
+        s.take(it.text)
+        return _STOP
+    return None
+
+
+def _quantifier(s: _NP) -> str | None:
+    """"all", "both", "every", "everything" (and "all of")."""
+    it, h = s.it, s.h
+    if it.quant is None or h.noun is not None:
+        return None
+    h.quant = it.quant
+    if it.quant == "both":
+        h.count = 2
+    if it.quant == "everything":
+        h.noun = NounReading(lx.nouns()["everything"], "everything", True)
+    s.take(it.text)
+    s.skip_of()
+    return _NEXT
+
+
+def _one_of(s: _NP) -> str | None:
+    if s.it.text == "one" and s.nxt is not None and s.nxt.text == "of":
+        s.h.count = 1
+        return s.take("one of", 2)
+    return None
+
+
+def _determiner(s: _NP) -> str | None:
+    """Articles, demonstratives and possessives ("the", "these", "my", "some"); a
+    determiner after the noun starts a new phrase ("give the plate a rinse")."""
+    it, nxt, h = s.it, s.nxt, s.h
+    if not it.det:
+        return None
+    if h.noun is not None:
+        return _STOP
+    if not (it.text not in ("this", "that", "these", "those", "some", "one")
+            or ((nxt is not None and (np_start(nxt) or nxt.state is not None)
+                 and nxt.verb is None) or (nxt is not None and (
+                     nxt.noun is not None or nxt.liquid is not None
+                     or nxt.recipe is not None)))):
+        return None
+    if it.text == "one":
+        h.count = 1
+    elif it.text in ("the", "this", "that", "these", "those", "my", "your", "our",
+                     "his", "her", "their", "its"):
+        h.definite = True
+        if it.text in ("these", "those"):
+            h.plural = True
+    elif it.text == "some":
+        h.vague_count = True
+    return s.take(it.text)
+
+
+def _number(s: _NP) -> str | None:
+    """"two apples", "a few", "three of the mugs"."""
+    it, h = s.it, s.h
+    if not ((it.number is not None and h.noun is None and it.pron is None) or (
+            it.number is not None and it.text in lx.NUMBERS and it.text != "one"
+            and h.noun is None)):
+        return None
+    h.count = it.number
+    h.vague_count = it.text in lx.VAGUE_COUNTS
+    s.take(it.text)
+    s.skip_of()
+    return _NEXT
+
+
+def _ordinal(s: _NP) -> str | None:
+    if s.it.ordinal is not None and s.h.noun is None:
+        s.h.ordinal = s.it.ordinal
+        return s.take(s.it.text)
+    return None
+
+
+def _piece_word(s: _NP) -> str | None:
+    """"a slice of bread", "pieces of apple": the pieces of what follows."""
+    if not (is_piece_word(s.it) and s.it.noun is None):
+        return None
+    s.h.piece = True
+    s.take(s.it.text)
+    s.skip_of()
+    return _NEXT
+
+
+def _measure_after_noun(s: _NP) -> str | None:
+    """"the foil rolls", "soap bars"."""
+    it, h = s.it, s.h
+    if it.text in lx.MEASURE_WORDS and h.noun is not None and h.noun.concept.kind == "object":
+        h.plural = h.plural or it.text.endswith("s")
+        return s.take(it.text)
+    return None
+
+
+def _noun(s: _NP) -> str | None:
+    """The head noun (a room before it is a modifier: "the kitchen light"), and what a
+    container holds: "a glass of water", "a mug of coffee"."""
+    it, h, items = s.it, s.h, s.items
+    if it.noun is None or (it.verb is not None and h.noun is not None and it.verb.form == "s"):
+        return None
+    if h.noun is not None and h.noun.concept.kind == "room":
+        h.noun = None
+    if h.noun is not None and it.noun.concept.kind == "room":
+        return s.take(it.text)     # "the lights in the room" handled as location
+    h.noun = it.noun
+    h.plural = h.plural or it.noun.plural
+    if it.recipe is not None:
+        h.recipe = it.recipe
+    s.take(it.text)
+    if it.liquid is not None:
+        h.liquid = it.liquid
+    j, n = s.j, len(items)
+    if j + 1 < n and items[j].text == "of" and items[j + 1].liquid is not None:
+        h.contents = items[j + 1].liquid
+        s.take(f"of {h.contents}", 2)
+    elif j + 2 < n and items[j].text == "of" and items[j + 1].det and items[j + 2].noun is not None \
+            and h.noun.concept.kind == "anything":
+        s.j += 1     # "all of the ..." spelled with a noun: "everything of the"
+    return _NEXT
+
+
+def _dish_or_liquid(s: _NP) -> str | None:
+    """A dish ("toast", "coffee") or a liquid ("water") without a noun."""
+    it, h = s.it, s.h
+    if h.noun is not None:
+        return None
+    if it.recipe is not None:
+        h.recipe = it.recipe
+        h.liquid = it.liquid
+        return s.take(it.text)
+    if it.liquid is not None:
+        h.liquid = it.liquid
+        h.recipe = lx.RECIPES.get(it.liquid)
+        return s.take(it.text)
+    return None
+
+
+def _pronoun(s: _NP) -> str | None:
+    """"it", "them", "this", "some": the phrase is (or ends with) a pronoun."""
+    it, h = s.it, s.h
+    if not ((it.pron is not None and h.noun is None and it.text not in ("this", "that")) or (
+            it.text in ("this", "that", "these", "those", "some", "one"))):
+        return None
+    if h.noun is None:
+        h.pron = it.text
+        s.take(it.text)
+    return _STOP
+
+
+def _state_adjective(s: _NP) -> str | None:
+    """"the dirty mug", "sliced bread" (pieces), "toasted bread" (cooked pieces)."""
+    it, nxt, h = s.it, s.nxt, s.h
+    if not (it.state is not None and it.text not in ("on", "off", "in", "open") and h.noun is None
+            and nxt is not None and (nxt.noun is not None or is_piece_word(nxt)
+                                     or nxt.state is not None)):
+        return None
+    assert it.state is not None
+    stat, pos = it.state
+    if stat is Stat.SLICED or it.text in ("cracked",):
+        h.piece = True
+    elif stat is Stat.TOASTED:
+        h.piece = True
+        h.filters.append((Stat.COOKED, True))
+    else:
+        h.filters.append((stat, pos))
+    return s.take(it.text)
+
+
+def _verb_or_preposition(s: _NP) -> str | None:
+    """A verb, a preposition, a particle or a state word ends the phrase."""
+    it, h = s.it, s.h
+    if it.verb is not None and h.noun is None and it.noun is None and not it.det:
+        return _STOP
+    if it.prep is not None or it.particle is not None or it.state is not None:
+        return _STOP
+    if it.verb is not None and h.noun is not None:
+        return _STOP
+    return None
+
+
+def _other_word(s: _NP) -> str | None:
+    """An unknown word (an adjective or a noun we do not know) is kept, and noted while
+    no noun is found; a common word after the noun ends the phrase."""
+    it, h = s.it, s.h
+    if it.text not in lx.COMMON_WORDS and not it.text.isdigit():
+        if h.noun is None:
+            h.unknown.append(it.corrected_from or it.text)
+    elif h.noun is not None:
+        return _STOP
+    return s.take(it.text)
+
+
+#: the noun-phrase rules, in order: the first that applies decides each word
+NP_RULES: tuple[NPRule, ...] = (
+    _ends_phrase, _measure_of, _the_lot, _quantifier, _one_of, _determiner, _number, _ordinal,
+    _piece_word, _measure_after_noun, _noun, _dish_or_liquid, _pronoun, _state_adjective,
+    _verb_or_preposition, _other_word,
+)
+
+
 def parse_np(items: list[Item], i: int) -> tuple[Head | None, int]:
-    """A noun phrase starting at ``items[i]`` and the index after it."""
-    h = Head()
-    j = i
-    words: list[str] = []
+    """A noun phrase starting at ``items[i]`` and the index after it (:data:`NP_RULES`
+    read it word by word)."""
+    s = _NP(items, i)
     n = len(items)
-    while j < n:
-        it = items[j]
-        nxt = items[j + 1] if j + 1 < n else None
-        if it.punct is not None or it.conj is not None or it.seq is not None or it.robot is not None \
-                or it.text in lx.CONTAINING:
+    while s.j < n:
+        decision = next(d for rule in NP_RULES if (d := rule(s)) is not None)
+        if decision == _STOP:
             break
-        if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
-            break
-        if it.text == "except" or (it.text in ("instead", "apart") and nxt is not None
-                                   and nxt.text in ("of", "from")):
-            break      # "the mug instead of the cup": a rejected alternative follows
-        if it.text in lx.MEASURE_WORDS and h.noun is None and h.pron is None and nxt is not None \
-                and nxt.text == "of" and j + 2 < n and np_start(items[j + 2]):
-            # "a roll of foil", "the three rolls of foil", "a head of lettuce": the
-            # measure counts the thing named after "of"
-            h.plural = h.plural or it.text.endswith("s")
-            words.append(f"{it.text} of")
-            j += 2
-            continue
-        if it.text == "lot" and h.noun is None and (nxt is None or not np_start(nxt)):
-            h.pron = "them"     # "the lot", "the whole lot": everything just listed
-            words.append(it.text)
-            j += 1
-            break
-        if it.quant is not None and h.noun is None:
-            h.quant = it.quant
-            if it.quant == "both":
-                h.count = 2
-            if it.quant == "everything":
-                h.noun = NounReading(lx.nouns()["everything"], "everything", True)
-            words.append(it.text)
-            j += 1
-            if j < n and items[j].text == "of":
-                j += 1
-            continue
-        if it.text == "one" and nxt is not None and nxt.text == "of":
-            h.count = 1
-            words.append("one of")
-            j += 2
-            continue
-        if it.det and h.noun is not None:
-            break      # "give the plate a rinse": a new noun phrase begins
-        if it.det and (it.text not in ("this", "that", "these", "those", "some", "one")
-                       or ((nxt is not None and (np_start(nxt) or nxt.state is not None)
-                           and nxt.verb is None) or (nxt is not None and (
-                               nxt.noun is not None or nxt.liquid is not None
-                               or nxt.recipe is not None)))):
-            if it.text == "one":
-                h.count = 1
-            elif it.text in ("the", "this", "that", "these", "those", "my", "your", "our",
-                             "his", "her", "their", "its"):
-                h.definite = True
-                if it.text in ("these", "those"):
-                    h.plural = True
-            elif it.text == "some":
-                h.vague_count = True
-            words.append(it.text)
-            j += 1
-            continue
-        if (it.number is not None and h.noun is None and it.pron is None) or (
-                it.number is not None and it.text in lx.NUMBERS and it.text != "one"
-                and h.noun is None):
-            h.count = it.number
-            h.vague_count = it.text in lx.VAGUE_COUNTS
-            words.append(it.text)
-            j += 1
-            if j < n and items[j].text == "of":
-                j += 1
-            continue
-        if it.ordinal is not None and h.noun is None:
-            h.ordinal = it.ordinal
-            words.append(it.text)
-            j += 1
-            continue
-        if is_piece_word(it) and it.noun is None:
-            h.piece = True
-            words.append(it.text)
-            j += 1
-            if j < n and items[j].text == "of":
-                j += 1
-            continue
-        if it.text in lx.MEASURE_WORDS and h.noun is not None and h.noun.concept.kind == "object":
-            h.plural = h.plural or it.text.endswith("s")     # "the foil rolls", "soap bars"
-            words.append(it.text)
-            j += 1
-            continue
-        if it.noun is not None and not (it.verb is not None and h.noun is not None
-                                        and it.verb.form == "s"):
-            if h.noun is not None and h.noun.concept.kind == "room":
-                h.noun = None          # "the kitchen light": the room is a modifier
-            if h.noun is not None and it.noun.concept.kind == "room":
-                words.append(it.text)  # "the lights in the room" handled as location
-                j += 1
-                continue
-            h.noun = it.noun
-            h.plural = h.plural or it.noun.plural
-            if it.recipe is not None:
-                h.recipe = it.recipe
-            words.append(it.text)
-            j += 1
-            # "a glass of water", "a mug of coffee"
-            if it.liquid is not None:
-                h.liquid = it.liquid
-            if j + 1 < n and items[j].text == "of" and items[j + 1].liquid is not None:
-                h.contents = items[j + 1].liquid
-                words.append(f"of {h.contents}")
-                j += 2
-            elif j + 2 < n and items[j].text == "of" and items[j + 1].det and items[j + 2].noun is not None \
-                    and h.noun.concept.kind == "anything":
-                j += 1     # "all of the ..." spelled with a noun: "everything of the"
-            continue
-        if it.recipe is not None and h.noun is None:
-            h.recipe = it.recipe
-            h.liquid = it.liquid
-            words.append(it.text)
-            j += 1
-            continue
-        if it.liquid is not None and h.noun is None:
-            h.liquid = it.liquid
-            h.recipe = lx.RECIPES.get(it.liquid)
-            words.append(it.text)
-            j += 1
-            continue
-        if (it.pron is not None and h.noun is None and it.text not in ("this", "that")) or (
-                it.text in ("this", "that", "these", "those", "some", "one")):
-            if h.noun is None:
-                h.pron = it.text
-                words.append(it.text)
-                j += 1
-            break
-        if it.state is not None and it.text not in ("on", "off", "in", "open") and h.noun is None \
-                and nxt is not None and (nxt.noun is not None or is_piece_word(nxt) or nxt.state is not None):
-            stat, pos = it.state
-            if stat is Stat.SLICED or it.text in ("cracked",):
-                h.piece = True
-            elif stat is Stat.TOASTED:
-                h.piece = True
-                h.filters.append((Stat.COOKED, True))
-            else:
-                h.filters.append((stat, pos))
-            words.append(it.text)
-            j += 1
-            continue
-        if it.verb is not None and h.noun is None and it.noun is None and not it.det:
-            break
-        if it.prep is not None or it.particle is not None or it.state is not None:
-            break
-        if it.verb is not None and h.noun is not None:
-            break
-        # an unknown word (an adjective we do not know, or a noun we do not know)
-        if it.text not in lx.COMMON_WORDS and not it.text.isdigit():
-            if h.noun is None:
-                h.unknown.append(it.corrected_from or it.text)
-        elif h.noun is not None:
-            break
-        words.append(it.text)
-        j += 1
+    return _finish_np(s, i)
+
+
+def _finish_np(s: _NP, i: int) -> tuple[Head | None, int]:
+    """What a read noun phrase stands for once its words are known: "them all", a bare
+    quantifier ("all three": the objects just listed), a relative clause after the noun."""
+    items, h, words, j, n = s.items, s.h, s.words, s.j, len(s.items)
     if j == i:
         return None, i
     if h.pron in ("them", "they", "these", "those") and j < n and items[j].text in (
