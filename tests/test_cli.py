@@ -108,5 +108,8 @@ def test_bad_input_is_one_line_and_a_non_zero_exit(args: tuple[str, ...], needle
 
 def test_a_task_that_cannot_be_understood_is_bad_input_with_success_false() -> None:
     # exit 2 (bad input), as plan and export-bt exit on the same instruction; docs/cli.md
-    data = one_json(cli("run", "put the piano in the fridge", "--scene", "1", "--robots", "1", "--json"), 2)
+    proc = cli("run", "put the piano in the fridge", "--scene", "1", "--robots", "1", "--json")
+    data = one_json(proc, 2)
     assert data["success"] is False and "piano" in str(data["error"])
+    (line,) = proc.stderr.splitlines()
+    assert line.startswith("error: GroundingError:") and "piano" in line

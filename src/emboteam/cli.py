@@ -423,6 +423,8 @@ def run(
         except OSError as exc:
             raise write_error(out_dir, exc) from None
     code = episode_exit_code(episode.success, episode.error)
+    if code not in (EXIT_OK, EXIT_FAILED) and episode.error:  # bad input or a service: say it on stderr too
+        err.print(f"[red]error:[/red] {escape(' '.join(episode.error.split()))}", highlight=False, soft_wrap=True)
     if as_json:
         print_json(episode.summary())
         raise typer.Exit(code)
