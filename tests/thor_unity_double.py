@@ -8,7 +8,7 @@
   records every action dict and answers with real ``ai2thor.server.Event`` /
   ``MultiAgentEvent`` objects built from those metadata dicts, applying the plain
   bookkeeping effect of each action (a pickup fills the inventory, a teleport moves the
-  agent). It has no physics: navigation goes wherever it is told, placement never fails
+  agent, the fridge chills what is put in it). It has no physics: navigation goes wherever it is told, placement never fails
   unless a failure is scripted with :meth:`UnityDouble.fail_next`.
 """
 
@@ -169,6 +169,8 @@ class UnityDouble:
             held = self.obj(inv.pop()["objectId"])
             where = target or next(o for o in self.objects if o["objectType"] == "Floor")
             held.update(isPickedUp=False, parentReceptacles=[where["objectId"]], position=dict(where["position"]))
+            if where["isColdSource"]:  # AI2-THOR's fridge cold zone chills what is put in
+                held["temperature"] = "Cold"
         elif name in ("OpenObject", "CloseObject"):
             assert target is not None
             target.update(isOpen=name == "OpenObject", openness=1.0 if name == "OpenObject" else 0.0)

@@ -1,0 +1,43 @@
+"""``--env ai2thor`` through the whole pipeline (plan, behavior trees, executor), with the
+Unity process replaced by the recording double: the wiring, not AI2-THOR's physics."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+pytest.importorskip("ai2thor.server")
+
+from emboteam.bench.suites import get_task
+from emboteam.pipeline import RunConfig
+from emboteam.thor import session
+from thor_unity_double import UnityDouble
+
+
+@pytest.fixture
+def unity(monkeypatch: pytest.MonkeyPatch) -> list[UnityDouble]:
+    started: list[UnityDouble] = []
+
+    def controller_for(floor_plan: str, agent_count: int) -> Any:
+        started.append(UnityDouble(floor_plan, agent_count))
+        return started[-1]
+
+    monkeypatch.setattr(session, "controller_for", controller_for)
+    return started
+
+
+@pytest.mark.parametrize("mode", ["full", "smart-llm"])
+def test_a_task_executes_in_the_thor_environment(unity: list[UnityDouble], mode: str) -> None:
+    from emboteam.modes import run_mode
+
+    task = get_task("mace-thor/fp1-fridge-apple-tomato")
+    episode = run_mode(task, RunConfig(env="ai2thor", frontend="oracle", mode=mode))
+    (double,) = unity
+    assert len(double.agents) == len(task.robots)
+    fridge = next(o["objectId"] for o in double.objects if o["objectType"] == "Fridge")
+    actions = [(c["action"], c.get("objectId")) for c in double.calls]
+    assert ("OpenObject", fridge) in actions and ("CloseObject", fridge) in actions
+    assert [a for a, oid in actions if a == "PutObject" and oid == fridge] == ["PutObject", "PutObject"]
+    assert {c["agentId"] for c in double.calls if c["action"] == "Teleport"} <= set(range(len(task.robots)))
+    assert episode.success and episode.error is None and episode.makespan > 0
