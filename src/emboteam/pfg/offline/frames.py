@@ -19,6 +19,8 @@ still count as mentions for pronouns.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause, team_subject
@@ -224,198 +226,302 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
     return j
 
 
+@dataclass
+class _Tail:
+    """The words after a verb being read: where the reader is, the frame it fills, the
+    objects waiting for a place (``pending``), the objects of the last noun phrase list
+    (``last_np``) and where the last destination ended."""
+
+    items: list[Item]
+    j: int
+    frame: Frame
+    pending: list[Target]
+    mentions: list[Head]
+    last_np: list[Target] = field(default_factory=list)
+    dest_end: int = -1
+
+    @property
+    def it(self) -> Item:
+        return self.items[self.j]
+
+    def at(self, k: int) -> Item | None:
+        """The item ``k`` after the current one, if any."""
+        return self.items[self.j + k] if self.j + k < len(self.items) else None
+
+
+#: a tail rule's decision: the words were read (go on), the tail ended, None: not this rule
+_GO, _END = "go", "end"
+TailRule = Callable[[_Tail], str | None]
+
+
+def _separator(s: _Tail) -> str | None:
+    """Conjunctions and punctuation; "the apple or the tomato": alternatives of the last
+    object."""
+    it = s.it
+    if not (it.conj is not None or it.punct is not None
+            or it.text in ("as well as", "along with", "together with")):
+        return None
+    if it.conj == "or" and s.pending:
+        head, k = parse_np(s.items, s.j + 1)
+        if head is not None:
+            s.mentions.append(head)
+            s.pending[-1].head.alternatives.append(head)
+            s.j = k
+            return _GO
+    s.j += 1
+    return _GO
+
+
+def _filler_or_recipient(s: _Tail) -> str | None:
+    """"please", "back", "away" (kept as the particle: "put it back"), and "me", "us",
+    "here": the object ends up with the person."""
+    it = s.it
+    if not ((it.text in _MID_FILLERS and it.noun is None and it.verb is None and it.prep is None
+             and it.state is None) or it.text in ("me", "us", "here", "there", "him", "her")):
+        return None
+    if it.text in ("me", "us", "here", "him", "her"):
+        s.frame.recipient = True
+    if it.text in ("back", "away") and s.frame.particle is None:
+        s.frame.particle = it.text
+    s.j += 1
+    return _GO
+
+
+def _containing(s: _Tail) -> str | None:
+    """"a plate containing an egg and a tomato": what the last object must hold."""
+    if not (s.it.text in lx.CONTAINING and s.pending):
+        return None
+    items, n = s.items, len(s.items)
+    s.j += 1
+    while s.j < n:
+        held, k = parse_np(items, s.j)
+        if held is None:
+            break
+        s.mentions.append(held)
+        s.pending[-1].head.holds.append(held)
+        s.j = k
+        if s.j < n and items[s.j].conj == "and" and s.j + 1 < n and np_start(items[s.j + 1]):
+            s.j += 1
+            continue
+        break
+    return _GO
+
+
+def _rejected_alternative(s: _Tail) -> str | None:
+    """"on the holder, not on the counter", "the tomato, not the apple", "but not the CD",
+    "instead of the cup", "except (for) the apple": neither object nor mention."""
+    it, nxt, items, n = s.it, s.at(1), s.items, len(s.items)
+    if not (it.neg or it.text == "except" or (it.text in ("instead", "apart")
+                                               and nxt is not None and nxt.text in ("of", "from"))):
+        return None
+    s.j += 1 if it.neg or it.text == "except" else 2
+    if s.j < n and items[s.j].text == "for":
+        s.j += 1
+    if s.j < n and items[s.j].prep is not None:
+        _, s.j = parse_np(items, s.j + 1)
+    elif s.j < n and np_start(items[s.j]) and items[s.j].verb is None:
+        _, k = parse_np(items, s.j)
+        s.j = max(k, s.j + 1)
+    return _GO
+
+
+def _manner_or_purpose(s: _Tail) -> str | None:
+    """"cut it in half", "chop it into pieces": how, not where; "leave it to dry", "put it
+    in water to soak": what for."""
+    it, nxt, after = s.it, s.at(1), s.at(2)
+    if it.prep == "in" and nxt is not None and is_piece_word(nxt) and (
+            after is None or after.noun is None):
+        s.j += 2
+        return _GO
+    if it.text == "to" and nxt is not None and not np_start(nxt) and nxt.prep is None \
+            and nxt.punct is None:
+        s.j += 2
+        return _GO
+    return None
+
+
+def _prepositional_phrase(s: _Tail) -> str | None:
+    """A preposition and its noun phrase: an instrument or liquid ("with"), a purpose
+    ("for"), where the object comes from ("from"), the room, or where it goes."""
+    it, nxt = s.it, s.at(1)
+    if it.prep is None or it.prep == "of" or (
+            it.particle is not None and (nxt is None or not np_start(nxt))):
+        return None
+    prep, at = it.prep, s.j
+    head, k = parse_np(s.items, s.j + 1)
+    if head is None:
+        _inside_the_one_named(s, prep)
+        s.j += 1
+        return _GO
+    s.mentions.append(head)
+    s.j = k
+    if prep == "with" and _holding(s, head):
+        return _GO
+    head.role = "place"
+    if prep == "with":
+        _with_phrase(s, head)
+    elif prep == "from":
+        for t in s.last_np or s.pending[-1:]:
+            t.head.location.append(("from", head))
+    elif head.noun is not None and head.noun.concept.kind == "room" and prep in ("in", "at", "on"):
+        # "the light in the kitchen": the room the user is in; "in a well lit room": and
+        # how that room should be
+        for stat, pos in head.filters:
+            if stat in (Stat.BRIGHT, Stat.SWITCH):
+                s.frame.room_states.append((Stat.BRIGHT, pos))
+    elif prep != "for":
+        _destination(s, head, prep, at)
+    return _GO
+
+
+def _inside_the_one_named(s: _Tail, prep: str) -> None:
+    """"open the box, put the remote inside": in the one just named."""
+    if s.frame.act is Act.PLACE and prep in ("in", "on") and s.it.text in (
+            "inside", "in", "into", "on top", "on top of") and any(not t.dest for t in s.pending):
+        there = Head(text="it", pron="it", role="dest")
+        s.mentions.append(there)
+        for t in s.pending:
+            if not t.dest:
+                t.dest, t.prep = [there], prep
+
+
+def _holding(s: _Tail, head: Head) -> bool:
+    """"the bowl with the apple in it": what the last object holds (then True)."""
+    items, j, n = s.items, s.j, len(s.items)
+    if s.pending and j + 1 < n and items[j].prep in ("in", "on") \
+            and items[j + 1].pron in ("it", "them") and not (
+                head.liquid is not None and head.noun is None):
+        s.pending[-1].head.holds.append(head)
+        s.j += 2
+        return True
+    return False
+
+
+def _with_phrase(s: _Tail, head: Head) -> None:
+    """"with coffee (in it)": the liquid; "with the big knife", "using the stove": an
+    instrument (maybe with where it is: "with the knife on the counter")."""
+    items, n = s.items, len(s.items)
+    if head.liquid is not None:
+        s.frame.liquid = head.liquid
+        if s.j + 1 < n and items[s.j].prep == "in" and items[s.j + 1].pron is not None:
+            s.j += 2
+    elif head.noun is not None:
+        s.frame.instruments.append(head)
+        s.j = skip_locative(items, s.j)
+
+
+def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
+    """Where the waiting objects go; right after a destination, a place that says where
+    that destination is ("on a plate on the table", "in the cabinet under the sink"); a
+    second place for the same objects makes the first where they were; with no object,
+    the appliance is the means."""
+    waiting = [t for t in s.pending if not t.dest]
+    adjacent = at == s.dest_end
+    if not waiting and prep in ("under", "near") and adjacent:
+        return
+    head.role = "dest"
+    s.dest_end = s.j
+    if waiting:
+        for t in waiting:
+            t.dest = [head, *head.alternatives]
+            t.prep = prep
+    elif s.last_np and adjacent and prep in ("in", "on") and \
+            s.items[at].text in ("in", "on", "inside", "at"):
+        for t in s.last_np:
+            if t.dest:
+                t.dest[0].location.append((prep, head))
+        head.role = "place"
+    elif s.last_np:
+        for t in s.last_np:
+            if t.dest and t.prep is not None:
+                t.head.location.append((t.prep, t.dest[0]))
+            t.dest = [head, *head.alternatives]
+            t.prep = prep
+    elif s.frame.targets or s.pending:
+        for t in s.pending:
+            t.dest = [head]
+            t.prep = prep
+    else:
+        s.frame.means = head
+
+
+def _particle_or_state(s: _Tail) -> str | None:
+    """A trailing particle or state ("turn the TV on", "leave the fridge closed"): for the
+    frame and each object that has none yet; "switch the lamp on and off": both, for the
+    same objects (a contradiction the front end reports)."""
+    it, nxt = s.it, s.at(1)
+    if not ((it.particle is not None or it.state is not None)
+            and (nxt is None or not np_start(nxt))):
+        return None
+    pending, frame = s.pending, s.frame
+    if it.particle in ("on", "off") and pending and s.j > 0 and s.items[s.j - 1].conj == "and" \
+            and all(t.particle not in (None, it.particle) for t in pending):
+        pending.extend(Target(t.head, t.dest, t.prep, it.particle,
+                              (Stat.SWITCH, it.particle == "on")) for t in list(pending))
+        s.j += 1
+        return _GO
+    if it.particle in ("on", "off") or it.state is not None:
+        if it.state is not None:
+            frame.state = it.state
+        frame.particle = it.particle or frame.particle
+        for t in pending:
+            if t.particle is not None or t.state is not None:
+                continue
+            if it.particle in ("on", "off"):
+                t.particle = it.particle
+                t.state = (Stat.SWITCH, it.particle == "on")
+            elif it.state is not None:
+                t.state = it.state
+    s.j += 1
+    return _GO
+
+
+def _object(s: _Tail) -> str | None:
+    """An object of the verb (joining the list of the last noun phrases, or starting a new
+    one); a verb or copula that is no noun phrase ends the tail; any other word is
+    skipped."""
+    items, j, it = s.items, s.j, s.it
+    head, k = parse_np(items, j)
+    if head is None:
+        if k > j:
+            s.j = k
+            return _GO
+        if it.verb is not None or it.copula:
+            return _END
+        s.j += 1
+        return _GO
+    s.mentions.append(head)
+    pending = s.pending
+    if pending and head.noun is not None:
+        fix_ellipsis(pending[-1].head, head)
+    t = Target(head)
+    if s.last_np and items[j - 1].conj is None and items[j - 1].punct is None \
+            and not pending[-1].dest:
+        s.last_np = [t]
+    else:
+        s.last_np = [t] if not pending or pending[-1].dest else [*s.last_np, t]
+    pending.append(t)
+    s.j = k
+    return _GO
+
+
+#: the rules that read what follows a verb, in order: the first that applies decides
+TAIL_RULES: tuple[TailRule, ...] = (
+    _separator, _filler_or_recipient, _containing, _rejected_alternative, _manner_or_purpose,
+    _prepositional_phrase, _particle_or_state, _object,
+)
+
+
 def _parse_tail(items: list[Item], j: int, frame: Frame, pending: list[Target],
                 mentions: list[Head]) -> int:
-    """Objects, prepositional phrases and a trailing particle or state after a verb."""
-    n = len(items)
-    last_np: list[Target] = []
-    dest_end = -1       # where the last destination phrase ended
-    while j < n:
-        it = items[j]
-        if it.conj is not None or it.punct is not None or it.text in ("as well as", "along with",
-                                                                       "together with"):
-            if it.conj == "or" and pending:
-                # "the apple or the tomato": alternatives of the last object
-                head, k = parse_np(items, j + 1)
-                if head is not None:
-                    mentions.append(head)
-                    pending[-1].head.alternatives.append(head)
-                    j = k
-                    continue
-            j += 1
-            continue
-        if (it.text in _MID_FILLERS and it.noun is None and it.verb is None and it.prep is None \
-                and it.state is None) or it.text in ("me", "us", "here", "there", "him", "her"):
-            if it.text in ("me", "us", "here", "him", "her"):
-                frame.recipient = True
-            if it.text in ("back", "away") and frame.particle is None:
-                frame.particle = it.text       # "put it back", "put the knife away"
-            j += 1
-            continue
-        if it.text in lx.CONTAINING and pending:
-            # "a plate containing an egg and a tomato"
-            j += 1
-            while j < n:
-                held, k = parse_np(items, j)
-                if held is None:
-                    break
-                mentions.append(held)
-                pending[-1].head.holds.append(held)
-                j = k
-                if j < n and items[j].conj == "and" and j + 1 < n and np_start(items[j + 1]):
-                    j += 1
-                    continue
-                break
-            continue
-        if it.neg or it.text == "except" or (it.text in ("instead", "apart")
-                                             and j + 1 < n and items[j + 1].text in ("of", "from")):
-            # "on the holder, not on the counter", "the tomato, not the apple", "but not the
-            # CD", "instead of the cup", "except the apple": a rejected alternative, neither
-            # object nor mention
-            j += 1 if it.neg or it.text == "except" else 2
-            if j < n and items[j].text == "for":
-                j += 1     # "except for the apple"
-            if j < n and items[j].prep is not None:
-                _, j = parse_np(items, j + 1)
-            elif j < n and np_start(items[j]) and items[j].verb is None:
-                _, k = parse_np(items, j)
-                j = max(k, j + 1)
-            continue
-        if it.prep == "in" and j + 1 < n and is_piece_word(items[j + 1]) and (
-                j + 2 >= n or items[j + 2].noun is None):
-            j += 2          # "cut it in half", "chop it into pieces": how, not where
-            continue
-        if it.text == "to" and j + 1 < n and not np_start(items[j + 1]) \
-                and items[j + 1].prep is None and items[j + 1].punct is None:
-            j += 2          # "leave it to dry", "put it in water to soak": what for
-            continue
-        if it.prep is not None and it.prep != "of" and not (
-                it.particle is not None and (j + 1 >= n or not np_start(items[j + 1]))):
-            prep = it.prep
-            at = j
-            head, k = parse_np(items, j + 1)
-            if head is None:
-                if frame.act is Act.PLACE and prep in ("in", "on") and it.text in (
-                        "inside", "in", "into", "on top", "on top of") \
-                        and any(not t.dest for t in pending):
-                    # "open the box, put the remote inside": in the one just named
-                    there = Head(text="it", pron="it", role="dest")
-                    mentions.append(there)
-                    for t in pending:
-                        if not t.dest:
-                            t.dest, t.prep = [there], prep
-                j += 1
-                continue
-            mentions.append(head)
-            j = k
-            if prep == "with" and pending and j + 1 < n and items[j].prep in ("in", "on") \
-                    and items[j + 1].pron in ("it", "them") and not (
-                        head.liquid is not None and head.noun is None):
-                pending[-1].head.holds.append(head)     # "the bowl with the apple in it"
-                j += 2
-                continue
-            head.role = "place"
-            if prep == "with":
-                if head.liquid is not None:
-                    frame.liquid = head.liquid
-                    # "with coffee in it"
-                    if j + 1 < n and items[j].prep == "in" and items[j + 1].pron is not None:
-                        j += 2
-                elif head.noun is not None:
-                    frame.instruments.append(head)   # "with the big knife", "using the stove"
-                    j = skip_locative(items, j)     # "with the knife on the counter"
-                continue
-            if prep == "for":
-                continue
-            if prep == "from":
-                for t in last_np or pending[-1:]:
-                    t.head.location.append(("from", head))
-                continue
-            if head.noun is not None and head.noun.concept.kind == "room" and prep in ("in", "at", "on"):
-                # "the light in the kitchen": the room the user is in; "in a well lit
-                # room": and how that room should be
-                for stat, pos in head.filters:
-                    if stat in (Stat.BRIGHT, Stat.SWITCH):
-                        frame.room_states.append((Stat.BRIGHT, pos))
-                continue
-            waiting = [t for t in pending if not t.dest]
-            adjacent = at == dest_end       # right after a destination phrase
-            if not waiting and prep in ("under", "near") and adjacent:
-                # "in the cabinet under the sink": where that cabinet is, not a second place
-                continue
-            head.role = "dest"
-            dest_end = j
-            if waiting:
-                for t in waiting:
-                    t.dest = [head, *head.alternatives]
-                    t.prep = prep
-            elif last_np and adjacent and prep in ("in", "on") and \
-                    items[at].text in ("in", "on", "inside", "at"):
-                # "put it on a plate on the table": where that plate is
-                for t in last_np:
-                    if t.dest:
-                        t.dest[0].location.append((prep, head))
-                head.role = "place"
-            elif last_np:
-                # a second place for the same objects ("take the book on the shelf to the
-                # desk"): the first was where they are
-                for t in last_np:
-                    if t.dest and t.prep is not None:
-                        t.head.location.append((t.prep, t.dest[0]))
-                    t.dest = [head, *head.alternatives]
-                    t.prep = prep
-            elif frame.targets or pending:
-                for t in pending:
-                    t.dest = [head]
-                    t.prep = prep
-            else:
-                frame.means = head
-            continue
-        if (it.particle is not None or it.state is not None) and (
-                j + 1 >= n or not np_start(items[j + 1]) or (items[j + 1].pron == "it" and False)):
-            if it.particle in ("on", "off") and pending and j > 0 and items[j - 1].conj == "and" \
-                    and all(t.particle not in (None, it.particle) for t in pending):
-                # "switch the lamp on and off": both, for the same objects (a contradiction
-                # the front end reports)
-                pending.extend(Target(t.head, t.dest, t.prep, it.particle,
-                                      (Stat.SWITCH, it.particle == "on")) for t in list(pending))
-                j += 1
-                continue
-            if it.particle in ("on", "off") or it.state is not None:
-                if it.state is not None:
-                    frame.state = it.state
-                frame.particle = it.particle or frame.particle
-                for t in pending:
-                    if t.particle is not None or t.state is not None:
-                        continue
-                    if it.particle in ("on", "off"):
-                        t.particle = it.particle
-                        t.state = (Stat.SWITCH, it.particle == "on")
-                    elif it.state is not None:
-                        t.state = it.state
-            j += 1
-            continue
-        head, k = parse_np(items, j)
-        if head is None:
-            if k > j:
-                j = k
-                continue
-            if it.verb is not None or it.copula:
-                break
-            j += 1
-            continue
-        mentions.append(head)
-        if pending and head.noun is not None:
-            fix_ellipsis(pending[-1].head, head)
-        t = Target(head)
-        if last_np and items[j - 1].conj is None and items[j - 1].punct is None \
-                and not pending[-1].dest:
-            last_np = [t]
-        else:
-            last_np = [t] if not pending or pending[-1].dest else [*last_np, t]
-        pending.append(t)
-        j = k
-    return j
+    """Objects, prepositional phrases and a trailing particle or state after a verb
+    (:data:`TAIL_RULES`); returns the index where the tail ends."""
+    s = _Tail(items, j, frame, pending, mentions)
+    while s.j < len(items):
+        decision = next(d for rule in TAIL_RULES if (d := rule(s)) is not None)
+        if decision == _END:
+            break
+    return s.j
 
 
 def _verb_frame(items: list[Item], v: int, flags: dict[str, bool], mentions: list[Head],
