@@ -250,6 +250,15 @@ def test_a_joining_robot_gets_work() -> None:
     assert d.joiner_actions >= 1
 
 
+def test_a_joiner_far_from_the_work_is_still_given_some() -> None:
+    # the plain replan leaves robot21b idle here (the team stands at the fridge already);
+    # the executor asks for a plan in which the newcomer works
+    ep = _episode(TASKS[0], 0, join=["random@30%"])
+    d = ep.disturbance
+    assert ep.success and d is not None and d.joined == ("robot21b",)
+    assert d.joiner_actions >= 1
+
+
 def test_same_seed_same_disturbed_episode() -> None:
     a = _episode(TASKS[0], 1, breakdown=["random@0.3"], moves=["random@0.5"])
     b = _episode(TASKS[0], 1, breakdown=["random@0.3"], moves=["random@0.5"])

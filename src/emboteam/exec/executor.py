@@ -310,7 +310,8 @@ class Executor:
         report = check_goal(self.goal, self.env.observe())
         return report, Goal(conditions=tuple(report.unmet()))
 
-    def _replan_if_possible(self, tree: CompiledTree, reason: str, *, budgeted: bool) -> CompiledTree | None:
+    def _replan_if_possible(self, tree: CompiledTree, reason: str, *, budgeted: bool,
+                            newcomers: Sequence[str] = ()) -> CompiledTree | None:
         """Drain, ask the replanner, compile; ``None`` (and the old tree goes on) when
         there is no replanner, the budget is spent or replanning failed."""
         if self.replanner is None or (budgeted and self.replan_attempts >= self.max_replans):
@@ -330,7 +331,11 @@ class Executor:
                 self.unsavable = f"{UnsavableTaskError.__name__}: no robot is left working"
             return None
         try:
-            plan = self.replanner(state.copy(), self.goal, robots)
+            give_work = getattr(self.replanner, "giving_work_to", None)
+            if newcomers and callable(give_work):  # a robot that joins must receive work
+                plan = give_work(state.copy(), self.goal, robots, newcomers)
+            else:
+                plan = self.replanner(state.copy(), self.goal, robots)
             new_tree = self._compile(plan)
         except EmboTeamError as exc:
             self.recorder.emit("replan", None, **data, error=str(exc))
@@ -359,5 +364,5 @@ class Executor:
             self.recorder.emit("replan", None, reason=f"{', '.join(names)} joined", unmet=[], robots=[],
                                error="no replanner: the new robot stays idle")
             return tree
-        replaced = self._replan_if_possible(tree, f"{', '.join(names)} joined", budgeted=False)
+        replaced = self._replan_if_possible(tree, f"{', '.join(names)} joined", budgeted=False, newcomers=names)
         return replaced if replaced is not None else tree

@@ -11,7 +11,11 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import Protocol
 
+from emboteam.errors import EmboTeamError
+from emboteam.hp.decompose import decompose_goal
 from emboteam.hp.plan import MergedPlan
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.checker import check_goal
 from emboteam.world.goals import Goal
 from emboteam.world.state import WorldState
 
@@ -19,9 +23,11 @@ Replanner = Callable[[WorldState, Goal, Sequence[str]], MergedPlan]
 
 
 class GoalPlanner(Protocol):
-    """What :func:`planner_replanner` needs: ``HybridPlanner.plan_goal``'s shape."""
+    """What :func:`planner_replanner` needs: ``HybridPlanner``'s ``plan_goal`` and ``plan``."""
 
     def plan_goal(self, goal: Goal, state: WorldState) -> MergedPlan: ...
+
+    def plan(self, spec: TaskSpec, state: WorldState) -> MergedPlan: ...
 
 
 def restrict_team(state: WorldState, robots: Sequence[str]) -> WorldState:
@@ -38,8 +44,47 @@ def restrict_team(state: WorldState, robots: Sequence[str]) -> WorldState:
     return out
 
 
-def planner_replanner(planner: GoalPlanner) -> Replanner:
+class PlannerReplanner:
+    """Replan with a goal planner (``HybridPlanner``) restricted to the working robots.
+
+    :meth:`giving_work_to` is what the executor calls when robots join: a robot that joins
+    must receive work, but a makespan-minded allocation gives none to a newcomer that
+    enters far from the objects while the team is close to them. So when the plain plan
+    leaves a newcomer idle, each unmet subtask it could take alone is tried with it
+    assigned, and the shortest such plan is used (the plain plan when none works)."""
+
+    def __init__(self, planner: GoalPlanner) -> None:
+        self.planner = planner
+
+    def __call__(self, state: WorldState, goal: Goal, robots: Sequence[str]) -> MergedPlan:
+        return self.planner.plan_goal(goal, restrict_team(state, robots))
+
+    def giving_work_to(self, state: WorldState, goal: Goal, robots: Sequence[str],
+                       newcomers: Sequence[str]) -> MergedPlan:
+        team = restrict_team(state, robots)
+        plain = self.planner.plan_goal(goal, team)
+        idle = [r for r in newcomers if r in team.robots and not plain.for_robot(r)]
+        if not idle:
+            return plain
+        spec = decompose_goal(goal, team)
+        report = check_goal(goal, team)
+        unmet = {str(c) for c in report.unmet()}
+        best: MergedPlan | None = None
+        for robot in idle:
+            for sub in spec.subtasks:
+                if not any(str(c) in unmet for c in sub.goal):
+                    continue
+                assigned = spec.model_copy(update={"subtasks": tuple(
+                    t.model_copy(update={"robot": robot}) if t.id == sub.id else t for t in spec.subtasks)})
+                try:
+                    plan = self.planner.plan(assigned, team)
+                except EmboTeamError:
+                    continue
+                if plan.for_robot(robot) and (best is None or plan.makespan < best.makespan):
+                    best = plan
+        return best if best is not None else plain
+
+
+def planner_replanner(planner: GoalPlanner) -> PlannerReplanner:
     """Replan with a goal planner (``HybridPlanner``) restricted to the working robots."""
-    def replan(state: WorldState, goal: Goal, robots: Sequence[str]) -> MergedPlan:
-        return planner.plan_goal(goal, restrict_team(state, robots))
-    return replan
+    return PlannerReplanner(planner)
