@@ -140,6 +140,37 @@ Observer = Callable[[Atom, Mapping[str, str], frozenset[str]], None]
 Generator = Callable[[Atom, Mapping[str, str], str], Sequence[str] | None]
 
 
+_Schedule = tuple[frozenset[str], list[Atom], list[list[Atom]]]
+#: schedules by the identity of their (schema-constant) inputs; the inputs are kept in
+#: the entry so an id is never reused while it is cached
+_SCHEDULES: dict[tuple[int, int, tuple[str, ...]], tuple[object, object, _Schedule]] = {}
+
+
+def _schedule(variables: Sequence[Param], conditions: Sequence[Atom], base: tuple[str, ...]) -> _Schedule:
+    """Which conditions are tested before any variable is bound (``first``) and after each
+    one (``ready[i]``): the same for every grounding of a schema, so computed once."""
+    key = (id(variables), id(conditions), base)
+    hit = _SCHEDULES.get(key)
+    if hit is not None and hit[0] is variables and hit[1] is conditions:
+        return hit[2]
+    bound = set(base)
+    ready: list[list[Atom]] = []
+    first = [c for c in conditions if c.variables() <= bound]
+    pending = [c for c in conditions if not c.variables() <= bound]
+    for name, _type in variables:
+        bound.add(name)
+        now = [c for c in pending if c.variables() <= bound]
+        pending = [c for c in pending if c not in now]
+        ready.append(now)
+    if pending:
+        raise ValueError(f"conditions {pending} use unbound variables")
+    out = (frozenset(name for name, _ in variables), first, ready)
+    if len(_SCHEDULES) > 4096:
+        _SCHEDULES.clear()
+    _SCHEDULES[key] = (variables, conditions, out)
+    return out
+
+
 def bindings(variables: Sequence[Param], conditions: Sequence[Atom], base: Mapping[str, str],
              domain: Callable[[str], Sequence[str]], truth: Truth,
              observe: Observer | None = None, generate: Generator | None = None
@@ -154,24 +185,13 @@ def bindings(variables: Sequence[Param], conditions: Sequence[Atom], base: Mappi
     values from a condition that enumerates them (the condition is still tested, and
     observed once with the variable unbound: its outcome depends on the whole set).
     """
-    quantified = frozenset(name for name, _ in variables)
+    quantified, first, ready = _schedule(variables, conditions, tuple(base))
 
     def test(c: Atom, b: Mapping[str, str]) -> bool:
         if observe is not None:
             observe(c, b, quantified)
         return holds(c, b, truth)
 
-    bound = set(base)
-    ready: list[list[Atom]] = []
-    first = [c for c in conditions if c.variables() <= bound]
-    pending = [c for c in conditions if not c.variables() <= bound]
-    for name, _type in variables:
-        bound.add(name)
-        now = [c for c in pending if c.variables() <= bound]
-        pending = [c for c in pending if c not in now]
-        ready.append(now)
-    if pending:
-        raise ValueError(f"conditions {pending} use unbound variables")
     if not all(test(c, base) for c in first):
         return
 
