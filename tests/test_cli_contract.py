@@ -287,3 +287,11 @@ def test_a_refused_executor_leaves_no_results_store(tmp_path: Path, monkeypatch:
     with pytest.raises(BenchConfigError, match="cannot start"):
         run_bench(cfg, expand_jobs(cfg, [make_task("t1")]), "test_bench_runner:scripted_episode", progress=False)
     assert not store_path(tmp_path / "run").exists()
+
+
+def test_an_unplanned_plan_does_not_claim_a_makespan() -> None:
+    # no-pfg-hp executes the action lists as written: nothing was planned or scheduled
+    result = runner.invoke(app, ["run", "mace-thor/fp1-toast", "--mode", "no-pfg-hp"])
+    assert result.exit_code in (0, 1), result.output
+    assert "actions as written, not planned: no Fast Downward call" in " ".join(result.stdout.split())
+    assert "makespan 0.0 s" not in result.stdout
