@@ -41,3 +41,22 @@ def test_a_task_executes_in_the_thor_environment(unity: list[UnityDouble], mode:
     assert [a for a, oid in actions if a == "PutObject" and oid == fridge] == ["PutObject", "PutObject"]
     assert {c["agentId"] for c in double.calls if c["action"] == "Teleport"} <= set(range(len(task.robots)))
     assert episode.success and episode.error is None and episode.makespan > 0
+
+
+def test_a_process_keeps_one_controller_and_resets_it_between_episodes(monkeypatch: pytest.MonkeyPatch) -> None:
+    from emboteam.thor.launch import LaunchPlan
+
+    started: list[UnityDouble] = []
+
+    def start(plan: LaunchPlan, floor_plan: str, agent_count: int) -> UnityDouble:
+        started.append(UnityDouble(floor_plan, agent_count))
+        return started[-1]
+
+    monkeypatch.setattr(session, "probe", lambda: LaunchPlan("CloudRendering", None, "thor-test", True))
+    monkeypatch.setattr(session, "start_controller", start)
+    monkeypatch.setattr(session, "_controllers", [])
+    first = session.controller_for("FloorPlan1", 2)
+    again = session.controller_for("FloorPlan201", 3)
+    assert again is first and len(started) == 1
+    assert again.floor_plan == "FloorPlan201" and len(again.agents) == 3
+    assert again.calls[-1] == {"action": "SetDecayTemperatureBool", "allowDecayTemperature": False}

@@ -15,6 +15,7 @@ downloaded one; ``EMBOTEAM_THOR_START_TIMEOUT`` bounds the wait for Unity (secon
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import os
 import platform as host
@@ -139,7 +140,8 @@ def start_controller(plan: LaunchPlan, floor_plan: str, agent_count: int, *, wid
     timeout = float(os.environ.get("EMBOTEAM_THOR_START_TIMEOUT", START_TIMEOUT))
     kwargs: dict[str, Any] = dict(
         scene=floor_plan, agentCount=agent_count, gridSize=0.25, visibilityDistance=1.5,
-        snapToGrid=True, width=width, height=height, server_start_timeout=timeout, **init,
+        # off: a drive ends with a Teleport facing the object, at any yaw, onto a grid position
+        snapToGrid=False, width=width, height=height, server_start_timeout=timeout, **init,
     )
     if plan.platform == "CloudRendering":
         kwargs["platform"] = CloudRendering
@@ -151,5 +153,13 @@ def start_controller(plan: LaunchPlan, floor_plan: str, agent_count: int, *, wid
         first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
         raise ThorUnavailableError(f"{PREFIX}: {plan.platform} build did not start ({type(exc).__name__}: "
                                    f"{first})") from None
-    controller.step(dict(action="SetDecayTemperatureBool", allowDecayTemperature=False))
+    keep_temperatures(controller)
     return controller
+
+
+def keep_temperatures(controller: Any) -> None:
+    """Ask AI2-THOR not to let heated and chilled objects drift back to room temperature
+    (our goals read a potato taken out of the microwave as hot). A build without the
+    action keeps its default; the episode then sees the drift."""
+    with contextlib.suppress(ValueError):
+        controller.step(dict(action="SetDecayTemperatureBool", allowDecayTemperature=False))

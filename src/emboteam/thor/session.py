@@ -1,8 +1,8 @@
 """One AI2-THOR controller per process, reset between episodes.
 
 Starting Unity takes seconds to minutes; a benchmark runs many episodes per worker
-process, so the controller of a worker is kept (per agent count) and ``reset`` to the next
-floor plan. Every controller is stopped when the process exits.
+process, so the controller of a worker is kept and ``reset`` to the next floor plan and
+team size. Every controller is stopped when the process exits.
 """
 
 from __future__ import annotations
@@ -14,16 +14,16 @@ from typing import Any
 
 from emboteam.thor.changes import changes_between
 from emboteam.thor.environment import ThorEnvironment
-from emboteam.thor.launch import probe, start_controller
+from emboteam.thor.launch import keep_temperatures, probe, start_controller
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
 
-_controllers: dict[int, Any] = {}
+_controllers: list[Any] = []  # at most one: a worker process runs one Unity
 
 
 def _stop_all() -> None:
-    for controller in _controllers.values():
+    for controller in _controllers:
         with contextlib.suppress(Exception):  # the Unity process may already be gone at exit
             controller.stop()
     _controllers.clear()
@@ -33,14 +33,14 @@ atexit.register(_stop_all)
 
 
 def controller_for(floor_plan: str, agent_count: int) -> Any:
-    """A live controller with ``agent_count`` agents in ``floor_plan``, started or reset."""
-    controller = _controllers.get(agent_count)
-    if controller is None:
-        controller = start_controller(probe(), floor_plan, agent_count)
-        _controllers[agent_count] = controller
-    else:
-        controller.reset(floor_plan, agentCount=agent_count)
-        controller.step(dict(action="SetDecayTemperatureBool", allowDecayTemperature=False))
+    """A live controller with ``agent_count`` agents in ``floor_plan``: the process's
+    controller reset (``Initialize`` takes a new ``agentCount``), or a new one."""
+    if not _controllers:
+        _controllers.append(start_controller(probe(), floor_plan, agent_count))
+        return _controllers[0]
+    controller = _controllers[0]
+    controller.reset(floor_plan, agentCount=agent_count)
+    keep_temperatures(controller)
     return controller
 
 
