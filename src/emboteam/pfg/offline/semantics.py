@@ -12,6 +12,7 @@ what the verb needs ("switch it on": something that switches) decides the antece
 from __future__ import annotations
 
 import itertools
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 from emboteam.pfg.offline import lexicon as lx
@@ -66,6 +67,14 @@ _VERBS_TO_HAND = frozenset({"bring", "fetch", "take", "get", "give", "hand", "ca
                             "deliver", "collect", "retrieve", "find", "send"})
 _VERBS_TO_BIN = frozenset({"throw", "toss", "dump", "chuck"})
 
+#: acts that are one state of their object
+_PLAIN_ACTS: dict[Act, Predicate] = {
+    Act.SLICE: P.sliced, Act.BREAK: P.broken, Act.OPEN: P.open, Act.CLOSE: P.closed,
+    Act.SWITCH_ON: P.switched_on, Act.SWITCH_OFF: P.switched_off,
+    Act.COOL: P.cold, Act.DIRTY: P.dirty, Act.HOLD: P.held,
+    Act.DIM: P.switched_off, Act.BRIGHTEN: P.switched_on,
+}
+
 _PHRASES: dict[Predicate, str] = {
     P.sliced: "slice {s}", P.broken: "break {s}", P.switched_on: "switch on {s}",
     P.switched_off: "switch off {s}", P.open: "open {s}", P.closed: "close {s}",
@@ -106,6 +115,13 @@ class Semantics:
         self._group = 0
         #: objects of an act that could not be read while the act's other objects could
         self.skipped: list[OfflineParseError] = []
+        #: what each act asks of one object (acts not here: :meth:`_plain_act`)
+        self._act_rules: dict[Act, Callable[[Frame, Act, Target, int, int], list[Draft]]] = {
+            Act.PLACE: self._place_act, Act.TRASH: self._trash_act, Act.WATCH: self._watch_act,
+            Act.CLEAN: self._clean_act, Act.TOAST: self._toast_act, Act.HEAT: self._heat_act,
+            Act.MICROWAVE: self._heat_act, Act.COOK: self._heat_act, Act.FILL: self._fill_act,
+            Act.WATER: self._fill_act, Act.TOGGLE: self._toggle_act,
+        }
 
     def ground(self, head: Head, need: str | None, group: int, clause: int,
                role: str = "object") -> Ref:
@@ -461,56 +477,21 @@ class Semantics:
         return [(container, self.ground(h, "hold", g, clause)) for h in t.head.holds]
 
     def _one(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
-        head = t.head
+        """The drafts of one act on one object: the act is first made precise by the
+        object and the words around it (a particle, a missing place, water to boil, the
+        microwave as means), then the act's rule (:attr:`_act_rules`) says what it asks."""
         if act in (Act.SWITCH_ON, Act.SWITCH_OFF) and t.particle in ("on", "off"):
             act = Act.SWITCH_ON if t.particle == "on" else Act.SWITCH_OFF
-        if head.noun is None and head.liquid is not None and t.dest and act in (
-                Act.FILL, Act.PLACE, Act.POUR):
-            # "fill water in the kettle", "put some water in the pot"
-            out: list[Draft] = []
-            for d in t.dest:
-                ref = self.ground(d, "fill", g, clause, "place")
-                out += self._each(P.filled, ref, liquid=head.liquid)
-            return out
-        if head.noun is not None and head.noun.concept.kind == "room" and act in (
-                Act.CLEAN, Act.DIRTY):
-            raise OfflineParseError(f"'{frame.verb} {head.label()}' is too vague for the offline "
-                                    "parser: say which objects to clean", phrase=head.label(),
-                                    vague=True)
-        if act in (Act.DIM, Act.BRIGHTEN) and head.noun is not None and \
-                head.noun.concept.kind == "room":
-            return self._lighting(act is Act.BRIGHTEN)
-        if _is_everything(head) and act in (Act.SWITCH_OFF, Act.CLOSE):
-            return self._everything(Stat.SWITCH if act is Act.SWITCH_OFF else Stat.OPEN)
-        blind = self._blinds_particle(frame, act, head)
-        if blind is not None:
-            return self._state(Frame(None, frame.verb, [t]), (Stat.OPEN, blind), False, clause)
+        special = self._whole_reading(frame, act, t, g, clause)
+        if special is not None:
+            return special
         if act is Act.PLACE and not t.dest:
-            if frame.state is not None:
-                return self._state(Frame(None, frame.verb, [t]), frame.state, False, clause)
-            if frame.verb == "hang":
-                obj = self.ground(head, "hold", g, clause)
-                holders = [r for r, types in self.cat.receptacle_whitelist.items()
-                           if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
-                dest = self.g.types_ref(holders, "its holder")
-                return self._each(P.inside, obj, dest, receptacle=dest.single())
-            if frame.verb in lx.VERB_PLACES:
-                # "shelve the book": the verb names the place
-                obj = self.ground(head, "hold", g, clause)
-                dest = self.g.types_ref(lx.VERB_PLACES[frame.verb], frame.verb)
-                return self._each(P.inside, obj, dest, receptacle=dest.single())
-            if frame.particle == "back":
-                return self._put_back(frame, t, g, clause)
-            if frame.verb in _VERBS_TO_BIN:
-                act = Act.TRASH
-            elif frame.verb in _VERBS_TO_HAND or frame.recipient:
-                act = Act.HOLD
-            else:
-                raise OfflineParseError(f"where should {head.label()!r} go? "
-                                        f"('{frame.verb or 'put'} {head.label()} in/on ...')",
-                                        phrase=frame.text, vague=True)
-        if (act is Act.COOK and self._is_water(head)) or (
-                act is Act.HEAT and head.noun is None and head.liquid == "water"):
+            placed = self._place_unsaid(frame, t, g, clause)
+            if isinstance(placed, list):
+                return placed
+            act = placed
+        if (act is Act.COOK and self._is_water(t.head)) or (
+                act is Act.HEAT and t.head.noun is None and t.head.liquid == "water"):
             return self._boil(frame, t, g, clause)
         if act is Act.HOLD and t.dest:
             act = Act.PLACE
@@ -519,73 +500,131 @@ class Semantics:
             act = Act.MICROWAVE     # "pop the potato in the microwave for a couple of minutes"
         if act in (Act.SLICE, Act.BREAK) and t.dest:
             return self._cut_into(frame, act, t, g, clause)
-        need = ACT_NEEDS.get(act)
-        if act is Act.PLACE:
-            return self._place(frame, t, g, clause)
-        if act is Act.TRASH:
+        rule = self._act_rules.get(act, self._plain_act)
+        return rule(frame, act, t, g, clause)
+
+    def _whole_reading(self, frame: Frame, act: Act, t: Target, g: int,
+                       clause: int) -> list[Draft] | None:
+        """Objects that change what the act means: a liquid poured into its destination
+        ("fill water in the kettle"), a room ("clean the kitchen": too vague; "dim the
+        room": its lights), "everything" switched off or closed, the blinds' particle."""
+        head = t.head
+        if head.noun is None and head.liquid is not None and t.dest and act in (
+                Act.FILL, Act.PLACE, Act.POUR):
+            out: list[Draft] = []
+            for d in t.dest:
+                ref = self.ground(d, "fill", g, clause, "place")
+                out += self._each(P.filled, ref, liquid=head.liquid)
+            return out
+        room = head.noun is not None and head.noun.concept.kind == "room"
+        if room and act in (Act.CLEAN, Act.DIRTY):
+            raise OfflineParseError(f"'{frame.verb} {head.label()}' is too vague for the offline "
+                                    "parser: say which objects to clean", phrase=head.label(),
+                                    vague=True)
+        if room and act in (Act.DIM, Act.BRIGHTEN):
+            return self._lighting(act is Act.BRIGHTEN)
+        if _is_everything(head) and act in (Act.SWITCH_OFF, Act.CLOSE):
+            return self._everything(Stat.SWITCH if act is Act.SWITCH_OFF else Stat.OPEN)
+        blind = self._blinds_particle(frame, act, head)
+        if blind is not None:
+            return self._state(Frame(None, frame.verb, [t]), (Stat.OPEN, blind), False, clause)
+        return None
+
+    def _place_unsaid(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft] | Act:
+        """A placement without a place: a state said instead ("leave the fridge closed"),
+        a place the verb names ("hang the towel", "shelve the book"), "put it back"; else
+        the verb says whether it goes in the bin or to the person, or where is unknown."""
+        head = t.head
+        if frame.state is not None:
+            return self._state(Frame(None, frame.verb, [t]), frame.state, False, clause)
+        if frame.verb == "hang":
             obj = self.ground(head, "hold", g, clause)
-            can = self.g.types_ref(("GarbageCan",), "garbage can")
-            return self._each(P.inside, obj, can, receptacle=can.single())
-        if act is Act.WATCH:
-            obj = self.ground(head, "switch", g, clause)
-            return self._each(P.switched_on, obj)
-        if act is Act.CLEAN:
-            return self._clean(head, g, clause)
-        if act is Act.TOAST:
-            obj = self.ground(head, "cook", g, clause)
-            drafts: list[Draft] = []
-            # toast is cooked slices: cut what is whole first ("toast a slice of bread" too)
-            wholes = [_whole(r) for r, _ in obj.groups]
-            sliceable = [w for w in wholes if any(self.cat.slice_product(x) for x in _names(w))]
-            if sliceable:
-                drafts.append(self._draft([cond(P.sliced, w) for w in dict.fromkeys(sliceable)], obj))
-            # one slice: cooked(Bread) (any slice of it); more: that many cooked slices
-            cooked = self._draft([cond(P.cooked, _whole(r) if n == 1 else r, n)
-                                  for r, n in obj.groups], obj)
-            if drafts:
-                cooked.after = [0]
-            return [*drafts, cooked]
-        if act in (Act.HEAT, Act.MICROWAVE, Act.COOK):
-            # heat / cook X, with the microwave as the means when it is named ("in the
-            # microwave", "using the microwave", "the microwave is fine"): the appliance is
-            # an intermediate step, never a goal object
-            obj = self.ground(head, "cook" if act is Act.COOK else None, g, clause)
-            result = P.cooked if act is Act.COOK else P.hot
-            done = self._draft([cond(result, r, n) for r, n in obj.groups], obj)
-            means = [m for m in (frame.means, *(t.dest[:1]), *frame.instruments) if m is not None]
-            use_microwave = act is Act.MICROWAVE or any(
-                m.noun is not None and "Microwave" in m.noun.concept.types for m in means)
-            if use_microwave and self.g.has_type("Microwave"):
-                mw = self.g.types_ref(("Microwave",), "microwave")
-                step = self._draft([*(cond(P.inside, r, n, mw.single()) for r, n in obj.groups),
-                                    cond(P.switched_on, mw.single())], obj, mw, intermediate=True)
-                done.after = [0]
-                return [step, done]
-            return [done]
-        if act is Act.FILL:
-            obj = self.ground(head, "fill", g, clause)
-            liquid = frame.liquid or head.contents or "water"
-            return self._each(P.filled, obj, liquid=liquid)
-        if act is Act.WATER:
-            obj = self.ground(head, "fill", g, clause)
-            return self._each(P.filled, obj, liquid="water")
-        if act is Act.TOGGLE:
-            obj = self.ground(head, "switch", g, clause)
-            flipped = []
-            for r, n in obj.groups:
-                on = all(o.is_on for o in self._objects(r))
-                flipped.append(cond(P.switched_off if on else P.switched_on, r, n))
-            return [self._draft(flipped, obj)]
-        pred: Predicate | None = {
-            Act.SLICE: P.sliced, Act.BREAK: P.broken, Act.OPEN: P.open, Act.CLOSE: P.closed,
-            Act.SWITCH_ON: P.switched_on, Act.SWITCH_OFF: P.switched_off,
-            Act.COOL: P.cold, Act.DIRTY: P.dirty, Act.HOLD: P.held,
-            Act.DIM: P.switched_off, Act.BRIGHTEN: P.switched_on,
-        }.get(act)
+            holders = [r for r, types in self.cat.receptacle_whitelist.items()
+                       if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
+            dest = self.g.types_ref(holders, "its holder")
+            return self._each(P.inside, obj, dest, receptacle=dest.single())
+        if frame.verb in lx.VERB_PLACES:
+            obj = self.ground(head, "hold", g, clause)
+            dest = self.g.types_ref(lx.VERB_PLACES[frame.verb], frame.verb)
+            return self._each(P.inside, obj, dest, receptacle=dest.single())
+        if frame.particle == "back":
+            return self._put_back(frame, t, g, clause)
+        if frame.verb in _VERBS_TO_BIN:
+            return Act.TRASH
+        if frame.verb in _VERBS_TO_HAND or frame.recipient:
+            return Act.HOLD
+        raise OfflineParseError(f"where should {head.label()!r} go? "
+                                f"('{frame.verb or 'put'} {head.label()} in/on ...')",
+                                phrase=frame.text, vague=True)
+
+    # ---- one rule per act (the verb -> condition table of docs/offline_parser.md) ---------
+    def _place_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        return self._place(frame, t, g, clause)
+
+    def _trash_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        obj = self.ground(t.head, "hold", g, clause)
+        can = self.g.types_ref(("GarbageCan",), "garbage can")
+        return self._each(P.inside, obj, can, receptacle=can.single())
+
+    def _watch_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        return self._each(P.switched_on, self.ground(t.head, "switch", g, clause))
+
+    def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        return self._clean(t.head, g, clause)
+
+    def _toast_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """Toast is cooked slices: cut what is whole first ("toast a slice of bread" too);
+        one slice: ``cooked(Bread)`` (any slice of it); more: that many cooked slices."""
+        obj = self.ground(t.head, "cook", g, clause)
+        drafts: list[Draft] = []
+        wholes = [_whole(r) for r, _ in obj.groups]
+        sliceable = [w for w in wholes if any(self.cat.slice_product(x) for x in _names(w))]
+        if sliceable:
+            drafts.append(self._draft([cond(P.sliced, w) for w in dict.fromkeys(sliceable)], obj))
+        cooked = self._draft([cond(P.cooked, _whole(r) if n == 1 else r, n)
+                              for r, n in obj.groups], obj)
+        if drafts:
+            cooked.after = [0]
+        return [*drafts, cooked]
+
+    def _heat_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """Heat / cook X, with the microwave as the means when it is named ("in the
+        microwave", "using the microwave", "the microwave is fine"): the appliance is an
+        intermediate step, never a goal object."""
+        obj = self.ground(t.head, "cook" if act is Act.COOK else None, g, clause)
+        result = P.cooked if act is Act.COOK else P.hot
+        done = self._draft([cond(result, r, n) for r, n in obj.groups], obj)
+        means = [m for m in (frame.means, *(t.dest[:1]), *frame.instruments) if m is not None]
+        use_microwave = act is Act.MICROWAVE or any(
+            m.noun is not None and "Microwave" in m.noun.concept.types for m in means)
+        if use_microwave and self.g.has_type("Microwave"):
+            mw = self.g.types_ref(("Microwave",), "microwave")
+            step = self._draft([*(cond(P.inside, r, n, mw.single()) for r, n in obj.groups),
+                                cond(P.switched_on, mw.single())], obj, mw, intermediate=True)
+            done.after = [0]
+            return [step, done]
+        return [done]
+
+    def _fill_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        obj = self.ground(t.head, "fill", g, clause)
+        liquid = "water" if act is Act.WATER else frame.liquid or t.head.contents or "water"
+        return self._each(P.filled, obj, liquid=liquid)
+
+    def _toggle_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """"toggle the lamp": each group to the opposite of how it is now."""
+        obj = self.ground(t.head, "switch", g, clause)
+        flipped = []
+        for r, n in obj.groups:
+            on = all(o.is_on for o in self._objects(r))
+            flipped.append(cond(P.switched_off if on else P.switched_on, r, n))
+        return [self._draft(flipped, obj)]
+
+    def _plain_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """An act that is one state of its object (slice, open, switch off, chill, ...)."""
+        pred = _PLAIN_ACTS.get(act)
         if pred is None:
             return []
-        obj = self.ground(head, need, g, clause)
-        return self._each(pred, obj)
+        return self._each(pred, self.ground(t.head, ACT_NEEDS.get(act), g, clause))
 
     @staticmethod
     def _blinds_particle(frame: Frame, act: Act, head: Head) -> bool | None:
