@@ -24,7 +24,10 @@ REVIEW_OK = {"verdict": "ok", "reason": "matches the instruction", "subtasks": [
 
 
 def run_cli(*args: str, code: int = 0) -> tuple[dict[str, object], subprocess.CompletedProcess[str]]:
+    """``emboteam run INSTRUCTION ... --json``; ``--frontend llm`` unless ARGS choose one."""
     env = {**os.environ, "OPENAI_API_KEY": "sk-loopback-test-key"}
+    if "--frontend" not in args:
+        args = ("--frontend", "llm", *args)
     proc = subprocess.run([EMBOTEAM, "run", INSTRUCTION, "--scene", "FloorPlan1", "--robots", "1,2", *args,
                            "--json"], capture_output=True, text=True, timeout=300, env=env)
     assert proc.returncode == code, proc.stderr  # docs/cli.md: 0 goal reached, 1 failed, 3 LLM unusable

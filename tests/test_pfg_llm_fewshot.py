@@ -62,7 +62,7 @@ def test_example_prompt_shows_only_the_objects_it_is_about() -> None:
     assert user.role == "user" and answer.role == "assistant"
     assert "Tomato_1" in user.content and "Bowl_1" in user.content
     assert "Fridge_1" not in user.content  # an excerpt, not the whole kitchen
-    assert "robot25: lifts up to 100 kg; skills: GoToObject, PickupObject, PutObject" in user.content
+    assert "robot25: lifts up to 100 kg; skills: PickupObject, PutObject" in user.content
 
 
 def test_system_prompt_documents_every_predicate() -> None:

@@ -264,7 +264,15 @@ def report(directory: Path = typer.Argument(..., help="a run's or a benchmark's 
 
 
 # ---- tasks, planning and runs ------------------------------------------------------
-FRONTEND_HELP = "oracle (ground-truth goals) | offline (embedded parser) | llm (needs --llm)"
+FRONTEND_HELP = ("oracle (ground-truth goals) | offline (embedded parser) | hybrid (parser, LLM reviews doubts; "
+                 "the default with --llm) | llm (LLM only, needs --llm)")
+LLM_WHEN_HELP = "hybrid: ask the LLM only when the offline reading is in doubt (doubt) or every time (always)"
+FRONTENDS_CLI = ("oracle", "offline", "hybrid", "llm")
+
+
+def _frontend_default(frontend: str | None, llm: str | None) -> str:
+    """No --frontend: hybrid with --llm, offline without."""
+    return frontend if frontend is not None else ("hybrid" if llm else "offline")
 LLM_HELP = "PROVIDER:MODEL[@BASE_URL]: openai, anthropic, llamacpp (MODEL = .gguf path), replay (MODEL = cassette dir)"
 
 
@@ -321,11 +329,10 @@ def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConf
 
     if mode not in MODES:
         raise EmboTeamError(f"unknown mode {mode!r}; modes: {', '.join(MODES)}")
-    if frontend not in ("oracle", "offline", "llm"):
-        raise EmboTeamError(f"unknown front end {frontend!r}: oracle, offline or llm")
-    if llm is not None and frontend == "offline" and "frontend_given" not in kw:
-        frontend = "llm"
-    kw.pop("frontend_given", None)
+    if frontend not in FRONTENDS_CLI:
+        raise EmboTeamError(f"unknown front end {frontend!r}: {', '.join(FRONTENDS_CLI)}")
+    if kw.get("llm_when", "doubt") not in ("doubt", "always"):
+        raise EmboTeamError(f"--llm-when takes doubt or always, not {kw['llm_when']!r}")
     return RunConfig(mode=mode, frontend=frontend, llm=llm, **kw)
 
 
@@ -335,8 +342,9 @@ def plan(
     target: str = typer.Argument(..., metavar="TASK|INSTRUCTION", help="SUITE/ID, or an instruction"),
     scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
     robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
-    frontend: str = typer.Option("offline", "--frontend", help=FRONTEND_HELP),
+    frontend: str | None = typer.Option(None, "--frontend", help=FRONTEND_HELP),
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    llm_when: str = typer.Option("doubt", "--llm-when", help=LLM_WHEN_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
@@ -350,7 +358,7 @@ def plan(
     from emboteam.world.scene import load_scene
 
     task = _resolve_task(target, scene_fp, robots_list)
-    cfg = _run_config("full", frontend, llm, llm_timeout=llm_timeout)
+    cfg = _run_config("full", _frontend_default(frontend, llm), llm, llm_timeout=llm_timeout, llm_when=llm_when)
     state, team = initial_state(task)
     scene = load_scene(task.floor_plan)
     client = make_llm(cfg)
@@ -380,12 +388,13 @@ def run(
     target: str = typer.Argument(..., metavar="TASK|INSTRUCTION", help="SUITE/ID, or an instruction"),
     scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
     robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
-    frontend: str = typer.Option("offline", "--frontend", help=FRONTEND_HELP),
+    frontend: str | None = typer.Option(None, "--frontend", help=FRONTEND_HELP),
     mode: str = typer.Option("full", "--mode", help="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p"),
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     llm_record: str | None = typer.Option(None, "--llm-record", help="record LLM calls into this cassette dir"),
     llm_merge: bool = typer.Option(False, "--llm-merge", help="the paper's LLM merge stage (one more call)"),
+    llm_when: str = typer.Option("doubt", "--llm-when", help=LLM_WHEN_HELP),
     faults: float = typer.Option(0.0, "--faults", callback=probability, help="per-action failure probability"),
     seed: int = typer.Option(0, "--seed", help="seed of the fault injection"),
     join: list[str] = typer.Option([], "--join", help="PROFILE@SECONDS: a robot joins mid-run (repeatable)"),
@@ -405,7 +414,8 @@ def run(
             raise EmboTeamError(f"{flag} needs --llm PROVIDER:MODEL (without an LLM there is nothing to "
                                 f"{'merge with' if flag == '--llm-merge' else 'record'})")
     task = _resolve_task(target, scene_fp, robots_list)
-    cfg = _run_config(mode, frontend, llm, llm_timeout=llm_timeout, llm_record=llm_record, llm_merge=llm_merge,
+    cfg = _run_config(mode, _frontend_default(frontend, llm), llm, llm_timeout=llm_timeout, llm_record=llm_record,
+                      llm_merge=llm_merge, llm_when=llm_when,
                       fault_level=faults, seed=seed, joins=tuple(join), env=_env(env))
     cfg = _with_planner_input(cfg, planner_input)
     for j in join:
@@ -442,8 +452,9 @@ def run(
 @cli_errors
 def bench(
     suite: str = typer.Option(..., "--suite", help="mace-thor | smart-llm:PATH"),
-    frontend: list[str] = typer.Option(["offline"], "--frontend", help=FRONTEND_HELP + " (repeatable)"),
+    frontend: list[str] = typer.Option([], "--frontend", help=FRONTEND_HELP + " (repeatable)"),
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    llm_when: str = typer.Option("doubt", "--llm-when", help=LLM_WHEN_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     ablation: list[str] = typer.Option([], "--ablation", help="full | no-pfg-hp | no-hp | no-btc (repeatable)"),
     baseline: list[str] = typer.Option([], "--baseline", help="smart-llm | lamma-p (repeatable)"),
@@ -482,20 +493,21 @@ def bench(
     loaded = load_suite(suite)
     for problem in loaded.problems:
         err.print(f"[yellow]import:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
-    frontends = ["llm" if (llm and f == "offline" and len(frontend) == 1) else f for f in frontend]
+    frontends = frontend or [_frontend_default(None, llm)]
     cfg = BenchConfig.build(
         suite=suite, modes=modes_from_options(ablation, baseline), frontends=frontends, llm=llm,
         seeds=seeds, fault_levels=parse_fault_levels(faults), workers=workers, executor=executor,
         disturbance=Disturbances.parse(breakdown=breakdown, join=join, moves=moves, msg_loss=msg_loss,
                                        msg_delay=msg_delay),
         ray_address=ray_address, out_dir=out_dir or BENCH_ROOT, resume=resume, env=_env(env), llm_timeout=llm_timeout,
+        llm_when=llm_when,
     )
     from emboteam.pipeline import RunConfig, check_config
 
     if cfg.env != "sim":  # fails fast when AI2-THOR cannot start here, before any job
         check_config(RunConfig(env=cfg.env, fault_level=max(cfg.fault_levels), disturbance=cfg.disturbance))
     for f in cfg.frontends:
-        check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout))
+        check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout, llm_when=cfg.llm_when))
     cfg = _with_planner_input(cfg, planner_input)
     cfg = _bench_out(cfg, out_dir)
     out_dir = cfg.out_dir
@@ -576,8 +588,9 @@ def export_bt(
     fmt: str = typer.Option("btcpp", "--format", help="btcpp (BehaviorTree.CPP v4 XML) | dot | ascii"),
     scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
     robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
-    frontend: str = typer.Option("offline", "--frontend", help=FRONTEND_HELP),
+    frontend: str | None = typer.Option(None, "--frontend", help=FRONTEND_HELP),
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
+    llm_when: str = typer.Option("doubt", "--llm-when", help=LLM_WHEN_HELP),
     out_file: Path | None = typer.Option(None, "--out", help="write here (.png/.svg with --format dot: an image)"),
 ) -> None:
     """Export a task's behavior tree: BehaviorTree.CPP v4 XML (Groot2), Graphviz DOT or ASCII."""
@@ -595,7 +608,7 @@ def export_bt(
                                 f"--format dot for a {out_file.suffix.lower()}, or another file name")
         check_out_file(out_file)
     task = _resolve_task(target, scene_fp, robots_list)
-    cfg = _run_config("full", frontend, llm)
+    cfg = _run_config("full", _frontend_default(frontend, llm), llm, llm_when=llm_when)
     state, team = initial_state(task)
     scene = load_scene(task.floor_plan)
     client = make_llm(cfg)

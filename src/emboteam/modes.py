@@ -70,8 +70,8 @@ def offline_frontend() -> OfflineFrontend:
 
 def make_llm(cfg: RunConfig) -> LLMClient | None:
     if cfg.llm is None:
-        if cfg.frontend == "llm":
-            raise ModeConfigError("--frontend llm needs --llm PROVIDER:MODEL[@BASE_URL]")
+        if cfg.frontend in ("llm", "hybrid"):
+            raise ModeConfigError(f"--frontend {cfg.frontend} needs --llm PROVIDER:MODEL[@BASE_URL]")
         return None
     return make_client(cfg.llm, timeout=cfg.llm_timeout, record_dir=cfg.llm_record, seed=cfg.seed)
 
@@ -92,6 +92,15 @@ def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
 
         assert llm is not None
         return LLMFrontend(llm).decompose(task.instruction, scene, state, team)
+    if cfg.frontend == "hybrid":
+        from emboteam.pfg.hybrid import HybridFrontend
+
+        assert llm is not None
+        planner = planner_for(cfg.mode)
+        # an LLM-written or corrected spec must plan: the planner's error is fed back (and
+        # its plan is cached for plan_spec)
+        return HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when).decompose(
+            task.instruction, scene, state, team, validate=lambda spec: _plans(planner, spec, state))
     reading = offline_frontend().parse(task.instruction, scene, state, team)
     if notes is not None:
         notes.extend(reading_notes(reading))
@@ -102,6 +111,10 @@ def reading_notes(reading: Reading) -> list[str]:
     """A reading's notes and unsure conditions, one line each, as the user sees them."""
     return [*(str(n) for n in reading.notes),
             *(f"unsure {c}: chosen with doubt" for c in reading.unsure)]
+
+
+def _plans(planner: HybridPlanner, spec: TaskSpec, state: WorldState) -> None:
+    planner.plan(spec, state)
 
 
 def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, state: WorldState,
@@ -189,8 +202,10 @@ def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: W
     return executor.run(), sim
 
 
-def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
-    """Plan and execute one task in ``cfg.mode``; typed errors propagate to the caller."""
+def run_mode(task: BenchTask, cfg: RunConfig, llm: LLMClient | None = None) -> Episode:
+    """Plan and execute one task in ``cfg.mode``; typed errors propagate to the caller.
+    ``llm``: the client to use (the caller keeps it to report the usage of a failed
+    episode); made from ``cfg`` when None."""
     scene = load_scene(task.floor_plan)
     state, team = initial_state(task)
     prepared = None
@@ -199,7 +214,7 @@ def run_mode(task: BenchTask, cfg: RunConfig) -> Episode:
 
         prepared = prepare(task, cfg, state, team)
         cfg = prepared.cfg
-    llm = make_llm(cfg)
+    llm = llm if llm is not None else make_llm(cfg)
     t0 = time.perf_counter()
     spec: TaskSpec | None = None
     notes: list[str] = []

@@ -28,7 +28,7 @@ from collections.abc import Sequence
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from emboteam.bench.jobs import MODES, EnvName, Frontend, Mode
+from emboteam.bench.jobs import MODES, EnvName, Frontend, LLMWhen, Mode
 from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import ConditionOutcome, Episode
@@ -54,6 +54,8 @@ class RunConfig(BaseModel):
     llm_timeout: float = 60.0
     llm_record: str | None = Field(None, description="cassette folder to record LLM calls into")
     llm_merge: bool = Field(False, description="the paper's LLM merge stage: the LLM proposes orderings")
+    llm_when: LLMWhen = Field("doubt", description="hybrid front end: ask the LLM only when the offline "
+                              "reading is in doubt, or always")
     planner_input: PlannerInput = Field("sas", description="what Fast Downward reads: our own SAS task "
                                         "(search binary only) or PDDL (driver and translator)")
     fault_level: float = Field(0.0, ge=0, le=1)
@@ -122,16 +124,21 @@ def check_config(cfg: RunConfig) -> None:
 
 def run_episode(task: BenchTask, cfg: RunConfig) -> Episode:
     """Plan and execute one task; a typed error ends it as a recorded failed episode."""
-    from emboteam.modes import run_mode  # the stage wiring lives in modes.py
+    from emboteam.llm.client import LLMClient
+    from emboteam.modes import make_llm, run_mode  # the stage wiring lives in modes.py
 
     started = time.perf_counter()
+    llm: LLMClient | None = None
     try:
-        episode = run_mode(task, cfg)
+        llm = make_llm(cfg)
+        episode = run_mode(task, cfg, llm)
     except EmboTeamError as exc:
         state, _ = initial_state(task)
         _, gcr, conds = score(task.goal, state) if task.goal.conditions else (False, 0.0, ())
+        # a failed episode still reports what its LLM calls cost
+        usage = {"llm_calls": llm.usage.calls, "tokens": llm.usage.tokens} if llm is not None else {}
         episode = _episode(task, cfg, success=False, gcr=gcr, conditions=conds,
-                           error=f"{type(exc).__name__}: {exc}")
+                           error=f"{type(exc).__name__}: {exc}", **usage)
     return episode.model_copy(update={"wall_seconds": round(time.perf_counter() - started, 4)})
 
 

@@ -32,7 +32,9 @@ from emboteam.sim.faults import FaultConfig
 from emboteam.world.robots import parse_team
 
 Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p"]
-Frontend = Literal["oracle", "offline", "llm"]
+Frontend = Literal["oracle", "offline", "llm", "hybrid"]
+#: when the hybrid front end asks the LLM: only for a doubtful offline reading, or always
+LLMWhen = Literal["doubt", "always"]
 ExecutorName = Literal["local", "ray", "inline"]
 #: where episodes execute: the symbolic simulator, or a live AI2-THOR (emboteam.thor)
 EnvName = Literal["sim", "ai2thor"]
@@ -41,7 +43,9 @@ EnvName = Literal["sim", "ai2thor"]
 MODES: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p")
 ABLATIONS: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc")
 BASELINES: tuple[Mode, ...] = ("smart-llm", "lamma-p")
-FRONTENDS: tuple[Frontend, ...] = ("oracle", "offline", "llm")
+FRONTENDS: tuple[Frontend, ...] = ("oracle", "offline", "llm", "hybrid")
+#: front ends that call an LLM (and need an LLM spec)
+LLM_FRONTENDS: tuple[Frontend, ...] = ("llm", "hybrid")
 
 #: an episode function: a module-level callable, or its import path ``package.module:function``
 EpisodeFn: TypeAlias = "Callable[[Job], Episode] | str"
@@ -71,11 +75,13 @@ class Job(BaseModel):
     planner_input: PlannerInput = "sas"
     #: not part of the key: it changes how long a call may take, not what is measured
     llm_timeout: float = Field(60.0, gt=0)
+    #: the hybrid front end's --llm-when; in the key only when not the default
+    llm_when: LLMWhen = "doubt"
 
     @model_validator(mode="after")
     def _llm_needs_spec(self) -> Job:
-        if self.frontend == "llm" and not self.llm:
-            raise ValueError("the llm front end needs an LLM spec (--llm PROVIDER:MODEL)")
+        if self.frontend in LLM_FRONTENDS and not self.llm:
+            raise ValueError(f"the {self.frontend} front end needs an LLM spec (--llm PROVIDER:MODEL)")
         return self
 
     @property
@@ -92,9 +98,11 @@ class Job(BaseModel):
         (``repr`` of a float round-trips, so two different fault levels never share a key)."""
         parts = [self.task.key, self.mode, self.frontend, self.llm or "-",
                  f"seed={self.seed}", f"faults={float(self.fault_level)!r}"]
+        if self.llm_when != "doubt":  # keys of the configurations that existed before stay as they were
+            parts.append(f"llm-when={self.llm_when}")
         if self.planner_input != "sas":
             parts.append(f"planner-input={self.planner_input}")
-        if self.disturbance.any:  # undisturbed keys stay as they were (existing stores stay valid)
+        if self.disturbance.any:  # likewise: undisturbed keys stay as they were
             parts.append(f"disturb={self.disturbance.label}")
         if self.env != "sim":  # likewise: simulator keys stay as they were
             parts.append(f"env={self.env}")
@@ -134,6 +142,7 @@ class BenchConfig(BaseModel):
     resume: bool = False
     planner_input: PlannerInput = "sas"
     llm_timeout: float = Field(60.0, gt=0)
+    llm_when: LLMWhen = "doubt"
 
     disturbance: Disturbances = Field(default_factory=Disturbances)
 
@@ -154,8 +163,9 @@ class BenchConfig(BaseModel):
 
     @model_validator(mode="after")
     def _llm_needs_spec(self) -> BenchConfig:
-        if "llm" in self.frontends and not self.llm:
-            raise ValueError("the llm front end needs an LLM spec (--llm PROVIDER:MODEL)")
+        needs = [f for f in self.frontends if f in LLM_FRONTENDS]
+        if needs and not self.llm:
+            raise ValueError(f"the {needs[0]} front end needs an LLM spec (--llm PROVIDER:MODEL)")
         return self
 
     @classmethod
@@ -226,7 +236,7 @@ def expand_jobs(config: BenchConfig, tasks: Sequence[BenchTask]) -> list[Job]:
         Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed, disturbance=config.disturbance,
             planner_input=config.planner_input,
             env=config.env,
-            fault_level=level, llm_timeout=config.llm_timeout)
+            fault_level=level, llm_timeout=config.llm_timeout, llm_when=config.llm_when)
         for mode in config.modes
         for frontend in config.frontends
         for level in config.fault_levels

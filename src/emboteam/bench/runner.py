@@ -76,6 +76,7 @@ def pipeline_episode(job: Job) -> Episode:
 
     cfg = RunConfig(mode=job.mode, frontend=job.frontend, llm=job.llm, llm_timeout=job.llm_timeout,
                     planner_input=job.planner_input,
+                    llm_when=job.llm_when,
                     fault_level=job.fault_level, seed=job.seed, disturbance=job.disturbance, env=job.env)
     return run_episode(job.task, cfg)
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import threading
 import time
 from pathlib import Path
@@ -52,10 +53,25 @@ def _load(path: str, n_ctx: int, n_threads: int | None) -> tuple[Any, threading.
         return _MODELS[key]
 
 
+#: threads llama.cpp computes with; unset, llama.cpp picks (all cores). Benchmarks on a
+#: shared machine set it low.
+THREADS_ENV = "EMBOTEAM_LLAMACPP_THREADS"
+
+
+def _threads_from_env() -> int | None:
+    raw = os.environ.get(THREADS_ENV, "").strip()
+    if not raw:
+        return None
+    if not raw.isdigit() or int(raw) < 1:
+        raise LLMConfigError(f"{THREADS_ENV} must be a positive integer, not {raw!r}")
+    return int(raw)
+
+
 class LlamaCppBackend:
     """A GGUF file; ``spec.model`` is its path."""
 
     def __init__(self, spec: LLMSpec, *, timeout: float, n_ctx: int = 8192, n_threads: int | None = None) -> None:
+        n_threads = n_threads if n_threads is not None else _threads_from_env()
         path = Path(spec.model).expanduser()
         if not path.is_file():
             raise LLMConfigError(f"llamacpp: no GGUF file at {path}")

@@ -18,7 +18,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict
 
 from emboteam.llm.messages import Message
-from emboteam.pfg.prompts import render, render_scene, render_team
+from emboteam.pfg.prompts import GOAL_SKILLS, render, render_scene, render_team
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import is_object_id, load_scene
@@ -66,12 +66,25 @@ def _mentioned(example: FewShotExample, state: WorldState) -> list[str]:
     return sorted(ids)
 
 
+def example_subject_types(examples: Sequence[FewShotExample]) -> set[str]:
+    """The object types the examples' goals are about (what a weak model copies)."""
+    types: set[str] = set()
+    for example in examples:
+        state = WorldState.from_scene(load_scene(example.floor_plan), parse_team(example.robots))
+        for sub in example.answer["subtasks"]:
+            for cond in sub["goal"]:
+                for name in cond["subject"]:
+                    obj = state.objects.get(name)
+                    types.add(obj.type if obj is not None else name)
+    return types
+
+
 def example_messages(example: FewShotExample) -> list[Message]:
     """The example as a user turn (instruction, scene excerpt, team) and the answer turn."""
     scene = load_scene(example.floor_plan)
     team = parse_team(example.robots)
     state = WorldState.from_scene(scene, team)
     user = render("pfg_user", instruction=example.instruction, floor_plan=f"{scene.floor_plan} (excerpt)",
-                  scene=render_scene(state, _mentioned(example, state)), team=render_team(team))
+                  scene=render_scene(state, _mentioned(example, state)), team=render_team(team, GOAL_SKILLS))
     answer = json.dumps(example.answer, separators=(",", ":"), ensure_ascii=False)
     return [Message(role="user", content=user), Message(role="assistant", content=answer)]

@@ -1,15 +1,16 @@
 """The PFG with an LLM: instruction -> TaskSpec in ONE call, decomposition and
 allocation together (the paper's PFG).
 
-The prompt holds the instruction (delimited, as data), the scene summary (objects by
-type with ids and relevant state), the team (skills, mass capacity) and a few worked
-examples from other floor plans; the answer is constrained by a schema built from the
+The prompt holds the instruction (delimited, as data), the scene summary (in full, with
+ids and relevant state, only the types the instruction touches; the rest by name), the
+team (skills, mass capacity) and one worked example from another floor plan; the answer is constrained by a schema built from the
 scene and team (:mod:`emboteam.pfg.schema`), then converted and validated. Problems are
 rendered later by the planner from the state and these goals: the LLM never writes the
 initial state or object lists.
 
-Feedback: a rejected answer (schema, unknown object, impossible goal, cycle, or an error
-of the caller's ``validate``, e.g. the planner's) goes back to the model with the
+Feedback: a rejected answer (schema, unknown object, impossible goal, cycle, a repeated
+subtask, a condition copied from the worked example, or an error of the caller's
+``validate``, e.g. the planner's) goes back to the model with the
 message, for a bounded number of rounds. :meth:`LLMFrontend.repair` does the same for an
 error found later (the planner failing on an accepted spec).
 """
@@ -23,9 +24,11 @@ from typing import Any
 from emboteam.errors import EmboTeamError
 from emboteam.llm.client import LLMClient
 from emboteam.llm.messages import LLMRequest, Message
-from emboteam.llm.structured import ask_structured
-from emboteam.pfg.fewshot import example_messages, select_examples
-from emboteam.pfg.prompts import load_prompt, render, render_scene, render_team
+from emboteam.llm.structured import Rejected, ask_structured
+from emboteam.pfg.answer_checks import copied_problems, repetition_problems
+from emboteam.pfg.fewshot import FewShotExample, example_messages, example_subject_types, select_examples
+from emboteam.pfg.focus import focus_types, instruction_types, spec_types
+from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.schema import SceneVocabulary, taskspec_from_answer, taskspec_schema, taskspec_to_answer
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import RobotProfile
@@ -41,6 +44,24 @@ Validator = Callable[[TaskSpec], None]
 
 class InstructionError(EmboTeamError):
     """An instruction or team the front end cannot work with (empty, absurdly long)."""
+
+
+def mentioned_types(instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile],
+                    draft: TaskSpec | None = None) -> set[str]:
+    """Types the instruction mentions: its nouns, and the types the offline parser's
+    reading (``draft``, or one made here) names ("make coffee" names the mug without
+    saying it). Used only to catch conditions copied from the worked examples."""
+    types = instruction_types(instruction)
+    if draft is None:
+        from emboteam.modes import offline_frontend
+
+        try:
+            draft = offline_frontend().decompose(instruction, scene, state, team)
+        except EmboTeamError:
+            draft = None
+    if draft is not None:
+        types |= spec_types(draft, state)
+    return types
 
 
 def quote_instruction(instruction: str) -> str:
@@ -60,10 +81,13 @@ class LLMFrontend:
     name = "llm"
     stage = "pfg"
 
-    def __init__(self, client: LLMClient, *, fewshot: int = 3, repair_rounds: int = 2, max_subtasks: int = 12,
-                 max_conditions: int = 6, max_tokens: int = 2048, seed: int = 0) -> None:
+    def __init__(self, client: LLMClient, *, fewshot: int = 1, repair_rounds: int = 2, max_subtasks: int = 8,
+                 max_conditions: int = 6, max_tokens: int = 1024, seed: int = 0, focus: bool = True) -> None:
         self.client = client
         self.fewshot = fewshot
+        #: list in full only the types the instruction touches (False: the whole scene, as
+        #: before the prompts were cut; benchmarks/prompt_tokens.py compares the two)
+        self.focus = focus
         self.repair_rounds = repair_rounds
         self.max_subtasks = max_subtasks
         self.max_conditions = max_conditions
@@ -77,42 +101,64 @@ class LLMFrontend:
         return taskspec_schema(vocab, max_subtasks=self.max_subtasks, max_conditions=self.max_conditions,
                                extra_ids=extra_ids)
 
+    def examples(self, scene: Scene) -> list[FewShotExample]:
+        return select_examples(scene.floor_plan, self.fewshot)
+
+    def task_message(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
+                     hint: str | None = None) -> Message:
+        """The task's user turn: the instruction, the scene (in full only the types the
+        instruction touches, :mod:`emboteam.pfg.focus`) and the team."""
+        text = render("pfg_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
+                      scene=render_scene(state, detail=focus_types(instruction, state) if self.focus else None),
+                      team=render_team(team, GOAL_SKILLS))
+        if hint:
+            text += "\n\n" + hint.strip()
+        return Message(role="user", content=text)
+
     def messages(self, instruction: str, scene: Scene, state: WorldState,
-                 team: Sequence[RobotProfile]) -> list[Message]:
+                 team: Sequence[RobotProfile], *, hint: str | None = None) -> list[Message]:
         if not team:
             raise InstructionError("the team is empty")
         messages = [Message(role="system", content=load_prompt("pfg_system").strip())]
-        for example in select_examples(scene.floor_plan, self.fewshot):
+        for example in self.examples(scene):
             messages += example_messages(example)
-        messages.append(Message(role="user", content=render(
-            "pfg_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
-            scene=render_scene(state), team=render_team(team))))
+        messages.append(self.task_message(instruction, scene, state, team, hint=hint))
         return messages
 
     def request(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile],
                 *, stage: str | None = None, extra: Sequence[Message] = (),
-                extra_ids: Sequence[str] = ()) -> LLMRequest:
+                extra_ids: Sequence[str] = (), hint: str | None = None) -> LLMRequest:
         return LLMRequest(stage=stage or self.stage,
-                          messages=tuple(self.messages(instruction, scene, state, team)) + tuple(extra),
+                          messages=tuple(self.messages(instruction, scene, state, team, hint=hint)) + tuple(extra),
                           json_schema=self.schema(scene, state, team, extra_ids), schema_name="taskspec",
                           max_tokens=self.max_tokens, temperature=0.0, seed=self.seed)
 
     # ---- calls -----------------------------------------------------------------------
-    @staticmethod
-    def _converter(instruction: str, scene: Scene, validate: Validator | None) -> Callable[[dict[str, Any]], TaskSpec]:
+    def converter(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile],
+                  validate: Validator | None, *, draft: TaskSpec | None = None,
+                  ) -> Callable[[dict[str, Any]], TaskSpec]:
+        """Answer -> validated TaskSpec: the schema's rules, then the weak-model checks
+        (repeated subtasks, conditions copied from the worked examples), then ``validate``."""
+        mentioned = mentioned_types(instruction, scene, state, team, draft)
+        example_types = example_subject_types(self.examples(scene))
+
         def convert(answer: dict[str, Any]) -> TaskSpec:
             spec = taskspec_from_answer(answer, instruction.strip(), scene)
+            problems = repetition_problems(spec) + copied_problems(spec, state, mentioned, example_types)
+            if problems:
+                raise Rejected("; ".join(problems))
             if validate is not None:
                 validate(spec)
             return spec
         return convert
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
-                  validate: Validator | None = None) -> TaskSpec:
+                  validate: Validator | None = None, hint: str | None = None) -> TaskSpec:
         """One call on the happy path. ``validate`` (e.g. "can the planner solve it?") may
-        raise any :class:`EmboTeamError`; its message goes back to the model as feedback."""
-        request = self.request(instruction, scene, state, team)
-        return ask_structured(self.client, request, self._converter(instruction, scene, validate),
+        raise any :class:`EmboTeamError`; its message goes back to the model as feedback.
+        ``hint`` is appended to the task (the hybrid front end's parser error)."""
+        request = self.request(instruction, scene, state, team, hint=hint)
+        return ask_structured(self.client, request, self.converter(instruction, scene, state, team, validate),
                               repair_rounds=self.repair_rounds, feedback=load_prompt("feedback"))
 
     def repair(self, spec: TaskSpec, error_message: str, scene: Scene, state: WorldState,
@@ -125,5 +171,5 @@ class LLMFrontend:
                                extra=(Message(role="assistant", content=answer),
                                       Message(role="user", content=feedback)),
                                extra_ids=[s.id for s in spec.subtasks])
-        return ask_structured(self.client, request, self._converter(spec.instruction, scene, validate),
+        return ask_structured(self.client, request, self.converter(spec.instruction, scene, state, team, validate),
                               repair_rounds=max(0, self.repair_rounds - 1), feedback=load_prompt("feedback"))

@@ -33,7 +33,9 @@ from emboteam.world.scene import Scene, is_object_id
 from emboteam.world.state import WorldState
 
 LIQUIDS = ("water", "coffee", "wine")
-DESCRIPTION_MAX = 200
+#: a description is one short sentence; a weak model copies the whole instruction into it,
+#: and every character costs generation time on a local model
+DESCRIPTION_MAX = 80
 
 
 @dataclass(frozen=True)

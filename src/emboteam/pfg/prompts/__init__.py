@@ -8,7 +8,7 @@ instruction containing ``$`` or braces cannot alter a template.
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from functools import cache
 from importlib import resources
 from string import Template
@@ -62,13 +62,16 @@ def _object_state(o: ObjectState) -> list[str]:
     return flags
 
 
-def render_scene(state: WorldState, ids: Sequence[str] | None = None) -> str:
+def render_scene(state: WorldState, ids: Sequence[str] | None = None,
+                 detail: Collection[str] | None = None) -> str:
     """Objects grouped by type, with what they can do and their relevant state::
 
         Apple (pickupable, sliceable -> AppleSliced): Apple_1 [in Fridge_1]
         Fridge (receptacle, openable): Fridge_1 [closed]
 
-    ``ids`` restricts the listing (few-shot examples show an excerpt).
+    ``ids`` restricts the listing (few-shot examples show an excerpt). ``detail`` lists
+    only those types in full and the others by name on one last line (the prompt stays
+    small; an answer may still name those types, and the schema still allows their ids).
     """
     cat = load_catalogue()
     groups: dict[str, list[ObjectState]] = defaultdict(list)
@@ -78,7 +81,10 @@ def render_scene(state: WorldState, ids: Sequence[str] | None = None) -> str:
             continue
         groups[o.type].append(o)
     lines = []
+    others = sorted(t for t in groups if detail is not None and t not in detail)
     for t in sorted(groups):
+        if t in others:
+            continue
         abilities = [word for prop, word in _ABILITIES if any(o.has(prop) for o in groups[t])]
         product = cat.slice_product(t)
         if product is not None and "sliceable" in abilities:
@@ -89,13 +95,23 @@ def render_scene(state: WorldState, ids: Sequence[str] | None = None) -> str:
             items.append(f"{o.id} [{'; '.join(flags)}]" if flags else o.id)
         head = f"{t} ({', '.join(abilities)})" if abilities else t
         lines.append(f"{head}: {', '.join(items)}")
+    if others:
+        lines.append(f"Also here (not listed in detail): {', '.join(others)}")
     return "\n".join(lines)
 
 
-def render_team(team: Sequence[RobotProfile]) -> str:
-    """One line per robot: name, mass capacity, skills (in the canonical skill order)."""
+#: the skills a goal decomposition depends on (the PFG prompts list only these: moving,
+#: pushing and dropping concern action lists, not which robot can reach a goal)
+GOAL_SKILLS: frozenset[Skill] = frozenset({
+    Skill.PickupObject, Skill.PutObject, Skill.OpenObject, Skill.CloseObject, Skill.SwitchOn, Skill.SwitchOff,
+    Skill.SliceObject, Skill.BreakObject, Skill.CleanObject})
+
+
+def render_team(team: Sequence[RobotProfile], skills: Collection[Skill] | None = None) -> str:
+    """One line per robot: name, mass capacity, skills (in the canonical skill order;
+    only ``skills`` when given)."""
     return "\n".join(
         f"{p.name}: lifts up to {p.mass_capacity:g} kg; skills: "
-        f"{', '.join(s.value for s in Skill if s in p.skills)}"
+        f"{', '.join(s.value for s in Skill if s in p.skills and (skills is None or s in skills)) or 'none'}"
         for p in team
     )

@@ -1,0 +1,183 @@
+"""The hybrid front end: the offline parser reads, the LLM reviews only what is in doubt.
+
+1. The offline parser reads the instruction (milliseconds, no call).
+2. ``when="doubt"`` (the default): a reading with no notes and no unsure condition is
+   used as it is; ``when="always"`` asks the LLM every time.
+3. Review: the LLM sees the draft (in the answer form of :mod:`emboteam.pfg.schema`), the
+   parser's notes and the conditions it was unsure of, and answers ``ok`` or the whole
+   corrected decomposition, validated like the LLM front end's answers (schema, scene,
+   repeated or copied subtasks, the planner), errors fed back.
+4. A parser error (nothing read): the LLM writes the spec as the LLM front end does, with
+   the parser's error as a hint.
+
+The rule that keeps a weak model from making a confident reading worse: a correction must
+keep every condition the parser was sure of (those not in ``Reading.unsure``) and add
+none that contradicts one; it may change the unsure conditions and add what the notes
+say was not read. Added conditions must be about types the instruction mentions, unless
+the parser found a chore too vague to read ("get breakfast ready": commonsense may name
+anything). A correction that breaks the rule is fed back; when the model never gives an
+acceptable answer, the draft stands (the call is still counted).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+from collections.abc import Callable, Sequence
+from copy import deepcopy
+from typing import Any, Literal
+
+from emboteam.llm.client import LLMClient
+from emboteam.llm.errors import LLMMalformedOutput
+from emboteam.llm.messages import LLMRequest, Message
+from emboteam.llm.structured import Rejected, ask_structured
+from emboteam.pfg.answer_checks import repetition_problems, sure_condition_problems
+from emboteam.pfg.focus import condition_types
+from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
+from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
+from emboteam.pfg.reading import Reading, ReadingNote
+from emboteam.pfg.schema import taskspec_from_answer, taskspec_to_answer
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.robots import RobotProfile
+from emboteam.world.scene import Scene
+from emboteam.world.state import WorldState
+
+log = logging.getLogger(__name__)
+
+LLMWhen = Literal["doubt", "always"]
+
+#: what a parse function returns: a Reading, or the parser's older ParseResult (spec and
+#: notes as strings), adapted by :func:`as_reading`
+Parse = Callable[[str, Scene, WorldState, Sequence[RobotProfile]], Any]
+
+
+def as_reading(result: Any) -> Reading:
+    """A :class:`Reading` from what the offline parser returned."""
+    if isinstance(result, Reading):
+        return result
+    if isinstance(result, TaskSpec):
+        return Reading(spec=result)
+    notes = tuple(n if isinstance(n, ReadingNote) else ReadingNote(span=str(n), reason=str(n))
+                  for n in getattr(result, "notes", ()))
+    return Reading(spec=result.spec, notes=notes, unsure=tuple(getattr(result, "unsure", ())))
+
+
+def review_schema(task_schema: dict[str, Any]) -> dict[str, Any]:
+    """The review answer: ``{"ok": true, "subtasks": []}`` or ``ok: false`` with the
+    complete corrected subtasks ("ok" first, so a grammar makes the model decide first)."""
+    subtasks = deepcopy(task_schema["properties"]["subtasks"])
+    subtasks["minItems"] = 0
+    return {"type": "object", "additionalProperties": False, "required": ["ok", "subtasks"],
+            "properties": {"ok": {"type": "boolean", "description": "true if the draft is right as it is"},
+                           "subtasks": subtasks}}
+
+
+def render_notes(reading: Reading) -> str:
+    lines = [f"- {n.kind} {n.span!r}: {n.reason}" for n in reading.notes]
+    lines += [f"- unsure: {c}" for c in reading.unsure]
+    return "\n".join(lines) or "- (none: the parser read every word)"
+
+
+class HybridFrontend:
+    """Offline reading first; the LLM reviews a doubtful draft or writes a missing one."""
+
+    name = "hybrid"
+    stage = "pfg.review"
+
+    def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
+                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768) -> None:
+        self.client = client
+        self.parse = parse
+        self.when = when
+        self.llm = llm or LLMFrontend(client)
+        #: feedback rounds of a review; the draft stands after them, so more rounds only
+        #: cost calls when the model cannot correct itself
+        self.review_rounds = review_rounds
+        #: "ok" is a dozen tokens; a corrected spec of 8 subtasks fits in 768. Bounding the
+        #: answer by tokens, not by a time-out, keeps a slow local model's runs reproducible
+        #: (a cut-off answer is recorded and fed back; a timed-out call is not recorded)
+        self.max_tokens = max_tokens
+
+    def decompose(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
+                  validate: Validator | None = None) -> TaskSpec:
+        return self.read(instruction, scene, state, team, validate=validate).spec
+
+    def read(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
+             validate: Validator | None = None) -> Reading:
+        from emboteam.pfg.offline.errors import OfflineParseError
+
+        try:
+            draft = as_reading(self.parse(instruction, scene, state, team))
+        except OfflineParseError as exc:
+            hint = (f"An offline parser could not read this instruction: {exc}. "
+                    "Decompose what the user asks for.")
+            spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint)
+            return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
+                                             f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
+        if self.when == "doubt" and not draft.doubtful:
+            return draft
+        return self.review(draft, instruction, scene, state, team, validate=validate)
+
+    # ---- the review call ---------------------------------------------------------------
+    def request(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,
+                team: Sequence[RobotProfile]) -> LLMRequest:
+        from emboteam.pfg.focus import focus_types
+
+        system = load_prompt("pfg_system").strip() + "\n\n" + load_prompt("pfg_review_system").strip()
+        answer = json.dumps(taskspec_to_answer(draft.spec), separators=(",", ":"), ensure_ascii=False)
+        user = render("pfg_review_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
+                      scene=render_scene(state, detail=focus_types(instruction, state, draft.spec)),
+                      team=render_team(team, GOAL_SKILLS), draft=answer, notes=render_notes(draft))
+        schema = review_schema(self.llm.schema(scene, state, team, extra_ids=[s.id for s in draft.spec.subtasks]))
+        return LLMRequest(stage=self.stage, messages=(Message(role="system", content=system),
+                                                      Message(role="user", content=user)),
+                          json_schema=schema, schema_name="review", max_tokens=self.max_tokens,
+                          temperature=0.0, seed=self.llm.seed)
+
+    def converter(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,
+                  team: Sequence[RobotProfile], validate: Validator | None) -> Callable[[dict[str, Any]], TaskSpec]:
+        mentioned = mentioned_types(instruction, scene, state, team, draft.spec)
+        free = any(n.kind == "vague" for n in draft.notes)
+        known = {str(c) for c in draft.spec.goal().conditions}
+
+        def convert(answer: dict[str, Any]) -> TaskSpec:
+            if answer["ok"]:
+                return draft.spec
+            if not answer["subtasks"]:
+                raise Rejected('give the complete corrected subtasks, or "ok": true if the draft is right')
+            spec = taskspec_from_answer({"subtasks": answer["subtasks"]}, instruction.strip(), scene)
+            problems = repetition_problems(spec) + sure_condition_problems(spec, draft.spec, draft.unsure)
+            if not free:
+                for s in spec.subtasks:
+                    for c in s.goal:
+                        if str(c) not in known and not condition_types(c, state) & mentioned:
+                            problems.append(f"{s.id}: {c} is about something the instruction does not "
+                                            "mention: remove it")
+            if problems:
+                raise Rejected("; ".join(problems))
+            if spec == draft.spec:
+                return draft.spec
+            if validate is not None:
+                validate(spec)
+            return spec
+        return convert
+
+    def review(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,
+               team: Sequence[RobotProfile], *, validate: Validator | None = None) -> Reading:
+        """The draft, or the LLM's accepted correction of it."""
+        request = self.request(draft, instruction, scene, state, team)
+        convert = self.converter(draft, instruction, scene, state, team, validate)
+        try:
+            spec = ask_structured(self.client, request, convert, repair_rounds=self.review_rounds,
+                                  feedback=load_prompt("feedback"))
+        except LLMMalformedOutput as exc:
+            log.warning("hybrid front end: the LLM's corrections were rejected, the offline reading stands: %s", exc)
+            stands = ReadingNote(span="(LLM review)", kind="assumed",
+                                 reason=f"no acceptable correction, the offline reading stands: {exc}")
+            return Reading(spec=draft.spec, unsure=draft.unsure, notes=(*draft.notes, stands))
+        if spec is draft.spec:
+            return draft
+        corrected = ReadingNote(span="(LLM review)", reason="the LLM corrected the offline reading", kind="assumed")
+        return Reading(spec=spec, notes=(*draft.notes, corrected))
+
+

@@ -1,0 +1,100 @@
+"""What keeps the LLM path usable with a weak model: repeated subtasks and conditions
+copied from the worked example are fed back, the prompt lists in full only what the
+instruction touches, and a failed episode still reports the calls it made."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import pytest
+
+from emboteam.bench.jobs import Job
+from emboteam.bench.mace_thor import load_mace_thor
+from emboteam.llm import LLMClient, RetryPolicy, make_client
+from emboteam.pfg.focus import focus_types
+from emboteam.pfg.llm_frontend import LLMFrontend
+from emboteam.pfg.prompts import render_scene
+from emboteam.pipeline import RunConfig, run_episode
+from emboteam.world.robots import RobotProfile
+from emboteam.world.scene import Scene
+from emboteam.world.state import WorldState
+from llm_servers import Reply, ScriptedServer, cond, subtask, taskspec_answer
+
+FAST = RetryPolicy(max_attempts=1, base_delay=0.01, max_delay=0.02)
+FRIDGE = "Put the apple and the tomato in the fridge."
+APPLE = cond("inside", "Apple_1", receptacle="Fridge_1")
+TOMATO = cond("inside", "Tomato_1", receptacle="Fridge_1")
+
+
+@pytest.fixture(autouse=True)
+def _key(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("OPENAI_API_KEY", "sk-test")
+
+
+def llm(server: ScriptedServer) -> LLMClient:
+    return make_client(server.spec(), timeout=5, retry=FAST)
+
+
+def test_a_repeated_subtask_is_fed_back(scene1: Scene, state1: WorldState, team12: Sequence[RobotProfile]) -> None:
+    repeated = taskspec_answer(subtask("s1", APPLE), *(subtask(f"s{i}", TOMATO) for i in range(2, 6)))
+    good = taskspec_answer(subtask("s1", APPLE), subtask("s2", TOMATO))
+    with ScriptedServer("openai", [Reply.answer(repeated), Reply.answer(good)]) as srv:
+        spec = LLMFrontend(llm(srv)).decompose(FRIDGE, scene1, state1, team12)
+    assert "s3 repeats s2" in srv.requests[1]["messages"][-1]["content"]
+    assert str(spec.goal()) == "inside(Apple_1, Fridge_1) & inside(Tomato_1, Fridge_1)"
+
+
+def test_a_condition_copied_from_the_worked_example_is_fed_back(scene1: Scene, state1: WorldState,
+                                                                team12: Sequence[RobotProfile]) -> None:
+    # the kitchen example shown for FloorPlan1 switches off the light; this task never asks for it
+    copied = taskspec_answer(subtask("s1", APPLE), subtask("s2", TOMATO), subtask("s3", cond("switched_off",
+                                                                                              "LightSwitch_1")))
+    good = taskspec_answer(subtask("s1", APPLE), subtask("s2", TOMATO))
+    with ScriptedServer("openai", [Reply.answer(copied), Reply.answer(good)]) as srv:
+        client = llm(srv)
+        spec = LLMFrontend(client).decompose(FRIDGE, scene1, state1, team12)
+    example = srv.requests[0]["messages"][2]["content"]
+    assert "switched_off" in example                       # the example does show the light
+    feedback = srv.requests[1]["messages"][-1]["content"]
+    assert "switched_off(LightSwitch_1) is about LightSwitch, which the instruction does not mention" in feedback
+    assert len(spec.subtasks) == 2 and client.usage.calls == 2
+
+
+def test_a_condition_the_instruction_asks_for_is_not_taken_for_a_copy(
+        scene1: Scene, state1: WorldState, team12: Sequence[RobotProfile]) -> None:
+    answer = taskspec_answer(subtask("s1", APPLE), subtask("s2", cond("switched_off", "LightSwitch_1")))
+    with ScriptedServer("openai", [Reply.answer(answer)]) as srv:
+        spec = LLMFrontend(llm(srv)).decompose("Put the apple in the fridge and switch the light off.", scene1,
+                                               state1, team12)
+    assert len(spec.subtasks) == 2 and len(srv.requests) == 1
+
+
+def test_the_scene_lists_in_full_only_the_types_the_instruction_touches(state1: WorldState) -> None:
+    detail = focus_types(FRIDGE, state1)
+    assert detail is not None and {"Apple", "Tomato", "Fridge"} <= detail
+    text = render_scene(state1, detail=detail)
+    assert "Fridge (receptacle, openable): Fridge_1 [closed]" in text
+    assert "Toaster_1" not in text
+    others = text.splitlines()[-1]
+    assert others.startswith("Also here (not listed in detail): ") and "Toaster" in others
+    assert len(text) < len(render_scene(state1)) / 2
+
+
+def test_a_failed_episode_still_reports_its_llm_calls_and_tokens() -> None:
+    task = next(t for t in load_mace_thor() if t.id == "fp1-fridge-apple-tomato")
+    junk = Reply(content="not json at all", input_tokens=1000, output_tokens=20)
+    with ScriptedServer("openai", [junk] * 3) as srv:
+        episode = run_episode(task, RunConfig(frontend="llm", llm=srv.spec(), llm_timeout=5))
+    assert not episode.success and episode.error and "LLMMalformedOutput" in episode.error
+    assert episode.llm_calls == 3 and episode.tokens == 3 * 1020
+
+
+def test_job_keys_of_existing_configurations_do_not_change() -> None:
+    task = load_mace_thor()[0]
+    assert Job(task=task).key == f"{task.key}|full|offline|-|seed=0|faults=0.0"
+    hybrid = Job(task=task, frontend="hybrid", llm="replay:x")
+    assert hybrid.key == f"{task.key}|full|hybrid|replay:x|seed=0|faults=0.0"
+    always = Job(task=task, frontend="hybrid", llm="replay:x", llm_when="always")
+    assert always.key == hybrid.key + "|llm-when=always"
+    with pytest.raises(ValueError, match="hybrid front end needs an LLM spec"):
+        Job(task=task, frontend="hybrid")
