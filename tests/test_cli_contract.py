@@ -295,3 +295,17 @@ def test_an_unplanned_plan_does_not_claim_a_makespan() -> None:
     assert result.exit_code in (0, 1), result.output
     assert "actions as written, not planned: no Fast Downward call" in " ".join(result.stdout.split())
     assert "makespan 0.0 s" not in result.stdout
+
+
+def test_a_bug_is_exit_70_in_one_line_and_one_json_object(monkeypatch: pytest.MonkeyPatch) -> None:
+    def broken() -> list[str]:
+        raise RuntimeError("index [3] out of range")
+
+    monkeypatch.delenv("EMBOTEAM_DEBUG", raising=False)
+    monkeypatch.setattr(cli_module, "scene_ids", broken)
+    result = runner.invoke(app, ["scenes", "--json"])
+    assert result.exit_code == 70
+    line = one_line(result.stderr)
+    assert line.startswith("internal error: RuntimeError: index [3] out of range") and "EMBOTEAM_DEBUG=1" in line
+    data = one_object(result.stdout)
+    assert data["success"] is False and data["exit_code"] == 70
