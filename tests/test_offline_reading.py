@@ -183,3 +183,17 @@ def test_except_rejects_and_a_bare_topic_is_no_note() -> None:
         read("Put everything except the apple in the fridge.")
     reading = read("The bread. Slice it, please.")
     assert goal(reading) == {"sliced(Bread)"} and reading.notes == ()
+
+
+def test_a_new_sentence_is_a_new_request_not_a_contradiction() -> None:
+    assert goal(read("Hmm, the floor lamp's off. Turn it on please.", 201)) == {"switched_on(FloorLamp)"}
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Not the pen - the pencil goes in the drawer.", 303, {"inside(Pencil, Drawer)"}),
+    ("Don't forget the TV is still on.", 201, {"switched_off(Television)"}),
+    ("Don't forget to turn off the light.", 1, {"switched_off(LightSwitch)"}),
+    ("The faucet's dripping, turn it off.", 414, {"switched_off(Faucet)"}),
+])
+def test_a_rejected_topic_a_reminder_and_a_contracted_is(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

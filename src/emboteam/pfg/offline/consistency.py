@@ -48,12 +48,15 @@ def _opposed(a: Condition, b: Condition) -> bool:
 
 
 def check_consistent(clauses: Sequence[Clause], drafts: dict[int, list[Draft]]) -> None:
-    """Raise :class:`ContradictoryInstruction` for the first two requests of one step,
-    next to each other, that ask for opposite states of one object (an act between them,
+    """Raise :class:`ContradictoryInstruction` for the first two requests of one step and
+    one sentence, next to each other, that ask for opposite states of one object (an act between them,
     "open the fridge, take out the apple and close it", gives the first state a purpose)."""
     for group in steps(clauses):
-        step = [d for ci in sorted(group) for d in drafts.get(ci, []) if not d.intermediate]
-        for first, second in itertools.pairwise(step):
+        step = [(clauses[ci].sentence, d) for ci in sorted(group) for d in drafts.get(ci, [])
+                if not d.intermediate]
+        for (s1, first), (s2, second) in itertools.pairwise(step):
+            if s1 != s2:
+                continue       # "the lamp is off. Turn it on.": a new sentence, a new request
             for a, b in itertools.product(first.conditions, second.conditions):
                 if _opposed(a, b):
                     raise ContradictoryInstruction(first, second, a, b)

@@ -90,6 +90,10 @@ _PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
     r"(?:be )?(?:so kind as to|kind enough to|a dear and|a star and)",
     r"time to|it is time to|now is the time to",
     r"to",
+    # "don't forget the TV is still on", "remember that the fridge is open": a reminder of
+    # a state, read as the statement (a complaint)
+    r"(?:do not|never|dont) forget(?: that)?(?= (?:the|my|your|our|this|that|these|those) )",
+    r"(?:remember|note|notice)(?: that)?(?= (?:the|my|your|our|this|that|these|those) )",
 )]
 _TRAILING = re.compile(r"\s*\b(?:please|for me|for us|thanks|thank you|if you can|if possible|"
                        r"right now|now|asap|when you can|would you|will you|as well|too|also|"
@@ -784,6 +788,7 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
     # one" are subjects: "nobody closed the fridge" is read with its verb below)
     nobody = bool(items) and (items[0].text == "nobody" or (
         items[0].text == "no" and len(items) > 1 and items[1].text == "one"))
+    items = _without_rejected_topic(items)
     while items and not nobody and (items[0].neg or (items[0].text in ("do", "does", "did")
                                     and len(items) > 1 and items[1].neg)):
         if items[0].neg:
@@ -877,6 +882,17 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
         if f.report:
             places_to_locations(f)
     return ParsedClause(clause, frames, mentions, unknown_words(mentions))
+
+
+def _without_rejected_topic(items: list[Item]) -> list[Item]:
+    """"Not the pen - the pencil goes in the drawer": a rejected alternative before the
+    clause proper (a negated noun phrase and a comma or dash) is left out."""
+    if len(items) < 3 or items[0].text != "not" or not np_start(items[1]):
+        return items
+    _, end = parse_np(items, 1)
+    if end > 1 and end < len(items) - 1 and items[end].punct is not None:
+        return items[end + 1:]
+    return items
 
 
 def _why_question(items: list[Item]) -> list[Item]:

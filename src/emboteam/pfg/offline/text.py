@@ -35,6 +35,10 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\blet's\b", "let us"),
     (r"'re\b", " are"), (r"'m\b", " am"), (r"'ll\b", " will"), (r"'ve\b", " have"),
     (r"'d\b", " would"),
+    # "the lamp's off", "the faucet's dripping": "is" before a state, an adverb or a
+    # participle; otherwise a possessive
+    (r"'s(?=\s+(?:still|not|now|already|always|again|on|off|open|closed|shut|dirty|clean|"
+     r"empty|full|broken|wide|too|so|very|really|left|been|\w+ing|\w+ed)\b)", " is"),
     (r"'s\b", ""),          # possessive: "the robot's arm" -> "the robot arm"
     (r"s'(?=\s|$)", "s"),   # plural possessive
     (r"'", ""),
