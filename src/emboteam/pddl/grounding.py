@@ -381,6 +381,8 @@ class _Grounder:
         self.init = frozenset(init)
         self.facts = _Facts()
         self._effect_seen: dict[tuple[int, int, tuple[str, ...]], tuple[int, ...]] = {}
+        #: the bindings found at that stamp (reused for the operators when still current)
+        self._effect_rows: dict[tuple[int, int, tuple[str, ...]], list[dict[str, str]]] = {}
         for f in init:
             self.facts.add(f)
 
@@ -426,7 +428,8 @@ class _Grounder:
                 if self._effect_seen.get((index, j, key)) == stamp:
                     continue  # same action, nothing new its effect could bind to
                 self._effect_seen[(index, j, key)] = stamp
-                for eb in ep.query.run(b, self.facts, self.domain, self.kinds):
+                rows = self._effect_rows[(index, j, key)] = ep.query.run(b, self.facts, self.domain, self.kinds)
+                for eb in rows:
                     out += [_fact(a, eb) for a in positives]
         return out
 
@@ -449,14 +452,21 @@ class _Grounder:
 
     def operators(self) -> list[GroundOperator]:
         out: list[GroundOperator] = []
-        for sp in self.d.schemas:
+        for index, sp in enumerate(self.d.schemas):
             for b in self.actions(sp):
-                op = self._operator(sp, b)
+                op = self._operator(index, sp, b)
                 if op is not None:
                     out.append(op)
         return out
 
-    def _operator(self, sp: _SchemaPlan, b: dict[str, str]) -> GroundOperator | None:
+    def _effect_bindings(self, index: int, j: int, ep: _EffectPlan, b: dict[str, str],
+                         key: tuple[str, ...]) -> list[dict[str, str]]:
+        stamp = tuple(self.facts.version.get(p, 0) for p in ep.deps)
+        if self._effect_seen.get((index, j, key)) == stamp:
+            return self._effect_rows[(index, j, key)]
+        return ep.query.run(b, self.facts, self.domain, self.kinds)
+
+    def _operator(self, index: int, sp: _SchemaPlan, b: dict[str, str]) -> GroundOperator | None:
         pre: dict[Fact, bool] = {}
         for a in sp.schema.pre:
             if not isinstance(a, Atom) or a.pred == "=" or self.d.is_static(a.pred):
@@ -478,8 +488,9 @@ class _Grounder:
                         return None
                     pre[lit[0]] = lit[1]
         effects: list[GroundEffect] = []
-        for ep in sp.effects:
-            for eb in ep.query.run(b, self.facts, self.domain, self.kinds):
+        key = tuple(b[v] for v, _ in sp.schema.params)
+        for j, ep in enumerate(sp.effects):
+            for eb in self._effect_bindings(index, j, ep, b, key):
                 conds: dict[Fact, bool] = {}
                 ok = True
                 for a in (*ep.positive, *ep.negative):
