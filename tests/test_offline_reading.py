@@ -197,3 +197,8 @@ def test_a_new_sentence_is_a_new_request_not_a_contradiction() -> None:
 ])
 def test_a_rejected_topic_a_reminder_and_a_contracted_is(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_a_yes_no_question_names_the_referent_of_a_later_pronoun() -> None:
+    reading = read("Is the laptop still open? Close it if so.", 201)
+    assert goal(reading) == {"closed(Laptop)"} and reading.notes == ()

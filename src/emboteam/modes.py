@@ -254,7 +254,7 @@ def run_mode(task: BenchTask, cfg: RunConfig, llm: LLMClient | None = None) -> E
         task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
         robots=tuple(sorted(sim.state.robots)), category=task.category, mode=cfg.mode,
         frontend=cfg.frontend, llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(),
-        fault_level=cfg.fault_level,
+        fault_level=cfg.fault_level, env=cfg.env,
         llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
         plan_seconds=round(plan_seconds, 4), taskspec=spec, notes=tuple(notes),
         error=error, **fields,

@@ -95,7 +95,7 @@ def _episode(task: BenchTask, cfg: RunConfig, **fields: object) -> Episode:
         task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
         robots=tuple(p.name for p in team), category=task.category, mode=cfg.mode,
         frontend=cfg.frontend, llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(),
-        fault_level=cfg.fault_level,
+        fault_level=cfg.fault_level, env=cfg.env,
     )
     base.update(fields)
     return Episode.model_validate(base)

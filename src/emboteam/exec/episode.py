@@ -46,6 +46,7 @@ class Episode(BaseModel):
     seed: int = 0
     faults: FaultConfig = FaultConfig()
     fault_level: float = 0.0
+    env: str = Field("sim", description="where it executed: sim (the symbolic simulator) | ai2thor")
 
     success: bool = False
     gcr: float = 0.0

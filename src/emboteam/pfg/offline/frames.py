@@ -784,6 +784,10 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
     if clause.link in ("after", "before", "if", "by", "purpose", "while"):
         flags["directive"] = True
     items = _why_question(items)
+    asked = _yes_no_question(items)
+    if asked is not None:
+        mentions.append(asked)
+        return ParsedClause(clause, [], mentions, unknown_words(mentions))
     # leading negation: "don't leave the lights on", "never turn on ..." ("nobody", "no
     # one" are subjects: "nobody closed the fridge" is read with its verb below)
     nobody = bool(items) and (items[0].text == "nobody" or (
@@ -893,6 +897,17 @@ def _without_rejected_topic(items: list[Item]) -> list[Item]:
     if end > 1 and end < len(items) - 1 and items[end].punct is not None:
         return items[end + 1:]
     return items
+
+
+def _yes_no_question(items: list[Item]) -> Head | None:
+    """"Is the laptop still open? Close it if so.": a yes/no question about a state asks
+    nothing by itself; it names what a later pronoun refers to."""
+    if len(items) < 3 or items[0].text not in ("is", "are") or not np_start(items[1]):
+        return None
+    head, end = parse_np(items, 1)
+    if head is None or any(i.verb is not None and i.state is None for i in items[end:]):
+        return None
+    return head
 
 
 def _why_question(items: list[Item]) -> list[Item]:
