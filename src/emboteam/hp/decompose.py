@@ -29,7 +29,11 @@ def group_indices(conditions: Sequence[Condition], state: WorldState, robots: Se
     owner: dict[str, int] = {}
     for i, cond in enumerate(conditions):
         part = compile_condition(cond, state, robots, slices=slices)
-        for oid in part.subjects:
+        # a movable receptacle (``inside(Egg_1, Pan_1)``) or vessel is an object the plan
+        # may move as well: ``cold(Pan_1)`` carries it away with the egg
+        movable = [p for p in (*part.places, *part.vessels) if p in state.objects and state.objects[p].has("pickupable")]
+        named = movable if len(part.places) <= 2 else [v for v in movable if v in part.vessels]
+        for oid in [*part.subjects, *named]:
             anchor = oid.split("_Slice_")[0]
             if anchor in owner:
                 parent[find(i)] = find(owner[anchor])

@@ -53,6 +53,8 @@ class MergedPlan(BaseModel):
     sync: tuple[SyncPoint, ...] = ()
     makespan: float = Field(0.0, description="simulated seconds, from the validating simulation")
     lower_bound: float = Field(0.0, description="max(critical path, busiest robot's work)")
+    resource_bound: float = Field(0.0, description="max(total work / robots, longest subtask of one robot, "
+                                  "serial time at the busiest spot): bounds any schedule of these actions")
     joint: bool = Field(False, description="solved as one joint multi-robot problem (fallback)")
     planner_calls: int = 0
     plan_seconds: float = 0.0

@@ -38,7 +38,9 @@ from dataclasses import dataclass
 from typing import Literal as TypingLiteral
 
 from emboteam.hp.allocation import allocate
+from emboteam.hp.contention import bottleneck_first, spot_seconds
 from emboteam.hp.decompose import decompose_goal
+from emboteam.hp.interleave import interleave
 from emboteam.hp.merge import (
     GroundedStep,
     MergeMode,
@@ -250,8 +252,13 @@ class HybridPlanner:
                     problem = build_problem(base, u.conditions, u.robots, name=u.id, narrow=u.narrow,
                                             protect=u.protect)
                 todo.append((u, problem))
+            round_start = len(accepted)
+            round_plans: list[tuple[Unit, list[SeqStep]]] = []
             results = self.fd.solve_problems([p for _, p in todo], self.config.workers)
-            for (u, problem), result in zip(todo, results, strict=True):
+            # users of the round's most contended spot are accepted (so ordered) first
+            uses = [spot_seconds(base, p.decode(r.plan)) if isinstance(r, SolveResult) and r.solved else None
+                    for (_, p), r in zip(todo, results, strict=True)]
+            for (u, problem), result in bottleneck_first(list(zip(todo, results, strict=True)), uses):
                 if isinstance(result, PlannerLimitError) and len(u.subtasks) > 1:
                     for t in u.subtasks:  # too big to solve at once: one subtask at a time
                         attempts[t.id].solo = True
@@ -286,6 +293,9 @@ class HybridPlanner:
                     notes.append(f"{u.describe()}: replanned ({why})")
                     continue
                 self._accept(u, grounded, forward, accepted, done, unit_of, protected, after=trial)
+                round_plans.append((u, steps))
+            if len(round_plans) > 1:
+                self._interleave(base, round_plans, round_start, forward, accepted, protected, universe)
             pending = [t for t in pending if t.id not in done]
         try:
             return self._merge_causal(accepted, spec, unit_of, team, start, notes)
@@ -342,6 +352,36 @@ class HybridPlanner:
         if not accepted and not u.protect:
             raise self._unsolvable(u.describe(), u.conditions, start, list(u.robots))
         raise _Fallback(f"subtask {u.describe()} has no plan from the state the others leave")
+
+    @classmethod
+    def _interleave(cls, base: WorldState, plans: Sequence[tuple[Unit, list[SeqStep]]], round_start: int,
+                    forward: WorldState, accepted: list[GroundedStep],
+                    protected: dict[str, tuple[Condition, frozenset[str]]], universe: Universe) -> None:
+        """Replace the round's unit-by-unit sequence by its time-interleaved replay
+        (:mod:`emboteam.hp.interleave`) when that reaches every goal too."""
+        goals = [*(c for u, _ in plans for c in u.conditions), *(c for c, _ in protected.values())]
+        mixed = interleave(base, [steps for _, steps in plans], goals, universe)
+        if mixed is None:
+            return
+        del accepted[round_start:]
+        accepted.extend(mixed[0])
+        forward.objects, forward.robots = mixed[1].objects, mixed[1].robots
+        for u, _ in plans:
+            cls._protect(u, forward, protected)
+
+    @staticmethod
+    def _protect(u: Unit, forward: WorldState, protected: dict[str, tuple[Condition, frozenset[str]]]) -> None:
+        """Protect a unit's final goals, with the objects that satisfy them now."""
+        for t in u.subtasks:
+            if not t.final:
+                continue
+            for c in t.goal:
+                result = check_condition(c, forward)
+                objs = set(result.witnesses)
+                for w in result.witnesses:
+                    if w in forward.objects:
+                        objs.update(forward.ancestors(w))
+                protected[str(c)] = (c, frozenset(objs))
 
     @staticmethod
     def _replay(trial: WorldState, steps: Sequence[SeqStep], universe: Universe

@@ -13,6 +13,7 @@ from emboteam.hp.requirements import need_of
 from emboteam.pfg.taskspec import Subtask
 from emboteam.sim.rules import INTERLOCKED
 from emboteam.world.actions import Action, Skill
+from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -187,8 +188,9 @@ def polish(actions: Sequence[tuple[str, Action]]) -> list[tuple[str, Action]]:
 
 def preparations(state: WorldState, step: SeqStep) -> list[Action]:
     """Actions that make a step of a plan made for an earlier state runnable again: go
-    back within reach of its object, switch a running microwave off before opening it,
-    close it before switching it on (the door/power interlock). Validated like any step."""
+    back within reach of its object, open a receptacle another robot closed before putting
+    into it, switch a running microwave off before opening it, close it before switching
+    it on (the door/power interlock). Validated like any step."""
     a = step.action
     robot = state.robots.get(step.robot)
     if robot is None or a.skill is Skill.GoToObject:
@@ -199,6 +201,14 @@ def preparations(state: WorldState, step: SeqStep) -> list[Action]:
         place = state.objects[need]
         if not place.gone and place.held_by is None and not state.in_reach(step.robot, need):
             out.append(Action(skill=Skill.GoToObject, target=need))
+    rec = state.objects.get(a.receptacle) if a.skill is Skill.PutObject and a.receptacle else None
+    if (rec is not None and rec.type in load_catalogue().must_be_open and not rec.is_open
+            and robot.profile.can(Skill.OpenObject)):
+        # another robot closed it after this plan was made (or opened it first, so this
+        # plan's own opening was skipped): open it again
+        if rec.type in INTERLOCKED and rec.is_on and robot.profile.can(Skill.SwitchOff):
+            out.append(Action(skill=Skill.SwitchOff, target=rec.id))
+        out.append(Action(skill=Skill.OpenObject, target=rec.id))
     target = state.objects.get(a.target)
     if target is not None and target.type in INTERLOCKED:
         if a.skill is Skill.OpenObject and target.is_on and robot.profile.can(Skill.SwitchOff):

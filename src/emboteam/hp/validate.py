@@ -4,8 +4,12 @@ Each robot runs its steps in order; a step starts once the steps it waits for (`
 have ended and its interaction spot is free (the simulator rejects a second robot at a
 busy spot, so the scheduler waits instead, as the behavior trees do with their locks).
 No faults: this checks the plan, not the robots. The result gives every step's start and
-end (``est_start``/``est_end``), the makespan and the lower bound
-``max(critical path, busiest robot's work)`` over the measured durations.
+end (``est_start``/``est_end``), the makespan, the lower bound
+``max(critical path, busiest robot's work)`` over the measured durations (it takes the
+plan's own allocation and waits as given: a ratio near 1 says little about them), and the
+*resource-aware* bound :func:`resource_bound`, which takes neither: any schedule of these
+actions, by any robots, needs at least max(total work / robots, the longest subtask one
+robot does, the serial time at the busiest interaction spot).
 """
 
 from __future__ import annotations
@@ -21,6 +25,41 @@ from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 
 
+@dataclass(frozen=True)
+class ResourceBound:
+    """A lower bound on the makespan of any schedule of a plan's actions (their measured
+    durations), whoever does them and in whatever order: every robot's work must be
+    done by the team, a subtask's steps by one robot run one after another, and a spot
+    (the fridge, the microwave) serves one robot at a time."""
+
+    value: float = 0.0
+    #: total work / robots
+    work: float = 0.0
+    #: the longest work one robot does for one subtask
+    subtask: float = 0.0
+    #: serial time at the busiest spot, and that spot
+    spot: float = 0.0
+    spot_name: str = ""
+
+
+def resource_bound(plan: MergedPlan, durations: dict[str, float], spots: dict[str, str]) -> ResourceBound:
+    """:class:`ResourceBound` of ``plan``; ``spots`` maps the id of each step that holds an
+    interaction spot (every step but GoToObject) to the spot it held."""
+    total = sum(durations.get(s.id, 0.0) for s in plan.steps)
+    jobs: dict[tuple[str, str], float] = {}
+    at: dict[str, float] = {}
+    for s in plan.steps:
+        d = durations.get(s.id, 0.0)
+        jobs[(s.subtask, s.robot)] = jobs.get((s.subtask, s.robot), 0.0) + d
+        if s.id in spots:
+            at[spots[s.id]] = at.get(spots[s.id], 0.0) + d
+    busiest = max(at, key=lambda k: (at[k], k), default="")
+    work = total / max(len(plan.robots), 1)
+    subtask = max(jobs.values(), default=0.0)
+    spot = at.get(busiest, 0.0)
+    return ResourceBound(max(work, subtask, spot), work, subtask, spot, busiest)
+
+
 @dataclass
 class Timing:
     ok: bool
@@ -30,6 +69,7 @@ class Timing:
     times: dict[str, tuple[float, float]] = field(default_factory=dict)
     makespan: float = 0.0
     lower_bound: float = 0.0
+    resources: ResourceBound = field(default_factory=ResourceBound)
     final: WorldState | None = None
     unmet: tuple[str, ...] = ()
 
@@ -57,6 +97,7 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
     ended: set[str] = set()
     running: dict[str, PlanStep] = {}
     starts: dict[str, float] = {}
+    held: dict[str, str] = {}
     times: dict[str, tuple[float, float]] = {}
     while True:
         for robot in sorted(queues):
@@ -75,6 +116,9 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
             queue.pop(0)
             running[robot] = step
             starts[step.id] = sim.now
+            where = step.action.receptacle or step.action.target
+            if step.action.skill is not Skill.GoToObject and where in sim.state.objects:
+                held[step.id] = sim.state.spot_of(where)
             sim.start(robot, step.action)
         if not running:
             break
@@ -96,7 +140,7 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
     makespan = max((e for _, e in times.values()), default=0.0)
     durations = {k: e - s for k, (s, e) in times.items()}
     timing = Timing(ok=True, times=times, makespan=makespan, lower_bound=lower_bound(plan, durations),
-                    final=sim.state)
+                    resources=resource_bound(plan, durations, held), final=sim.state)
     if goal is not None:
         report = check_goal(goal, sim.state)
         if not report.success:
@@ -111,7 +155,8 @@ def with_times(plan: MergedPlan, timing: Timing) -> MergedPlan:
                                        "est_end": round(timing.times[s.id][1], 3)})
                   if s.id in timing.times else s for s in plan.steps)
     return plan.model_copy(update={"steps": steps, "makespan": round(timing.makespan, 3),
-                                   "lower_bound": round(timing.lower_bound, 3)})
+                                   "lower_bound": round(timing.lower_bound, 3),
+                                   "resource_bound": round(timing.resources.value, 3)})
 
 
 def estimate(plan: MergedPlan, seconds: dict[str, float]) -> MergedPlan:
