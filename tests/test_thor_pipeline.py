@@ -41,6 +41,7 @@ def test_a_task_executes_in_the_thor_environment(unity: list[UnityDouble], mode:
     assert [a for a, oid in actions if a == "PutObject" and oid == fridge] == ["PutObject", "PutObject"]
     assert {c["agentId"] for c in double.calls if c["action"] == "Teleport"} <= set(range(len(task.robots)))
     assert episode.success and episode.error is None and episode.makespan > 0
+    assert episode.env == "ai2thor"  # the record says where it ran
 
 
 def test_a_process_keeps_one_controller_and_resets_it_between_episodes(monkeypatch: pytest.MonkeyPatch) -> None:
