@@ -394,7 +394,9 @@ def _call(fn: vocabulary.Evaluator, state: WorldState, args: tuple[str, ...]) ->
 # ---- grounding --------------------------------------------------------------------------
 
 def _literal(atom: Atom) -> Literal:
-    return Literal(predicate=atom.pred, args=atom.args, positive=atom.positive)
+    # built from our own schemas (strings, a tuple of strings, a bool): validating each of
+    # the thousands a plan's grounding makes would only repeat what the types say
+    return Literal.model_construct(predicate=atom.pred, args=atom.args, positive=atom.positive)
 
 
 def action_binding(robot: str, action: Action, state: WorldState) -> tuple[Schema, dict[str, str]]:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from functools import cache
 
 from emboteam.world.actions import Skill
 
@@ -39,14 +40,21 @@ class Atom:
         return Atom(self.pred, self.args, not self.positive)
 
     def variables(self) -> frozenset[str]:
-        return frozenset(a for a in self.args if a.startswith("?"))
+        return _variables(self.args)
 
     def bind(self, binding: Mapping[str, str]) -> Atom:
-        return Atom(self.pred, tuple(binding.get(a, a) for a in self.args), self.positive)
+        get = binding.get
+        return Atom(self.pred, tuple([get(a, a) for a in self.args]), self.positive)
 
     def pddl(self) -> str:
         atom = f"({' '.join((self.pred, *self.args))})"
         return atom if self.positive else f"(not {atom})"
+
+
+@cache
+def _variables(args: tuple[str, ...]) -> frozenset[str]:
+    """The variables among an atom's arguments (memoised: grounding asks per evaluation)."""
+    return frozenset(a for a in args if a.startswith("?"))
 
 
 def A(text: str) -> Atom:
@@ -126,7 +134,8 @@ Truth = Callable[[str, tuple[str, ...]], bool]
 
 
 def holds(atom: Atom, binding: Mapping[str, str], truth: Truth) -> bool:
-    args = tuple(binding.get(a, a) for a in atom.args)
+    get = binding.get
+    args = tuple([get(a, a) for a in atom.args])
     value = args[0] == args[1] if atom.pred == "=" else truth(atom.pred, args)
     return value if atom.positive else not value
 
