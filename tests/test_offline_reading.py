@@ -202,3 +202,12 @@ def test_a_rejected_topic_a_reminder_and_a_contracted_is(text: str, fp: int, exp
 def test_a_yes_no_question_names_the_referent_of_a_later_pronoun() -> None:
     reading = read("Is the laptop still open? Close it if so.", 201)
     assert goal(reading) == {"closed(Laptop)"} and reading.notes == ()
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Put the apple in the fridge, then the tomato.", {"inside(Apple, Fridge)", "inside(Tomato, Fridge)"}),
+    ("Put the apple in the fridge. Then the tomato.", {"inside(Apple, Fridge)", "inside(Tomato, Fridge)"}),
+    ("Get the fridge closed and the light switched off.", {"closed(Fridge)", "switched_off(LightSwitch)"}),
+])
+def test_gapped_objects_and_a_state_per_object(text: str, expected: set[str]) -> None:
+    assert goal(read(text)) == expected

@@ -509,10 +509,26 @@ def _object(s: _Tail) -> str | None:
     return _GO
 
 
+def _switched_state(s: _Tail) -> str | None:
+    """"get the fridge closed and the light switched off": "switched/turned on/off" after
+    an object is that object's state."""
+    it, nxt = s.it, s.at(1)
+    if it.verb is None or it.verb.form != "ed" or it.verb.lemma not in ("switch", "turn") \
+            or nxt is None or nxt.particle not in ("on", "off") or not s.pending:
+        return None
+    t = s.pending[-1]
+    if t.state is not None or t.particle is not None:
+        return None
+    t.particle = nxt.particle
+    t.state = (Stat.SWITCH, nxt.particle == "on")
+    s.j += 2
+    return _GO
+
+
 #: the rules that read what follows a verb, in order: the first that applies decides
 TAIL_RULES: tuple[TailRule, ...] = (
     _separator, _filler_or_recipient, _containing, _rejected_alternative, _manner_or_purpose,
-    _prepositional_phrase, _particle_or_state, _object,
+    _prepositional_phrase, _particle_or_state, _switched_state, _object,
 )
 
 

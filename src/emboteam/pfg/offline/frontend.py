@@ -9,7 +9,7 @@ from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
-from emboteam.pfg.offline.clauses import Clause, segment
+from emboteam.pfg.offline.clauses import THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
@@ -19,7 +19,7 @@ from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.phrases import Head, ParsedClause, Target, np_list, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
-from emboteam.pfg.offline.tagger import tag
+from emboteam.pfg.offline.tagger import Item, tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.taskspec import TaskSpec
@@ -64,6 +64,16 @@ def _reread_after_prefix(clause: Clause, directive: bool) -> tuple[ParsedClause,
     return None
 
 
+def _known_objects(items: list[Item]) -> list[Head] | None:
+    """The noun phrases of a clause that is only noun phrases of known words ("the
+    bread", "then the tomato"; not "wibble the tomato"), else None."""
+    words = [i for i in items if i.punct is None]
+    if not all(i.noun is not None or i.det or i.quant is not None or i.pron
+               or i.number is not None or i.text in lexicon.COMMON_WORDS for i in words):
+        return None
+    return np_list(words)
+
+
 def _unread(clause: Clause, parsed: ParsedClause) -> bool:
     """Did a clause that gave no act say something the parser could not read? A statement
     ("my phone is on the bed", "there's a potato on the counter") introduces objects, and
@@ -75,10 +85,7 @@ def _unread(clause: Clause, parsed: ParsedClause) -> bool:
         return False
     if items and items[0].text in ("not", "instead", "rather", "except"):
         return False     # "not the apple", "instead of the cup": a rejected alternative
-    words = [i for i in items if i.punct is None]
-    if np_list(words) and all(i.noun is not None or i.det or i.quant is not None or i.pron
-                              or i.number is not None or i.text in lexicon.COMMON_WORDS
-                              for i in words):
+    if _known_objects(items):
         return False     # "The bread. Slice it.": a topic for what follows
     return bool(parsed.unknown) or any(i.verb is not None or i.noun is not None for i in clause.items)
 
@@ -134,6 +141,18 @@ def _share_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
         if frame.targets or frame.act is None or frame.act in _NO_OBJECT_ACTS or frame.report:
             continue
         frame.targets = [Target(t.head, [], None) for t in nxt.frames[0].targets]
+
+
+def _gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
+    """"Put the apple in the fridge, then the tomato" (". Then the tomato."): a clause that
+    is only objects, sequenced right after an act, has that act (gapping)."""
+    for k in range(1, len(parsed)):
+        p, c = parsed[k], clauses[k]
+        if p.frames or p.also or c.link != THEN or not parsed[k - 1].frames:
+            continue
+        heads = _known_objects(p.clause.items)
+        if heads and all(h.noun is not None for h in heads):
+            p.also = heads
 
 
 def _repeat_for_also(parsed: list[ParsedClause]) -> None:
@@ -255,6 +274,7 @@ class OfflineFrontend:
             parsed_clauses.append(parsed)
         _attach_means(parsed_clauses)
         _share_objects(clauses, parsed_clauses)
+        _gapped_objects(clauses, parsed_clauses)
         _repeat_for_also(parsed_clauses)
         for ci, (clause, parsed) in enumerate(zip(clauses, parsed_clauses, strict=True)):
             chore = _vague_phrase(clause)
