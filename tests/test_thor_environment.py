@@ -61,6 +61,9 @@ def test_goto_plans_with_reachable_positions_and_shortest_path_then_teleports_at
     assert dest in unity.reachable
     assert unity.by_action("Teleport") == []  # the robot is still driving
     length = path_length([path["position"], dest])
+    env.advance(env.now + 0.25)  # halfway along the drive, for the trace's floor map
+    x, z = env.pose("robot1")
+    assert min(start[0], dest["x"]) <= x <= max(start[0], dest["x"]) and (x, z) != start
     assert env.next_event_time() == pytest.approx(max(MIN_NAVIGATION_SECONDS, length / 1.0))
     outcome = env.advance(env.next_event_time() or 0.0)[0]
     assert outcome.success

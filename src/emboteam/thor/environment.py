@@ -172,6 +172,18 @@ class ThorEnvironment:
         self._now = max(self._now, until)
         return done
 
+    def pose(self, robot: str) -> tuple[float, float]:
+        """Where a robot is now for the trace's floor map: along a drive in progress, the
+        straight line from where it started to where it will stand (AI2-THOR itself only
+        moves the agent when the drive ends)."""
+        here = self._state.robots[robot].position
+        run = self._running.get(robot)
+        if run is None or run.navigation is None or run.end <= run.start:
+            return here
+        f = min(1.0, max(0.0, (self._now - run.start) / (run.end - run.start)))
+        dest = run.navigation.destination
+        return (here[0] + f * (float(dest["x"]) - here[0]), here[1] + f * (float(dest["z"]) - here[1]))
+
     # ---- internals --------------------------------------------------------------------
     def _agent_id(self, robot: str) -> int:
         return next(m.agent_id for m in self.team if m.name == robot)
