@@ -301,7 +301,8 @@ def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) ->
     return get_task(target)
 
 
-ENV_HELP = ("sim (the symbolic simulator) | ai2thor (a live AI2-THOR 5.x: pip install 'emboteam[ai2thor]', "
+# the backslash keeps rich from reading [ai2thor] as markup in --help
+ENV_HELP = ("sim (the symbolic simulator) | ai2thor (a live AI2-THOR 5.x: pip install 'emboteam\\[ai2thor]', "
             "a display or Vulkan; docs/ai2thor.md)")
 
 
