@@ -52,9 +52,12 @@ _MODAL_BEFORE_BE = frozenset({"should", "must", "could", "would", "will", "can",
 def _reread_after_prefix(clause: Clause, directive: bool) -> tuple[ParsedClause, str] | None:
     """The clause read from the first word after which the grammar finds an act or a
     state (a verb, or a noun phrase with its state: "the TV off"), and the words skipped;
-    None when no suffix reads."""
+    None when no suffix reads or the words to skip name an object (they are a statement
+    about it, kept for pronouns, not noise)."""
     items = clause.items
     for k in range(1, len(items)):
+        if items[k - 1].noun is not None and items[k - 1].corrected_from is None:
+            return None    # "the remote, my watch and my keys keep going missing": objects
         if items[k].verb is None and not np_start(items[k]):
             continue
         rest = replace(clause, items=items[k:])
