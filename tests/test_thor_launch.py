@@ -87,3 +87,20 @@ def test_env_is_in_a_jobs_key_only_when_not_the_simulator() -> None:
     sim, thor = Job(task=task), Job(task=task, env="ai2thor")
     assert "env=" not in sim.key and sim.key == Job(task=task, env="sim").key
     assert thor.key == f"{sim.key}|env=ai2thor" and thor.dirname != sim.dirname
+
+
+@needs_no_thor
+def test_probe_picks_the_hosts_platform_and_checks_the_overrides(monkeypatch: pytest.MonkeyPatch) -> None:
+    from emboteam.thor import launch
+
+    monkeypatch.setattr(launch.host, "system", lambda: "Darwin")
+    with pytest.raises(ThorUnavailableError, match=r"build thor-OSXIntel64-"):
+        probe()  # macOS needs no display check, but the build still has to be had
+    monkeypatch.undo()
+    monkeypatch.setenv("EMBOTEAM_THOR_PLATFORM", "WebGL")
+    with pytest.raises(ThorUnavailableError, match="unknown AI2-THOR platform 'WebGL'"):
+        probe()
+    monkeypatch.setenv("EMBOTEAM_THOR_PLATFORM", "CloudRendering")
+    monkeypatch.setenv("EMBOTEAM_THOR_EXECUTABLE", "/nonexistent/thor-build")
+    with pytest.raises(ThorUnavailableError, match="EMBOTEAM_THOR_EXECUTABLE=/nonexistent/thor-build is not"):
+        probe()

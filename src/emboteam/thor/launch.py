@@ -8,7 +8,7 @@ hang or a multi-line traceback. :func:`probe` checks each prerequisite first, in
 under a second plus at most :data:`DOWNLOAD_PROBE_SECONDS` for the build's URL, and
 raises one :class:`ThorUnavailableError` whose message says everything that is missing.
 
-Environment variables: ``EMBOTEAM_THOR_PLATFORM`` (``Linux64`` or ``CloudRendering``)
+Environment variables: ``EMBOTEAM_THOR_PLATFORM`` (``Linux64``, ``CloudRendering``, ``OSXIntel64``)
 forces a platform; ``EMBOTEAM_THOR_EXECUTABLE`` runs a local Unity build instead of the
 downloaded one; ``EMBOTEAM_THOR_START_TIMEOUT`` bounds the wait for Unity (seconds).
 """
@@ -29,7 +29,7 @@ from emboteam.thor.errors import ThorUnavailableError
 DOWNLOAD_PROBE_SECONDS = 3.0
 #: seconds to wait for the Unity process to connect once started
 START_TIMEOUT = 120.0
-PLATFORMS = ("Linux64", "CloudRendering")
+PLATFORMS = ("Linux64", "CloudRendering", "OSXIntel64")
 PREFIX = "no AI2-THOR build could be started"
 
 
@@ -102,7 +102,7 @@ def probe(platform: str | None = None, *, width: int = 300, height: int = 300) -
     wanted = platform or os.environ.get("EMBOTEAM_THOR_PLATFORM") or None
     if wanted is not None and wanted not in PLATFORMS:
         raise ThorUnavailableError(f"{PREFIX}: unknown AI2-THOR platform {wanted!r} ({' or '.join(PLATFORMS)})")
-    candidates = [wanted] if wanted else list(PLATFORMS)
+    candidates = [wanted] if wanted else ["OSXIntel64"] if host.system() == "Darwin" else ["Linux64", "CloudRendering"]
     problems: list[str] = []
     chosen: str | None = None
     for name in candidates:
