@@ -19,7 +19,7 @@ import pytest
 
 from emboteam.errors import EmboTeamError
 from emboteam.hp.goalgen import random_conditions
-from emboteam.pddl.errors import PlannerInputError, PlannerTimeoutError
+from emboteam.pddl.errors import PlannerInputError, PlannerLimitError, PlannerTimeoutError
 from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import FastDownward, PlanCache
 from emboteam.pddl.sas import emit
@@ -143,12 +143,21 @@ def test_a_goal_that_already_holds_needs_no_search() -> None:
 def test_sas_runner_errors_are_typed() -> None:
     state = WorldState.from_scene(load_scene("FloorPlan1"), parse_team("1"))
     problem = build_problem(state, Goal.parse("inside(Apple, Fridge)").conditions, ["robot1"])
-    with pytest.raises(PlannerInputError, match="unknown alias .* for SAS input"):
+    with pytest.raises(PlannerInputError, match=r"unknown alias .* for SAS input"):
         FastDownward("no-such-alias").solve_problem(problem)
     with pytest.raises(PlannerInputError, match="exit 33"):
         FastDownward().solve_sas("begin_version\n3\nend_version\nnonsense\n")
     with pytest.raises(PlannerInputError, match="planner input"):
         FastDownward(planner_input="xml")  # type: ignore[arg-type]
+
+
+def test_a_memory_limit_too_small_to_start_is_a_limit_error() -> None:
+    state = WorldState.from_scene(load_scene("FloorPlan1"), parse_team("1"))
+    problem = build_problem(state, Goal.parse("inside(Apple, Fridge)").conditions, ["robot1"])
+    # 4 MB do not hold the binary itself: it cannot load (a segfault or the loader's own
+    # error), as it would under the driver's limits; a search that runs out exits 22
+    with pytest.raises(PlannerLimitError):
+        FastDownward(memory_limit_mb=4).solve_problem(problem)
 
 
 def test_sas_time_limit_is_a_typed_error() -> None:

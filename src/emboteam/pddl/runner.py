@@ -28,6 +28,7 @@ import json
 import math
 import os
 import resource
+import shutil
 import signal
 import subprocess
 import sys
@@ -125,6 +126,11 @@ def _pool(workers: int) -> ThreadPoolExecutor:
         if pool is None:
             pool = _POOLS[workers] = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="emboteam-fd")
         return pool
+
+
+@cache
+def _prlimit_command() -> str | None:
+    return shutil.which("prlimit")
 
 
 @cache
@@ -304,6 +310,14 @@ class FastDownward:
         cmd = [str(search_path()), *(args if args is not None else self.search_args()),
                "--internal-plan-file", "sas_plan"]
         seconds_limit = max(1, math.ceil(self.time_limit))
+        memory = self.memory_limit_mb * 1024 * 1024
+        # the limits driver/limits.py sets (CPU: soft = limit, hard = limit + 1; address
+        # space). A preexec_fn is unsafe with the threads solve_problems uses, so util-linux's
+        # prlimit sets them and execs the search; without it they are set from outside
+        # right after the start (the search reads nothing before its stdin, written after).
+        limiter = _prlimit_command()
+        if limiter is not None:
+            cmd = [limiter, f"--cpu={seconds_limit}:{seconds_limit + 1}", f"--as={memory}:{memory}", "--", *cmd]
         with tempfile.TemporaryDirectory(prefix="emboteam-fd-") as tmp:
             work = Path(tmp)
             t0 = time.perf_counter()
@@ -312,15 +326,12 @@ class FastDownward:
                                         stderr=subprocess.PIPE, text=True)
             except OSError as exc:
                 raise PlannerInputError(f"cannot run Fast Downward's search: {exc}") from None
-            try:
-                # the limits driver/limits.py sets; applied from outside (prlimit) because a
-                # preexec_fn is unsafe with the threads solve_problems uses. The search reads
-                # nothing before its stdin, which is written only after this.
-                resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
-                memory = self.memory_limit_mb * 1024 * 1024
-                resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
-            except (ProcessLookupError, PermissionError, ValueError, OSError):
-                pass  # it already exited (bad options): its exit code says why
+            if limiter is None:
+                try:
+                    resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
+                    resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
+                except (ProcessLookupError, PermissionError, ValueError, OSError):
+                    pass  # it already exited (bad options): its exit code says why
             try:
                 out, err = proc.communicate(sas, timeout=self.time_limit + 30.0)
             except subprocess.TimeoutExpired:
@@ -333,6 +344,10 @@ class FastDownward:
                 self.calls += 1
                 self.seconds += seconds
             done = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+            if proc.returncode == 127 and "shared libraries" in (err or ""):
+                # the dynamic loader could not map the binary within the address-space limit
+                raise PlannerMemoryError(f"Fast Downward's search cannot even start within {self.memory_limit_mb} MB: "
+                                         f"{_excerpt(done)}")
             return interpret(proc.returncode, _read_plan(work), _excerpt(done), seconds=seconds,
                              time_limit=self.time_limit, memory_limit_mb=self.memory_limit_mb)
 
