@@ -232,3 +232,14 @@ def test_mace_thor_goals_read_exactly_do_not_regress() -> None:
             continue
         exact += goal_keys(spec.goal().conditions, scene) == goal_keys(task.goal.conditions, scene)
     assert exact >= 31
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Someone left the light on all night.", 11, {"switched_off(LightSwitch)"}),
+    ("The TV has been on all day, turn it off will you.", 201, {"switched_off(Television)"}),
+    ("Please make sure the fridge and the microwave are both closed.", 4,
+     {"closed(Fridge)", "closed(Microwave)"}),
+])
+def test_a_time_adjunct_keeps_the_particle_and_a_wish_covers_its_coordinated_subjects(
+        text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

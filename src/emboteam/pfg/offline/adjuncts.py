@@ -24,9 +24,12 @@ TIME_POINTS = frozenset({
     "breakfast", "brunch", "lunch", "dinner", "supper", "bedtime", "lunchtime", "dinnertime",
     "afterwards", "tomorrows", "mornings", "evenings", "nights",
 })
-#: words that introduce a time adjunct
-_INTRODUCERS = frozenset({"before", "after", "by", "until", "till", "at", "on", "in", "during",
+#: words that introduce a time adjunct ("on" only before a day: "leave the light on all
+#: night" keeps its particle)
+_INTRODUCERS = frozenset({"before", "after", "by", "until", "till", "at", "in", "during",
                           "around", "over", "from", "since", "for", "later"})
+_DAYS = frozenset({"monday", "tuesday", "wednesday", "thursday", "friday", "saturday", "sunday",
+                   "weekend"})
 #: words that modify a time noun ("this afternoon", "next week", "all day", "at some point")
 _MODIFIERS = frozenset({"this", "next", "last", "every", "each", "all", "the", "a", "some",
                         "any", "one", "tomorrow", "later", "early", "late", "that"})
@@ -53,7 +56,10 @@ def drop_time_adjuncts(items: list[Item]) -> list[Item]:
     out: list[Item] = []
     k = 0
     while k < len(items):
-        start = k + 1 if items[k].text in _INTRODUCERS else k
+        introduced = items[k].text in _INTRODUCERS or (
+            items[k].text == "on" and k + 1 < len(items)
+            and (items[k + 1].text in _DAYS or (k + 2 < len(items) and items[k + 2].text in _DAYS)))
+        start = k + 1 if introduced else k
         end = _time_run(items, start)
         if end > start and (end >= len(items) or items[end].text != "of"):
             k = end        # "the morning of ..." aside: the whole adjunct goes

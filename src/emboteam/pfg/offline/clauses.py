@@ -133,6 +133,13 @@ def _has_predicate(items: list[Item]) -> bool:
     need to go in the fridge) has not: the next subject shares the predicate."""
     if not items:
         return False
+    words = [x.text for x in items]
+    for wish in (["please", "make", "sure"], ["make", "sure"], ["please", "ensure"], ["ensure"]):
+        if words[:len(wish)] == wish:
+            items = items[len(wish):]     # "make sure the fridge and the microwave are closed"
+            break
+    if not items:
+        return False
     last = items[-1]
     return any(x.copula or (x.verb is not None and x.noun is None and x.state is None)
                for x in items) or last.particle is not None or (
