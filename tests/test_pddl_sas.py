@@ -180,3 +180,25 @@ def test_sas_results_are_cached_by_problem_text() -> None:
     pddl = FastDownward(cache=fd.cache, planner_input="pddl")
     pddl.solve_problem(problem)
     assert pddl.calls == 1  # the input is part of the key
+
+
+def test_an_add_wins_over_a_delete_of_the_same_fact() -> None:
+    from emboteam.pddl.grounding import GroundEffect, _add_wins
+
+    f, c = ("at", "robot1", "Apple_1"), ("is-on", "Toaster_1")
+    # deleted unconditionally, added when the toaster is on: the delete must not fire then
+    out = _add_wins([GroundEffect((), f, False), GroundEffect(((c, True),), f, True)])
+    assert GroundEffect(((c, True),), f, True) in out
+    assert GroundEffect(((c, False),), f, False) in out and GroundEffect((), f, False) not in out
+    # an unconditional add: the delete disappears
+    assert _add_wins([GroundEffect((), f, False), GroundEffect((), f, True)]) == [GroundEffect((), f, True)]
+
+
+def test_goal_formulas_are_read_strictly() -> None:
+    from emboteam.pddl.formula import Or, parse_formula
+
+    f = parse_formula("(or (and (available A) (within A B)) (not (is-on C)))")
+    assert isinstance(f, Or) and len(f.parts) == 2
+    for bad in ("(and (a b)", "(and (a b)))", "(imply (a) (b))x", "((a))"):
+        with pytest.raises(PlannerInputError):
+            parse_formula(bad)
