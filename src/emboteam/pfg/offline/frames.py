@@ -94,6 +94,9 @@ _PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
     # a state, read as the statement (a complaint)
     r"(?:do not|never|dont) forget(?: that)?(?= (?:the|my|your|our|this|that|these|those) )",
     r"(?:remember|note|notice)(?: that)?(?= (?:the|my|your|our|this|that|these|those) )",
+    # "I think my phone is in one of the drawers": an opinion about a state is the statement
+    r"(?:i|we) (?:think|guess|believe|reckon|suppose|bet|am sure|am pretty sure|know)"
+    r"(?: that)?(?= (?:the|my|your|our|this|that|these|those|a|an) )",
 )]
 _TRAILING = re.compile(r"\s*\b(?:please|for me|for us|thanks|thank you|if you can|if possible|"
                        r"right now|now|asap|when you can|would you|will you|as well|too|also|"
