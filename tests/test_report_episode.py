@@ -252,3 +252,13 @@ def test_directory_problems_are_typed_errors_naming_the_file(episode: Episode, t
     with pytest.raises(ReportError, match="expected a JSON object"):
         write_episode_report(tmp_path)
     assert issubclass(ReportError, EmboTeamError)
+
+
+def test_the_front_ends_notes_are_in_the_page(episode: Episode) -> None:
+    """What the parser could not read reaches the report's reader (the page shows
+    ``meta.notes`` above the metrics)."""
+    noted = episode.model_copy(update={"notes": ("unread 'frobnicator': names nothing",)})
+    assert episode_view(noted)["meta"]["notes"] == ["unread 'frobnicator': names nothing"]
+    assert embedded_data(render_episode_report(noted))["meta"]["notes"] == [
+        "unread 'frobnicator': names nothing"]
+    assert episode_view(episode)["meta"]["notes"] == []
