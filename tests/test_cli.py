@@ -76,6 +76,8 @@ def test_what_the_parser_could_not_read_reaches_the_user_as_notes() -> None:
     assert len(data["notes"]) == 1 and "frobnicator" in data["notes"][0]
     run = one_json(cli("run", instruction, "--scene", "FloorPlan1", "--robots", "1,2", "--json"))
     assert run["success"] is True and run["notes"] == data["notes"]
+    panel = cli("run", instruction, "--scene", "FloorPlan1", "--robots", "1,2")
+    assert panel.returncode == 0 and "note: unread 'frobnicator'" in panel.stdout
 
 
 def test_export_bt_btcpp_is_behaviortree_cpp_v4_xml() -> None:
