@@ -243,3 +243,8 @@ def test_mace_thor_goals_read_exactly_do_not_regress() -> None:
 def test_a_time_adjunct_keeps_the_particle_and_a_wish_covers_its_coordinated_subjects(
         text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_by_an_object_is_beside_it() -> None:
+    assert goal(read("Put the remote by the TV.", 201)) == {"inside(RemoteControl, TVStand)"}
+    assert goal(read("By the way, slice the bread.")) == {"sliced(Bread)"}

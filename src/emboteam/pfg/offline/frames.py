@@ -362,6 +362,8 @@ def _prepositional_phrase(s: _Tail) -> str | None:
         return _GO
     s.mentions.append(head)
     s.j = k
+    if prep == "by" and head.noun is not None and head.noun.concept.kind == "object":
+        prep = "near"      # "put the remote by the TV": beside it, like "next to"
     if prep == "with" and _holding(s, head):
         return _GO
     head.role = "place"
