@@ -219,9 +219,12 @@ class OfflineFrontend:
     conditions, pronouns) -> :func:`~emboteam.pfg.offline.decompose.assemble`
     (dependencies, robots, intermediate steps).
 
-    A clause too vague to act on ("tidy up the kitchen", "sort things out") is skipped
-    with a note when another clause says what to do ("tidy up: the book goes on the
-    shelf"); an instruction with nothing actionable is an :class:`OfflineParseError`.
+    What cannot be read never sinks the instruction: a clause too vague to act on ("tidy
+    up the kitchen"), an object that names nothing in the scene, an act or a clause the
+    grammar cannot read is skipped with a note (:class:`~emboteam.pfg.reading.ReadingNote`)
+    when something else can be read; only an instruction with nothing actionable is an
+    :class:`OfflineParseError`. Opposite states asked at once ("open and close the
+    fridge") are a :class:`~emboteam.pfg.offline.consistency.ContradictoryInstruction`.
     """
 
     name = "offline"
