@@ -92,3 +92,24 @@ def test_a_round_is_interleaved_by_time_not_unit_by_unit() -> None:
     # a goal the interleaving cannot reach leaves the unit-by-unit order in place
     assert interleave(state, [fetch, opening], [*goals, *Goal.parse("closed(Fridge_1)").conditions],
                       Universe(state)) is None
+
+
+def test_interleaving_is_tried_only_where_the_unit_by_unit_order_makes_a_robot_wait() -> None:
+    from emboteam.hp.interleave import worth_it
+    from emboteam.hp.merge import SeqStep, ground_sequence
+
+    state = planning_state(WorldState.from_scene(load_scene("FloorPlan1"), parse_team("1,2")))
+
+    def steps(*xs: tuple[str, Skill, str]) -> list[SeqStep]:
+        return [SeqStep(r, Action(skill=k, target=t), "s", "u") for r, k, t in xs]
+
+    apart, _ = ground_sequence(state, steps(("robot1", Skill.GoToObject, "Fridge_1"), ("robot1", Skill.OpenObject, "Fridge_1"),
+                                            ("robot2", Skill.GoToObject, "Cabinet_1"), ("robot2", Skill.OpenObject, "Cabinet_1")))
+    assert not worth_it(apart)  # nothing in common: both start at once
+    # robot2's whole job waits for robot1's long trip: it closes the door robot1 opened
+    chained, _ = ground_sequence(state, steps(
+        ("robot1", Skill.GoToObject, "Apple_1"), ("robot1", Skill.GoToObject, "Fridge_1"),
+        ("robot1", Skill.OpenObject, "Fridge_1"), ("robot2", Skill.GoToObject, "Fridge_1"),
+        ("robot2", Skill.CloseObject, "Fridge_1"), ("robot2", Skill.GoToObject, "Toaster_1"),
+        ("robot2", Skill.SwitchOn, "Toaster_1")))
+    assert worth_it(chained)

@@ -25,12 +25,36 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from emboteam.hp.merge import GroundedStep, SeqStep, StepFailure, advance
+from emboteam.hp.merge import GroundedStep, SeqStep, StepFailure, advance, order
 from emboteam.hp.rounds import already_done, preparations
 from emboteam.pddl.domain import Universe
 from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
+
+#: a round with more steps than this keeps the unit-by-unit order: replaying it again
+#: costs a grounding per step (milliseconds each), more than it saved on the sweep's
+#: largest cells (docs/planning.md)
+MAX_STEPS = 150
+#: re-replay only when the unit-by-unit order's critical path exceeds the busiest robot's
+#: work by this factor: otherwise nobody waits enough to gain anything
+MIN_WAITING = 1.1
+
+
+def worth_it(steps: Sequence[GroundedStep]) -> bool:
+    """Does the unit-by-unit order make robots wait (cheap: no grounding)?"""
+    if len(steps) > MAX_STEPS:
+        return False
+    waits = order(steps, {}, "formal")
+    finish: list[float] = []
+    last: dict[str, int] = {}
+    work: dict[str, float] = {}
+    for j, s in enumerate(steps):
+        ready = max([finish[i] for i in waits[j]] + ([finish[last[s.robot]]] if s.robot in last else [0.0]))
+        finish.append(ready + s.seconds)
+        last[s.robot] = j
+        work[s.robot] = work.get(s.robot, 0.0) + s.seconds
+    return max(finish, default=0.0) > MIN_WAITING * max(work.values(), default=0.0)
 
 
 def interleave(base: WorldState, plans: Sequence[Sequence[SeqStep]], must_hold: Sequence[Condition],

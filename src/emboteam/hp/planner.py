@@ -40,7 +40,7 @@ from typing import Literal as TypingLiteral
 from emboteam.hp.allocation import allocate
 from emboteam.hp.contention import bottleneck_first, spot_seconds
 from emboteam.hp.decompose import decompose_goal
-from emboteam.hp.interleave import interleave
+from emboteam.hp.interleave import interleave, worth_it
 from emboteam.hp.merge import (
     GroundedStep,
     MergeMode,
@@ -359,6 +359,8 @@ class HybridPlanner:
                     protected: dict[str, tuple[Condition, frozenset[str]]], universe: Universe) -> None:
         """Replace the round's unit-by-unit sequence by its time-interleaved replay
         (:mod:`emboteam.hp.interleave`) when that reaches every goal too."""
+        if not worth_it(accepted[round_start:]):
+            return
         goals = [*(c for u, _ in plans for c in u.conditions), *(c for c, _ in protected.values())]
         mixed = interleave(base, [steps for _, steps in plans], goals, universe)
         if mixed is None:
