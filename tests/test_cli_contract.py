@@ -178,10 +178,13 @@ def test_sigkill_leaves_no_leaked_semaphore_warning(tmp_path: Path) -> None:
     (("export-bt", "open the fridge"), "needs --scene FLOORPLAN and --robots LIST"),
     (("plan", "mace-thor/fp1-toast", "--frontend", "llm", "--llm", "openai:x@notaurl"), "must start with http"),
     (("tasks", "--suite", "smart-llm:/no/such/[pfg]/emboteam[ray]"), "/no/such/[pfg]/emboteam[ray]"),
+    (("bench", "--suite", "mace-thor", "--out", "taken"), "--out taken is an existing file"),
+    (("bench", "--suite", "mace-thor", "--out", "missing/run"), "its parent folder missing does not exist"),
 ])
 def test_bad_input_says_what_is_wrong(args: tuple[str, ...], needle: str, tmp_path: Path,
                                       monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(tmp_path)
+    (tmp_path / "taken").write_text("")
     result = runner.invoke(app, list(args))
     assert result.exit_code == 2, result.output
     assert needle in one_line(result.stderr)  # brackets survive: messages are not Rich markup
