@@ -94,13 +94,18 @@ def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
         return LLMFrontend(llm).decompose(task.instruction, scene, state, team)
     if cfg.frontend == "hybrid":
         from emboteam.pfg.hybrid import HybridFrontend
+        from emboteam.pfg.llm_frontend import LLMFrontend
 
         assert llm is not None
         planner = planner_for(cfg.mode)
-        # an LLM-written or corrected spec must plan: the planner's error is fed back (and
-        # its plan is cached for plan_spec)
-        return HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when).decompose(
-            task.instruction, scene, state, team, validate=lambda spec: _plans(planner, spec, state))
+        # one feedback round (at most two calls per doubtful task): the draft stands after
+        # it, and a model that cannot fix its answer once rarely does twice. An LLM-written
+        # or corrected spec must plan: the planner's error is fed back (its plan is cached
+        # for plan_spec)
+        hybrid = HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when,
+                                llm=LLMFrontend(llm, repair_rounds=1), review_rounds=1)
+        return hybrid.decompose(task.instruction, scene, state, team,
+                                validate=lambda spec: _plans(planner, spec, state))
     reading = offline_frontend().parse(task.instruction, scene, state, team)
     if notes is not None:
         notes.extend(reading_notes(reading))
