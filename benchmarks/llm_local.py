@@ -66,7 +66,26 @@ def tasks_of(frontend: str, only: Sequence[str]) -> list[BenchTask]:
     if unknown:
         raise EmboTeamError(f"no MACE-THOR task {', '.join(unknown)}")
     ids = list(LLM_SUBSET) if frontend == "llm" else list(tasks)
-    return [tasks[i] for i in ids if not only or i in only]
+    chosen = [tasks[i] for i in ids if not only or i in only]
+    if frontend == "hybrid":  # the tasks that need no call first: a short run still covers them
+        chosen.sort(key=needs_llm)
+    return chosen
+
+
+def needs_llm(task: BenchTask) -> bool:
+    """Whether the hybrid front end will call the LLM on ``task`` (a doubtful reading or a
+    parser error), found by running the offline parser alone (milliseconds)."""
+    from emboteam.modes import offline_frontend
+    from emboteam.pfg.hybrid import as_reading
+    from emboteam.pipeline import initial_state
+    from emboteam.world.scene import load_scene
+
+    state, team = initial_state(task)
+    try:
+        return as_reading(offline_frontend().parse(task.instruction, load_scene(task.floor_plan), state,
+                                                   team)).doubtful
+    except EmboTeamError:
+        return True
 
 
 def config(frontend: str, llm: str | None, record: Path | None, timeout: float) -> RunConfig:
@@ -96,7 +115,7 @@ def save_results(data: dict[str, Any], frontend: str) -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     on_disk = load_results()
     on_disk["model"] = data["model"]
-    on_disk["runs"][frontend] = data["runs"][frontend]
+    on_disk["runs"].setdefault(frontend, {}).update(data["runs"][frontend])
     tmp = RESULTS.with_suffix(".tmp")
     tmp.write_text(json.dumps(on_disk, indent=1, sort_keys=True) + "\n")
     tmp.replace(RESULTS)
@@ -230,7 +249,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--fresh", action="store_true", help="drop the front end's cassette and results first")
     ap.add_argument("--replay", action="store_true", help="replay the cassettes and compare with results.json")
     ap.add_argument("--no-doc", action="store_true", help="do not rewrite the docs/results.md section")
+    ap.add_argument("--doc-only", action="store_true", help="only rewrite the docs/results.md section")
     args = ap.parse_args(argv)
+    if args.doc_only:
+        write_doc(load_results())
+        print(table(load_results()))
+        return 0
     try:
         if args.replay:
             diffs = replay(load_results())

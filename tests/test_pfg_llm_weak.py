@@ -4,7 +4,9 @@ instruction touches, and a failed episode still reports the calls it made."""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
+from pathlib import Path
 
 import pytest
 
@@ -112,3 +114,17 @@ def test_hybrid_episode_calls_the_llm_only_for_a_doubtful_reading() -> None:
         doubtful = run_episode(task, RunConfig(frontend="hybrid", llm=srv.spec(), llm_timeout=5))
     assert len(srv.requests) == 1 and doubtful.llm_calls == 1 and doubtful.tokens == 909
     assert "Draft by the offline parser" in srv.requests[0]["messages"][-1]["content"]
+
+
+def test_llm_without_frontend_means_hybrid_on_the_command_line(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from emboteam.cli import app
+    from emboteam.llm.cassette import Cassette
+
+    Cassette(tmp_path / "empty").open_for_recording("nothing")  # a cassette with no answers
+    result = CliRunner().invoke(app, ["run", "mace-thor/fp1-toast", "--llm", f"replay:{tmp_path / 'empty'}",
+                                      "--out", str(tmp_path / "run"), "--json"])
+    summary = json.loads(result.stdout.strip().splitlines()[-1])
+    episode = json.loads((tmp_path / "run" / "episode.json").read_text())
+    assert episode["frontend"] == "hybrid" and summary["llm_calls"] == 0 and summary["success"] is True
