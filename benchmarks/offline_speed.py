@@ -1,0 +1,70 @@
+"""Parse time of the offline front end, per instruction, once its lexicon is loaded.
+
+The target (docs/offline_parser.md): under 10 ms per instruction on average and at p95 on
+the development and held-out sets (tests/data/offline_dev.jsonl, offline_heldout.jsonl),
+errors timed too. This is a benchmark, not a unit test: wall time on a shared 2-core
+machine says little about the code, so it is measured here and reported, not asserted.
+
+    .venv/bin/python benchmarks/offline_speed.py          # a line of numbers
+    .venv/bin/python benchmarks/offline_speed.py --json   # one JSON object on stdout
+
+Exit status 0 when the target is met, 1 when it is not.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from emboteam.errors import EmboTeamError
+from emboteam.pfg.offline import OfflineFrontend
+from emboteam.pfg.offline.evaluate import initial_state, load_records
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+
+DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
+TARGET_MS = 10.0
+
+
+def measure() -> dict[str, float | int]:
+    records = load_records(DATA / "offline_dev.jsonl") + load_records(DATA / "offline_heldout.jsonl")
+    frontend = OfflineFrontend()     # builds the lexicon and spelling caches
+    team = parse_team("1,2")
+    prepared = []
+    for r in records:
+        scene = load_scene(str(r["scene"]))
+        prepared.append((str(r["instruction"]), scene, initial_state(r, scene, team)))
+    times = []
+    for text, scene, state in prepared:
+        start = time.perf_counter()
+        with contextlib.suppress(EmboTeamError):   # errors are timed too
+            frontend.decompose(text, scene, state, team)
+        times.append(time.perf_counter() - start)
+    return {"instructions": len(times), "mean_ms": round(statistics.mean(times) * 1000, 3),
+            "median_ms": round(statistics.median(times) * 1000, 3),
+            "p95_ms": round(statistics.quantiles(times, n=20)[-1] * 1000, 3),
+            "max_ms": round(max(times) * 1000, 3), "target_ms": TARGET_MS}
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    args = parser.parse_args()
+    result = measure()
+    met = result["mean_ms"] < TARGET_MS and result["p95_ms"] < TARGET_MS
+    if args.json:
+        print(json.dumps({**result, "target_met": met}))
+    else:
+        print(f"parse time over {result['instructions']} instructions: mean {result['mean_ms']} ms, "
+              f"median {result['median_ms']} ms, p95 {result['p95_ms']} ms, max {result['max_ms']} ms "
+              f"(target < {TARGET_MS:g} ms mean and p95: {'met' if met else 'NOT met'})")
+    return 0 if met else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
