@@ -11,7 +11,7 @@ from collections.abc import Sequence
 
 from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
 from emboteam.pfg.taskspec import Subtask, TaskSpec
-from emboteam.world.goals import Condition, Goal
+from emboteam.world.goals import Condition, Goal, Predicate
 from emboteam.world.state import WorldState
 
 
@@ -26,19 +26,32 @@ def group_indices(conditions: Sequence[Condition], state: WorldState, robots: Se
             i = parent[i]
         return i
 
-    owner: dict[str, int] = {}
+    def union(i: int, j: int) -> None:
+        parent[find(i)] = find(j)
+
+    # subjects, movable receptacles or vessels named (``inside(Egg_1, Pan_1)``: the plan
+    # may move the pan too; ``cold(Pan_1)`` carries it away with the egg), and subjects of
+    # open/closed, which link only to other subjects (``closed(Box)`` does not move the box
+    # things go into)
+    subj: dict[str, int] = {}
+    place: dict[str, int] = {}
+    doors: dict[str, int] = {}
+
+    def link(i: int, anchor: str, among: Sequence[dict[str, int]], mine: dict[str, int]) -> None:
+        for d in among:
+            if anchor in d:
+                union(i, d[anchor])
+        mine.setdefault(anchor, i)
+
     for i, cond in enumerate(conditions):
         part = compile_condition(cond, state, robots, slices=slices)
-        # a movable receptacle (``inside(Egg_1, Pan_1)``) or vessel is an object the plan
-        # may move as well: ``cold(Pan_1)`` carries it away with the egg
-        movable = [p for p in (*part.places, *part.vessels) if p in state.objects and state.objects[p].has("pickupable")]
-        named = movable if len(part.places) <= 2 else [v for v in movable if v in part.vessels]
-        for oid in [*part.subjects, *named]:
+        door = cond.predicate in (Predicate.open, Predicate.closed)
+        for oid in part.subjects:
             anchor = oid.split("_Slice_")[0]
-            if anchor in owner:
-                parent[find(i)] = find(owner[anchor])
-            else:
-                owner[anchor] = i
+            link(i, anchor, (subj, doors) if door else (subj, place, doors), doors if door else subj)
+        movable = [p for p in (*part.places, *part.vessels) if p in state.objects and state.objects[p].has("pickupable")]
+        for p in movable if len(part.places) <= 2 else [v for v in movable if v in part.vessels]:
+            link(i, p, (subj, place), place)
     groups: dict[int, list[int]] = {}
     for i in range(len(conditions)):
         groups.setdefault(find(i), []).append(i)
