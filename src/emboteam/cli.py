@@ -486,10 +486,10 @@ def bench(
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
     from emboteam.bench.jobs import BenchConfig, expand_jobs, modes_from_options, parse_fault_levels
-    from emboteam.sim.disturbances import Disturbances
     from emboteam.bench.runner import BenchInterrupted, run_bench
     from emboteam.bench.suites import load_suite
     from emboteam.bench.tables import bench_summary
+    from emboteam.sim.disturbances import Disturbances
 
     loaded = load_suite(suite)
     for problem in loaded.problems:
