@@ -67,6 +67,8 @@ def tasks_of(frontend: str, only: Sequence[str]) -> list[BenchTask]:
         raise EmboTeamError(f"no MACE-THOR task {', '.join(unknown)}")
     ids = list(LLM_SUBSET) if frontend == "llm" else list(tasks)
     chosen = [tasks[i] for i in ids if not only or i in only]
+    if only:  # in the order given
+        return sorted(chosen, key=lambda t: list(only).index(t.id))
     if frontend == "hybrid":  # the tasks that need no call first: a short run still covers them
         chosen.sort(key=needs_llm)
     return chosen
@@ -146,12 +148,17 @@ def record(frontends: Sequence[str], only: Sequence[str], model: Path, *, redo: 
 
 
 def replay(data: dict[str, Any]) -> list[str]:
-    """Each recorded episode again from its cassette; the differences, one line each."""
+    """Each recorded episode that used the LLM again from its cassette; the differences,
+    one line each (a hybrid task that made no call is the offline reading: not replayed)."""
     diffs: list[str] = []
     tasks = {t.id: t for t in load_mace_thor()}
     for frontend, rows in data["runs"].items():
+        if frontend == "offline":
+            continue
         for task_id, want in rows.items():
-            llm = f"replay:{cassette_dir(frontend)}" if frontend != "offline" else None
+            if frontend == "hybrid" and not want["llm_calls"]:
+                continue
+            llm = f"replay:{cassette_dir(frontend)}"
             got = row_of(tasks[task_id], config(frontend, llm, None, 60.0))
             for m in METRICS:
                 same = (got[m] or "").split(":", 1)[0] == (want[m] or "").split(":", 1)[0] if m == "error" \
@@ -212,14 +219,17 @@ def per_task(data: dict[str, Any], frontend: str) -> str:
 
 def write_doc(data: dict[str, Any]) -> None:
     """Replace this script's section of docs/results.md (between its markers)."""
+    missing = {f: [t.id for t in tasks_of(f, ()) if t.id not in data["runs"].get(f, {})] for f in ("hybrid", "llm")}
+    gaps = "; ".join(f"`{f}` has not run {', '.join(ids)} yet" for f, ids in missing.items() if ids)
     body = [START, "", "## A real local model: Qwen2.5-Coder-0.5B-Instruct through llama.cpp", "",
             f"Model `{data['model']}` (GGUF, fetched and verified by `python -m emboteam.llm.local_model`), "
             "run in process by llama.cpp on the CPU, `mode=full`, no faults, seed 0. "
             f"`llm` runs the fixed subset of {len(LLM_SUBSET)} tasks in `benchmarks/llm_local.py` "
-            "(`LLM_SUBSET`); `hybrid` runs all 42 tasks with `--llm-when doubt`. Seconds are wall-clock "
+            "(`LLM_SUBSET`); `hybrid` runs all 42 tasks with `--llm-when doubt`"
+            + (f" ({gaps}: the run is resumable)" if gaps else "") + ". Seconds are wall-clock "
             "on a shared, loaded 2-core machine (noisy); tokens are llama.cpp's prompt + completion "
             "counts. A 0.5B model is weak: these numbers say what it does, not what an LLM front end can do.",
-            "", "```", ".venv/bin/python benchmarks/llm_local.py          # records, about an hour",
+            "", "```", ".venv/bin/python benchmarks/llm_local.py          # records what is missing (resumable)",
             ".venv/bin/python benchmarks/llm_local.py --replay # the same numbers from the cassettes", "```",
             "", table(data), ""]
     for frontend in ("hybrid", "llm"):

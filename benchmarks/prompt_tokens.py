@@ -100,6 +100,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--approx", action="store_true", help="count characters / 4 instead of tokens")
     ap.add_argument("--json", action="store_true", help="one JSON object on stdout")
     args = ap.parse_args(argv)
+    count: Counter
     if args.approx:
         count, how = approx_counter, "characters / 4"
     else:
