@@ -301,6 +301,17 @@ def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) ->
     return get_task(target)
 
 
+PLANNER_INPUT_HELP = ("what Fast Downward reads: sas (our own grounded task, search binary only; default) "
+                      "| pddl (its driver and translator)")
+
+
+def _with_planner_input(cfg: Any, planner_input: str) -> Any:
+    """A RunConfig or BenchConfig with ``--planner-input`` set (checked here: one line)."""
+    if planner_input not in ("sas", "pddl"):
+        raise EmboTeamError(f"--planner-input takes sas or pddl, not {planner_input!r}")
+    return cfg.model_copy(update={"planner_input": planner_input})
+
+
 # the backslash keeps rich from reading [ai2thor] as markup in --help
 ENV_HELP = ("sim (the symbolic simulator) | ai2thor (a live AI2-THOR 5.x: pip install 'emboteam\\[ai2thor]', "
             "a display or Vulkan; docs/ai2thor.md)")
@@ -312,17 +323,6 @@ def _env(value: str) -> EnvName:
     if value == "ai2thor":
         return "ai2thor"
     raise EmboTeamError(f"unknown environment {value!r}: sim or ai2thor")
-
-
-PLANNER_INPUT_HELP = ("what Fast Downward reads: sas (our own grounded task, search binary only; default) "
-                      "| pddl (its driver and translator)")
-
-
-def _with_planner_input(cfg: Any, planner_input: str) -> Any:
-    """A RunConfig or BenchConfig with ``--planner-input`` set (checked here: one line)."""
-    if planner_input not in ("sas", "pddl"):
-        raise EmboTeamError(f"--planner-input takes sas or pddl, not {planner_input!r}")
-    return cfg.model_copy(update={"planner_input": planner_input})
 
 
 def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConfig:

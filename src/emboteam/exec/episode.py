@@ -72,7 +72,7 @@ class Episode(BaseModel):
     trace: tuple[TraceEvent, ...] = Field((), exclude=True)
 
     def summary(self) -> dict[str, object]:
-        """The fields of ``emboteam run --json`` (docs/DESIGN.md)."""
+        """The fields of ``emboteam run --json`` (docs/architecture.md)."""
         return {
             "task": self.task, "success": self.success, "gcr": round(self.gcr, 4),
             "exec": round(self.exec, 4), "makespan": round(self.makespan, 2),
