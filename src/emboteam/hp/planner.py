@@ -415,15 +415,7 @@ class HybridPlanner:
         for t in u.subtasks:
             done.add(t.id)
             unit_of[t.id] = u.id
-            if not t.final:
-                continue
-            for c in t.goal:
-                result = check_condition(c, forward)
-                objs = set(result.witnesses)
-                for w in result.witnesses:
-                    if w in forward.objects:
-                        objs.update(forward.ancestors(w))
-                protected[str(c)] = (c, frozenset(objs))
+        HybridPlanner._protect(u, forward, protected)
 
     # ---- joint planning -----------------------------------------------------------------
     def _joint(self, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str]) -> MergedPlan:
