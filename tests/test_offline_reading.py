@@ -248,3 +248,49 @@ def test_a_time_adjunct_keeps_the_particle_and_a_wish_covers_its_coordinated_sub
 def test_by_an_object_is_beside_it() -> None:
     assert goal(read("Put the remote by the TV.", 201)) == {"inside(RemoteControl, TVStand)"}
     assert goal(read("By the way, slice the bread.")) == {"sliced(Bread)"}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("If the fridge is open, close it.", {"closed(Fridge)"}),
+    ("Close the fridge if it's open.", {"closed(Fridge)"}),
+    ("If the light is on, switch it off.", {"switched_off(LightSwitch)"}),
+    ("I'd appreciate it if the fridge were closed.", {"closed(Fridge)"}),
+])
+def test_a_state_under_if_is_the_condition_of_the_act_not_a_goal(text: str, expected: set[str]) -> None:
+    reading = read(text)
+    assert goal(reading) == expected and reading.notes == ()
+
+
+def test_a_circumstance_without_objects_is_no_note() -> None:
+    reading = read("If you have time, put the apple in the fridge.")
+    assert goal(reading) == {"inside(Apple, Fridge)"} and reading.notes == ()
+
+
+def test_a_question_names_what_a_later_pronoun_switches() -> None:
+    assert goal(read("Is the stove on? Turn it off if so.")) == {"switched_off(StoveKnob)"}
+
+
+def test_a_clause_the_grammar_cannot_read_is_read_from_its_cue_words_and_marked_unsure() -> None:
+    reading = read("Leave everything else, I just need the pan in the sink.")
+    assert goal(reading) == {"inside(Pan, SinkBasin)"}
+    assert reading.unsure == ("inside(Pan, SinkBasin)",)
+    assert [n.kind for n in reading.notes] == ["assumed"]
+
+
+def test_cue_reading_never_acts_on_an_excluded_object() -> None:
+    with pytest.raises(GroundingError):
+        read("Put everything except the apple in the fridge.")
+
+
+def test_the_last_word_of_a_compound_name_names_its_type() -> None:
+    assert goal(read("Put the mug in the coffee machine and switch the machine on.")) == {
+        "inside(Mug, CoffeeMachine)", "switched_on(CoffeeMachine)"}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Chuck the apple in the fridge.", {"inside(Apple, Fridge)"}),
+    ("Throw away the apple in the sink.", {"inside(Apple, GarbageCan)"}),
+    ("Chuck the apple.", {"inside(Apple, GarbageCan)"}),
+])
+def test_a_throwing_verb_with_a_place_puts_it_there(text: str, expected: set[str]) -> None:
+    assert goal(read(text)) == expected

@@ -118,6 +118,14 @@ class Discourse:
             if self.fits(m.ref, need):
                 self._doubt_unless_alone(m.ref, need)    # the last resort
                 return m.ref
+        for m in reversed(self.history):
+            # "is the stove on? turn it off": the stove mentioned as such, switched by what
+            # switches it (its knobs), as the grounder reads "turn the stove off"
+            if m.head.noun is not None and m.head.pron is None and need is not None:
+                try:
+                    return self.g.ground(m.head, need)
+                except OfflineParseError:
+                    continue
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())

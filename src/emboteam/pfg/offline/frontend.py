@@ -9,9 +9,10 @@ from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
-from emboteam.pfg.offline.clauses import THEN, Clause, segment
+from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.corrections import apply_corrections
+from emboteam.pfg.offline.cues import candidate_frames
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
@@ -86,6 +87,8 @@ def _unread(clause: Clause, parsed: ParsedClause) -> bool:
                  for k, it in enumerate(items))      # "is", not the "be" of "should be"
     if parsed.means is not None or parsed.also or stated:
         return False
+    if clause.link not in (AND, THEN) and not any(i.noun is not None for i in items):
+        return False     # "if you have time", "before you leave": a circumstance
     if items and items[0].text in ("not", "instead", "rather", "except"):
         return False     # "not the apple", "instead of the cup": a rejected alternative
     if _known_objects(items):
@@ -111,6 +114,18 @@ def _vague_phrase(clause: Clause) -> str | None:
         if m:
             return m.group(0)
     return None
+
+
+def _drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
+    """"If the fridge is open, close it": a state under "if" is the condition of an act
+    of its sentence, not a goal (its objects stay for the pronouns). Without such an act
+    the "if" clause is what is wished ("I'd appreciate it if the laptop were closed")."""
+    for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
+        if c.link != "if" or not p.frames or any(f.act is not None for f in p.frames):
+            continue
+        if any(q.sentence == c.sentence and j != k and any(f.act is not None for f in r.frames)
+               for j, (q, r) in enumerate(zip(clauses, parsed, strict=True))):
+            parsed[k] = replace(p, frames=[])
 
 
 def _attach_means(parsed: list[ParsedClause]) -> None:
@@ -209,6 +224,27 @@ def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
             del drafts[ci]
 
 
+def _read_cues(clause: Clause, semantics: Semantics, ci: int) -> list[Draft]:
+    """The drafts of a clause read from its cue words (:mod:`~emboteam.pfg.offline.cues`):
+    the first candidate of each kind that the scene grounds, no placement beside an act
+    that already places."""
+    out: list[Draft] = []
+    kinds: set[str] = set()
+    for kind, frame in candidate_frames(clause):
+        if kind in kinds or (kind == "place" and "places" in kinds):
+            continue
+        try:
+            got = semantics.frame(frame, ci)
+        except OfflineParseError:
+            continue
+        if got:
+            out = concat(out, got)
+            kinds.add(kind)
+            if frame.act in (lexicon.Act.PLACE, lexicon.Act.TRASH):
+                kinds.add("places")
+    return out
+
+
 class OfflineFrontend:
     """Rule-based semantic parser: instruction -> TaskSpec, deterministic and offline.
 
@@ -278,6 +314,7 @@ class OfflineFrontend:
                     unread.append(ReadingNote(dropped, "not understood; read the rest of the "
                                                        "clause without it"))
             parsed_clauses.append(parsed)
+        _drop_conditions(clauses, parsed_clauses)
         _attach_means(parsed_clauses)
         _share_objects(clauses, parsed_clauses)
         _gapped_objects(clauses, parsed_clauses)
@@ -293,13 +330,21 @@ class OfflineFrontend:
                     phrase=chore, vague=True))
                 continue
             if not parsed.frames:
+                if _unread(clause, parsed):
+                    cued = _read_cues(clause, semantics, ci)
+                    if cued:
+                        drafts[ci] = cued
+                        guessed.add(ci)
+                        unread.append(ReadingNote(clause.text, "read from its key words: the "
+                                                  "sentence's structure was not understood", "assumed"))
+                        continue
+                    unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
                 for h in parsed.mentions:
                     semantics.note(h, ci)
                 unknown.extend(parsed.unknown)
-                if _unread(clause, parsed):
-                    unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
                 continue
             out: list[Draft] = []
+            failed_before = len(failed)
             for frame in parsed.frames:
                 verbs_seen = True
                 try:
@@ -310,6 +355,13 @@ class OfflineFrontend:
                     # be read is skipped with a note when another act can be
                     (skipped if frame.weak or exc.vague else failed).append(exc)
                     continue
+            if not out and (len(failed) > failed_before or not any(
+                    f.report or f.negated or f.past for f in parsed.frames)):
+                out = _read_cues(clause, semantics, ci)
+                if out:
+                    guessed.add(ci)
+                    unread.append(ReadingNote(clause.text, "read from its key words: the "
+                                              "sentence's structure was not understood", "assumed"))
             if out:
                 drafts[ci] = out
                 continue

@@ -18,6 +18,7 @@ together (``coffeetable``): :func:`nouns` adds those entries from the catalogue.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import Enum
 from functools import cache
@@ -663,7 +664,24 @@ def nouns() -> dict[str, Concept]:
         for key in (spaced, spaced.replace(" ", "")):
             out.setdefault(key, _obj(name))
     out.setdefault("tv stand", _obj("TVStand"))
+    _add_compound_heads(out, cat.types, source)
     return out
+
+
+def _add_compound_heads(out: dict[str, Concept], types: Iterable[str], source: set[str]) -> None:
+    """"Put the mug in the coffee machine and switch the machine on": the last word of a
+    compound type name ("machine", "control", "chain") names that type when the word means
+    nothing else to the parser; several types sharing the word are one concept (the
+    grounder keeps those in the scene)."""
+    reserved = COMMON_WORDS | ROBOT_WORDS | MEASURE_WORDS | PARTICLES | set(VERBS) | set(STATES)
+    heads: dict[str, list[str]] = {}
+    for name in types:
+        words = split_camel(name).lower().split()
+        if len(words) > 1 and name not in source:
+            heads.setdefault(words[-1], []).append(name)
+    for word, named in sorted(heads.items()):
+        if word not in out and word not in reserved:
+            out[word] = Concept(word, tuple(sorted(named)))
 
 
 @cache

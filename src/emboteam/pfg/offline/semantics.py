@@ -103,6 +103,10 @@ def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef 
                      receptacle=receptacle, liquid=liquid)
 
 
+#: verbs that discard alone ("chuck it") but move to a place when one is said
+_THROWING = frozenset({"chuck", "throw", "toss", "dump", "fling", "lob"})
+
+
 class Semantics:
     """Turns frames into drafts, keeping the mention history for pronouns."""
 
@@ -562,6 +566,11 @@ class Semantics:
         return self._place(frame, t, g, clause)
 
     def _trash_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        """Into the garbage can, unless a verb of motion has a place: "chuck the apple in
+        the fridge" puts it there; "throw away the cloth in the tub" and "bin the cloth in
+        the tub" discard it (the place says which cloth)."""
+        if t.dest and frame.verb in _THROWING and frame.particle is None:
+            return self._place(frame, t, g, clause)
         obj = self.ground(t.head, "hold", g, clause)
         can = self.g.types_ref(("GarbageCan",), "garbage can")
         return self._each(P.inside, obj, can, receptacle=can.single())

@@ -1,0 +1,138 @@
+"""Reading a clause the grammar could not, from its cue words and what the scene allows.
+
+The clause grammar (:mod:`~emboteam.pfg.offline.frames`) must accept a clause to read it;
+people do not always say things in a shape it knows ("I just need the pan in the sink",
+"if you could get a potato cooked and onto a plate"). Such a clause still carries cues:
+an act or a state word, the objects it names and the places they go. This reader turns
+the cues into candidate frames, most specific first, and lets the semantics
+(:class:`~emboteam.pfg.offline.semantics.Semantics`) decide: a candidate the scene cannot
+ground (no such object, no receptacle that takes it, no skill in the team) is dropped,
+and the first one that grounds is the reading. Whatever it gives is marked unsure (the
+hybrid front end shows it to the LLM) and reported with a note saying it was read from
+its cue words.
+
+Kept apart from the grammar on purpose: it never decides what the grammar reads, it only
+reads what the grammar left unread.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.clauses import Clause
+from emboteam.pfg.offline.phrases import Frame, Head, Target, np_start, parse_np
+from emboteam.pfg.offline.tagger import Item
+
+Act = lx.Act
+Stat = lx.Stat
+
+#: prepositions (canonical, :data:`lexicon.PREPOSITIONS`) that introduce where an object goes
+_PLACE_PREPS = frozenset({"in", "on", "to", "at", "near", "by", "under"})
+#: acts that say nothing about the goal on their own ("get", "leave", "go"): a cue only
+#: together with a state word or a place
+_GENERIC_ACTS = frozenset({Act.CAUSE, Act.GO, Act.MAKE, Act.VAGUE})
+#: words after which a noun phrase is what is NOT meant ("all but the apple", "not the
+#: knife", "instead of the cup")
+_EXCLUDING = frozenset({"except", "but", "besides", "apart", "other", "instead", "rather", "not",
+                        "excluding", "without"})
+#: nouns that name no object ("everything", "the room")
+_NOT_OBJECTS = frozenset({"anything", "room"})
+
+
+@dataclass
+class Cues:
+    """What a clause says, word by word, without its structure."""
+
+    acts: list[tuple[Act, str]] = field(default_factory=list)
+    states: list[tuple[Stat, bool]] = field(default_factory=list)
+    #: noun phrases acted on, in order
+    objects: list[Head] = field(default_factory=list)
+    #: noun phrases after a place preposition, with that preposition
+    places: list[tuple[str, Head]] = field(default_factory=list)
+    negated: bool = False
+
+
+def _act_of(it: Item, nxt: Item | None) -> Act | None:
+    """The act a verb names, a switch verb resolved by its particle ("turn ... off")."""
+    if it.verb is None:
+        return None
+    act = it.verb.sense.act
+    if act is Act.SWITCH and nxt is not None and nxt.particle in ("on", "off"):
+        return Act.SWITCH_ON if nxt.particle == "on" else Act.SWITCH_OFF
+    return act
+
+
+def collect(items: list[Item]) -> Cues:
+    """The cues of a clause: verbs, state words, noun phrases and the places they go."""
+    cues = Cues()
+    j, n = 0, len(items)
+    prep: str | None = None
+    excluded = False
+    while j < n:
+        it = items[j]
+        if it.neg and not excluded:
+            cues.negated = True
+        if it.text in _EXCLUDING:
+            excluded = True        # "everything except the apple": the apple is left alone
+            j += 1
+            continue
+        if it.prep is not None and lx.PREPOSITIONS.get(it.text) in _PLACE_PREPS \
+                and j + 1 < n and np_start(items[j + 1]):
+            prep = lx.PREPOSITIONS[it.text]
+            j += 1
+            continue
+        if np_start(it) and not (it.verb is not None and it.det is False and it.noun is None):
+            head, k = parse_np(items, j)
+            if head is not None and k > j:
+                if excluded or (head.noun is not None and head.noun.concept.kind in _NOT_OBJECTS):
+                    pass           # "leave everything else": no object to act on
+                elif prep is not None:
+                    cues.places.append((prep, head))
+                else:
+                    cues.objects.append(head)
+                prep = None
+                excluded = False
+                j = k
+                continue
+        prep = None
+        if it.punct is not None and cues.objects and not cues.places:
+            cues.objects = []      # "leave the rest, I need the pan in the sink": the span with the place
+        act = _act_of(it, items[j + 1] if j + 1 < n else None)
+        if act is not None and it.noun is None:
+            cues.acts.append((act, it.text))
+        elif it.state is not None and (it.verb is None or it.prep is None):
+            cues.states.append(it.state)
+        j += 1
+    return cues
+
+
+def _targets(objects: list[Head], places: list[tuple[str, Head]]) -> list[Target]:
+    """One target per object, every object going to the last place named."""
+    if not places:
+        return [Target(h) for h in objects]
+    prep, dest = places[-1]
+    return [Target(h, [dest], "in" if prep == "in" else "on") for h in objects]
+
+
+def candidate_frames(clause: Clause) -> list[tuple[str, Frame]]:
+    """Frames the clause's cues allow, each with its kind, most specific first: the
+    clause's own act on its objects ("act"), a state word asked of them ("state"), a
+    placement when places are said ("place"). The caller keeps at most one of each kind,
+    and no placement beside an act that already places."""
+    cues = collect(clause.items)
+    if cues.negated or not cues.objects:
+        return []      # "don't ...": a prohibition is no goal; no object: nothing to act on
+    text = clause.text
+    out: list[tuple[str, Frame]] = []
+    for act, verb in cues.acts:
+        if act in _GENERIC_ACTS or (act is Act.PLACE and not cues.places):
+            continue
+        places = cues.places if act in (Act.PLACE, Act.TRASH) else []
+        out.append(("act", Frame(act, verb, _targets(cues.objects, places), text=text)))
+    for state in cues.states:
+        out.append(("state", Frame(Act.CAUSE, "get", [Target(h) for h in cues.objects], state=state,
+                                   text=text)))
+    if cues.places:
+        out.append(("place", Frame(Act.PLACE, "put", _targets(cues.objects, cues.places), text=text)))
+    return out
