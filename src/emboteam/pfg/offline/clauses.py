@@ -36,6 +36,9 @@ class Clause:
 
 
 _SENTENCE_END = frozenset(".!?;:")
+#: ordinals that number the steps of a spoken list
+_LIST_ORDINALS = frozenset({"first", "firstly", "second", "secondly", "third", "thirdly", "fourth",
+                            "fourthly", "fifth", "fifthly"})
 _HUMAN = frozenset({"i", "we", "you", "someone", "somebody", "nobody", "anyone", "anybody",
                     "everyone", "everybody", "they", "he", "she", "one"})
 _VERB_CUES = frozenset({"should", "must", "will", "can", "could", "would", "to", "please",
@@ -219,6 +222,12 @@ def subject_here(items: list[Item], j: int) -> str | None:
     return None
 
 
+def _after_commas(items: list[Item], j: int) -> int:
+    while j < len(items) and items[j].punct == ",":
+        j += 1
+    return j
+
+
 def segment(items: list[Item]) -> list[Clause]:
     """Clauses in textual order."""
     clauses: list[Clause] = []
@@ -238,6 +247,15 @@ def segment(items: list[Item]) -> list[Clause]:
             boundary: str | None = None
             skip = 1
             if it.seq is not None:
+                boundary = THEN
+            elif it.text in _LIST_ORDINALS and (j == 0 or not sentence[j - 1].det) \
+                    and verb_here(sentence, _after_commas(sentence, j + 1)):
+                # "first open the fridge, second take out the egg, third close it": an
+                # ordinal before a verb numbers the steps of a list
+                skip = _after_commas(sentence, j + 1) - j
+                if not any(x.is_content() for x in current.items):
+                    j += skip
+                    continue
                 boundary = THEN
             elif it.robot is not None and current.items and any(x.is_content() for x in current.items):
                 boundary = AND
