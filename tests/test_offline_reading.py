@@ -294,3 +294,26 @@ def test_the_last_word_of_a_compound_name_names_its_type() -> None:
 ])
 def test_a_throwing_verb_with_a_place_puts_it_there(text: str, expected: set[str]) -> None:
     assert goal(read(text)) == expected
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("I'd love it if the fridge were shut and the apple were on the counter when I get home.",
+     {"closed(Fridge)", "inside(Apple, CounterTop)"}),
+    ("When I come back I want the light off.", {"switched_off(LightSwitch)"}),
+    ("Before you go put the apple in the fridge.", {"inside(Apple, Fridge)"}),
+    ("After you slice the bread put it on a plate.", {"sliced(Bread)", "inside(Bread, Plate)"}),
+])
+def test_a_persons_own_doings_under_a_subordinator_are_a_time(text: str, expected: set[str]) -> None:
+    reading = read(text)
+    assert goal(reading) == expected and reading.notes == ()
+
+
+def test_a_causative_with_a_participle_asks_for_the_participles_act() -> None:
+    assert goal(read("Pot on the stove, get it heating.")) == {"inside(Pot, StoveBurner)", "hot(Pot)"}
+
+
+def test_ordinals_number_the_steps_of_a_list() -> None:
+    assert goal(read("First open the fridge, second take out the egg, third close the fridge again.")) \
+        == {"held(Egg)", "closed(Fridge)"}
+    assert goal(read("Slice the bread and put the first slice in the toaster.")) == {
+        "sliced(Bread)", "inside(BreadSliced, Toaster)"}

@@ -257,6 +257,22 @@ def segment(items: list[Item]) -> list[Clause]:
                     j += skip
                     continue
                 boundary = THEN
+            elif current.link not in (AND, THEN) and it.text in _HUMAN and j + 1 < len(sentence) \
+                    and (sentence[j + 1].verb is not None or sentence[j + 1].copula) \
+                    and any(x.verb is not None or x.particle is not None for x in current.items):
+                # "when I come back I want the light off": the main clause after a
+                # subordinate one, without a comma between them
+                boundary = AND
+                skip = 0
+            elif current.link not in (AND, THEN) and len(current.items) >= 2 \
+                    and current.items[0].text in _HUMAN \
+                    and any((x.verb is not None and x.noun is None) or x.particle is not None
+                            for x in current.items[1:]) \
+                    and it.verb is not None and it.noun is None and verb_here(sentence, j):
+                # "before you go put the apple in the fridge": a person's act, then the
+                # request
+                boundary = AND
+                skip = 0
             elif it.robot is not None and current.items and any(x.is_content() for x in current.items):
                 boundary = AND
                 skip = 0

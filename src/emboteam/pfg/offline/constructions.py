@@ -8,6 +8,7 @@ coffee"), durations ("for a couple of minutes"), and reports of where things are
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
@@ -127,6 +128,27 @@ def light_verb(items: list[Item]) -> list[Item]:
     if v is None:
         return items
     return [items[v], *items[:k], *items[v + 1:]]
+
+
+#: verbs that make something happen to an object: "get the kettle boiling"
+_CAUSATIVES = frozenset({"get", "have", "keep", "set"})
+_NO_ACT = frozenset({Act.CAUSE, Act.GO, Act.MAKE, Act.VAGUE})
+
+
+def causative_progressive(items: list[Item]) -> list[Item]:
+    """"get it heating", "have the kettle boiling", "set the toaster going" -> "heat it",
+    "boil the kettle": the participle is the act, the causative verb only asks for it."""
+    first = items[0]
+    if first.verb is None or first.verb.lemma not in _CAUSATIVES:
+        return items
+    head, k = parse_np(items, 1)
+    if head is None or k >= len(items):
+        return items
+    verb = items[k].verb
+    if verb is None or verb.form != "ing" or verb.sense.act in _NO_ACT:
+        return items
+    base = replace(items[k], verb=replace(verb, form="base"), text=verb.lemma, noun=None, state=None)
+    return [base, *items[1:k], *items[k + 1:]]
 
 
 def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:

@@ -26,6 +26,7 @@ from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause, team_subject
 from emboteam.pfg.offline.constructions import (
     DURATION,
+    causative_progressive,
     instrument_clause,
     light_verb,
     noun_phrase_wish,
@@ -836,7 +837,7 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
     frames: list[Frame] = []
     if not items:
         return ParsedClause(clause, [], mentions, unknown)
-    items = light_verb(items)
+    items = causative_progressive(light_verb(items))
     if len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were"):
         # "there's a bottle of wine in the cupboard": introduces a referent and where it is
         found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))

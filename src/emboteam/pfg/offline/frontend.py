@@ -116,16 +116,65 @@ def _vague_phrase(clause: Clause) -> str | None:
     return None
 
 
-def _drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
+#: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
+_NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
+#: a person's own doings under "when", "before", "if": "when I get home", "before you go"
+#: are a time, not a request
+_PERSON = frozenset({"i", "we", "you"})
+
+
+def _requests(p: ParsedClause) -> bool:
+    return any(f.act not in _NO_REQUEST and not f.report and not f.wish for f in p.frames)
+
+
+def condition_groups(clauses: list[Clause]) -> list[list[int]]:
+    """The clauses of each "if": the "if" clause and the clauses it coordinates ("if the
+    laptop were shut and the pillow were on the armchair")."""
+    groups: list[list[int]] = []
+    for k, c in enumerate(clauses):
+        if c.link == "if":
+            groups.append([k])
+        elif groups and groups[-1][-1] == k - 1 and c.link == AND and c.sentence == clauses[k - 1].sentence \
+                and not (c.items and c.items[0].verb is not None):
+            groups[-1].append(k)
+    return groups
+
+
+def _drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"If the fridge is open, close it": a state under "if" is the condition of an act
     of its sentence, not a goal (its objects stay for the pronouns). Without such an act
-    the "if" clause is what is wished ("I'd appreciate it if the laptop were closed")."""
+    the "if" clauses are what is wished ("I'd appreciate it if the laptop were closed").
+    "When I get home": the speaker's own doings under a subordinator are a time. Returns
+    the clauses that were read this way (no note for them)."""
+    silent: set[int] = set()
     for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
-        if c.link != "if" or not p.frames or any(f.act is not None for f in p.frames):
-            continue
-        if any(q.sentence == c.sentence and j != k and any(f.act is not None for f in r.frames)
-               for j, (q, r) in enumerate(zip(clauses, parsed, strict=True))):
+        if c.link not in (AND, THEN, "purpose") and c.items and c.items[0].text in _PERSON \
+                and all(f.act in _NO_REQUEST and f.state is None for f in p.frames) \
+                and not any(h.noun is not None and h.noun.concept.kind not in ("room", "anything")
+                            for h in p.mentions):
             parsed[k] = replace(p, frames=[])
+            silent.add(k)
+    for group in condition_groups(clauses):
+        if any(_requests(parsed[k]) for k in group):
+            continue
+        sentence = clauses[group[0]].sentence
+        acted = any(clauses[j].sentence == sentence and j not in group and _requests(parsed[j])
+                    for j in range(len(clauses)))
+        for k in group:
+            if acted:
+                parsed[k] = replace(parsed[k], frames=[])
+            elif any(f.report for f in parsed[k].frames):
+                # "... and the pillow were on the armchair": wished, as the "if" is
+                parsed[k] = parse_clause(clauses[k], directive=True)
+        if not acted:
+            for j, c in enumerate(clauses):
+                # "I'd love it if ...": the "it" is what the "if" says, nothing of its own
+                if c.sentence == sentence and j not in group and parsed[j].frames and all(
+                        f.act in _NO_REQUEST and all(t.head.pron is not None for t in f.targets)
+                        for f in parsed[j].frames):
+                    parsed[j] = replace(parsed[j], frames=[], mentions=[])
+                    silent.add(j)
+    return silent
 
 
 def _attach_means(parsed: list[ParsedClause]) -> None:
@@ -314,7 +363,7 @@ class OfflineFrontend:
                     unread.append(ReadingNote(dropped, "not understood; read the rest of the "
                                                        "clause without it"))
             parsed_clauses.append(parsed)
-        _drop_conditions(clauses, parsed_clauses)
+        silent = _drop_conditions(clauses, parsed_clauses)
         _attach_means(parsed_clauses)
         _share_objects(clauses, parsed_clauses)
         _gapped_objects(clauses, parsed_clauses)
@@ -330,7 +379,7 @@ class OfflineFrontend:
                     phrase=chore, vague=True))
                 continue
             if not parsed.frames:
-                if _unread(clause, parsed):
+                if ci not in silent and _unread(clause, parsed):
                     cued = _read_cues(clause, semantics, ci)
                     if cued:
                         drafts[ci] = cued
