@@ -317,3 +317,25 @@ def test_ordinals_number_the_steps_of_a_list() -> None:
         == {"held(Egg)", "closed(Fridge)"}
     assert goal(read("Slice the bread and put the first slice in the toaster.")) == {
         "sliced(Bread)", "inside(BreadSliced, Toaster)"}
+
+
+def test_a_list_of_noun_phrases_names_each_for_a_later_pronoun() -> None:
+    assert goal(read("Keys, watch and the credit card - pop all three in the box.", 201)) == {
+        "inside(KeyChain, Box)", "inside(Watch, Box)", "inside(CreditCard, Box)"}
+
+
+def test_holding_on_the_way_to_a_place_is_no_subtask() -> None:
+    reading = read("Take the apple and the tomato out of the fridge and put them on the counter.")
+    assert goal(reading) == {"inside(Apple, CounterTop)", "inside(Tomato, CounterTop)"}
+    assert len(reading.spec.subtasks) == 2 and all(s.final for s in reading.spec.subtasks)
+
+
+@pytest.mark.parametrize("text", ["There's no toilet paper on the holder.",
+                                  "We're out of loo roll on the holder - there's one on the shelf."])
+def test_something_missing_from_its_place_asks_to_put_it_there(text: str) -> None:
+    assert goal(read(text, 414)) == {"inside(ToiletPaper, ToiletPaperHanger)"}
+
+
+def test_a_sentence_adverb_after_but_does_not_hide_the_next_clause() -> None:
+    assert goal(read("Put the apple in the fridge, but honestly the tomato should go in the bowl.")) == {
+        "inside(Apple, Fridge)", "inside(Tomato, Bowl)"}

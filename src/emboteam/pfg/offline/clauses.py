@@ -222,6 +222,13 @@ def subject_here(items: list[Item], j: int) -> str | None:
     return None
 
 
+def _sentence_adverb(it: Item) -> bool:
+    """"..., but honestly the egg has gone off": an adverb that comments on the clause
+    (no reading of its own, ends in -ly) does not hide where the clause starts."""
+    return it.text.endswith("ly") and len(it.text) > 4 and not it.is_content() and it.prep is None \
+        and it.number is None and it.seq is None and it.sub is None
+
+
 def _after_commas(items: list[Item], j: int) -> int:
     while j < len(items) and items[j].punct == ",":
         j += 1
@@ -279,7 +286,8 @@ def segment(items: list[Item]) -> list[Clause]:
             elif it.text == "as well as" or ((it.text in (",", "and", "but", "plus")
                                              or it.punct == ",") and j + 1 < len(sentence)):
                 k = j + 1
-                while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")):
+                while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")
+                                             or _sentence_adverb(sentence[k])):
                     k += 1
                 comma = any(sentence[x].punct == "," for x in range(j, k))
                 if k < len(sentence) and _starts_new(sentence, k, current.items, comma):

@@ -151,6 +151,26 @@ def causative_progressive(items: list[Item]) -> list[Item]:
     return [base, *items[1:k], *items[k + 1:]]
 
 
+def absent_from(items: list[Item], text: str) -> Frame | None:
+    """"there's no loo roll on the holder", "no soap in the dish": a complaint that
+    something is missing from its place asks to put it there (``items`` start after
+    "there is"); without a place there is nothing to ask."""
+    if not items or not items[0].neg or items[0].text != "no":
+        return None
+    head, k = parse_np(items, 1)
+    if head is None or head.noun is None or k >= len(items):
+        return None
+    prep = lx.PREPOSITIONS.get(items[k].text)
+    if prep not in ("in", "on", "at") or k + 1 >= len(items):
+        return None
+    place, _ = parse_np(items, k + 1)
+    if place is None or place.noun is None:
+        return None
+    place.role = "dest"
+    return Frame(Act.PLACE, "put", [Target(head, [place], "in" if prep == "in" else "on")], text=text,
+                 wish=True)
+
+
 def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
     """A clause that is only noun phrases naming a dish or a state: "a boiled egg,
     please", "two slices of toast", "a cold apple would be great" (the politeness is

@@ -26,6 +26,7 @@ from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause, team_subject
 from emboteam.pfg.offline.constructions import (
     DURATION,
+    absent_from,
     causative_progressive,
     instrument_clause,
     light_verb,
@@ -839,6 +840,9 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
         return ParsedClause(clause, [], mentions, unknown)
     items = causative_progressive(light_verb(items))
     if len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were"):
+        missing = absent_from(items[2:], clause.text)
+        if missing is not None:
+            return ParsedClause(clause, [missing], mentions, unknown_words(mentions))
         # "there's a bottle of wine in the cupboard": introduces a referent and where it is
         found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))
         for f in found:

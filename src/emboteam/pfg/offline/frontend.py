@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import logging
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
@@ -75,7 +75,8 @@ def _known_objects(items: list[Item]) -> list[Head] | None:
     if not all(i.noun is not None or i.det or i.quant is not None or i.pron
                or i.number is not None or i.text in lexicon.COMMON_WORDS for i in words):
         return None
-    return np_list(words)
+    # commas stay: they separate the phrases of a list ("keys, watch and the card")
+    return np_list([i for i in items if i.punct in (None, ",")]) or np_list(words)
 
 
 def _unread(clause: Clause, parsed: ParsedClause) -> bool:
@@ -247,17 +248,11 @@ _FULFILS: dict[Predicate, frozenset[Predicate]] = {
 }
 
 
-def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
-    """"I'd love a warm slice of bread - toast some for me": the wish introduces what a
-    later clause says how to make; toasting makes it warm (cooking heats), so the wish adds
-    no subtask of its own."""
+def _drop_drafts(drafts: dict[int, list[Draft]], gone_of: Callable[[int, Draft], bool]) -> None:
+    """Remove the drafts ``gone_of(clause, draft)`` picks, keeping the others' order
+    (their ``after`` indices renumbered)."""
     for ci in sorted(drafts):
-        later = [c for cj, ds in drafts.items() if cj > ci for d in ds if not d.wished
-                 for c in d.conditions]
-        gone = {k for k, d in enumerate(drafts[ci]) if d.wished and all(
-            any(c2.predicate in _FULFILS.get(c.predicate, frozenset())
-                and refs_overlap(c.subject, c2.subject) for c2 in later)
-            for c in d.conditions)}
+        gone = {k for k, d in enumerate(drafts[ci]) if gone_of(ci, d)}
         if not gone:
             continue
         kept = [k for k in range(len(drafts[ci])) if k not in gone]
@@ -271,6 +266,34 @@ def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
             drafts[ci] = out
         else:
             del drafts[ci]
+
+
+def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
+    """"I'd love a warm slice of bread - toast some for me": the wish introduces what a
+    later clause says how to make; toasting makes it warm (cooking heats), so the wish adds
+    no subtask of its own."""
+    def fulfilled(ci: int, d: Draft) -> bool:
+        later = [c for cj, ds in drafts.items() if cj > ci for e in ds if not e.wished
+                 for c in e.conditions]
+        return d.wished and all(any(c2.predicate in _FULFILS.get(c.predicate, frozenset())
+                                    and refs_overlap(c.subject, c2.subject) for c2 in later)
+                                for c in d.conditions)
+    _drop_drafts(drafts, fulfilled)
+
+
+def _drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
+    """"Take the sponge and the towels out of the cupboard and put them on the counter":
+    holding is how they get there, not a goal of its own (and two things held "at once"
+    would ask for two free hands)."""
+    placed = [(ci, k, c) for ci, ds in drafts.items() for k, d in enumerate(ds) for c in d.conditions
+              if c.predicate is Predicate.inside]
+
+    def before_placing(ci: int, d: Draft) -> bool:
+        return bool(d.conditions) and all(
+            c.predicate is Predicate.held and any(
+                cj >= ci and refs_overlap(c.subject, p.subject) for cj, _, p in placed)
+            for c in d.conditions)
+    _drop_drafts(drafts, before_placing)
 
 
 def _read_cues(clause: Clause, semantics: Semantics, ci: int) -> list[Draft]:
@@ -388,7 +411,9 @@ class OfflineFrontend:
                                                   "sentence's structure was not understood", "assumed"))
                         continue
                     unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
-                for h in parsed.mentions:
+                # "keys, watch and the credit card - pop all three in the box": a clause of
+                # noun phrases names every one of them ("watch" is no verb here)
+                for h in _known_objects(clause.items) or parsed.mentions:
                     semantics.note(h, ci)
                 unknown.extend(parsed.unknown)
                 continue
@@ -419,6 +444,7 @@ class OfflineFrontend:
             if not any(f.act is not None or f.state is not None for f in parsed.frames):
                 unknown.extend(parsed.unknown)
         _drop_fulfilled_wishes(drafts)
+        _drop_holds_before_placing(drafts)
         if not drafts:
             if failed:
                 raise failed[0]

@@ -319,6 +319,8 @@ IDIOMS: tuple[tuple[str, str], ...] = (
     (r"\bmake (?:a |some |the )?(?:cup|mug|pot) of coffee\b", "make coffee"),
     (r"\bbrew (?:a |some )?coffee\b", "make coffee"),
     (r"\bwould you mind\b", "please"),
+    # "we're out of loo roll on the holder": what has run out is missing from its place
+    (r"\b(?:we|i) (?:are|am|have|have run|ran|run|have just run) (?:all )?out of\b", "there is no"),
     # daylight comes in through the blinds
     (r"\blet (?:some |more |the |a bit of |a little )?(?:natural |day|sun|)(?:light|sunlight|"
      r"sunshine) in\b", "open the blinds"),
