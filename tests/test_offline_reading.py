@@ -339,3 +339,14 @@ def test_something_missing_from_its_place_asks_to_put_it_there(text: str) -> Non
 def test_a_sentence_adverb_after_but_does_not_hide_the_next_clause() -> None:
     assert goal(read("Put the apple in the fridge, but honestly the tomato should go in the bowl.")) == {
         "inside(Apple, Fridge)", "inside(Tomato, Bowl)"}
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Bed: pillow and phone. Desk: book and laptop.", 303,
+     {"inside(Pillow, Bed)", "inside(CellPhone, Bed)", "inside(Book, Desk)", "inside(Laptop, Desk)"}),
+    ("Things for the box: the pen, the pencil and the book.", 201,
+     {"inside(Pen, Box)", "inside(Pencil, Box)", "inside(Book, Box)"}),
+])
+def test_a_place_before_a_colon_labels_the_objects_after_it(text: str, fp: int, expected: set[str]) -> None:
+    reading = read(text, fp)
+    assert goal(reading) == expected and reading.notes == ()

@@ -103,14 +103,20 @@ def _without_robot_words(items: list[Item]) -> list[Item]:
 
 
 def split_sentences(items: list[Item]) -> list[list[Item]]:
-    out: list[list[Item]] = [[]]
+    return [s for s, _ in _sentences(items)]
+
+
+def _sentences(items: list[Item]) -> list[tuple[list[Item], str | None]]:
+    """The sentences, each with the punctuation that ends it."""
+    out: list[tuple[list[Item], str | None]] = [([], None)]
     for it in items:
         if it.punct in _SENTENCE_END:
-            if out[-1]:
-                out.append([])
+            if out[-1][0]:
+                out[-1] = (out[-1][0], it.punct)
+                out.append(([], None))
             continue
-        out[-1].append(it)
-    return [s for s in out if s]
+        out[-1][0].append(it)
+    return [(s, end) for s, end in out if s]
 
 
 #: team members named without a number: "one of you", "the other", "another robot"
@@ -239,7 +245,7 @@ def segment(items: list[Item]) -> list[Clause]:
     """Clauses in textual order."""
     clauses: list[Clause] = []
     robot: tuple[str, int] | None = None
-    for s_index, sentence in enumerate(split_sentences(items)):
+    for s_index, (sentence, end) in enumerate(_sentences(items)):
         sentence_robot: tuple[str, int] | None = None
         current = Clause([], AND, None, s_index, initial=True)
         first_in_sentence = True
@@ -314,6 +320,8 @@ def segment(items: list[Item]) -> list[Clause]:
                 first_in_sentence = False
             current = Clause([], boundary, None, s_index, initial=first_in_sentence)
             j += skip
+        if end == ":":
+            current.extra["colon"] = "1"     # "Bed: pillow and teddy": a label for what follows
         close(current)
         # robots: "robot 2, open the box" addresses its clause and the rest of the sentence;
         # a clause that is only a robot name ("Robot 1:") addresses everything until the

@@ -18,7 +18,7 @@ from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.morphology import warm_spelling
-from emboteam.pfg.offline.phrases import Head, ParsedClause, Target, np_list, np_start
+from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import Item, tag
 from emboteam.pfg.offline.text import normalize
@@ -176,6 +176,34 @@ def _drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[i
                     parsed[j] = replace(parsed[j], frames=[], mentions=[])
                     silent.add(j)
     return silent
+
+
+def _labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
+    """"Bed: pillow and teddy. Desk: book and laptop.", "Things for the box: the pen and
+    the pencil.": a place before a colon, then only objects, puts them there. Returns the
+    label clauses (read, no note)."""
+    labels: set[int] = set()
+    for k in range(len(clauses) - 1):
+        c, nxt = clauses[k], clauses[k + 1]
+        # "things for the desk" reads as a placement that lacks its place
+        placing = all(f.act is lexicon.Act.PLACE and not any(t.dest for t in f.targets)
+                      for f in parsed[k].frames)
+        if not c.extra.get("colon") or not placing or parsed[k + 1].frames \
+                or nxt.sentence != c.sentence + 1:
+            continue
+        label = [h for h in parsed[k].mentions if h.noun is not None] or _known_objects(c.items)
+        if not label:
+            continue
+        place = label[-1]
+        heads = _known_objects(nxt.items)
+        if place.noun is None or not heads or any(h.noun is None for h in heads):
+            continue
+        place.role = "dest"
+        parsed[k].frames = []
+        parsed[k + 1].frames = [Frame(lexicon.Act.PLACE, "put", [Target(h, [place], "in") for h in heads],
+                                      text=nxt.text)]
+        labels.add(k)
+    return labels
 
 
 def _attach_means(parsed: list[ParsedClause]) -> None:
@@ -387,6 +415,7 @@ class OfflineFrontend:
                                                        "clause without it"))
             parsed_clauses.append(parsed)
         silent = _drop_conditions(clauses, parsed_clauses)
+        silent |= _labelled_lists(clauses, parsed_clauses)
         _attach_means(parsed_clauses)
         _share_objects(clauses, parsed_clauses)
         _gapped_objects(clauses, parsed_clauses)
