@@ -350,3 +350,12 @@ def test_a_sentence_adverb_after_but_does_not_hide_the_next_clause() -> None:
 def test_a_place_before_a_colon_labels_the_objects_after_it(text: str, fp: int, expected: set[str]) -> None:
     reading = read(text, fp)
     assert goal(reading) == expected and reading.notes == ()
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("If you could get a potato cooked and onto a plate that'd be amazing.",
+     {"cooked(Potato)", "inside(Potato, Plate)"}),
+    ("Get the bread sliced and the egg into the fridge.", {"sliced(Bread)", "inside(Egg, Fridge)"}),
+])
+def test_a_state_and_a_place_each_go_to_their_own_objects(text: str, expected: set[str]) -> None:
+    assert goal(read(text)) == expected

@@ -427,6 +427,10 @@ def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
     second place for the same objects makes the first where they were; with no object,
     the appliance is the means."""
     waiting = [t for t in s.pending if not t.dest]
+    stated = [k for k, t in enumerate(s.pending) if t.state is not None and not t.dest]
+    if stated and stated[-1] < len(s.pending) - 1:
+        # "get the bread sliced and the egg into the fridge": the place is the egg's only
+        waiting = [t for t in s.pending[stated[-1] + 1:] if not t.dest]
     adjacent = at == s.dest_end
     if not waiting and prep in ("under", "near") and adjacent:
         return

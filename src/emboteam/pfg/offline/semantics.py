@@ -238,9 +238,17 @@ class Semantics:
     def _state(self, frame: Frame, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
         out: list[Draft] = []
         failed: list[OfflineParseError] = []
-        for t in self._targets(frame):
+        targets = self._targets(frame)
+        own_states = any(t.state is not None for t in targets)
+        for t in targets:
             try:
-                out += self._state_of(t, state, flip, clause)
+                placed = bool(t.dest) and not (frame.report or flip)
+                if not (placed and own_states and t.state is None):
+                    # "get the bread sliced and the egg into the fridge": the egg has only
+                    # its place; "get a potato cooked and onto a plate": both
+                    out = concat(out, self._state_of(t, state, flip, clause))
+                if placed:
+                    out = concat(out, self._place(frame, t, self._group, clause))
             except OfflineParseError as exc:
                 failed.append(exc)      # "ugh, the light is on": the light still is
         if failed and not out:
