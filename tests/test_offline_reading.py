@@ -359,3 +359,10 @@ def test_a_place_before_a_colon_labels_the_objects_after_it(text: str, fp: int, 
 ])
 def test_a_state_and_a_place_each_go_to_their_own_objects(text: str, expected: set[str]) -> None:
     assert goal(read(text)) == expected
+
+
+def test_where_something_is_said_to_be_is_no_request() -> None:
+    reading = read("Make me a coffee, the mug's in one of the cupboards I think.")
+    assert goal(reading) == {"filled(Mug, coffee)", "hot(Mug)"}
+    with pytest.raises(OfflineParseError):
+        read("The mug's in one of the cupboards, I think.")

@@ -40,6 +40,20 @@ _EXCLUDING = frozenset({"except", "but", "besides", "apart", "other", "instead",
 _NOT_OBJECTS = frozenset({"anything", "room"})
 
 
+#: forms of "be": a clause with one and no act is a statement about how things are
+_BE = frozenset({"is", "are", "was", "were", "am", "be", "been", "being", "s", "re", "m"})
+#: "should be", "needs to be": a wished state, not a statement
+_MODAL_BEFORE_BE = frozenset({"should", "must", "could", "would", "will", "can", "might", "may",
+                              "shall", "to"})
+
+
+def is_statement(items: list[Item]) -> bool:
+    """Does the clause say how things are ("the mug is in the cupboard")? A form of "be"
+    that no modal turns into a wish ("should be", "needs to be")."""
+    return any(it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
+               for k, it in enumerate(items))
+
+
 @dataclass
 class Cues:
     """What a clause says, word by word, without its structure."""
@@ -120,6 +134,8 @@ def candidate_frames(clause: Clause) -> list[tuple[str, Frame]]:
     clause's own act on its objects ("act"), a state word asked of them ("state"), a
     placement when places are said ("place"). The caller keeps at most one of each kind,
     and no placement beside an act that already places."""
+    if is_statement(clause.items):
+        return []      # "the mug's in one of the cupboards, I think": where it is, not a request
     cues = collect(clause.items)
     if cues.negated or not cues.objects:
         return []      # "don't ...": a prohibition is no goal; no object: nothing to act on

@@ -12,7 +12,7 @@ from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.corrections import apply_corrections
-from emboteam.pfg.offline.cues import candidate_frames
+from emboteam.pfg.offline.cues import candidate_frames, is_statement
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
@@ -41,13 +41,6 @@ ParseResult = Reading
 def _note(exc: OfflineParseError) -> ReadingNote:
     """A skipped clause as the note the user sees: the span and why."""
     return ReadingNote(exc.phrase or "", exc.message, "vague" if exc.vague else "unread")
-
-
-#: forms of "be": a clause with one and no act is a statement about how things are
-_BE = frozenset({"is", "are", "was", "were", "am", "be", "been", "being", "s", "re", "m"})
-#: "should be", "needs to be": a wished state, not a statement
-_MODAL_BEFORE_BE = frozenset({"should", "must", "could", "would", "will", "can", "might", "may",
-                              "shall", "to"})
 
 
 def _reread_after_prefix(clause: Clause, directive: bool) -> tuple[ParsedClause, str] | None:
@@ -84,8 +77,7 @@ def _unread(clause: Clause, parsed: ParsedClause) -> bool:
     ("my phone is on the bed", "there's a potato on the counter") introduces objects, and
     thanks and small talk carry no content words; "then wibble the tomato" does."""
     items = clause.items
-    stated = any(it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
-                 for k, it in enumerate(items))      # "is", not the "be" of "should be"
+    stated = is_statement(items)
     if parsed.means is not None or parsed.also or stated:
         return False
     if clause.link not in (AND, THEN) and not any(i.noun is not None for i in items):

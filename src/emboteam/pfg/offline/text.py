@@ -38,7 +38,10 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     # "the lamp's off", "the faucet's dripping": "is" before a state, an adverb or a
     # participle; otherwise a possessive
     (r"'s(?=\s+(?:still|not|now|already|always|again|on|off|open|closed|shut|dirty|clean|"
-     r"empty|full|broken|wide|too|so|very|really|left|been|\w+ing|\w+ed)\b)", " is"),
+     r"empty|full|broken|wide|too|so|very|really|left|been|\w+ing|\w+ed|"
+     # "the mug's in one of the cupboards": a place or an article after it, never a noun
+     r"in|on|inside|under|by|next|behind|near|at|over|here|there|gone|somewhere|probably|"
+     r"maybe|a|an|the)\b)", " is"),
     (r"'s\b", ""),          # possessive: "the robot's arm" -> "the robot arm"
     (r"s'(?=\s|$)", "s"),   # plural possessive
     (r"'", ""),
