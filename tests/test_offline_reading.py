@@ -366,3 +366,18 @@ def test_where_something_is_said_to_be_is_no_request() -> None:
     assert goal(reading) == {"filled(Mug, coffee)", "hot(Mug)"}
     with pytest.raises(OfflineParseError):
         read("The mug's in one of the cupboards, I think.")
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Turn every light off except the desk lamp.", {"switched_off(LightSwitch)"}),
+    ("Put all the vegetables except the potato in the fridge.",
+     {"inside(Lettuce, Fridge)", "inside(Tomato, Fridge)"}),
+])
+def test_except_leaves_its_objects_out_of_a_quantified_phrase(text: str, expected: set[str]) -> None:
+    fp = 303 if "lamp" in text else 1
+    assert goal(read(text, fp)) == expected
+
+
+def test_nothing_left_after_except_is_an_error_not_the_left_out_object() -> None:
+    with pytest.raises(OfflineParseError):
+        read("Put all the fruit except the apple in the fridge.")

@@ -99,7 +99,10 @@ def collect(items: list[Item]) -> Cues:
         if np_start(it) and not (it.verb is not None and it.det is False and it.noun is None):
             head, k = parse_np(items, j)
             if head is not None and k > j:
-                if excluded or (head.noun is not None and head.noun.concept.kind in _NOT_OBJECTS):
+                if excluded:
+                    if cues.objects:     # "all the fruit except the apple"
+                        cues.objects[-1].excluded.append(head)
+                elif head.noun is not None and head.noun.concept.kind in _NOT_OBJECTS:
                     pass           # "leave everything else": no object to act on
                 elif prep is not None:
                     cues.places.append((prep, head))

@@ -329,8 +329,12 @@ def _rejected_alternative(s: _Tail) -> str | None:
     if s.j < n and items[s.j].prep is not None:
         _, s.j = parse_np(items, s.j + 1)
     elif s.j < n and np_start(items[s.j]) and items[s.j].verb is None:
-        _, k = parse_np(items, s.j)
+        left_out, k = parse_np(items, s.j)
         s.j = max(k, s.j + 1)
+        whole = s.pending[-1].head if s.pending else None
+        if left_out is not None and whole is not None and not it.neg and (
+                whole.quant is not None or whole.plural):
+            whole.excluded.append(left_out)   # "every light except the desk lamp"
     return _GO
 
 

@@ -54,6 +54,8 @@ class Head:
     role: str = "object"
     #: "the cabinet it's in", "the drawer the spoon is in": the one that holds this
     container_of: Head | None = None
+    #: "all the lights except the desk lamp": what the phrase leaves out
+    excluded: list[Head] = field(default_factory=list)
 
     @property
     def is_empty(self) -> bool:

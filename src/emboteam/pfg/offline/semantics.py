@@ -141,9 +141,35 @@ class Semantics:
                 ref = Ref(head.label(), ((ObjectRef(types=types), 1),))
             elif role == "object":
                 ref = self.discourse.bind_salient(ref, head)
+        if head.excluded:
+            ref = self._without(ref, head.excluded)
         self.history.append(Mention(ref, head, clause, group, role))
         self.discourse.remember_places(ref, head)
         return ref
+
+    def _without(self, ref: Ref, excluded: list[Head]) -> Ref:
+        """"all the lights except the desk lamp": the reference less the types left out
+        (a left-out phrase that names nothing here leaves it as it is)."""
+        gone: set[str] = set()
+        for h in excluded:
+            try:
+                gone |= set(self.g.ground(h, None).type_names())
+            except OfflineParseError:
+                continue
+        groups = []
+        for r, n in ref.groups:
+            if r.id is not None:
+                if r.id.split("_")[0] not in gone:
+                    groups.append((r, n))
+                continue
+            kept = tuple(t for t in r.types if t not in gone)
+            if kept:
+                groups.append((ObjectRef(types=kept), n))
+        if not groups:
+            raise OfflineParseError(f"nothing is left of {ref.label!r} once "
+                                    f"{', '.join(h.label() for h in excluded)} is left out",
+                                    phrase=ref.label)
+        return Ref(ref.label, tuple(groups), ref.plural)
 
     def note(self, head: Head, clause: int, role: str | None = None) -> None:
         """Record a mention of a clause that produced nothing (for later pronouns):
