@@ -381,3 +381,9 @@ def test_except_leaves_its_objects_out_of_a_quantified_phrase(text: str, expecte
 def test_nothing_left_after_except_is_an_error_not_the_left_out_object() -> None:
     with pytest.raises(OfflineParseError):
         read("Put all the fruit except the apple in the fridge.")
+
+
+@pytest.mark.parametrize("text", ["Put the apple in the fridge. Cheers love", "Put the apple in the fridge, love you!"])
+def test_small_talk_is_no_note(text: str) -> None:
+    reading = read(text)
+    assert goal(reading) == {"inside(Apple, Fridge)"} and reading.notes == ()

@@ -116,6 +116,17 @@ _NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MA
 _PERSON = frozenset({"i", "we", "you"})
 
 
+def _small_talk(clause: Clause) -> bool:
+    """"Cheers love", "love you!", "you're a star": no object, no state, no pronoun to
+    act on, and only verbs that ask for nothing by themselves."""
+    items = clause.items
+    if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
+           or i.recipe is not None for i in items):
+        return False
+    verbs = [i.verb for i in items if i.verb is not None]
+    return bool(verbs) and all(v.sense.act in _NO_REQUEST for v in verbs)
+
+
 def _requests(p: ParsedClause) -> bool:
     return any(f.act not in _NO_REQUEST and not f.report and not f.wish for f in p.frames)
 
@@ -388,6 +399,7 @@ class OfflineFrontend:
         guessed: set[int] = set()       # clauses read without their unreadable first words
         verbs_seen = False
         parsed_clauses: list[ParsedClause] = []
+        chat: set[int] = set()          # small talk: no note
         for k, c in enumerate(clauses):
             # "make sure the fridge is closed, the stove is off": the wish reaches over the
             # comma to the next statement of the same sentence
@@ -395,7 +407,10 @@ class OfflineFrontend:
             inherit = before is not None and before.directive and clauses[k - 1].sentence == \
                 c.sentence and c.link == "and"
             parsed = parse_clause(c, directive=inherit)
-            if not parsed.frames and _unread(c, parsed):
+            if _small_talk(c):
+                parsed = replace(parsed, frames=[])
+                chat.add(k)
+            elif not parsed.frames and _unread(c, parsed):
                 # "I reckon you should chuck the egg in the bin", "swap the TV off": read
                 # from the first place the grammar can read, the words before it are a note
                 # and what it gives is unsure
@@ -406,7 +421,7 @@ class OfflineFrontend:
                     unread.append(ReadingNote(dropped, "not understood; read the rest of the "
                                                        "clause without it"))
             parsed_clauses.append(parsed)
-        silent = _drop_conditions(clauses, parsed_clauses)
+        silent = _drop_conditions(clauses, parsed_clauses) | chat
         silent |= _labelled_lists(clauses, parsed_clauses)
         _attach_means(parsed_clauses)
         _share_objects(clauses, parsed_clauses)
