@@ -387,3 +387,12 @@ def test_nothing_left_after_except_is_an_error_not_the_left_out_object() -> None
 def test_small_talk_is_no_note(text: str) -> None:
     reading = read(text)
     assert goal(reading) == {"inside(Apple, Fridge)"} and reading.notes == ()
+
+
+def test_a_real_word_is_no_typo_outside_the_places_lexicon_words_stand() -> None:
+    assert goal(read("I keep losing my keys. Put them in the box.", 201)) == {"inside(KeyChain, Box)"}
+    assert goal(read("Then slcie the bread.")) == {"sliced(Bread)"}    # typos are still corrected
+
+
+def test_a_participle_clause_asks_its_state_of_the_objects_before_it() -> None:
+    assert goal(read("I'd like my mug washed and then filled with water.")) == {"clean(Mug)", "filled(Mug, water)"}

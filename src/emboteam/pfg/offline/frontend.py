@@ -242,6 +242,22 @@ def _share_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
         frame.targets = [Target(t.head, [], None) for t in nxt.frames[0].targets]
 
 
+def _elided_participle(clause: Clause, before: ParsedClause | None) -> list[Frame]:
+    """"I'd like my mug washed and then filled with water": a clause that is only a
+    state participle asks that state of the objects of the clause before it."""
+    words = [i for i in clause.items if i.punct is None and i.text not in lexicon.FILLER_WORDS]
+    if before is None or not before.frames or not words or words[0].state is None \
+            or words[0].verb is None or words[0].verb.form != "ed" or words[0].noun is not None or before.clause.sentence != clause.sentence \
+            or any(np_start(i) and i.liquid is None for i in words[1:]):
+        return []
+    targets = [t for f in before.frames for t in f.targets if t.head.noun is not None or t.head.pron]
+    if not targets:
+        return []
+    liquid = next((i.liquid for i in words if i.liquid is not None), None)
+    return [Frame(lexicon.Act.CAUSE, "get", [Target(t.head) for t in targets], state=words[0].state,
+                  liquid=liquid, text=clause.text)]
+
+
 def _gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
     """"Put the apple in the fridge, then the tomato" (". Then the tomato."): a clause that
     is only objects, sequenced right after an act, has that act (gapping)."""
@@ -410,6 +426,8 @@ class OfflineFrontend:
             if _small_talk(c):
                 parsed = replace(parsed, frames=[])
                 chat.add(k)
+            elif not parsed.frames and (elided := _elided_participle(c, before)):
+                parsed = replace(parsed, frames=elided)
             elif not parsed.frames and _unread(c, parsed):
                 # "I reckon you should chuck the egg in the bin", "swap the TV off": read
                 # from the first place the grammar can read, the words before it are a note

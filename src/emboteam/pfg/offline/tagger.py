@@ -15,7 +15,13 @@ import re
 from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.morphology import correct, singular, singular_candidates, verb_lemma
+from emboteam.pfg.offline.morphology import (
+    correct,
+    is_english_word,
+    singular,
+    singular_candidates,
+    verb_lemma,
+)
 from emboteam.pfg.offline.text import PUNCT, tokenize
 
 
@@ -114,6 +120,10 @@ def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
     return None
 
 
+#: words after which a clause's verb comes
+_CLAUSE_OPENERS = frozenset({"and", "then", "please", "pls", "plz", "also", "just", "now", "to"})
+
+
 def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
     """Join words split by a space ("micro wave") and correct typos ("frigde")."""
     vocab = lx.vocabulary()
@@ -132,7 +142,11 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
                 and not singular(w, lx.noun_words())[1] and w not in lx.PLURAL_NOUNS:
             after_det = bool(out) and (out[-1] in lx.DETERMINERS or out[-1] in lx.NUMBERS
                                        or out[-1].isdigit())
-            fix = correct(w, after_det)
+            # a real English word is a typo only where the lexicon's words stand: an object
+            # after a determiner ("the coach"), a verb starting a clause ("brake the egg");
+            # elsewhere it is a word the parser does not need ("I keep losing my keys")
+            slot = after_det or not out or out[-1] in PUNCT or out[-1] in _CLAUSE_OPENERS
+            fix = None if not slot and is_english_word(w) else correct(w, after_det)
             if fix is None and w.endswith("s"):
                 stem = correct(w[:-1], after_det)
                 fix = stem + "s" if stem is not None else None
