@@ -396,3 +396,13 @@ def test_a_real_word_is_no_typo_outside_the_places_lexicon_words_stand() -> None
 
 def test_a_participle_clause_asks_its_state_of_the_objects_before_it() -> None:
     assert goal(read("I'd like my mug washed and then filled with water.")) == {"clean(Mug)", "filled(Mug, water)"}
+
+
+def test_a_stranded_preposition_points_at_the_place_just_mentioned() -> None:
+    assert goal(read("Open a drawer, put the keychain and the credit card in, and close it.", 303)) == {
+        "inside(KeyChain, Drawer)", "inside(CreditCard, Drawer)", "closed(Drawer)"}
+
+
+def test_a_pointing_question_describes_and_its_pronoun_is_the_thing_not_the_landmark() -> None:
+    reading = read("See the box on the coffee table? Put the watch and the keys in it.", 201)
+    assert goal(reading) == {"inside(Watch, Box)", "inside(KeyChain, Box)"} and reading.notes == ()

@@ -322,6 +322,9 @@ def segment(items: list[Item]) -> list[Clause]:
             j += skip
         if end == ":":
             current.extra["colon"] = "1"     # "Bed: pillow and teddy": a label for what follows
+        if end == "?":
+            for c in [*(c for c in clauses if c.sentence == s_index), current]:
+                c.extra["question"] = "1"
         close(current)
         # robots: "robot 2, open the box" addresses its clause and the rest of the sentence;
         # a clause that is only a robot name ("Robot 1:") addresses everything until the

@@ -103,6 +103,10 @@ class Discourse:
                 return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
             if m.ref.plural and self.fits(m.ref, need):
                 return m.ref
+        if prefer != "object":
+            described = self._described_place(need)
+            if described is not None:
+                return described
         # what the last clauses acted on before where they put it ("put the lettuce in the
         # fridge after washing it": the lettuce), unless only a place fits ("close it")
         order = ("object", "place") if prefer == "object" else ("place", "object")
@@ -129,6 +133,19 @@ class Discourse:
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _described_place(self, need: str | None) -> Ref | None:
+        """"See the box on the coffee table? Put the watch in it.": a place pronoun means
+        the thing last described by where it is, not the landmark that describes it."""
+        last_place = next((m for m in reversed(self.history)
+                           if m.role != "object" and m.head.pron is None), None)
+        if last_place is None:
+            return None
+        for m in reversed(self.history):
+            if m.role == "object" and m.head.location and self.fits(m.ref, need) and any(
+                    land is last_place.head for _, land in m.head.location):
+                return m.ref
+        return None
 
     def _doubt_unless_alone(self, ref: Ref, need: str | None) -> None:
         """A pronoun resolved by a fallback is a guess when something else mentioned

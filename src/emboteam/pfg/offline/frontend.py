@@ -11,6 +11,7 @@ from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
+from emboteam.pfg.offline.constructions import places_to_locations
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import candidate_frames, is_statement
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
@@ -114,6 +115,19 @@ _NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MA
 #: a person's own doings under "when", "before", "if": "when I get home", "before you go"
 #: are a time, not a request
 _PERSON = frozenset({"i", "we", "you"})
+
+
+#: verbs of a question that points something out ("see the box on the table?")
+_POINTING = frozenset({"see", "notice", "spot", "remember", "know"})
+
+
+def _pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
+    """Is the clause a question pointing at an object and where it is?"""
+    words = [i.text for i in clause.items if i.punct is None]
+    while words and words[0] in ("do", "did", "can", "you", "could"):
+        words = words[1:]
+    return bool(clause.extra.get("question")) and bool(words) and words[0] in _POINTING and \
+        bool(parsed.frames) and all(f.act is lexicon.Act.PLACE for f in parsed.frames)
 
 
 def _small_talk(clause: Clause) -> bool:
@@ -423,6 +437,7 @@ class OfflineFrontend:
             inherit = before is not None and before.directive and clauses[k - 1].sentence == \
                 c.sentence and c.link == "and"
             parsed = parse_clause(c, directive=inherit)
+            dropped: str | None = None
             if _small_talk(c):
                 parsed = replace(parsed, frames=[])
                 chat.add(k)
@@ -435,9 +450,16 @@ class OfflineFrontend:
                 reread = _reread_after_prefix(c, inherit)
                 if reread is not None:
                     parsed, dropped = reread
-                    guessed.add(k)
-                    unread.append(ReadingNote(dropped, "not understood; read the rest of the "
-                                                       "clause without it"))
+            if _pointing_question(c, parsed):
+                # "(do you) see the box on the coffee table?": where the box is, for what
+                # follows, not a request
+                for f in parsed.frames:
+                    places_to_locations(f)
+                parsed = replace(parsed, frames=[])
+                chat.add(k)
+            elif dropped is not None:
+                guessed.add(k)
+                unread.append(ReadingNote(dropped, "not understood; read the rest of the clause without it"))
             parsed_clauses.append(parsed)
         silent = _drop_conditions(clauses, parsed_clauses) | chat
         silent |= _labelled_lists(clauses, parsed_clauses)

@@ -587,6 +587,10 @@ class Semantics:
             return self._each(P.inside, obj, dest, receptacle=dest.single())
         if frame.particle == "back":
             return self._put_back(frame, t, g, clause)
+        stranded = self._stranded_place(frame, head)
+        if stranded is not None:
+            obj = self.ground(head, "hold", g, clause)
+            return self._each(P.inside, obj, stranded, receptacle=stranded.single())
         if frame.verb in _VERBS_TO_BIN:
             return Act.TRASH
         if frame.verb in _VERBS_TO_HAND or frame.recipient:
@@ -594,6 +598,22 @@ class Semantics:
         raise OfflineParseError(f"where should {head.label()!r} go? "
                                 f"('{frame.verb or 'put'} {head.label()} in/on ...')",
                                 phrase=frame.text, vague=True)
+
+    def _stranded_place(self, frame: Frame, head: Head) -> Ref | None:
+        """"Open a drawer, put the keys in, and close it": a preposition left at the end
+        of the clause points at the last thing mentioned that can take the object."""
+        words = frame.text.split()
+        if not words or words[-1] not in ("in", "inside", "on", "there", "onto", "into"):
+            return None
+        types = head.noun.concept.types if head.noun is not None else ()
+        for m in reversed(self.history):
+            places = [r for r in m.ref.type_names()
+                      if r in self.cat.types and self.cat.types[r].has("receptacle")]
+            if m.head is head or m.head.noun is None or not places:
+                continue
+            if not types or any(self.cat.can_place(t, r) for t in types for r in places):
+                return m.ref
+        return None
 
     # ---- one rule per act (the verb -> condition table of docs/offline_parser.md) ---------
     def _place_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
