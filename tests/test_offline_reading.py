@@ -406,3 +406,28 @@ def test_a_stranded_preposition_points_at_the_place_just_mentioned() -> None:
 def test_a_pointing_question_describes_and_its_pronoun_is_the_thing_not_the_landmark() -> None:
     reading = read("See the box on the coffee table? Put the watch and the keys in it.", 201)
     assert goal(reading) == {"inside(Watch, Box)", "inside(KeyChain, Box)"} and reading.notes == ()
+
+
+def test_numbered_items_after_a_colon_are_each_a_request() -> None:
+    reading = read("Three things: 1) the apple goes in the fridge, 2) the mug onto the counter, "
+                   "3) switch the light off.")
+    assert goal(reading) == {"inside(Apple, Fridge)", "inside(Mug, CounterTop)", "switched_off(LightSwitch)"}
+
+
+def test_pieces_of_a_pronoun_are_pieces_of_its_antecedent() -> None:
+    assert goal(read("Cut the lettuce up and put two pieces of it in the bowl.")) == {
+        "sliced(Lettuce)", "inside(2 of LettuceSliced, Bowl)"}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("The kettle is empty. Fill it at the sink, then put it on the stove and boil it.",
+     {"filled(Kettle, water)", "inside(Kettle, StoveBurner)", "hot(Kettle)"}),
+    ("Put the egg in the pot and boil it.", {"inside(Egg, Pot)", "cooked(Egg)"}),
+])
+def test_boiling_it_heats_water_in_a_vessel_and_cooks_food(text: str, expected: set[str]) -> None:
+    assert goal(read(text)) == expected
+
+
+def test_a_where_question_names_the_antecedent_of_later_pronouns() -> None:
+    assert goal(read("Where's the pot? Oh right, it's in a cupboard. Get it out and put it on the stove.")) \
+        == {"inside(Pot, StoveBurner)"}

@@ -259,6 +259,15 @@ def segment(items: list[Item]) -> list[Clause]:
             it = sentence[j]
             boundary: str | None = None
             skip = 1
+            if it.number is not None and (j == 0 or sentence[j - 1].punct is not None) \
+                    and j + 1 < len(sentence) and sentence[j + 1].punct is not None:
+                # "three things: 1) the wine goes in the fridge, 2) the phone on the counter":
+                # a number between punctuation numbers an item of a list
+                if any(x.is_content() for x in current.items):
+                    close(current)
+                    current = Clause([], AND, None, s_index, initial=False)
+                j += 2
+                continue
             if it.seq is not None:
                 boundary = THEN
             elif it.text in _LIST_ORDINALS and (j == 0 or not sentence[j - 1].det) \

@@ -61,6 +61,15 @@ class Discourse:
             raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
                                     phrase=head.label())
         plural = head.pron in ("them", "they", "these", "those", "themselves", "ones")
+        if head.piece and head.pron in ("it", "them"):
+            # "cut it up and put two pieces of it in the bowl": the pieces of what "it" is
+            whole = self.resolve(replace(head, piece=False, count=None), None, prefer)
+            products = [self.cat.slice_product(t) for t in whole.type_names()]
+            kinds = tuple(p[0] for p in products if p is not None)
+            if kinds:
+                n = head.count or 1
+                return Ref(head.label(), ((ObjectRef(types=kinds), n),), n > 1)
+            return whole
         if head.piece and head.pron is None:
             # "the slices": pieces of the last thing that can be cut (of each of the things
             # cut together: "slice the apple and the tomato, put the slices in a bowl")

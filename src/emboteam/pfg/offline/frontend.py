@@ -13,7 +13,7 @@ from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.constructions import places_to_locations
 from emboteam.pfg.offline.corrections import apply_corrections
-from emboteam.pfg.offline.cues import candidate_frames, is_statement
+from emboteam.pfg.offline.cues import candidate_frames, collect, is_statement
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
@@ -357,6 +357,12 @@ def _drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
     _drop_drafts(drafts, before_placing)
 
 
+def _cue_mentions(clause: Clause) -> list[Head]:
+    """The noun phrases of a clause the grammar found none in ("where's the pot?")."""
+    cues = collect(clause.items)
+    return [*cues.objects, *(h for _, h in cues.places)]
+
+
 def _read_cues(clause: Clause, semantics: Semantics, ci: int) -> list[Draft]:
     """The drafts of a clause read from its cue words (:mod:`~emboteam.pfg.offline.cues`):
     the first candidate of each kind that the scene grounds, no placement beside an act
@@ -489,7 +495,7 @@ class OfflineFrontend:
                     unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
                 # "keys, watch and the credit card - pop all three in the box": a clause of
                 # noun phrases names every one of them ("watch" is no verb here)
-                for h in _known_objects(clause.items) or parsed.mentions:
+                for h in _known_objects(clause.items) or parsed.mentions or _cue_mentions(clause):
                     semantics.note(h, ci)
                 unknown.extend(parsed.unknown)
                 continue

@@ -724,7 +724,19 @@ class Semantics:
         return self._place(frame, Target(t.head, [origin], "in"), g, clause, obj)
 
     def _is_water(self, head: Head) -> bool:
-        """"boil water", "boil the kettle": water is no object, what holds it is."""
+        """"boil water", "boil the kettle" (or "boil it", the kettle): water is no object,
+        what holds it is."""
+        if head.pron is not None and head.noun is None:
+            try:
+                self.discourse.resolve(head, "cook")
+                return False           # "put the egg in the pot and boil it": the egg
+            except OfflineParseError:
+                pass
+            try:
+                meant = self.discourse.resolve(head, "fill").type_names()
+            except OfflineParseError:
+                return False
+            return bool(meant) and all(self.g.can(x, "fill") and not self.g.can(x, "cook") for x in meant)
         if head.noun is None:
             return head.liquid == "water"
         if head.contents is not None:
