@@ -431,3 +431,19 @@ def test_boiling_it_heats_water_in_a_vessel_and_cooks_food(text: str, expected: 
 def test_a_where_question_names_the_antecedent_of_later_pronouns() -> None:
     assert goal(read("Where's the pot? Oh right, it's in a cupboard. Get it out and put it on the stove.")) \
         == {"inside(Pot, StoveBurner)"}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Fill the kettle at the sink and put it on the stove to boil.",
+     {"filled(Kettle, water)", "inside(Kettle, StoveBurner)", "hot(Kettle)"}),
+    ("Put the potato in the microwave to heat it up.", {"inside(Potato, Microwave)", "hot(Potato)"}),
+    ("Leave the mug in the sink to soak.", {"inside(Mug, SinkBasin)"}),
+])
+def test_a_purpose_infinitive_asks_its_act_of_what_was_placed(text: str, expected: set[str]) -> None:
+    assert goal(read(text)) == expected
+
+
+def test_a_guess_where_something_is_is_no_request() -> None:
+    reading = read("I fancy a coffee. The mug should be in a cabinet somewhere.")
+    assert goal(reading) == {"filled(Mug, coffee)", "hot(Mug)"}
+    assert goal(read("The mug should be in the cabinet.")) == {"inside(Mug, Cabinet)"}

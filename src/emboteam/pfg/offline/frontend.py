@@ -121,6 +121,40 @@ _PERSON = frozenset({"i", "we", "you"})
 _POINTING = frozenset({"see", "notice", "spot", "remember", "know"})
 
 
+#: acts a purpose infinitive asks of what was just placed ("put it on the hob to boil")
+_PURPOSE_ACTS = frozenset({lexicon.Act.HEAT, lexicon.Act.COOK, lexicon.Act.COOL, lexicon.Act.CLEAN,
+                           lexicon.Act.MICROWAVE, lexicon.Act.TOAST})
+
+
+def _purpose_acts(clause: Clause, parsed: ParsedClause) -> None:
+    """"put the kettle on the hob to boil", "pop the wine in the fridge to chill": the
+    placement is for the act after "to", which is asked of the same objects."""
+    items = clause.items
+    placing = [f for f in parsed.frames if f.act in (lexicon.Act.PLACE, lexicon.Act.GO)]
+    if not placing:
+        return
+    for k in range(len(items) - 1):
+        verb = items[k + 1].verb
+        if items[k].text == "to" and verb is not None and verb.sense.act in _PURPOSE_ACTS \
+                and items[k + 1].noun is None and (k + 2 >= len(items) or not np_start(items[k + 2])
+                                                   or items[k + 2].pron in ("it", "them")):
+            heads = [t.head for f in placing for t in f.targets]
+            parsed.frames.append(Frame(verb.sense.act, verb.lemma, [Target(h) for h in heads],
+                                       text=clause.text))
+            return
+
+
+#: words that make "X should be in Y" a guess about where X is, not a wish
+_WHEREABOUTS = frozenset({"somewhere", "probably", "presumably", "somewhere in", "anywhere"})
+
+
+def _whereabouts(clause: Clause, parsed: ParsedClause) -> bool:
+    """"The mug should be in a cabinet somewhere", "the remote must be on the sofa
+    somewhere": a verbless placement with a word of guessing says where something is."""
+    return any(i.text in _WHEREABOUTS for i in clause.items) and bool(parsed.frames) and all(
+        f.act is lexicon.Act.PLACE and not f.verb for f in parsed.frames)
+
+
 def _pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
     """Is the clause a question pointing at an object and where it is?"""
     words = [i.text for i in clause.items if i.punct is None]
@@ -456,7 +490,7 @@ class OfflineFrontend:
                 reread = _reread_after_prefix(c, inherit)
                 if reread is not None:
                     parsed, dropped = reread
-            if _pointing_question(c, parsed):
+            if _pointing_question(c, parsed) or _whereabouts(c, parsed):
                 # "(do you) see the box on the coffee table?": where the box is, for what
                 # follows, not a request
                 for f in parsed.frames:
@@ -466,6 +500,7 @@ class OfflineFrontend:
             elif dropped is not None:
                 guessed.add(k)
                 unread.append(ReadingNote(dropped, "not understood; read the rest of the clause without it"))
+            _purpose_acts(c, parsed)
             parsed_clauses.append(parsed)
         silent = _drop_conditions(clauses, parsed_clauses) | chat
         silent |= _labelled_lists(clauses, parsed_clauses)

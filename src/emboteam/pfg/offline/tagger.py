@@ -121,7 +121,7 @@ def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
 
 
 #: words after which a clause's verb comes
-_CLAUSE_OPENERS = frozenset({"and", "then", "please", "pls", "plz", "also", "just", "now", "to"})
+_CLAUSE_OPENERS = frozenset({"and", "then", "please", "pls", "plz", "also", "just", "now"})
 
 
 def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
