@@ -447,3 +447,9 @@ def test_a_guess_where_something_is_is_no_request() -> None:
     reading = read("I fancy a coffee. The mug should be in a cabinet somewhere.")
     assert goal(reading) == {"filled(Mug, coffee)", "hot(Mug)"}
     assert goal(read("The mug should be in the cabinet.")) == {"inside(Mug, Cabinet)"}
+
+
+def test_a_fresh_one_is_another_instance_than_the_one_singled_out() -> None:
+    reading = read("The loo roll on the floor should go in the bin and a fresh one on the holder.", 403)
+    held = {c.subject.id for c in reading.spec.goal().conditions}
+    assert len(held) == 2 and None not in held

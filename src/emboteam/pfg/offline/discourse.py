@@ -16,6 +16,8 @@ from emboteam.world.goals import ObjectRef
 from emboteam.world.state import ObjectState
 
 _names = ref_types
+#: words that make "one" another instance of the kind just named ("a fresh one")
+_OTHER = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean"})
 
 
 @dataclass
@@ -60,6 +62,13 @@ class Discourse:
                 raise self.unresolved[-1]
             raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
                                     phrase=head.label())
+        if head.pron in ("one", "it") and _OTHER & set(head.text.split()):
+            # "the loo roll on the floor goes in the bin and a fresh one on the holder": the
+            # same kind, another instance than the one just singled out
+            same = self.resolve(replace(head, text=head.pron), need, prefer)
+            other = self._another_instance(same)
+            if other is not None:
+                return other
         plural = head.pron in ("them", "they", "these", "those", "themselves", "ones")
         if head.piece and head.pron in ("it", "them"):
             # "cut it up and put two pieces of it in the bowl": the pieces of what "it" is
@@ -142,6 +151,18 @@ class Discourse:
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _another_instance(self, ref: Ref) -> Ref | None:
+        """Another object of the kind ``ref`` singled out by its id, or None when ``ref``
+        names no instance (a kind is a kind: "another one" is any of them)."""
+        ids = {r.id for r, _ in ref.groups if r.id is not None}
+        if not ids or len(ref.groups) != 1:
+            return None
+        kind = next(iter(ids)).split("_")[0]
+        others = [o.id for o in self.g.instances(kind) if o.id not in ids]
+        if not others:
+            return None
+        return Ref(f"another {kind}", ((ObjectRef(id=others[0]), 1),))
 
     def _described_place(self, need: str | None) -> Ref | None:
         """"See the box on the coffee table? Put the watch in it.": a place pronoun means
