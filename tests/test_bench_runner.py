@@ -25,9 +25,9 @@ from emboteam.bench.jobs import (
 )
 from emboteam.bench.runner import run_bench, store_path
 from emboteam.bench.store import ResultStore
-from emboteam.bench.task import BenchTask
 from emboteam.exec.episode import Episode
 from emboteam.exec.trace import TraceEvent
+from emboteam.task import BenchTask
 from emboteam.world.goals import Goal
 
 CALLS_ENV = "EMBOTEAM_TEST_CALLS"

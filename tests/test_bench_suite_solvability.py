@@ -15,8 +15,8 @@ import pytest
 
 from emboteam.bench.mace_thor import load_mace_thor
 from emboteam.bench.solvability import Role, Step, analyse_condition, analyse_goal
-from emboteam.bench.task import BenchTask
 from emboteam.sim.simulator import Simulator
+from emboteam.task import BenchTask
 from emboteam.world.actions import Action, Skill
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.checker import check_condition, check_goal

@@ -19,6 +19,9 @@ from emboteam.exec.trace import TraceEvent, read_jsonl, write_jsonl
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
+from emboteam.world.checker import check_goal
+from emboteam.world.goals import Goal
+from emboteam.world.state import WorldState
 
 
 class ConditionOutcome(BaseModel):
@@ -30,6 +33,15 @@ class ConditionOutcome(BaseModel):
     holds: bool
     satisfied: int
     required: int
+
+
+def score(goal: Goal, state: WorldState) -> tuple[bool, float, tuple[ConditionOutcome, ...]]:
+    """Success, GCR and per-condition outcomes of ``goal`` on the final ``state``."""
+    report = check_goal(goal, state)
+    outcomes = tuple(ConditionOutcome(condition=str(r.condition), holds=r.holds,
+                                      satisfied=r.satisfied, required=r.required)
+                     for r in report.results)
+    return report.success, report.gcr, outcomes
 
 
 class Episode(BaseModel):
