@@ -27,7 +27,8 @@ from dataclasses import dataclass
 
 from emboteam.pddl.domain import Grounding
 from emboteam.pddl.schema import Atom
-from emboteam.sim.physics import HEATING, WATER_SOURCES
+from emboteam.world.catalogue import HEATERS as HEATING
+from emboteam.world.catalogue import WATER_SOURCES
 from emboteam.world.state import WorldState
 
 _UNARY = {

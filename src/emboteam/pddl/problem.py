@@ -35,9 +35,9 @@ from emboteam.pddl.domain import (
 )
 from emboteam.pddl.errors import PlannerInputError
 from emboteam.pddl.goal_compiler import GoalPart, compile_goal
-from emboteam.sim.physics import WATER_SOURCES, settle
+from emboteam.sim.physics import settle
 from emboteam.world.actions import Action, Skill
-from emboteam.world.catalogue import KNIVES, load_catalogue
+from emboteam.world.catalogue import KNIVES, WATER_SOURCES, load_catalogue
 from emboteam.world.goals import Condition, Predicate
 from emboteam.world.state import WorldState
 

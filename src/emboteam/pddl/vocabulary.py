@@ -15,9 +15,9 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from emboteam.pddl.literal import Literal
-from emboteam.sim.physics import HEATING, WATER_SOURCES
-from emboteam.sim.rules import INTERLOCKED, piece_ids
-from emboteam.world.catalogue import KNIVES, load_catalogue
+from emboteam.sim.rules import piece_ids
+from emboteam.world.catalogue import HEATERS as HEATING
+from emboteam.world.catalogue import INTERLOCKED, KNIVES, WATER_SOURCES, load_catalogue
 from emboteam.world.state import WorldState
 
 Evaluator = Callable[..., bool]

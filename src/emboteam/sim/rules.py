@@ -12,15 +12,10 @@ from dataclasses import dataclass
 
 from emboteam.sim.physics import settle, switch
 from emboteam.world.actions import Action, FailureReason, Skill
-from emboteam.world.catalogue import KNIVES, load_catalogue
+from emboteam.world.catalogue import INTERLOCKED, KNIVES, load_catalogue
 from emboteam.world.state import ObjectState, WorldState
 
 R = FailureReason
-
-#: Appliances whose door and power interlock (AI2-THOR's object table: "Microwaves cannot
-#: be turned on if they are open, and cannot be opened if they are currently on").
-INTERLOCKED: frozenset[str] = frozenset({"Microwave"})
-
 
 @dataclass(frozen=True, slots=True)
 class Failure:
