@@ -13,7 +13,14 @@ from dataclasses import dataclass, replace
 
 from emboteam.config import RunConfig
 from emboteam.environments import ExecutionEnvironment, make_environment
-from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, run_sequences
+from emboteam.exec import (
+    Executor,
+    ExecutorSettings,
+    parse_joins,
+    planner_replanner,
+    run_linear,
+    run_sequences,
+)
 from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
 from emboteam.exec.episode import Episode, score
 from emboteam.exec.result import ExecutionResult
@@ -208,8 +215,8 @@ def execute(ctx: EpisodeContext, plan: MergedPlan, goal: Goal, *,
         return run_linear(sim, plan, goal, time_limit=cfg.time_limit, joins=[(j.profile, j.at) for j in joins],
                           messages=messages, seed=cfg.seed), sim
     replanner = planner_replanner(planner_for("full", cfg.planner_input)) if how.replan else None
-    executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
-                        time_limit=cfg.time_limit, finish_plan=finish_plan, messages=messages)
+    settings = ExecutorSettings(time_limit=cfg.time_limit, seed=cfg.seed, finish_plan=finish_plan, messages=messages)
+    executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, settings=settings)
     return executor.run(), sim
 
 

@@ -9,13 +9,12 @@ On disk (``emboteam run --out DIR``)::
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from emboteam.exec.disturbance import DisturbanceOutcome
-from emboteam.exec.trace import TraceEvent, read_jsonl, write_jsonl
+from emboteam.exec.trace import TraceEvent, write_jsonl
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
@@ -97,10 +96,3 @@ class Episode(BaseModel):
         directory.mkdir(parents=True, exist_ok=True)
         (directory / "episode.json").write_text(self.model_dump_json(indent=1))
         write_jsonl(self.trace, directory / "trace.jsonl")
-
-    @classmethod
-    def load(cls, directory: Path) -> Episode:
-        data = json.loads((directory / "episode.json").read_text())
-        trace_path = directory / "trace.jsonl"
-        trace = read_jsonl(trace_path) if trace_path.exists() else []
-        return cls.model_validate({**data, "trace": trace})

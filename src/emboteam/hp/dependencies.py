@@ -48,12 +48,6 @@ class Footprint:
     writes: frozenset[str]
     updates: frozenset[str] = frozenset()
 
-    def conflicts(self, other: Footprint) -> frozenset[str]:
-        """Variables on which the two steps race (empty: they commute)."""
-        return ((self.writes & (other.reads | other.writes | other.updates))
-                | (self.updates & (other.reads | other.writes))
-                | (self.reads & (other.writes | other.updates)))
-
 
 def _chain(state: WorldState, o: str) -> list[str]:
     return [o, *state.ancestors(o)] if o in state.objects else [o]
