@@ -22,7 +22,7 @@ from emboteam.exec import (
     run_sequences,
 )
 from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
-from emboteam.exec.episode import Episode, score
+from emboteam.exec.episode import Episode, episode_header, score
 from emboteam.exec.result import ExecutionResult
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner
@@ -230,13 +230,6 @@ def _run_lists(ctx: EpisodeContext, lists: dict[str, list[Action]],
     return execute(ctx, literal_plan(lists, ctx.state), goal)
 
 
-def episode_header(task: EpisodeTask, cfg: RunConfig, robots: Sequence[str]) -> dict[str, object]:
-    """The fields every episode of ``task`` under ``cfg`` starts with, failed ones included."""
-    return dict(task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
-                robots=tuple(robots), category=task.category, mode=cfg.mode, frontend=cfg.frontend,
-                llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(), fault_level=cfg.fault_level, env=cfg.env)
-
-
 def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) -> Episode:
     """Plan and execute one task in ``cfg.mode``; typed errors propagate to the caller.
     ``llm``: the client to use (the caller keeps it to report the usage of a failed
@@ -277,5 +270,5 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     })
 
 
-__all__ = ["EpisodeContext", "ModeConfigError", "action_lists", "episode_header", "execute", "make_llm",
+__all__ = ["EpisodeContext", "ModeConfigError", "action_lists", "execute", "make_llm",
            "plan_spec", "plan_task", "run_mode", "understand"]

@@ -14,9 +14,9 @@ import time
 from emboteam.config import MODES, RunConfig
 from emboteam.environments import check_thor_config
 from emboteam.errors import EmboTeamError
-from emboteam.exec.episode import Episode, score
+from emboteam.exec.episode import Episode, episode_header, score
 from emboteam.llm.client import LLMClient
-from emboteam.modes import episode_header, make_llm, run_mode
+from emboteam.modes import make_llm, run_mode
 from emboteam.task import EpisodeTask
 
 

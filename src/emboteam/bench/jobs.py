@@ -25,7 +25,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from emboteam.config import ABLATIONS, BASELINES, LLM_FRONTENDS, EnvName, Frontend, LLMWhen, Mode, RunConfig
 from emboteam.errors import EmboTeamError
-from emboteam.exec.episode import Episode
+from emboteam.exec.episode import Episode, episode_header
 from emboteam.pddl.runner import PlannerInput
 from emboteam.sim.disturbances import Disturbances
 from emboteam.task import BenchTask
@@ -253,13 +253,8 @@ def resolve_episode_fn(ref: EpisodeFn) -> Callable[[Job], Episode]:
 
 def failed_episode(job: Job, error: str) -> Episode:
     """A recorded failed episode for a job whose episode function raised or whose worker died."""
-    task = job.task
-    return Episode(
-        task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
-        robots=_team_names(task.robots), category=task.category, mode=job.mode,
-        frontend=job.frontend, seed=job.seed, faults=job.fault_config(),
-        fault_level=job.fault_level, success=False, error=error,
-    )
+    header = episode_header(job.task, job, _team_names(job.task.robots))
+    return Episode.model_validate({**header, "success": False, "error": error})
 
 
 def _team_names(robots: Sequence[str]) -> tuple[str, ...]:

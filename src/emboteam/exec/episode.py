@@ -9,15 +9,18 @@ On disk (``emboteam run --out DIR``)::
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceOutcome
 from emboteam.exec.trace import TraceEvent, write_jsonl
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
+from emboteam.task import EpisodeTask
 from emboteam.world.checker import check_goal
 from emboteam.world.goals import Goal
 from emboteam.world.state import WorldState
@@ -32,6 +35,13 @@ class ConditionOutcome(BaseModel):
     holds: bool
     satisfied: int
     required: int
+
+
+def episode_header(task: EpisodeTask, cfg: RunConfig, robots: Sequence[str]) -> dict[str, object]:
+    """The fields every episode of ``task`` under ``cfg`` starts with, failed ones included."""
+    return dict(task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
+                robots=tuple(robots), category=task.category, mode=cfg.mode, frontend=cfg.frontend,
+                llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(), fault_level=cfg.fault_level, env=cfg.env)
 
 
 def score(goal: Goal, state: WorldState) -> tuple[bool, float, tuple[ConditionOutcome, ...]]:
