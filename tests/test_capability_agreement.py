@@ -195,3 +195,16 @@ def test_the_appliance_lists_agree_with_ai2thor_flags() -> None:
     assert flagged_cold == COLD_SOURCES
     assert BURNERS <= HEATERS and INTERLOCKED <= HEATERS and not HEATERS & BREWERS
     assert all(t in cat.types for t in WATER_SOURCES)
+
+
+def test_one_role_concept() -> None:
+    """Planner roles and solvability roles are one class: no module defines another."""
+    import ast
+    from pathlib import Path
+
+    import emboteam
+
+    root = Path(emboteam.__file__).resolve().parent
+    defining = sorted(str(p.relative_to(root)) for p in root.rglob("*.py")
+                      if any(isinstance(n, ast.ClassDef) and n.name == "Role" for n in ast.walk(ast.parse(p.read_text()))))
+    assert defining == ["sim/capability.py"]

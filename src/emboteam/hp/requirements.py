@@ -6,7 +6,8 @@ to estimate how long a subtask keeps a robot busy.
 
 The roles are the model's :class:`~emboteam.sim.capability.Role`, and the appliances
 (which one heats, cools, waters) are the ones the model picks, so the planner and the
-benchmark's solvability claims cannot disagree on the rules. The view is coarse and fast:
+benchmark's solvability claims read the same rules (``tests/test_capability_agreement.py``
+checks this view against the model). The view is coarse and fast:
 it looks at the most promising candidate object (the one the goal compiler ranks first)
 and is an estimate; Fast Downward has the last word. Only roles every way of satisfying
 the condition needs (``certain``) may reject a team outright.
