@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from emboteam.sim.physics import settle, switch
 from emboteam.world.actions import Action, FailureReason, Skill
-from emboteam.world.catalogue import INTERLOCKED, KNIVES, load_catalogue
+from emboteam.world.catalogue import BURNERS, INTERLOCKED, KNIVES, load_catalogue
 from emboteam.world.state import ObjectState, WorldState
 
 R = FailureReason
@@ -107,7 +107,7 @@ def check_action(state: WorldState, robot: str, action: Action) -> Failure | Non
         return None
     if skill in (Skill.SwitchOn, Skill.SwitchOff):
         if not o.has("toggleable"):
-            hint = " (switch its StoveKnob)" if o.type == "StoveBurner" else ""
+            hint = " (switch its StoveKnob)" if o.type in BURNERS else ""
             return Failure(R.NOT_TOGGLEABLE, f"{o.id} cannot be switched{hint}")
         if skill is Skill.SwitchOn and o.is_on:
             return Failure(R.ALREADY_ON, f"{o.id} is already on")
