@@ -245,7 +245,8 @@ def replanning(progress: Progress, level: float, seeds: int, planner_input: Plan
     robots have steps, a breakdown: the executor replans from the state it finds
     (``HybridPlanner.plan_goal``, the robots left); each call is timed."""
     from emboteam.bench.suites import load_suite
-    from emboteam.exec import Executor, ExecutorSettings, planner_replanner
+    from emboteam.exec import Executor, planner_replanner
+    from emboteam.exec.executor import ExecutorSettings
     from emboteam.pfg.oracle import OracleFrontend
     from emboteam.sim.faults import Breakdown, FaultConfig
     from emboteam.sim.simulator import Simulator

@@ -13,16 +13,10 @@ from dataclasses import dataclass, replace
 
 from emboteam.config import RunConfig
 from emboteam.environments import ExecutionEnvironment, make_environment
-from emboteam.exec import (
-    Executor,
-    ExecutorSettings,
-    parse_joins,
-    planner_replanner,
-    run_linear,
-    run_sequences,
-)
+from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, run_sequences
 from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
 from emboteam.exec.episode import Episode, episode_header, score
+from emboteam.exec.executor import ExecutorSettings
 from emboteam.exec.result import ExecutionResult
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner

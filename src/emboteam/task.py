@@ -13,7 +13,7 @@ is an error rather than a silently ignored key.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any, Literal, Protocol
+from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
@@ -155,23 +155,8 @@ class Instruction(BaseModel):
         return initial_state(self.floor_plan, self.team(), self.setup)
 
 
-class EpisodeTask(Protocol):
-    """What the pipeline needs of the thing it runs."""
-
-    @property
-    def key(self) -> str: ...
-    @property
-    def instruction(self) -> str: ...
-    @property
-    def floor_plan(self) -> str: ...
-    @property
-    def category(self) -> Category: ...
-    @property
-    def ground_truth(self) -> Goal | None:
-        """The goal the episode is scored against; None: the one the front end understood."""
-
-    def team(self) -> tuple[RobotProfile, ...]: ...
-    def initial_state(self) -> WorldState: ...
+#: what the pipeline runs: a benchmark task, or an instruction typed on the command line
+EpisodeTask = BenchTask | Instruction
 
 
 def initial_state(floor_plan: str, team: Sequence[RobotProfile], setup: Sequence[StateChange] = ()) -> WorldState:

@@ -5,19 +5,12 @@
 same environment and trace format.
 """
 
-from emboteam.exec.executor import (
-    ExecutionConfigError,
-    Executor,
-    ExecutorSettings,
-    Join,
-    UnsavableTaskError,
-    parse_joins,
-)
+from emboteam.exec.executor import ExecutionConfigError, Executor, Join, UnsavableTaskError, parse_joins
 from emboteam.exec.linear import run_linear, run_sequences, sequences_plan
 from emboteam.exec.replan import Replanner, planner_replanner, restrict_team
 from emboteam.exec.result import ExecutionResult
 
 __all__ = [
-    "ExecutionConfigError", "ExecutionResult", "Executor", "ExecutorSettings", "Join", "Replanner", "UnsavableTaskError",
+    "ExecutionConfigError", "ExecutionResult", "Executor", "Join", "Replanner", "UnsavableTaskError",
     "parse_joins", "planner_replanner", "restrict_team", "run_linear", "run_sequences", "sequences_plan",
 ]
