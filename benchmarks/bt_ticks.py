@@ -21,7 +21,7 @@ import time
 
 from emboteam.btc.compiler import compile_plan
 from emboteam.btc.runtime import Runtime
-from emboteam.exec.executor import Executor
+from emboteam.exec.executor import Executor, ExecutorSettings
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pddl.domain import step_literals
 from emboteam.sim import FaultConfig, Simulator
@@ -107,7 +107,7 @@ def main() -> None:
         per_tick = []
         for seed in range(args.seeds):
             sim = Simulator(scene, parse_team(team), seed=seed, faults=FaultConfig.level(p))
-            ex = Executor(sim, plan, goal, time_limit=3600.0)
+            ex = Executor(sim, plan, goal, settings=ExecutorSettings(time_limit=3600.0))
             t0 = time.perf_counter()
             res = ex.run()
             wall = time.perf_counter() - t0

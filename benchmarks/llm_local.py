@@ -36,9 +36,9 @@ from pathlib import Path
 from typing import Any
 
 from emboteam.bench.mace_thor import load_mace_thor
-from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
 from emboteam.pipeline import RunConfig, run_episode
+from emboteam.task import BenchTask
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "benchmarks" / "llm_local"
@@ -77,12 +77,11 @@ def tasks_of(frontend: str, only: Sequence[str]) -> list[BenchTask]:
 def needs_llm(task: BenchTask) -> bool:
     """Whether the hybrid front end will call the LLM on ``task`` (a doubtful reading or a
     parser error), found by running the offline parser alone (milliseconds)."""
-    from emboteam.modes import offline_frontend
     from emboteam.pfg.hybrid import as_reading
-    from emboteam.pipeline import initial_state
+    from emboteam.pfg.parser import offline_frontend
     from emboteam.world.scene import load_scene
 
-    state, team = initial_state(task)
+    state, team = task.initial_state(), task.team()
     try:
         return as_reading(offline_frontend().parse(task.instruction, load_scene(task.floor_plan), state,
                                                    team)).doubtful

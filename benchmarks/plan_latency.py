@@ -246,6 +246,7 @@ def replanning(progress: Progress, level: float, seeds: int, planner_input: Plan
     (``HybridPlanner.plan_goal``, the robots left); each call is timed."""
     from emboteam.bench.suites import load_suite
     from emboteam.exec import Executor, planner_replanner
+    from emboteam.exec.executor import ExecutorSettings
     from emboteam.pfg.oracle import OracleFrontend
     from emboteam.sim.faults import Breakdown, FaultConfig
     from emboteam.sim.simulator import Simulator
@@ -281,7 +282,7 @@ def replanning(progress: Progress, level: float, seeds: int, planner_input: Plan
                 down = (Breakdown(robot=working[0][1], at=0.3 * plan.makespan),) if len(working) > 1 else ()
                 faults = FaultConfig(action_failure=level, occlusion=level / 2, breakdowns=down)
                 sim = Simulator(scene, task.team(), seed=seed, faults=faults, state=state)
-                result = Executor(sim, plan, task.goal, replanner=timed, seed=seed, time_limit=900.0).run()
+                result = Executor(sim, plan, task.goal, replanner=timed, settings=ExecutorSettings(seed=seed, time_limit=900.0)).run()
                 run.success = bool(result.success)
             except EmboTeamError:
                 pass

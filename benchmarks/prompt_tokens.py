@@ -38,7 +38,6 @@ from emboteam.llm.messages import LLMRequest
 from emboteam.pfg.hybrid import HybridFrontend, as_reading
 from emboteam.pfg.llm_frontend import LLMFrontend
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pipeline import initial_state
 from emboteam.world.scene import load_scene
 
 Counter = Callable[[LLMRequest], int]
@@ -68,7 +67,7 @@ def approx_counter(request: LLMRequest) -> int:
 
 def requests_of_task(task: Any, parser: OfflineFrontend) -> dict[str, LLMRequest]:
     scene = load_scene(task.floor_plan)
-    state, team = initial_state(task)
+    state, team = task.initial_state(), task.team()
     before = LLMFrontend(NO_CLIENT, fewshot=3, focus=False)
     now = LLMFrontend(NO_CLIENT)
     out = {"llm-3ex-full": before.request(task.instruction, scene, state, team),

@@ -43,10 +43,11 @@ from pathlib import Path
 from typing import Any, Literal
 
 from emboteam.bench.metrics import bootstrap_ci
-from emboteam.bench.task import BenchTask
 from emboteam.errors import EmboTeamError
-from emboteam.modes import understand
-from emboteam.pipeline import RunConfig, initial_state, run_episode, score
+from emboteam.exec.episode import score
+from emboteam.modes import EpisodeContext, understand
+from emboteam.pipeline import RunConfig, run_episode
+from emboteam.task import BenchTask
 from emboteam.world.scene import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -111,10 +112,9 @@ def _crash(exc: BaseException) -> str:
 def front_end_error(task: BenchTask, cfg: RunConfig) -> tuple[str | None, bool]:
     """The front end's error on this task (None if it produced a TaskSpec), and whether
     that error was a crash (an exception that is not a typed EmboTeamError)."""
-    scene = load_scene(task.floor_plan)
-    state, team = initial_state(task)
     try:
-        understand(task, cfg, scene, state, team, None)
+        understand(EpisodeContext(task=task, cfg=cfg, scene=load_scene(task.floor_plan), state=task.initial_state(),
+                                  team=task.team(), llm=None))
     except EmboTeamError as exc:
         return f"{type(exc).__name__}: {exc}", False
     except Exception as exc:  # a crash is a result to report, not a reason to lose the run
@@ -123,8 +123,7 @@ def front_end_error(task: BenchTask, cfg: RunConfig) -> tuple[str | None, bool]:
 
 
 def _start_gcr(task: BenchTask) -> float:
-    state, _ = initial_state(task)
-    return round(score(task.goal, state)[1], 4)
+    return round(score(task.goal, task.initial_state())[1], 4)
 
 
 def run_task(task: BenchTask, cfg: RunConfig) -> TaskResult:

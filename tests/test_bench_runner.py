@@ -25,9 +25,10 @@ from emboteam.bench.jobs import (
 )
 from emboteam.bench.runner import run_bench, store_path
 from emboteam.bench.store import ResultStore
-from emboteam.bench.task import BenchTask
 from emboteam.exec.episode import Episode
 from emboteam.exec.trace import TraceEvent
+from emboteam.report.loading import load_episode_dir
+from emboteam.task import BenchTask
 from emboteam.world.goals import Goal
 
 CALLS_ENV = "EMBOTEAM_TEST_CALLS"
@@ -199,7 +200,7 @@ def test_process_pool_run_stores_every_episode_and_its_trace(tmp_path: Path, cal
     crashed = rows[jobs[2].key]
     assert crashed.crashed and crashed.traceback is not None and "planner crashed" in crashed.traceback
     for job in jobs:
-        saved = Episode.load(out / rows[job.key].episode_dir)
+        saved = load_episode_dir(out / rows[job.key].episode_dir)
         assert saved.task == job.task.key
         if job.task_id != "boom":
             assert [ev.kind for ev in saved.trace] == ["action_start", "action_end"]

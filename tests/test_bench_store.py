@@ -9,8 +9,8 @@ import pytest
 
 from emboteam.bench.jobs import Job
 from emboteam.bench.store import ResultStore, ResultStoreError
-from emboteam.bench.task import BenchTask
 from emboteam.exec.episode import Episode
+from emboteam.task import BenchTask
 from emboteam.world.goals import Goal
 
 

@@ -12,8 +12,8 @@ from pydantic import ValidationError
 
 from emboteam.bench.mace_thor import FLOOR_PLANS, SuiteDataError, load_mace_thor, parse_tasks
 from emboteam.bench.suites import Suite, UnknownSuiteError, UnknownTaskError, get_task, load_suite
-from emboteam.bench.task import BenchTask, InvalidTaskError
 from emboteam.errors import EmboTeamError
+from emboteam.task import BenchTask, InvalidTaskError
 from emboteam.world.checker import check_goal, validate_goal
 from emboteam.world.scene import load_scene
 

@@ -14,10 +14,10 @@ import pytest
 planner = pytest.importorskip("emboteam.hp.planner")
 
 from emboteam.bench.mace_thor import load_mace_thor  # noqa: E402
-from emboteam.bench.task import BenchTask  # noqa: E402
 from emboteam.pddl.errors import PlanningError  # noqa: E402
 from emboteam.sim.setup import apply_changes  # noqa: E402
 from emboteam.sim.simulator import Simulator  # noqa: E402
+from emboteam.task import BenchTask  # noqa: E402
 from emboteam.world.checker import check_goal  # noqa: E402
 from emboteam.world.scene import load_scene  # noqa: E402
 from emboteam.world.state import WorldState  # noqa: E402

@@ -1,7 +1,7 @@
 """MACE-THOR is solvable as designed: every task by its team, no temporal task by any one
 member, every condition of a parallel task by one member on its own.
 
-The capability analysis (emboteam.bench.solvability) proves the negative claims: a robot
+The capability analysis (emboteam.sim.capability) proves the negative claims: a robot
 that covers no method of a condition cannot achieve it. The positive claims are proven
 by *executing* a witness in the simulator: the analysis' methods, bound to team members,
 run step by step (GoToObject before each interaction) until the goal holds.
@@ -14,16 +14,17 @@ from collections.abc import Sequence
 import pytest
 
 from emboteam.bench.mace_thor import load_mace_thor
-from emboteam.bench.solvability import Role, Step, analyse_condition, analyse_goal
-from emboteam.bench.task import BenchTask
+from emboteam.sim.capability import analyse_condition, analyse_goal
 from emboteam.sim.simulator import Simulator
-from emboteam.world.actions import Action, Skill
+from emboteam.task import BenchTask
+from emboteam.world.actions import Skill
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.checker import check_condition, check_goal
 from emboteam.world.goals import Condition, Goal, Predicate
 from emboteam.world.robots import RobotProfile, parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from witness import WitnessFailed, release, run_method
 
 TASKS = load_mace_thor()
 TEMPORAL = [t for t in TASKS if t.category == "temporal"]
@@ -37,58 +38,6 @@ _PHASE = {
 }
 
 
-class WitnessFailed(AssertionError):
-    pass
-
-
-def _release(sim: Simulator, robot: str) -> None:
-    """Empty a robot's hand: drop what it holds, or put it on a surface it may go on."""
-    r = sim.state.robots[robot]
-    held = r.holding
-    assert held is not None
-    if r.profile.can(Skill.DropHandObject):
-        _act(sim, robot, Action(skill=Skill.DropHandObject, target=held))
-        return
-    cat = load_catalogue()
-    htype = sim.state.objects[held].type
-    for o in sim.state.objects.values():
-        if (o.has("receptacle") and not o.has("pickupable") and o.type not in cat.must_be_open
-                and cat.can_place(htype, o.type) and sim.state.enclosing_closed(o.id) is None):
-            _act(sim, robot, Action(skill=Skill.GoToObject, target=o.id))
-            _act(sim, robot, Action(skill=Skill.PutObject, target=held, receptacle=o.id))
-            return
-    raise WitnessFailed(f"{robot} cannot put {held} down")
-
-
-def _act(sim: Simulator, robot: str, action: Action) -> None:
-    outcome = sim.execute(robot, action)
-    if not outcome.success:
-        raise WitnessFailed(f"{robot}: {action} failed: {outcome.reason} {outcome.message}")
-
-
-def _run_step(sim: Simulator, robot: str, step: Step) -> None:
-    r = sim.state.robots[robot]
-    if step.action.skill is Skill.PickupObject:
-        if r.holding == step.action.target:
-            return
-        if r.holding is not None:
-            _release(sim, robot)
-    _act(sim, robot, Action(skill=Skill.GoToObject, target=step.near))
-    _act(sim, robot, step.action)
-
-
-def _bind(roles: Sequence[Role], actors: Sequence[RobotProfile], state: WorldState) -> dict[str, str]:
-    """A robot for each role, free hands preferred."""
-    out: dict[str, str] = {}
-    for role in roles:
-        able = [a for a in actors if role.covered_by(a)]
-        if not able:
-            raise WitnessFailed(f"no actor covers {role}")
-        able.sort(key=lambda a: state.robots[a.name].holding is not None)
-        out[role.name] = able[0].name
-    return out
-
-
 def run_witness(task: BenchTask, conditions: Sequence[Condition], actors: Sequence[RobotProfile]) -> Simulator:
     """Reach ``conditions`` one after the other with ``actors`` (a subset of the team)."""
     state = task.initial_state()
@@ -99,7 +48,7 @@ def run_witness(task: BenchTask, conditions: Sequence[Condition], actors: Sequen
             for robot in actors:  # free hands first: what one robot holds, others cannot take
                 if sim.state.robots[robot.name].holding is not None and (
                         robot.can(Skill.DropHandObject) or robot.can(Skill.PutObject)):
-                    _release(sim, robot.name)
+                    release(sim, robot.name)
             analysis = analyse_condition(partial, sim.state)
             if analysis.holds:
                 continue
@@ -107,9 +56,7 @@ def run_witness(task: BenchTask, conditions: Sequence[Condition], actors: Sequen
             if method is None:
                 raise WitnessFailed(f"{task.id}: no method for {partial} with "
                                     f"{[a.name for a in actors]} at t={sim.now:.1f}")
-            binding = _bind(method.roles, actors, sim.state)
-            for step in method.steps:
-                _run_step(sim, binding[step.role], step)
+            run_method(sim, method, actors)
             if not check_condition(partial, sim.state).holds:
                 raise WitnessFailed(f"{task.id}: {method} ran but {partial} does not hold")
     return sim

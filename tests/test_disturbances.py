@@ -7,15 +7,16 @@ from __future__ import annotations
 import pytest
 from py_trees.common import Access
 
-from emboteam.bench.ceiling import _ceiling
 from emboteam.bench.jobs import BenchConfig, Job, expand_jobs
 from emboteam.bench.suites import get_task
 from emboteam.btc.config import BTConfig
 from emboteam.btc.keys import lock_key
 from emboteam.btc.runtime import Runtime
 from emboteam.errors import UnknownRobotError
+from emboteam.exec.ceiling import _ceiling
 from emboteam.exec.linear import run_linear
-from emboteam.pipeline import RunConfig, initial_state, run_episode
+from emboteam.mode_table import planner_for
+from emboteam.pipeline import RunConfig, run_episode
 from emboteam.sim.disturbances import (
     BreakdownSpec,
     Disturbances,
@@ -178,29 +179,29 @@ def test_linear_executor_reads_flags_late_and_a_joiner_stays_idle() -> None:
 
 
 def test_ceiling_says_unsavable_when_no_robot_is_left() -> None:
-    state, _ = initial_state(get_task("mace-thor/fp1-fridge-apple-tomato"))
+    state = get_task("mace-thor/fp1-fridge-apple-tomato").initial_state()
     for r in state.robots.values():
         r.down = True
-    savable, why, left = _ceiling(get_task("mace-thor/fp1-fridge-apple-tomato").goal, state)
+    savable, why, left = _ceiling(get_task("mace-thor/fp1-fridge-apple-tomato").goal, state, planner_for("full"))
     assert savable is False and why.startswith("UnsavableTaskError") and left == ()
 
 
 def test_ceiling_asks_the_planner_with_the_robots_left() -> None:
     task = get_task("mace-thor/fp1-fridge-apple-tomato")
-    state, team = initial_state(task)
-    savable, why, left = _ceiling(task.goal, state)
+    state, team = task.initial_state(), task.team()
+    savable, why, left = _ceiling(task.goal, state, planner_for("full"))
     assert savable is True and "plan of" in why and left == tuple(sorted(p.name for p in team))
     # the goal needs a skill only one team member has: break that member and it is out of reach
     needs_open = [p.name for p in team if any(s.value == "OpenObject" for s in p.skills)]
     assert len(needs_open) == 1
     state.robots[needs_open[0]].down = True
-    savable, why, left = _ceiling(task.goal, state)
+    savable, why, left = _ceiling(task.goal, state, planner_for("full"))
     assert savable is False and why.startswith("UnsavableTaskError") and needs_open[0] not in left
 
 
 def test_ceiling_of_a_goal_that_already_holds() -> None:
-    state, _ = initial_state(get_task("mace-thor/fp1-fridge-apple-tomato"))
-    assert _ceiling(Goal(conditions=()), state)[0] is True
+    state = get_task("mace-thor/fp1-fridge-apple-tomato").initial_state()
+    assert _ceiling(Goal(conditions=()), state, planner_for("full"))[0] is True
 
 
 # ---- episodes under each disturbance ----------------------------------------------------------

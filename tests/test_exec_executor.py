@@ -7,7 +7,7 @@ import py_trees
 import pytest
 
 from emboteam.btc.errors import PlanCompileError
-from emboteam.exec.executor import ExecutionConfigError, Executor
+from emboteam.exec.executor import ExecutionConfigError, Executor, ExecutorSettings
 from emboteam.sim import Breakdown, FaultConfig
 from emboteam.world.checker import GoalValidationError
 from emboteam.world.goals import Goal
@@ -38,14 +38,14 @@ def test_time_jumps_from_event_to_event_and_poses_are_sampled() -> None:
 
 def test_time_limit_stops_the_run() -> None:
     plan, goal = fridge_handoff()
-    res = Executor(team_sim("FloorPlan1", "1,2"), plan, goal, time_limit=3.0).run()
+    res = Executor(team_sim("FloorPlan1", "1,2"), plan, goal, settings=ExecutorSettings(time_limit=3.0)).run()
     assert not res.success and res.stop_reason == "time_limit"
     assert res.makespan == pytest.approx(3.0)
 
 
 def test_tick_limit_stops_the_run() -> None:
     plan, goal = fridge_handoff()
-    res = Executor(team_sim("FloorPlan1", "1,2"), plan, goal, tick_limit=3).run()
+    res = Executor(team_sim("FloorPlan1", "1,2"), plan, goal, settings=ExecutorSettings(tick_limit=3)).run()
     assert res.stop_reason == "tick_limit" and res.ticks == 3
 
 
@@ -75,7 +75,7 @@ def test_node_status_changes_are_traced() -> None:
     kinds = {e.data["node"]: e.data["type"] for e in nodes}
     assert kinds["GoToObject(Fridge_1)"] == "Act" and kinds["team"] == "Parallel"  # the viewer tags them
     assert all(e.data["path"].startswith("team/isolate robot1") for e in nodes if e.robot)
-    quiet = Executor(team_sim("FloorPlan1", "1"), plan, goal, record_nodes=False).run()
+    quiet = Executor(team_sim("FloorPlan1", "1"), plan, goal, settings=ExecutorSettings(record_nodes=False)).run()
     assert not [e for e in quiet.trace if e.kind == "node"]
 
 
@@ -103,7 +103,7 @@ def test_replans_are_bounded() -> None:
         return plan
 
     sim = team_sim("FloorPlan1", "1", faults=FaultConfig(action_failure=1.0))
-    res = Executor(sim, plan, goal, replanner=same_plan, max_replans=2).run()  # type: ignore[arg-type]
+    res = Executor(sim, plan, goal, replanner=same_plan, settings=ExecutorSettings(max_replans=2)).run()  # type: ignore[arg-type]
     assert not res.success and res.replans == 2 and len(calls) == 2
     assert res.stop_reason == "failed"
 
@@ -112,7 +112,7 @@ def test_configuration_errors_are_typed() -> None:
     plan, goal = fridge_handoff()
     sim = team_sim("FloorPlan1", "1,2")
     with pytest.raises(ExecutionConfigError):
-        Executor(sim, plan, goal, time_limit=0)
+        Executor(sim, plan, goal, settings=ExecutorSettings(time_limit=0))
     with pytest.raises(ExecutionConfigError):
         Executor(sim, plan, goal, joins=[(parse_team("3")[0], -1.0)])
     with pytest.raises(PlanCompileError):

@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from emboteam.btc.config import BTConfig
-from emboteam.exec.executor import Executor
+from emboteam.exec.executor import Executor, ExecutorSettings
 from emboteam.exec.result import ExecutionResult
 from emboteam.exec.trace import TraceEvent
 from emboteam.hp.plan import MergedPlan
@@ -68,7 +68,7 @@ def test_spot_busy_outside_the_lock_protocol_backs_off_and_wakes_up() -> None:
     when nothing else is pending."""
     sim, acts, goal, state = _drawer_sim()
     plan = make_plan(state, acts, resources={"robot1.2": ["Spoon_1"], "robot2.2": ["Fork_1"]})
-    res = Executor(sim, plan, goal, config=BTConfig(wait_seconds=1.0)).run()
+    res = Executor(sim, plan, goal, settings=ExecutorSettings(config=BTConfig(wait_seconds=1.0))).run()
     assert res.success
     busy = [o for o in res.outcomes if o.reason is not None and o.reason.value == "spot_busy"]
     assert len(busy) == 1
@@ -143,7 +143,7 @@ def test_full_hand_is_emptied_before_the_pickup() -> None:
 def test_actuation_faults_are_retried_a_bounded_number_of_times() -> None:
     plan, goal = _fridge_solo()
     sim = team_sim("FloorPlan1", "1", faults=FaultConfig(action_failure=1.0))
-    res = Executor(sim, plan, goal, config=BTConfig(max_attempts=3)).run()
+    res = Executor(sim, plan, goal, settings=ExecutorSettings(config=BTConfig(max_attempts=3))).run()
     assert not res.success and res.stop_reason == "failed"
     attempts = ends(res, "robot1.1")
     assert len(attempts) == 3 and all(e.data["reason"] == "actuation_fault" for e in attempts)

@@ -25,7 +25,7 @@ def test_fridge_needs_a_carrier_and_an_opener() -> None:
     s = fresh("1")
     need = need_of(C("inside(Apple, Fridge)"), s, ["robot1"])
     (roles,) = need.alternatives
-    names = {r.what for r in roles}
+    names = {r.name for r in roles}
     assert "carry Apple_1" in names and "open Fridge_1" in names
     opener, carrier, both = robot_profile(23), robot_profile(25), robot_profile(1)
     assert not covers([opener], need) and not covers([carrier], need)

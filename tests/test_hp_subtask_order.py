@@ -17,10 +17,11 @@ from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner
 from emboteam.hp.subtask_order import dependency_waits, goal_changes, subtask_dependencies
 from emboteam.hp.validate import Timing, simulate
-from emboteam.modes import offline_frontend
+from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.taskspec import Subtask, TaskSpec
-from emboteam.pipeline import RunConfig, adhoc_task, run_episode
+from emboteam.pipeline import RunConfig, run_episode
 from emboteam.sim.rules import apply_action, check_action
+from emboteam.task import Instruction
 from emboteam.world.actions import Action, Skill
 from emboteam.world.checker import check_condition, check_goal
 from emboteam.world.goals import Condition, Goal
@@ -372,7 +373,7 @@ def test_rinse_then_place_on_the_counter_rinses_first(hp: HybridPlanner) -> None
     """The offline parser makes the rinse an intermediate subtask (final=False) that the
     counter subtask depends on; in the merged plan the lettuce leaves the sink only after
     the faucet ran on it, whichever robots do what."""
-    task = adhoc_task("rinse the lettuce, then put it on the counter", "FloorPlan1", "1,2")
+    task = Instruction.typed("rinse the lettuce, then put it on the counter", "FloorPlan1", "1,2")
     state = task.initial_state()
     spec = offline_frontend().decompose(task.instruction, load_scene("FloorPlan1"), state, task.team())
     rinse = next(t for t in spec.subtasks if not t.final)
@@ -391,7 +392,7 @@ def test_rinse_then_place_on_the_counter_rinses_first(hp: HybridPlanner) -> None
 def test_rinse_then_fridge_runs_in_order_through_the_pipeline() -> None:
     """The whole pipeline (offline parser, planner, behavior trees, simulator): the
     tomato leaves the sink only once it is in the basin under the running faucet."""
-    ep = run_episode(adhoc_task("rinse the tomato, then put it in the fridge", "FloorPlan1", "1,2"), RunConfig())
+    ep = run_episode(Instruction.typed("rinse the tomato, then put it in the fridge", "FloorPlan1", "1,2"), RunConfig())
     assert ep.error is None and ep.success, ep.error
     assert ep.taskspec is not None and ep.plan is not None
     assert any(not t.final for t in ep.taskspec.subtasks)

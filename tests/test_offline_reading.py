@@ -220,11 +220,10 @@ def test_mace_thor_goals_read_exactly_do_not_regress() -> None:
     from emboteam.bench.suites import load_suite
     from emboteam.errors import EmboTeamError
     from emboteam.pfg.offline.evaluate import goal_keys
-    from emboteam.pipeline import initial_state as task_state
 
     exact = 0
     for task in load_suite("mace-thor").tasks:
-        state, team = task_state(task)
+        state, team = task.initial_state(), task.team()
         scene = load_scene(task.floor_plan)
         try:
             spec = FRONTEND.decompose(task.instruction, scene, state, team)

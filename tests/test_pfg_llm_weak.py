@@ -16,7 +16,8 @@ from emboteam.llm import LLMClient, RetryPolicy, make_client
 from emboteam.pfg.focus import focus_types
 from emboteam.pfg.llm_frontend import LLMFrontend
 from emboteam.pfg.prompts import render_scene
-from emboteam.pipeline import RunConfig, adhoc_task, run_episode
+from emboteam.pipeline import RunConfig, run_episode
+from emboteam.task import Instruction
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -110,7 +111,7 @@ def test_hybrid_episode_calls_the_llm_only_for_a_doubtful_reading() -> None:
     with ScriptedServer("openai", [Reply.answer({"ok": True, "subtasks": []}, input_tokens=900,
                                                 output_tokens=9)]) as srv:
         # an unread span (H1's contract: the parser acts on the rest and notes it) is doubt
-        task = adhoc_task("Put the apple in the fridge, then frobnicate the zorblax.", "FloorPlan1", "1,2")
+        task = Instruction.typed("Put the apple in the fridge, then frobnicate the zorblax.", "FloorPlan1", "1,2")
         doubtful = run_episode(task, RunConfig(frontend="hybrid", llm=srv.spec(), llm_timeout=5))
     assert len(srv.requests) == 1 and doubtful.llm_calls == 1 and doubtful.tokens == 909
     assert "Draft by the offline parser" in srv.requests[0]["messages"][-1]["content"]

@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from emboteam.bench.suites import get_task
-from emboteam.pipeline import MODES, RunConfig, adhoc_task, run_episode
+from emboteam.pipeline import MODES, RunConfig, run_episode
+from emboteam.task import Instruction
 
 TASK = "mace-thor/fp1-fridge-apple-tomato"  # temporal: robot21 opens, robot15 carries
 
@@ -40,7 +41,7 @@ def test_faults_are_recovered_by_the_behavior_trees_and_reproducible() -> None:
 
 
 def test_offline_front_end_runs_an_instruction_with_zero_llm_calls() -> None:
-    task = adhoc_task("slice the lettuce, put it in the fridge and switch off the light", "FloorPlan1", "1,2,3")
+    task = Instruction.typed("slice the lettuce, put it in the fridge and switch off the light", "FloorPlan1", "1,2,3")
     ep = run_episode(task, RunConfig())
     assert ep.success and ep.llm_calls == 0 and ep.frontend == "offline"
     assert ep.taskspec is not None and {str(c) for c in ep.taskspec.goal().conditions} == {
@@ -48,7 +49,7 @@ def test_offline_front_end_runs_an_instruction_with_zero_llm_calls() -> None:
 
 
 def test_a_typed_error_becomes_a_recorded_failed_episode() -> None:
-    task = adhoc_task("put the piano in the fridge", "FloorPlan1", "1")
+    task = Instruction.typed("put the piano in the fridge", "FloorPlan1", "1")
     ep = run_episode(task, RunConfig())
     assert not ep.success and ep.error is not None and "piano" in ep.error
     assert ep.actions == 0
@@ -63,7 +64,7 @@ def test_a_robot_joining_mid_run_is_part_of_the_episode() -> None:
 def test_an_intermediate_subtask_is_carried_out_even_when_the_final_goal_already_holds() -> None:
     # the lettuce starts on a counter: "put it on the counter" holds from the start, the
     # rinse (lettuce in the sink basin with the faucet running) must still happen first
-    task = adhoc_task("rinse the lettuce, then put it on the counter", "FloorPlan1", "1,2")
+    task = Instruction.typed("rinse the lettuce, then put it on the counter", "FloorPlan1", "1,2")
     ep = run_episode(task, RunConfig())
     assert ep.success and ep.taskspec is not None
     assert any(not s.final for s in ep.taskspec.subtasks)

@@ -358,7 +358,7 @@ def executed_fridge_episode(seed: int = FRIDGE_SEED, fault_level: float = 0.2,
     behavior tree, blackboard protocol, recoveries, the executor's own trace; with
     ``linear``, by the no-BTC baseline (``emboteam.exec.linear``: no tree, no node events).
     ``faults`` overrides ``fault_level`` (breakdowns, moved objects)."""
-    from emboteam.exec.executor import Executor
+    from emboteam.exec.executor import Executor, ExecutorSettings
 
     faults = faults if faults is not None else FaultConfig.level(fault_level)
     sim = Simulator(load_scene(1), parse_team("1,2,3"), seed=seed, faults=faults)
@@ -368,7 +368,7 @@ def executed_fridge_episode(seed: int = FRIDGE_SEED, fault_level: float = 0.2,
 
         res = run_linear(sim, plan, spec.goal())
     else:
-        res = Executor(sim, plan, spec.goal(), seed=seed).run()
+        res = Executor(sim, plan, spec.goal(), settings=ExecutorSettings(seed=seed)).run()
     assert res.report is not None
     return Episode(
         task="fixture/executed-fridge", instruction=spec.instruction, floor_plan="FloorPlan1",

@@ -25,11 +25,11 @@ import pytest
 
 from emboteam.bench.mace_thor import FLOOR_PLANS as MACE_THOR_FLOOR_PLANS
 from emboteam.bench.mace_thor import load_mace_thor
-from emboteam.bench.task import BenchTask
 from emboteam.hp.planner import HybridPlanner
 from emboteam.pddl.errors import PlanningError
 from emboteam.pipeline import RunConfig, run_episode
 from emboteam.sim.setup import apply_changes
+from emboteam.task import BenchTask
 from emboteam.world.checker import check_goal, validate_goal
 from emboteam.world.goals import Goal
 from emboteam.world.robots import RobotProfile

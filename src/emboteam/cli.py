@@ -8,6 +8,7 @@ import json
 import os
 import sys
 from collections.abc import Callable
+from dataclasses import replace
 from functools import wraps
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
@@ -18,7 +19,6 @@ from rich.markup import escape
 from rich.table import Table
 from rich.text import Text
 
-from emboteam.bench.task import BenchTask
 from emboteam.errors import (
     EXIT_BAD_INPUT,
     EXIT_FAILED,
@@ -33,8 +33,8 @@ from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
 
 if TYPE_CHECKING:
-    from emboteam.bench.jobs import EnvName
-    from emboteam.pipeline import RunConfig
+    from emboteam.config import EnvName, RunConfig
+    from emboteam.task import EpisodeTask
 
 app = typer.Typer(
     add_completion=False,
@@ -286,15 +286,15 @@ def probability(value: float) -> float:
     return value
 
 
-def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) -> BenchTask:
+def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) -> EpisodeTask:
     """TASK (SUITE/ID) or an instruction with --scene and --robots."""
     from emboteam.bench.suites import get_task
-    from emboteam.pipeline import adhoc_task
+    from emboteam.task import Instruction
 
     if scene_fp is not None or robots_list is not None:
         if scene_fp is None or robots_list is None:
             raise EmboTeamError("an instruction needs both --scene FLOORPLAN and --robots LIST")
-        return adhoc_task(target, scene_fp, robots_list)
+        return Instruction.typed(target, scene_fp, robots_list)
     if len(target.split()) > 1:  # task ids have no spaces: this is an instruction
         raise EmboTeamError(f"the instruction {target!r} needs --scene FLOORPLAN and --robots LIST "
                             "(or give a task SUITE/ID, e.g. mace-thor/fp1-toast)")
@@ -326,7 +326,7 @@ def _env(value: str) -> EnvName:
 
 
 def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConfig:
-    from emboteam.pipeline import MODES, RunConfig
+    from emboteam.config import MODES, RunConfig
 
     if mode not in MODES:
         raise EmboTeamError(f"unknown mode {mode!r}; modes: {', '.join(MODES)}")
@@ -353,21 +353,17 @@ def plan(
     """Decompose and plan a task (PFG + HP) without executing it."""
     import time
 
-    from emboteam.modes import make_llm, plan_spec, understand
-    from emboteam.pipeline import initial_state
+    from emboteam.modes import EpisodeContext, plan_task
     from emboteam.views import plan_json, plan_table, spec_json, spec_table
-    from emboteam.world.scene import load_scene
 
     task = _resolve_task(target, scene_fp, robots_list)
     cfg = _run_config("full", _frontend_default(frontend, llm), llm, llm_timeout=llm_timeout, llm_when=llm_when)
-    state, team = initial_state(task)
-    scene = load_scene(task.floor_plan)
-    client = make_llm(cfg)
-    cfg = _with_planner_input(cfg, planner_input)
+    ctx = EpisodeContext.open(task, cfg)
+    ctx = replace(ctx, cfg=_with_planner_input(cfg, planner_input))
+    client = ctx.llm
     t0 = time.perf_counter()
     notes: list[str] = []        # what the front end could not read, or read with doubt
-    spec = understand(task, cfg, scene, state, team, client, notes)
-    spec, merged = plan_spec(spec, cfg, task, scene, state, team, client)
+    spec, merged = plan_task(ctx, notes)
     seconds = time.perf_counter() - t0
     if as_json:
         print_json({"task": task.key, "instruction": task.instruction, "scene": task.floor_plan,
@@ -503,7 +499,8 @@ def bench(
         ray_address=ray_address, out_dir=out_dir or BENCH_ROOT, resume=resume, env=_env(env), llm_timeout=llm_timeout,
         llm_when=llm_when,
     )
-    from emboteam.pipeline import RunConfig, check_config
+    from emboteam.config import RunConfig
+    from emboteam.pipeline import check_config
 
     if cfg.env != "sim":  # fails fast when AI2-THOR cannot start here, before any job
         check_config(RunConfig(env=cfg.env, fault_level=max(cfg.fault_levels), disturbance=cfg.disturbance))
@@ -596,10 +593,8 @@ def export_bt(
 ) -> None:
     """Export a task's behavior tree: BehaviorTree.CPP v4 XML (Groot2), Graphviz DOT or ASCII."""
     from emboteam.btc.export import render, to_ascii, to_btcpp_xml, to_dot
-    from emboteam.modes import make_llm, plan_spec, understand
+    from emboteam.modes import EpisodeContext, plan_task
     from emboteam.outputs import check_out_file, write_error
-    from emboteam.pipeline import initial_state
-    from emboteam.world.scene import load_scene
 
     if fmt not in ("btcpp", "dot", "ascii"):
         raise EmboTeamError(f"unknown format {fmt!r}: btcpp, dot or ascii")
@@ -610,11 +605,9 @@ def export_bt(
         check_out_file(out_file)
     task = _resolve_task(target, scene_fp, robots_list)
     cfg = _run_config("full", _frontend_default(frontend, llm), llm, llm_when=llm_when)
-    state, team = initial_state(task)
-    scene = load_scene(task.floor_plan)
-    client = make_llm(cfg)
-    spec = understand(task, cfg, scene, state, team, client)
-    _, merged = plan_spec(spec, cfg, task, scene, state, team, client)
+    ctx = EpisodeContext.open(task, cfg)
+    state = ctx.state
+    _, merged = plan_task(ctx)
     if fmt == "dot" and out_file is not None and out_file.suffix.lower() in (".png", ".svg"):
         try:
             render(merged, out_file, state=state)

@@ -10,17 +10,15 @@ against it unchanged.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Protocol
+from typing import Protocol
 
+from emboteam.config import RunConfig
 from emboteam.errors import EmboTeamError
 from emboteam.sim.simulator import Simulator
 from emboteam.world.environment import Environment
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
-
-if TYPE_CHECKING:
-    from emboteam.pipeline import RunConfig
 
 
 class EnvConfigError(EmboTeamError):

@@ -1,37 +1,37 @@
-"""The stage wiring of every mode of the paper's Tables 1 and 2 (see :mod:`emboteam.pipeline`).
+"""The parts of an episode and their wiring by mode (the table is :mod:`emboteam.mode_table`).
 
-Each mode is a choice of front end, planner configuration and executor; the parts are the
-same packages everywhere, so an ablation differs from the full system only in the part it
-ablates.
+Each stage takes one :class:`EpisodeContext` (task, configuration, scene, initial state,
+team, LLM client) instead of loose parameters. An ablation differs from the full system
+only in the part the mode table swaps.
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import replace
-from functools import cache
+from dataclasses import dataclass, replace
 
-from emboteam.bench.task import BenchTask
+from emboteam.config import RunConfig
 from emboteam.environments import ExecutionEnvironment, make_environment
-from emboteam.errors import EmboTeamError
 from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, run_sequences
-from emboteam.exec.episode import Episode
+from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
+from emboteam.exec.episode import Episode, episode_header, score
+from emboteam.exec.executor import ExecutorSettings
 from emboteam.exec.result import ExecutionResult
 from emboteam.hp.plan import MergedPlan, PlanStep
-from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.planner import HybridPlanner
 from emboteam.llm.client import LLMClient, make_client
+from emboteam.mode_table import ModeConfigError, planner_for, wiring
 from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
-from emboteam.pddl.runner import PlannerInput
-from emboteam.pfg.offline import OfflineFrontend
+from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.pipeline import RunConfig, initial_state, score
 from emboteam.sim.rules import apply_action, check_action
 from emboteam.sim.simulator import Simulator
+from emboteam.task import EpisodeTask
 from emboteam.world.actions import Action
 from emboteam.world.goals import Goal
 from emboteam.world.robots import RobotProfile
@@ -39,33 +39,24 @@ from emboteam.world.scene import Scene, load_scene
 from emboteam.world.state import WorldState
 
 
-class ModeConfigError(EmboTeamError):
-    """A mode/front-end combination that cannot run (e.g. ``--frontend llm`` without ``--llm``)."""
+@dataclass(frozen=True)
+class EpisodeContext:
+    """What every stage of one episode reads: built once, handed down."""
 
+    task: EpisodeTask
+    cfg: RunConfig
+    scene: Scene
+    state: WorldState
+    team: tuple[RobotProfile, ...]
+    llm: LLMClient | None
 
-#: the planner configuration of each mode. LaMMA-P: optimal Fast Downward calls per subtask,
-#: one at a time, no cache, sub-plans concatenated without validation and executed
-#: linearly. LaMMA-P's ``seq-opt-lmcut`` rejects this domain (LM-cut supports neither
-#: axioms nor conditional effects: Fast Downward exit 34), so it runs ``astar(hmax())``,
-#: the admissible search that does (docs/planning.md).
-PLANNER_OF_MODE: dict[str, PlannerConfig] = {
-    "full": PlannerConfig(),
-    "no-btc": PlannerConfig(),
-    "no-hp": PlannerConfig(validate=False, merge="concatenate"),
-    "lamma-p": PlannerConfig(alias="astar(hmax())", workers=1, validate=False, merge="concatenate"),
-}
-
-
-@cache
-def planner_for(mode: str, planner_input: PlannerInput = "sas") -> HybridPlanner:
-    """One planner per mode and process, so its plan cache serves every episode."""
-    return HybridPlanner(replace(PLANNER_OF_MODE[mode], planner_input=planner_input))
-
-
-@cache
-def offline_frontend() -> OfflineFrontend:
-    """One parser per process: building its lexicon and spelling caches takes ~0.1 s."""
-    return OfflineFrontend()
+    @classmethod
+    def open(cls, task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) -> EpisodeContext:
+        """The context of ``task``: its scene and initial state, the LLM made from ``cfg``
+        unless given."""
+        team = task.team()
+        return cls(task=task, cfg=cfg, scene=load_scene(task.floor_plan), state=task.initial_state(),
+                   team=team, llm=llm if llm is not None else make_llm(cfg))
 
 
 def make_llm(cfg: RunConfig) -> LLMClient | None:
@@ -76,22 +67,22 @@ def make_llm(cfg: RunConfig) -> LLMClient | None:
     return make_client(cfg.llm, timeout=cfg.llm_timeout, record_dir=cfg.llm_record, seed=cfg.seed)
 
 
-def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
-               team: Sequence[RobotProfile], llm: LLMClient | None,
-               notes: list[str] | None = None) -> TaskSpec:
+def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
     """The PFG: the instruction as a TaskSpec, by the configured front end. ``notes``, if
     given, receives what the front end could not read or read with doubt (for the user)."""
+    task, cfg, llm = ctx.task, ctx.cfg, ctx.llm
+    args = (task.instruction, ctx.scene, ctx.state, ctx.team)
     if cfg.frontend == "oracle":
         from emboteam.pfg.oracle import OracleFrontend
 
-        if not task.goal.conditions:
+        if task.ground_truth is None:
             raise ModeConfigError("the oracle front end needs a task with a ground-truth goal")
-        return OracleFrontend(task.goal).decompose(task.instruction, scene, state, team)
+        return OracleFrontend(task.ground_truth).decompose(*args)
     if cfg.frontend == "llm":
         from emboteam.pfg.llm_frontend import LLMFrontend
 
         assert llm is not None
-        return LLMFrontend(llm).decompose(task.instruction, scene, state, team)
+        return LLMFrontend(llm).decompose(*args)
     if cfg.frontend == "hybrid":
         from emboteam.pfg.hybrid import HybridFrontend
         from emboteam.pfg.llm_frontend import LLMFrontend
@@ -104,9 +95,8 @@ def understand(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
         # for plan_spec)
         hybrid = HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when,
                                 llm=LLMFrontend(llm, repair_rounds=1), review_rounds=1)
-        return hybrid.decompose(task.instruction, scene, state, team,
-                                validate=lambda spec: _plans(planner, spec, state))
-    reading = offline_frontend().parse(task.instruction, scene, state, team)
+        return hybrid.decompose(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
+    reading = offline_frontend().parse(*args)
     if notes is not None:
         notes.extend(reading_notes(reading))
     return reading.spec
@@ -122,46 +112,60 @@ def _plans(planner: HybridPlanner, spec: TaskSpec, state: WorldState) -> None:
     planner.plan(spec, state)
 
 
-def plan_spec(spec: TaskSpec, cfg: RunConfig, task: BenchTask, scene: Scene, state: WorldState,
-              team: Sequence[RobotProfile], llm: LLMClient | None) -> tuple[TaskSpec, MergedPlan]:
+def plan_summary(plan: MergedPlan) -> str:
+    """The plan as text for the LLM merge prompt: per robot, its actions with subtask and waits."""
+    lines = []
+    for robot in plan.robots:
+        steps = [f"{s.action} [{s.subtask}{'; after ' + ','.join(s.after) if s.after else ''}]"
+                 for s in plan.for_robot(robot)]
+        lines.append(f"{robot}: " + " -> ".join(steps))
+    return "\n".join(lines)
+
+
+def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan]:
     """The HP. With an LLM front end in the full system, the paper's LLM validation stage
     reviews the TaskSpec first, and one planner error goes back to the LLM for repair."""
+    cfg, llm = ctx.cfg, ctx.llm
+    args = (ctx.scene, ctx.state, ctx.team)
     planner = planner_for(cfg.mode, cfg.planner_input)
-    if llm is not None and cfg.frontend == "llm" and cfg.mode == "full":
+    if llm is not None and cfg.frontend == "llm" and wiring(cfg.mode).llm_review:
         from emboteam.hp.llm_stages import review_spec
 
-        spec = review_spec(llm, spec, task.instruction, scene, state, team).spec
+        spec = review_spec(llm, spec, ctx.task.instruction, *args).spec
     try:
-        plan = planner.plan(spec, state)
+        plan = planner.plan(spec, ctx.state)
     except PlanningError as exc:
         if llm is None or cfg.frontend != "llm":
             raise
         from emboteam.pfg.llm_frontend import LLMFrontend
 
-        spec = LLMFrontend(llm).repair(spec, str(exc), scene, state, team)
-        plan = planner.plan(spec, state)
+        spec = LLMFrontend(llm).repair(spec, str(exc), *args)
+        plan = planner.plan(spec, ctx.state)
     if llm is not None and cfg.llm_merge:
         # the paper's LLM merge: orderings it proposes become dependencies if they keep the
         # subtasks acyclic, and the formal merge plans and validates the result
         from emboteam.hp.llm_stages import apply_orderings, propose_orderings
-        from emboteam.views import plan_summary
 
-        ordered = apply_orderings(spec, propose_orderings(llm, spec, task.instruction, plan_summary(plan)))
+        ordered = apply_orderings(spec, propose_orderings(llm, spec, ctx.task.instruction, plan_summary(plan)))
         if ordered != spec:
-            spec, plan = ordered, planner.plan(ordered, state)
+            spec, plan = ordered, planner.plan(ordered, ctx.state)
     return spec, plan
 
 
-def action_lists(task: BenchTask, cfg: RunConfig, scene: Scene, state: WorldState,
-                 team: Sequence[RobotProfile], llm: LLMClient | None) -> dict[str, list[Action]]:
+def plan_task(ctx: EpisodeContext, notes: list[str] | None = None) -> tuple[TaskSpec, MergedPlan]:
+    """PFG then HP: what ``emboteam plan`` shows and a planning mode executes."""
+    return plan_spec(ctx, understand(ctx, notes))
+
+
+def action_lists(ctx: EpisodeContext) -> dict[str, list[Action]]:
     """Per-robot action lists written directly (no PDDL): by the LLM, or without one by the
     scripted stand-in over the goal the front end understood."""
-    if llm is not None and cfg.frontend == "llm":
+    if ctx.llm is not None and ctx.cfg.frontend == "llm":
         from emboteam.pfg.action_lists import LLMActionListFrontend
 
-        return LLMActionListFrontend(llm).generate(task.instruction, scene, state, team)
-    goal = understand(task, cfg, scene, state, team, None).goal()
-    return scripted_action_lists(goal, state, team)
+        return LLMActionListFrontend(ctx.llm).generate(ctx.task.instruction, ctx.scene, ctx.state, ctx.team)
+    goal = understand(replace(ctx, llm=None)).goal()
+    return scripted_action_lists(goal, ctx.state, ctx.team)
 
 
 def literal_plan(lists: Mapping[str, Sequence[Action]], state: WorldState) -> MergedPlan:
@@ -192,78 +196,73 @@ def literal_plan(lists: Mapping[str, Sequence[Action]], state: WorldState) -> Me
     return MergedPlan(robots=tuple(lists), steps=tuple(steps))
 
 
-def execute(plan: MergedPlan, goal: Goal, cfg: RunConfig, scene: Scene, state: WorldState,
-            team: Sequence[RobotProfile], *, reactive: bool, replan: bool,
+def execute(ctx: EpisodeContext, plan: MergedPlan, goal: Goal, *,
             finish_plan: bool = False) -> tuple[ExecutionResult, ExecutionEnvironment]:
-    sim = make_environment(cfg, scene, team, state)  # the simulator, or AI2-THOR (--env)
+    """Run ``plan`` the way the mode executes: the compiled tree (replanning if the mode
+    does) or linear lists."""
+    cfg, team = ctx.cfg, ctx.team
+    how = wiring(cfg.mode)
+    sim = make_environment(cfg, ctx.scene, team, ctx.state)  # the simulator, or AI2-THOR (--env)
     joins = parse_joins(cfg.joins, [p.name for p in team])
     messages = cfg.fault_config().messages
-    if not reactive:
+    if how.execution == "linear":
         return run_linear(sim, plan, goal, time_limit=cfg.time_limit, joins=[(j.profile, j.at) for j in joins],
                           messages=messages, seed=cfg.seed), sim
-    replanner = planner_replanner(planner_for("full", cfg.planner_input)) if replan else None
-    executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, seed=cfg.seed,
-                        time_limit=cfg.time_limit, finish_plan=finish_plan, messages=messages)
+    replanner = planner_replanner(planner_for("full", cfg.planner_input)) if how.replan else None
+    settings = ExecutorSettings(time_limit=cfg.time_limit, seed=cfg.seed, finish_plan=finish_plan, messages=messages)
+    executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, settings=settings)
     return executor.run(), sim
 
 
-def run_mode(task: BenchTask, cfg: RunConfig, llm: LLMClient | None = None) -> Episode:
+def _run_lists(ctx: EpisodeContext, lists: dict[str, list[Action]],
+               goal: Goal) -> tuple[ExecutionResult, ExecutionEnvironment]:
+    if wiring(ctx.cfg.mode).execution == "sequences":
+        cfg, team = ctx.cfg, ctx.team
+        sim = make_environment(cfg, ctx.scene, team, ctx.state)
+        joins = [(j.profile, j.at) for j in parse_joins(cfg.joins, [p.name for p in team])]
+        return run_sequences(sim, lists, goal, time_limit=cfg.time_limit, joins=joins), sim
+    return execute(ctx, literal_plan(lists, ctx.state), goal)
+
+
+def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) -> Episode:
     """Plan and execute one task in ``cfg.mode``; typed errors propagate to the caller.
     ``llm``: the client to use (the caller keeps it to report the usage of a failed
     episode); made from ``cfg`` when None."""
-    scene = load_scene(task.floor_plan)
-    state, team = initial_state(task)
-    prepared = None
+    ctx = EpisodeContext.open(task, cfg, llm)
+    prepared: Prepared | None = None
     if cfg.disturbance.any:  # breakdowns, joins, moves, message faults placed in this task
-        from emboteam.bench.ceiling import prepare
-
-        prepared = prepare(task, cfg, state, team)
-        cfg = prepared.cfg
-    llm = llm if llm is not None else make_llm(cfg)
+        prepared = prepare(task, cfg, ctx.state, ctx.team, planner_for("full"))
+        ctx = replace(ctx, cfg=prepared.cfg)
+    cfg, llm = ctx.cfg, ctx.llm
     t0 = time.perf_counter()
     spec: TaskSpec | None = None
     notes: list[str] = []
-    if cfg.mode in ("no-pfg-hp", "smart-llm"):
-        lists = action_lists(task, cfg, scene, state, team, llm)
+    if wiring(cfg.mode).planner is None:
+        lists = action_lists(ctx)
         plan_seconds = time.perf_counter() - t0
-        goal = task.goal if task.goal.conditions else Goal(conditions=())
-        if cfg.mode == "smart-llm":
-            sim = make_environment(cfg, scene, team, state)
-            joins = [(j.profile, j.at) for j in parse_joins(cfg.joins, [p.name for p in team])]
-            result = run_sequences(sim, lists, goal, time_limit=cfg.time_limit, joins=joins)
-        else:
-            result, sim = execute(literal_plan(lists, state), goal, cfg, scene, state, team,
-                                  reactive=True, replan=False)
+        result, sim = _run_lists(ctx, lists, task.ground_truth or Goal(conditions=()))
     else:
-        spec = understand(task, cfg, scene, state, team, llm, notes)
-        spec, plan = plan_spec(spec, cfg, task, scene, state, team, llm)
+        spec, plan = plan_task(ctx, notes)
         plan_seconds = time.perf_counter() - t0
-        reactive = cfg.mode in ("full", "no-hp")
-        result, sim = execute(plan, spec.goal(), cfg, scene, state, team, reactive=reactive,
-                              replan=cfg.mode == "full",
-                              finish_plan=any(not s.final for s in spec.subtasks))
-    truth = task.goal if task.goal.conditions else (spec.goal() if spec else Goal(conditions=()))
+        result, sim = execute(ctx, plan, spec.goal(), finish_plan=any(not s.final for s in spec.subtasks))
+    truth = task.ground_truth or (spec.goal() if spec else Goal(conditions=()))
     success, gcr, conditions = score(truth, sim.state)
     fields = result.episode_fields()
     fields.update(success=success, gcr=gcr, conditions=conditions)
     error = result.error
     if prepared is not None:
-        from emboteam.bench.ceiling import disturbance_outcome
-
         assert isinstance(sim, Simulator)  # disturbances are the simulator's (check_thor_config)
-        outcome = disturbance_outcome(task, prepared, sim, result, success, state)
+        outcome = disturbance_outcome(task, prepared, sim, result, success, ctx.state, planner_for("full"))
         fields["disturbance"] = outcome
         if not success and outcome.savable is False and error is None:
             error = outcome.ceiling  # the typed reason an unsavable episode ended with
-    return Episode(
-        task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
-        robots=tuple(sorted(sim.state.robots)), category=task.category, mode=cfg.mode,
-        frontend=cfg.frontend, llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(),
-        fault_level=cfg.fault_level, env=cfg.env,
-        llm_calls=llm.usage.calls if llm else 0, tokens=llm.usage.tokens if llm else 0,
-        plan_seconds=round(plan_seconds, 4), taskspec=spec, notes=tuple(notes),
-        error=error, **fields,
-    )
+    header = episode_header(task, cfg, sorted(sim.state.robots))
+    return Episode.model_validate({
+        **header, "llm_calls": llm.usage.calls if llm else 0, "tokens": llm.usage.tokens if llm else 0,
+        "plan_seconds": round(plan_seconds, 4), "taskspec": spec, "notes": tuple(notes), "error": error,
+        **fields,
+    })
 
 
-__all__ = ["PLANNER_OF_MODE", "ModeConfigError", "planner_for", "run_mode"]
+__all__ = ["EpisodeContext", "ModeConfigError", "action_lists", "execute", "make_llm",
+           "plan_spec", "plan_task", "run_mode", "understand"]

@@ -6,8 +6,6 @@ dispatches; the JSON shapes here are the ``--json`` contract of ``plan`` and ``r
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 from rich.console import Group
 from rich.markup import escape
 from rich.panel import Panel
@@ -35,16 +33,6 @@ def plan_json(plan: MergedPlan) -> dict[str, object]:
         "makespan": round(plan.makespan, 2), "lower_bound": round(plan.lower_bound, 2),
         "joint": plan.joint, "planner_calls": plan.planner_calls,
     }
-
-
-def plan_summary(plan: MergedPlan) -> str:
-    """The plan as text for a prompt: per robot, its actions with subtask and waits."""
-    lines = []
-    for robot in plan.robots:
-        steps = [f"{s.action} [{s.subtask}{'; after ' + ','.join(s.after) if s.after else ''}]"
-                 for s in plan.for_robot(robot)]
-        lines.append(f"{robot}: " + " -> ".join(steps))
-    return "\n".join(lines)
 
 
 def spec_table(spec: TaskSpec) -> Table:
@@ -105,6 +93,3 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
     return Panel(Group(*body), title=f"{escape(episode.task)} {verdict}",  # type: ignore[arg-type]
                  subtitle=escape(f"{episode.floor_plan} · {', '.join(episode.robots)}"))
 
-
-def robots_line(names: Sequence[str]) -> str:
-    return ", ".join(names)

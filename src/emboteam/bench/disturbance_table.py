@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from emboteam.bench.disturbance_metrics import DisturbanceSummary, summarize_disturbance
-from emboteam.bench.jobs import MODES
+from emboteam.config import MODES
 from emboteam.exec.episode import Episode
 
 #: how Table 1 names the modes

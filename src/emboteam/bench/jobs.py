@@ -23,29 +23,15 @@ from typing import Literal, TypeAlias
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from emboteam.bench.task import BenchTask
+from emboteam.config import ABLATIONS, BASELINES, LLM_FRONTENDS, EnvName, Frontend, LLMWhen, Mode, RunConfig
 from emboteam.errors import EmboTeamError
-from emboteam.exec.episode import Episode
+from emboteam.exec.episode import Episode, episode_header
 from emboteam.pddl.runner import PlannerInput
 from emboteam.sim.disturbances import Disturbances
-from emboteam.sim.faults import FaultConfig
+from emboteam.task import BenchTask
 from emboteam.world.robots import parse_team
 
-Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p"]
-Frontend = Literal["oracle", "offline", "llm", "hybrid"]
-#: when the hybrid front end asks the LLM: only for a doubtful offline reading, or always
-LLMWhen = Literal["doubt", "always"]
 ExecutorName = Literal["local", "ray", "inline"]
-#: where episodes execute: the symbolic simulator, or a live AI2-THOR (emboteam.thor)
-EnvName = Literal["sim", "ai2thor"]
-
-#: every mode, in the order the tables list them
-MODES: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p")
-ABLATIONS: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc")
-BASELINES: tuple[Mode, ...] = ("smart-llm", "lamma-p")
-FRONTENDS: tuple[Frontend, ...] = ("oracle", "offline", "llm", "hybrid")
-#: front ends that call an LLM (and need an LLM spec)
-LLM_FRONTENDS: tuple[Frontend, ...] = ("llm", "hybrid")
 
 #: an episode function: a module-level callable, or its import path ``package.module:function``
 EpisodeFn: TypeAlias = "Callable[[Job], Episode] | str"
@@ -55,28 +41,15 @@ class BenchConfigError(EmboTeamError):
     """A benchmark configuration that cannot run (bad mode, fault level, episode function)."""
 
 
-class Job(BaseModel):
-    """One episode of a benchmark run."""
+class Job(RunConfig):
+    """One episode of a benchmark run: its task and its episode configuration (a job *is*
+    the :class:`RunConfig` the pipeline runs, so no option is lost between the two)."""
 
     model_config = ConfigDict(frozen=True)
 
     task: BenchTask
-    mode: Mode = "full"
-    frontend: Frontend = "offline"
-    llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL]")
     seed: int = Field(0, ge=0)
-    fault_level: float = Field(0.0, ge=0, le=1)
-    #: the Environment it executes in; in the key only when not the simulator
-    env: EnvName = "sim"
-    #: breakdowns, joins, moved objects, blackboard message faults (bench --breakdown/--join/
-    #: --moves/--msg-loss/--msg-delay); in the key only when something is disturbed
-    disturbance: Disturbances = Field(default_factory=Disturbances)
-    #: --planner-input (pddl/runner.py); in the key only when not the default (plans may differ)
-    planner_input: PlannerInput = "sas"
-    #: not part of the key: it changes how long a call may take, not what is measured
     llm_timeout: float = Field(60.0, gt=0)
-    #: the hybrid front end's --llm-when; in the key only when not the default
-    llm_when: LLMWhen = "doubt"
 
     @model_validator(mode="after")
     def _llm_needs_spec(self) -> Job:
@@ -117,9 +90,6 @@ class Job(BaseModel):
         safe = re.sub(r"[^A-Za-z0-9._=-]+", "_", self.key.replace("|", "__")).strip("._")
         digest = hashlib.sha1(self.key.encode()).hexdigest()[:8]
         return f"{safe[:150]}-{digest}"
-
-    def fault_config(self) -> FaultConfig:
-        return FaultConfig.level(self.fault_level)
 
 
 class BenchConfig(BaseModel):
@@ -283,13 +253,8 @@ def resolve_episode_fn(ref: EpisodeFn) -> Callable[[Job], Episode]:
 
 def failed_episode(job: Job, error: str) -> Episode:
     """A recorded failed episode for a job whose episode function raised or whose worker died."""
-    task = job.task
-    return Episode(
-        task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
-        robots=_team_names(task.robots), category=task.category, mode=job.mode,
-        frontend=job.frontend, seed=job.seed, faults=job.fault_config(),
-        fault_level=job.fault_level, success=False, error=error,
-    )
+    header = episode_header(job.task, job, _team_names(job.task.robots))
+    return Episode.model_validate({**header, "success": False, "error": error})
 
 
 def _team_names(robots: Sequence[str]) -> tuple[str, ...]:

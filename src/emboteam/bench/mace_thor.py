@@ -15,8 +15,8 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, ValidationError
 
-from emboteam.bench.task import BenchTask, InvalidTaskError
 from emboteam.errors import EmboTeamError
+from emboteam.task import BenchTask, InvalidTaskError
 
 SUITE_NAME = "mace-thor"
 

@@ -19,8 +19,8 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from emboteam.bench.jobs import MODES
 from emboteam.bench.tables import MODE_LABELS, Group, GroupSummaries
+from emboteam.config import MODES
 from emboteam.exec.episode import Episode
 
 #: one fixed colour per mode (tab10), so a mode looks the same in every plot

@@ -71,14 +71,13 @@ EPISODES_DIR = "episodes"
 
 
 def pipeline_episode(job: Job) -> Episode:
-    """Plan and execute one job with :func:`emboteam.pipeline.run_episode`."""
-    from emboteam.pipeline import RunConfig, run_episode
+    """Plan and execute one job with :func:`emboteam.pipeline.run_episode` (a job is its
+    own episode configuration)."""
+    from emboteam.pipeline import (
+        run_episode,  # a worker imports the pipeline, the runner's parent does not need to
+    )
 
-    cfg = RunConfig(mode=job.mode, frontend=job.frontend, llm=job.llm, llm_timeout=job.llm_timeout,
-                    planner_input=job.planner_input,
-                    llm_when=job.llm_when,
-                    fault_level=job.fault_level, seed=job.seed, disturbance=job.disturbance, env=job.env)
-    return run_episode(job.task, cfg)
+    return run_episode(job.task, job)
 
 
 # --------------------------------------------------------------------------- executors

@@ -8,53 +8,17 @@ are typed errors that list the closest names.
 from __future__ import annotations
 
 import difflib
-from collections import Counter
 from pathlib import Path
-
-from pydantic import BaseModel, ConfigDict
 
 from emboteam.bench.mace_thor import SUITE_NAME as MACE_THOR
 from emboteam.bench.mace_thor import load_mace_thor
-from emboteam.bench.task import BenchTask
-from emboteam.errors import EmboTeamError
+from emboteam.bench.suite import Suite, UnknownSuiteError, UnknownTaskError
+from emboteam.task import BenchTask
 
 SMART_LLM_PREFIX = "smart-llm:"
 
 #: how suites are written on the command line
 SUITE_SPECS: tuple[str, ...] = (MACE_THOR, SMART_LLM_PREFIX + "PATH")
-
-
-class UnknownSuiteError(EmboTeamError):
-    """A suite spec that names no known suite, or a smart-llm PATH with no task files."""
-
-
-class UnknownTaskError(EmboTeamError):
-    """A task id that is not in its suite."""
-
-
-class Suite(BaseModel):
-    """A loaded suite: its tasks, and what an importer had to leave out (``problems``:
-    one line each, ``FILE:LINE: why``)."""
-
-    model_config = ConfigDict(frozen=True)
-
-    name: str
-    tasks: tuple[BenchTask, ...]
-    problems: tuple[str, ...] = ()
-
-    def task(self, task_id: str) -> BenchTask:
-        for t in self.tasks:
-            if t.id == task_id:
-                return t
-        ids = [t.id for t in self.tasks]
-        close = difflib.get_close_matches(task_id, ids, n=5, cutoff=0.5)
-        hint = f"; did you mean {', '.join(close)}?" if close else f"; it has {len(ids)} tasks " \
-            f"(emboteam tasks --suite {self.name})"
-        raise UnknownTaskError(f"suite {self.name} has no task {task_id!r}{hint}")
-
-    def categories(self) -> dict[str, int]:
-        """Number of tasks per category, in first-seen order."""
-        return dict(Counter(t.category for t in self.tasks))
 
 
 def load_suite(spec: str) -> Suite:
@@ -92,3 +56,7 @@ def get_task(key: str) -> BenchTask:
     """The task ``SUITE/ID`` (e.g. ``mace-thor/fp1-toast``)."""
     suite, task_id = split_task_key(key)
     return load_suite(suite).task(task_id)
+
+
+__all__ = ["SUITE_SPECS", "Suite", "UnknownSuiteError", "UnknownTaskError", "get_task", "load_suite",
+           "split_task_key"]

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from emboteam.bench.jobs import ABLATIONS, MODES
 from emboteam.bench.metrics import CATEGORY_ORDER, BenchSummary, GroupSummary, summarize
+from emboteam.config import ABLATIONS, MODES
 from emboteam.exec.episode import Episode
 
 METHOD_LABELS = {"smart-llm": "SMART-LLM", "lamma-p": "LaMMA-P", "full": "EmboTeam"}

@@ -260,9 +260,6 @@ class Runtime:
         but nobody waits for it (the robot counts as busy until it arrives)."""
         ticket.orphaned = True
 
-    def running_ticket(self, robot: str) -> Ticket | None:
-        return self._running.get(robot)
-
     # ---- timers and progress ----------------------------------------------------------
     def wake_at(self, t: float) -> None:
         """Ask the executor to tick again at simulated time ``t`` (bounded waits)."""

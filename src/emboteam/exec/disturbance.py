@@ -1,7 +1,7 @@
 """What a disturbed episode records about its disturbance: what happened, whether the goal
 was still reachable by the robots left (the ceiling), and how the run reacted.
 
-Filled by :func:`emboteam.bench.ceiling.disturbance_outcome`; read by the metrics (``SR of
+Filled by :func:`emboteam.exec.ceiling.disturbance_outcome`; read by the metrics (``SR of
 savable``), the tables and the HTML report.
 """
 

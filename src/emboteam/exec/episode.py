@@ -9,16 +9,21 @@ On disk (``emboteam run --out DIR``)::
 
 from __future__ import annotations
 
-import json
+from collections.abc import Sequence
 from pathlib import Path
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceOutcome
-from emboteam.exec.trace import TraceEvent, read_jsonl, write_jsonl
+from emboteam.exec.trace import TraceEvent, write_jsonl
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
+from emboteam.task import EpisodeTask
+from emboteam.world.checker import check_goal
+from emboteam.world.goals import Goal
+from emboteam.world.state import WorldState
 
 
 class ConditionOutcome(BaseModel):
@@ -30,6 +35,22 @@ class ConditionOutcome(BaseModel):
     holds: bool
     satisfied: int
     required: int
+
+
+def episode_header(task: EpisodeTask, cfg: RunConfig, robots: Sequence[str]) -> dict[str, object]:
+    """The fields every episode of ``task`` under ``cfg`` starts with, failed ones included."""
+    return dict(task=task.key, instruction=task.instruction, floor_plan=task.floor_plan,
+                robots=tuple(robots), category=task.category, mode=cfg.mode, frontend=cfg.frontend,
+                llm=cfg.llm, seed=cfg.seed, faults=cfg.fault_config(), fault_level=cfg.fault_level, env=cfg.env)
+
+
+def score(goal: Goal, state: WorldState) -> tuple[bool, float, tuple[ConditionOutcome, ...]]:
+    """Success, GCR and per-condition outcomes of ``goal`` on the final ``state``."""
+    report = check_goal(goal, state)
+    outcomes = tuple(ConditionOutcome(condition=str(r.condition), holds=r.holds,
+                                      satisfied=r.satisfied, required=r.required)
+                     for r in report.results)
+    return report.success, report.gcr, outcomes
 
 
 class Episode(BaseModel):
@@ -85,10 +106,3 @@ class Episode(BaseModel):
         directory.mkdir(parents=True, exist_ok=True)
         (directory / "episode.json").write_text(self.model_dump_json(indent=1))
         write_jsonl(self.trace, directory / "trace.jsonl")
-
-    @classmethod
-    def load(cls, directory: Path) -> Episode:
-        data = json.loads((directory / "episode.json").read_text())
-        trace_path = directory / "trace.jsonl"
-        trace = read_jsonl(trace_path) if trace_path.exists() else []
-        return cls.model_validate({**data, "trace": trace})

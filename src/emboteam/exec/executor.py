@@ -25,6 +25,7 @@ planner nothing.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 
 from py_trees.common import Status
 from pydantic import BaseModel, ConfigDict, Field
@@ -110,15 +111,36 @@ def parse_joins(texts: Sequence[str], team: Sequence[str]) -> list[Join]:
     return joins
 
 
+@dataclass(frozen=True)
+class ExecutorSettings:
+    """How a run is bounded, seeded and recorded: everything of an execution that is not
+    the environment, the plan, the goal, the replanner or the joining robots.
+
+    ``finish_plan``: run the plan to its end even when the goal holds earlier (a plan with
+    intermediate subtasks, "rinse the lettuce, then put it on the counter", must not stop
+    because the final state happens to hold before the rinse). ``messages``: the
+    blackboard's message faults (``--msg-loss``/``--msg-delay``), seeded by ``seed``."""
+
+    time_limit: float = 600.0
+    tick_limit: int = 200_000
+    seed: int = 0
+    config: BTConfig = field(default_factory=BTConfig)
+    max_replans: int = 3
+    pose_interval: float = 0.5
+    record_nodes: bool = True
+    finish_plan: bool = False
+    messages: MessageFaults = field(default_factory=MessageFaults)
+
+
 class Executor:
     """Run a merged plan as a behavior tree. See the module docstring."""
 
     def __init__(self, env: Environment, plan: MergedPlan, goal: Goal, *,
-                 replanner: Replanner | None = None, time_limit: float = 600.0,
-                 tick_limit: int = 200_000, joins: Sequence[Join | tuple[RobotProfile, float]] = (),
-                 seed: int = 0, config: BTConfig | None = None, max_replans: int = 3,
-                 pose_interval: float = 0.5, record_nodes: bool = True, finish_plan: bool = False,
-                 messages: MessageFaults | None = None) -> None:
+                 replanner: Replanner | None = None, joins: Sequence[Join | tuple[RobotProfile, float]] = (),
+                 settings: ExecutorSettings | None = None) -> None:
+        settings = settings or ExecutorSettings()
+        time_limit, tick_limit, seed = settings.time_limit, settings.tick_limit, settings.seed
+        max_replans, pose_interval = settings.max_replans, settings.pose_interval
         if time_limit <= 0 or tick_limit <= 0 or max_replans < 0 or pose_interval < 0:
             raise ExecutionConfigError("time_limit and tick_limit must be positive, max_replans and "
                                        "pose_interval non-negative")
@@ -136,13 +158,10 @@ class Executor:
         #: recorded with the result; the executor itself draws nothing at random (faults
         #: are the environment's, seeded there)
         self.seed = seed
-        self.config = config or BTConfig()
+        self.config = settings.config
         self.max_replans = max_replans
-        #: run the plan to its end even when the goal holds earlier: a plan with
-        #: intermediate subtasks ("rinse the lettuce, then put it on the counter") must not
-        #: stop because the final state happens to hold before the rinse
-        self.finish_plan = finish_plan
-        self.recorder = TraceRecorder(env, nodes=record_nodes)
+        self.finish_plan = settings.finish_plan
+        self.recorder = TraceRecorder(env, nodes=settings.record_nodes)
         self.driver = Driver(env, self.recorder, pose_interval=pose_interval)
         self.outcomes: list[ActionOutcome] = []
         self.ticks = 0
@@ -154,8 +173,7 @@ class Executor:
         self.recoveries = 0
         self.error: str | None = None
         self.replan_error: str | None = None
-        #: the blackboard's message faults (``--msg-loss``/``--msg-delay``), seeded by ``seed``
-        self.messages = messages or MessageFaults()
+        self.messages = settings.messages
         #: lost releases, lock timeouts, late flag reads over every tree of the run
         self.network = {"lost_releases": 0, "lock_timeouts": 0, "late_reads": 0}
         #: set when the planner proves the goal unreachable after a disturbance

@@ -42,9 +42,9 @@ def _team_for(needs: Sequence[Need], state: WorldState, team: Sequence[str],
         for alt in need.alternatives:
             extra: list[str] = []
             for role in alt:
-                if any(role.filled_by(profiles[r]) for r in (*chosen, *extra)):
+                if any(role.covered_by(profiles[r]) for r in (*chosen, *extra)):
                     continue
-                able = [r for r in team if role.filled_by(profiles[r])]
+                able = [r for r in team if role.covered_by(profiles[r])]
                 if not able:
                     break
                 extra.append(min(able, key=lambda r: (load.get(r, 0.0), r)))

@@ -27,7 +27,8 @@ from dataclasses import dataclass
 
 from emboteam.pddl.domain import Grounding
 from emboteam.pddl.schema import Atom
-from emboteam.sim.physics import HEATING, WATER_SOURCES
+from emboteam.world.catalogue import HEATERS as HEATING
+from emboteam.world.catalogue import WATER_SOURCES
 from emboteam.world.state import WorldState
 
 _UNARY = {
@@ -46,12 +47,6 @@ class Footprint:
     reads: frozenset[str]
     writes: frozenset[str]
     updates: frozenset[str] = frozenset()
-
-    def conflicts(self, other: Footprint) -> frozenset[str]:
-        """Variables on which the two steps race (empty: they commute)."""
-        return ((self.writes & (other.reads | other.writes | other.updates))
-                | (self.updates & (other.reads | other.writes))
-                | (self.reads & (other.writes | other.updates)))
 
 
 def _chain(state: WorldState, o: str) -> list[str]:

@@ -14,9 +14,14 @@ from __future__ import annotations
 import random
 from collections.abc import Sequence
 
-from emboteam.sim.physics import WATER_SOURCES
-from emboteam.sim.rules import INTERLOCKED
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import (
+    BREWERS,
+    COLD_SOURCES,
+    HEATERS,
+    INTERLOCKED,
+    WATER_SOURCES,
+    load_catalogue,
+)
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.state import ObjectState, WorldState
 
@@ -46,8 +51,8 @@ def candidate_conditions(state: WorldState, rng: random.Random, *, max_mass: flo
     counts: dict[str, int] = {}
     for o in objs:
         counts[o.type] = counts.get(o.type, 0) + 1
-    fridges = [o for o in objs if o.type == "Fridge"]
-    heaters = [o for o in objs if o.type == "Microwave"]
+    fridges = [o for o in objs if o.type in COLD_SOURCES]
+    heaters = [o for o in objs if o.type in HEATERS & INTERLOCKED]  # hot/cooked goals are drawn for microwaves
     basins = [state.objects[b] for f in objs if f.type in WATER_SOURCES for b in f.controls
               if b in state.objects and state.objects[b].has("receptacle")]
     out: list[tuple[str, Condition]] = []
@@ -103,12 +108,12 @@ def _compatible(oid: str, cond: Condition, taken: dict[str, dict[str, Condition]
     if Predicate.hot in preds and Predicate.inside in preds:
         where = next(c for c in (*mine.values(), cond) if c.predicate is Predicate.inside)
         assert where.receptacle is not None
-        if "Fridge" in where.receptacle.types or (where.receptacle.id or "").startswith("Fridge"):
+        if any(t in COLD_SOURCES for t in (*where.receptacle.types, (where.receptacle.id or "").split("_")[0])):
             return False
     if Predicate.cold in preds and Predicate.inside in preds:
         where = next(c for c in (*mine.values(), cond) if c.predicate is Predicate.inside)
         assert where.receptacle is not None
-        if any(t in ("Microwave", "Toaster", "StoveBurner", "CoffeeMachine")
+        if any(t in HEATERS | BREWERS
                for t in (*where.receptacle.types, (where.receptacle.id or "").split("_")[0])):
             return False
     return True

@@ -1,11 +1,16 @@
-"""What it takes to achieve a condition: the *roles* robots must fill (carry the apple,
-open the fridge, switch on the microwave), each a bundle of skills one robot must have
-together, plus a mass to lift. Used to allocate robots before planning, to explain why a
-team cannot do something, and to estimate how long a subtask keeps a robot busy.
+"""The planner's view of the capability model (``sim/capability.py``): the *roles* robots
+must fill to achieve a condition (carry the apple, open the fridge, switch on the
+microwave), each a bundle of skills one robot must have together, plus a mass to lift.
+Used to allocate robots before planning, to explain why a team cannot do something, and
+to estimate how long a subtask keeps a robot busy.
 
-The analysis looks at the most promising candidate object (the one the goal compiler
-ranks first) and is an estimate: Fast Downward has the last word. Only roles every way
-of satisfying the condition needs (``certain``) may reject a team outright.
+The roles are the model's :class:`~emboteam.sim.capability.Role`, and the appliances
+(which one heats, cools, waters) are the ones the model picks, so the planner and the
+benchmark's solvability claims read the same rules (``tests/test_capability_agreement.py``
+checks this view against the model). The view is coarse and fast:
+it looks at the most promising candidate object (the one the goal compiler ranks first)
+and is an estimate; Fast Downward has the last word. Only roles every way of satisfying
+the condition needs (``certain``) may reject a team outright.
 """
 
 from __future__ import annotations
@@ -15,30 +20,15 @@ from dataclasses import dataclass, field
 
 from emboteam.pddl.errors import ImpossibleGoalError, MissingSkillError
 from emboteam.pddl.goal_compiler import GoalPart, compile_condition
+from emboteam.sim.capability import Role, brewer, cold_source, heater_for, water_basin
 from emboteam.sim.durations import ACTION_SECONDS, navigation_seconds
-from emboteam.sim.physics import HEATING, WATER_SOURCES
-from emboteam.sim.rules import INTERLOCKED
 from emboteam.world.actions import Skill
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import HEATERS, INTERLOCKED, load_catalogue
 from emboteam.world.goals import Condition, Predicate
 from emboteam.world.robots import RobotProfile
 from emboteam.world.state import WorldState
 
 S = Skill
-
-
-@dataclass(frozen=True)
-class Role:
-    """A job one robot must do: any one of ``options`` (a set of skills it must all have),
-    lifting ``mass`` kg."""
-
-    what: str
-    options: tuple[frozenset[Skill], ...]
-    mass: float = 0.0
-    certain: bool = False
-
-    def filled_by(self, profile: RobotProfile) -> bool:
-        return profile.mass_capacity >= self.mass and any(opt <= profile.skills for opt in self.options)
 
 
 @dataclass(frozen=True)
@@ -59,7 +49,7 @@ class Need:
 
 
 def _role(what: str, *options: Iterable[Skill], mass: float = 0.0, certain: bool = False) -> Role:
-    return Role(what, tuple(frozenset(o) for o in options), mass, certain)
+    return Role.of(what, *options, lift=mass, certain=certain)
 
 
 def _mass(state: WorldState, part: GoalPart, oid: str) -> float:
@@ -90,27 +80,13 @@ def _cutter(state: WorldState, oid: str) -> list[Role]:
     return [_role(f"slice {whole}", [S.SliceObject, S.PickupObject], *crack)]
 
 
-def _heater_for(state: WorldState, oid: str) -> str | None:
-    cat = load_catalogue()
-    t = state.objects[oid].type if oid in state.objects else None
-    if t is None:
-        whole = state.objects.get(_anchor(state, oid))
-        product = cat.slice_product(whole.type) if whole is not None else None
-        t = product[0] if product else None
-    for h in state.objects.values():
-        if h.type in ("Microwave", "Toaster") and t is not None and cat.can_place(t, h.type):
-            return h.id
-    burners = list(state.of_type("StoveBurner"))
-    return burners[0].id if burners else None
-
-
-def _water_basin(state: WorldState) -> tuple[str | None, str | None]:
-    for f in state.objects.values():
-        if f.type in WATER_SOURCES:
-            for b in f.controls:
-                if b in state.objects and state.objects[b].has("receptacle"):
-                    return f.id, b
-    return None, None
+def _type_of(state: WorldState, oid: str) -> str | None:
+    """The type of an object, or of the piece a pending slice will be."""
+    if oid in state.objects:
+        return state.objects[oid].type
+    whole = state.objects.get(_anchor(state, oid))
+    product = load_catalogue().slice_product(whole.type) if whole is not None else None
+    return product[0] if product else None
 
 
 def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
@@ -162,9 +138,9 @@ def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
             roles.append(_role(f"close {s}", [S.CloseObject]))
         return Need(cond, (tuple(roles),), (s,), a[skill], part)
     if pred in (Predicate.hot, Predicate.cooked):
-        heater = _heater_for(state, s)
+        heater = heater_for(state, _type_of(state, s), cook=pred is Predicate.cooked)
         chain = state.ancestors(_anchor(state, s)) if _anchor(state, s) in state.objects else []
-        inside = next((h for h in chain if state.objects[h].type in HEATING), None)
+        inside = next((h for h in chain if state.objects[h].type in HEATERS), None)
         roles = [] if inside else [carry, *opener]
         h = inside or heater
         if h is not None:
@@ -179,15 +155,15 @@ def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
             roles.append(_role(f"slice {_anchor(state, s)}", [S.SliceObject, S.PickupObject]))
         return Need(cond, (tuple(roles),), (s, h) if h else (s,), 4.0, part)
     if pred is Predicate.cold:
-        fridge = next((f.id for f in state.of_type("Fridge")), None)
+        fridge = cold_source(state)
         roles = [carry, *opener, *_cutter(state, s)]
         if fridge is not None and not state.objects[fridge].is_open:
             roles.append(_role(f"open {fridge}", [S.OpenObject]))
         return Need(cond, (tuple(roles),), (s, fridge) if fridge else (s,), 3.5, part)
     if pred in (Predicate.clean, Predicate.filled):
-        faucet, basin = _water_basin(state)
+        faucet, basin = water_basin(state)
         if pred is Predicate.filled and cond.liquid == "coffee":
-            faucet = basin = next((c.id for c in state.of_type("CoffeeMachine")), None)
+            faucet = basin = brewer(state)
         roles = [carry, *opener]
         if faucet is not None and not state.objects[faucet].is_on:
             roles.append(_role(f"switch on {faucet}", [S.SwitchOn]))
@@ -200,7 +176,7 @@ def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
 
 def covers(profiles: Sequence[RobotProfile], need: Need) -> bool:
     """Can these robots together fill every role of some alternative?"""
-    return any(all(any(role.filled_by(p) for p in profiles) for role in alt) for alt in need.alternatives)
+    return any(all(any(role.covered_by(p) for p in profiles) for role in alt) for alt in need.alternatives)
 
 
 def check_team(needs: Sequence[Need], profiles: Sequence[RobotProfile]) -> None:
@@ -210,13 +186,13 @@ def check_team(needs: Sequence[Need], profiles: Sequence[RobotProfile]) -> None:
     for need in needs:
         for alt in need.alternatives:
             for role in alt:
-                if not role.certain or any(role.filled_by(p) for p in profiles):
+                if not role.certain or any(role.covered_by(p) for p in profiles):
                     continue
                 skills = sorted({s.value for opt in role.options for s in opt})
                 able = [p for p in profiles if any(opt <= p.skills for opt in role.options)]
-                if able and role.mass > 0:
+                if able and role.lift > 0:
                     raise ImpossibleGoalError(
-                        f"{need.condition}: every {need.condition.subject} here weighs {role.mass:g} kg "
+                        f"{need.condition}: every {need.condition.subject} here weighs {role.lift:g} kg "
                         f"or more; the robots that can pick up ({', '.join(p.name for p in able)}) lift at "
                         f"most {max(p.mass_capacity for p in able):g} kg")
                 raise MissingSkillError(

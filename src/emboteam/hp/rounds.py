@@ -11,9 +11,8 @@ from emboteam.hp.decompose import group_indices
 from emboteam.hp.merge import GroundedStep, SeqStep
 from emboteam.hp.requirements import need_of
 from emboteam.pfg.taskspec import Subtask
-from emboteam.sim.rules import INTERLOCKED
 from emboteam.world.actions import Action, Skill
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import INTERLOCKED, load_catalogue
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -160,7 +159,7 @@ def helpers(u: Unit, state: WorldState, team: Sequence[str], accepted: Sequence[
         need = need_of(c, state, team)
         for alt in need.alternatives:
             for role in alt:
-                able = sorted((r for r in team if role.filled_by(state.robots[r].profile)),
+                able = sorted((r for r in team if role.covered_by(state.robots[r].profile)),
                               key=lambda r: (load[r], r))
                 out += [r for r in able[:per_role] if r not in out]
     return tuple(out[:max(cap, len(u.robots))]) if len(team) > cap else tuple(team)

@@ -27,8 +27,9 @@ from itertools import combinations
 
 from emboteam.pddl.domain import pending_pieces
 from emboteam.pddl.errors import ImpossibleGoalError, PlanningError, UnknownGoalObjectError
+from emboteam.sim.physics import is_cold_source
 from emboteam.world.actions import Skill
-from emboteam.world.catalogue import load_catalogue, place_types
+from emboteam.world.catalogue import COLD_SOURCES, load_catalogue, place_types
 from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.state import ObjectState, WorldState
@@ -331,7 +332,7 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
     # where a subject must get to: the goal's receptacles, or a fridge to cool it (heat
     # has its own pans and pots: pddl.problem._heat_support)
     targets = places if pred is Predicate.inside else (
-        [f.id for f in state.of_type("Fridge") if f.has("isColdSource")] if pred is Predicate.cold else [])
+        [f.id for f in state.of_type(*COLD_SOURCES) if is_cold_source(f)] if pred is Predicate.cold else [])
     vessels: list[str] = []
     if targets and not (narrow and satisfied and not doomed):
         for sid in subjects:

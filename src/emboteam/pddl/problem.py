@@ -35,9 +35,17 @@ from emboteam.pddl.domain import (
 )
 from emboteam.pddl.errors import PlannerInputError
 from emboteam.pddl.goal_compiler import GoalPart, compile_goal
-from emboteam.sim.physics import WATER_SOURCES, settle
+from emboteam.sim.physics import is_cold_source, settle
 from emboteam.world.actions import Action, Skill
-from emboteam.world.catalogue import KNIVES, load_catalogue
+from emboteam.world.catalogue import (
+    BREWERS,
+    BURNERS,
+    COLD_SOURCES,
+    HEATERS,
+    KNIVES,
+    WATER_SOURCES,
+    load_catalogue,
+)
 from emboteam.world.goals import Condition, Predicate
 from emboteam.world.state import WorldState
 
@@ -105,10 +113,10 @@ def _heat_support(state: WorldState, types: set[str]) -> list[str]:
     food that needs a pan, a pan or pot that takes it and a burner (its knobs follow by
     closure)."""
     cat = load_catalogue()
-    direct = [h.id for h in state.of_type("Microwave", "Toaster", "CoffeeMachine")
+    direct = [h.id for h in state.of_type(*(HEATERS - BURNERS), *BREWERS)
               if any(cat.can_place(t, h.type) for t in types)
-              and (h.type != "CoffeeMachine" or "Mug" in types)]
-    burners = [b.id for b in state.of_type("StoveBurner")]
+              and (h.type not in BREWERS or "Mug" in types)]
+    burners = [b.id for b in state.of_type(*BURNERS)]
     stove = burners[:1] if burners and any(cat.can_place(t, "StoveBurner") for t in types) else []
     covered = {t for t in types if any(cat.can_place(t, state.objects[h].type) for h in direct + stove)}
     if covered == types or not burners:
@@ -165,14 +173,13 @@ def relevant_objects(state: WorldState, parts: Sequence[GoalPart], active: Seque
         elif pred in (Predicate.hot, Predicate.cooked):
             support = _heat_support(state, types)
         elif pred is Predicate.cold:
-            support = [f.id for f in state.objects.values()
-                       if f.type == "Fridge" and f.has("isColdSource") and not f.gone]
+            support = [f.id for f in state.of_type(*COLD_SOURCES) if is_cold_source(f)]
         elif pred is Predicate.clean or (pred is Predicate.filled and part.condition.liquid in (None, "water")):
             support = _water_support(state)
             if pred is Predicate.filled and part.condition.liquid is None:
-                support += [c.id for c in state.of_type("CoffeeMachine")] if "Mug" in types else []
+                support += [c.id for c in state.of_type(*BREWERS)] if "Mug" in types else []
         elif pred is Predicate.filled and part.condition.liquid == "coffee":
-            support = [c.id for c in state.of_type("CoffeeMachine")]
+            support = [c.id for c in state.of_type(*BREWERS)]
         add(support)
         for s in part.subjects:
             allow(s, part.places)
@@ -182,7 +189,7 @@ def relevant_objects(state: WorldState, parts: Sequence[GoalPart], active: Seque
             allow(v, [*part.places, *(r for r in support if objects[r].has("receptacle"))])
         for c in support:
             if objects[c].type in ("Pan", "Pot"):
-                allow(c, [b for b in support if objects[b].type == "StoveBurner"])
+                allow(c, [b for b in support if objects[b].type in BURNERS])
     if slices:
         add(k.id for k in state.of_type(*KNIVES))
         for w in slices:
@@ -207,7 +214,7 @@ def relevant_objects(state: WorldState, parts: Sequence[GoalPart], active: Seque
             more.append(o.source)
         if oid in state.objects:
             more += state.ancestors(oid)
-        if o.type == "StoveBurner":
+        if o.type in BURNERS:
             more += [k.id for k in state.of_type("StoveKnob") if oid in k.controls]
         if o.has("receptacle"):
             more += [f.id for f in state.objects.values() if f.type in WATER_SOURCES and oid in f.controls]

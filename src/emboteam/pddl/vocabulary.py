@@ -15,9 +15,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from emboteam.pddl.literal import Literal
-from emboteam.sim.physics import HEATING, WATER_SOURCES
-from emboteam.sim.rules import INTERLOCKED, piece_ids
-from emboteam.world.catalogue import KNIVES, load_catalogue
+from emboteam.sim.physics import is_cold_source
+from emboteam.sim.rules import piece_ids
+from emboteam.world.catalogue import BREWERS, BURNERS, INTERLOCKED, KNIVES, WATER_SOURCES, load_catalogue
+from emboteam.world.catalogue import HEATERS as HEATING
 from emboteam.world.state import WorldState
 
 Evaluator = Callable[..., bool]
@@ -66,7 +67,7 @@ def _place_chain(s: WorldState, c: str) -> list[str]:
 
 
 def _cools(s: WorldState, o: str) -> bool:
-    return s.objects[o].type == "Fridge" and s.objects[o].has("isColdSource")
+    return is_cold_source(s.objects[o])
 
 
 def _chilled_place(s: WorldState, c: str) -> bool:
@@ -151,12 +152,12 @@ STATICS: dict[str, tuple[str, Evaluator]] = {
     # added for the planner's domain
     "cools": ("o", _cools),
     "heats": ("o", lambda s, o: s.objects[o].type in HEATING),
-    "brews": ("o", lambda s, o: s.objects[o].type == "CoffeeMachine"),
+    "brews": ("o", lambda s, o: s.objects[o].type in BREWERS),
     "mug": ("o", lambda s, o: s.objects[o].type == "Mug"),
     "interlocked": ("o", lambda s, o: s.objects[o].type in INTERLOCKED),
     "cracks": ("o", lambda s, o: s.objects[o].type == "Egg"),
     "switches": ("oo", lambda s, k, b: s.objects[k].type == "StoveKnob" and b in s.objects[k].controls
-                 and s.objects[b].type == "StoveBurner"),
+                 and s.objects[b].type in BURNERS),
     "waters": ("oo", lambda s, f, b: s.objects[f].type in WATER_SOURCES and b in s.objects[f].controls),
     "piece-of": ("oo", _piece_of),
     "floor": ("o", _is_floor),

@@ -53,7 +53,7 @@ def mentioned_types(instruction: str, scene: Scene, state: WorldState, team: Seq
     saying it). Used only to catch conditions copied from the worked examples."""
     types = instruction_types(instruction)
     if draft is None:
-        from emboteam.modes import offline_frontend
+        from emboteam.pfg.parser import offline_frontend
 
         try:
             draft = offline_frontend().decompose(instruction, scene, state, team)

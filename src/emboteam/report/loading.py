@@ -1,8 +1,8 @@
 """Reading a run directory (``episode.json`` + ``trace.jsonl``) with errors a user can act on.
 
-:meth:`Episode.load` would surface a raw ``FileNotFoundError``, ``JSONDecodeError`` or
-pydantic ``ValidationError``; the report is what people open after a run went wrong, so
-each problem becomes a :class:`ReportError` naming the file (and line) at fault.
+The one reader of a saved episode: a plain read would surface a raw ``FileNotFoundError``,
+``JSONDecodeError`` or pydantic ``ValidationError``; the report is what people open after
+a run went wrong, so each problem becomes a :class:`ReportError` naming the file (and line) at fault.
 """
 
 from __future__ import annotations

@@ -11,14 +11,15 @@ from __future__ import annotations
 
 from collections import defaultdict
 
+from emboteam.world.catalogue import BREWERS, BURNERS, COLD_SOURCES, HEATERS, WATER_SOURCES
 from emboteam.world.state import ObjectState, WorldState
 
-#: Heat sources that heat (and cook) everything in or on them, transitively: the contents
-#: of a pan on a burner, a potato in a bowl in the microwave.
-HEATING = frozenset({"Microwave", "StoveBurner", "Toaster"})
+__all__ = ["is_cold_source", "settle", "switch"]
 
-#: Objects whose running water reaches the basins they control.
-WATER_SOURCES = frozenset({"Faucet", "ShowerHead"})
+
+def is_cold_source(o: ObjectState) -> bool:
+    """A fridge that cools (the catalogue's cold source types, flagged ``isColdSource``)."""
+    return o.type in COLD_SOURCES and o.has("isColdSource")
 
 
 def switch(state: WorldState, o: ObjectState, *, on: bool) -> None:
@@ -26,7 +27,7 @@ def switch(state: WorldState, o: ObjectState, *, on: bool) -> None:
     o.is_on = on
     for controlled in o.controls:
         target = state.objects[controlled]
-        if target.type == "StoveBurner":
+        if target.type in BURNERS:
             # a burner burns while any of its knobs is on
             target.is_on = any(k.is_on for k in state.objects.values()
                                if controlled in k.controls and k.type == "StoveKnob")
@@ -62,15 +63,15 @@ def settle(state: WorldState) -> None:
 
     for src in list(state.objects.values()):
         t = src.type
-        if t == "Fridge" and src.has("isColdSource"):
+        if is_cold_source(src):
             for o in within(src.id):
                 o.temperature = "Cold"
         if not src.is_on:
             continue
-        if t in HEATING:
+        if t in HEATERS:  # a pan on a burner, a potato in a bowl in the microwave
             for o in within(src.id):
                 _heat(o)
-        elif t == "CoffeeMachine":
+        elif t in BREWERS:
             # AI2-THOR: an empty Mug in a running coffee machine fills with coffee and
             # turns Hot (only Mugs fit, see the catalogue's receptacle whitelist)
             for o in children.get(src.id, ()):

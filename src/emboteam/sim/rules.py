@@ -12,15 +12,10 @@ from dataclasses import dataclass
 
 from emboteam.sim.physics import settle, switch
 from emboteam.world.actions import Action, FailureReason, Skill
-from emboteam.world.catalogue import KNIVES, load_catalogue
+from emboteam.world.catalogue import BURNERS, INTERLOCKED, KNIVES, load_catalogue
 from emboteam.world.state import ObjectState, WorldState
 
 R = FailureReason
-
-#: Appliances whose door and power interlock (AI2-THOR's object table: "Microwaves cannot
-#: be turned on if they are open, and cannot be opened if they are currently on").
-INTERLOCKED: frozenset[str] = frozenset({"Microwave"})
-
 
 @dataclass(frozen=True, slots=True)
 class Failure:
@@ -112,7 +107,7 @@ def check_action(state: WorldState, robot: str, action: Action) -> Failure | Non
         return None
     if skill in (Skill.SwitchOn, Skill.SwitchOff):
         if not o.has("toggleable"):
-            hint = " (switch its StoveKnob)" if o.type == "StoveBurner" else ""
+            hint = " (switch its StoveKnob)" if o.type in BURNERS else ""
             return Failure(R.NOT_TOGGLEABLE, f"{o.id} cannot be switched{hint}")
         if skill is Skill.SwitchOn and o.is_on:
             return Failure(R.ALREADY_ON, f"{o.id} is already on")

@@ -85,7 +85,7 @@ class Simulator:
         for b in self.faults.breakdowns:
             self._schedule(b.at, "breakdown", b.robot)
         #: (time, kind, detail, state right after) of every breakdown, join and move: the
-        #: states a benchmark's ceiling plans from (bench/ceiling.py)
+        #: states a benchmark's ceiling plans from (exec/ceiling.py)
         self.disturbances: list[tuple[float, str, str, WorldState]] = []
         for m in self.faults.moves:
             for oid in (m.object, m.to):

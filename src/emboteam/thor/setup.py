@@ -10,6 +10,7 @@ from emboteam.sim.setup import StateChange
 from emboteam.thor.errors import ThorSetupError
 from emboteam.thor.ids import ThorIds
 from emboteam.thor.skills import ThorSkills
+from emboteam.world.catalogue import COLD_SOURCES, HEATERS
 from emboteam.world.state import WorldState
 
 
@@ -19,8 +20,8 @@ def _tempered_by_place(state: WorldState, object_id: str, temperature: str, pare
     chain = ([parent, *state.ancestors(parent)] if parent is not None else state.ancestors(object_id))
     holders = [state.objects[r] for r in chain if r in state.objects]
     if temperature == "Cold":
-        return any(r.type == "Fridge" for r in holders)
-    return any(r.type in ("Microwave", "StoveBurner", "Toaster") and r.is_on for r in holders)
+        return any(r.type in COLD_SOURCES for r in holders)
+    return any(r.type in HEATERS and r.is_on for r in holders)
 
 
 def setup_steps(change: StateChange, ids: ThorIds, state: WorldState) -> list[dict[str, Any]]:

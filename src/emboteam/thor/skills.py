@@ -28,6 +28,7 @@ from typing import Any, Protocol
 from emboteam.thor.failures import failure_reason
 from emboteam.thor.ids import ThorIds
 from emboteam.world.actions import Action, FailureReason, Skill
+from emboteam.world.catalogue import WATER_SOURCES
 from emboteam.world.state import REACH, WorldState
 
 #: the agent's eye height above its position (m): the iTHOR agent's camera
@@ -196,7 +197,7 @@ class ThorSkills:
         ``FillObjectWithLiquid``; a failure leaves the object as it is)."""
         seen: set[str] = set()
         for src in state.objects.values():
-            if src.type not in ("Faucet", "ShowerHead") or not src.is_on:
+            if src.type not in WATER_SOURCES or not src.is_on:
                 continue
             for basin in src.controls:
                 for o in state.descendants(basin):

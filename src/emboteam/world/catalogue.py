@@ -25,12 +25,33 @@ Property = Literal[
 #: Knife types that satisfy the slicing rule (ALFRED / rl_thor): to slice, hold one.
 KNIVES: frozenset[str] = frozenset({"Knife", "ButterKnife"})
 
-#: Receptacles that heat what is in or on them while switched on (a StoveBurner is "on"
-#: when its StoveKnob is).
-HEATERS: frozenset[str] = frozenset({"Microwave", "StoveBurner", "Toaster", "CoffeeMachine"})
+# The appliances: the only lists of them (sim/physics.py applies their effects,
+# sim/capability.py says what it takes to use them, docs/architecture.md).
 
-#: Basins that running water from a Faucet reaches.
-BASINS: frozenset[str] = frozenset({"SinkBasin", "BathtubBasin"})
+#: Receptacles that heat (and cook) everything in or on them, transitively, while switched
+#: on (a StoveBurner is "on" when its StoveKnob is).
+HEATERS: frozenset[str] = frozenset({"Microwave", "StoveBurner", "Toaster"})
+
+#: The heaters a StoveKnob switches (they burn while any of their knobs is on).
+BURNERS: frozenset[str] = frozenset({"StoveBurner"})
+
+#: Appliances that brew: an empty Mug in a running CoffeeMachine fills with coffee and
+#: turns Hot (its direct contents only; only Mugs fit, see the receptacle whitelist).
+BREWERS: frozenset[str] = frozenset({"CoffeeMachine"})
+
+#: Receptacles that keep what is in them Cold, if the instance has ``isColdSource``.
+COLD_SOURCES: frozenset[str] = frozenset({"Fridge"})
+
+#: Objects whose running water reaches the basins they control (cleans, fills).
+WATER_SOURCES: frozenset[str] = frozenset({"Faucet", "ShowerHead"})
+
+#: Appliances whose door and power interlock (AI2-THOR's object table: "Microwaves cannot
+#: be turned on if they are open, and cannot be opened if they are currently on").
+INTERLOCKED: frozenset[str] = frozenset({"Microwave"})
+
+#: Receptacles a robot works at as one spot (contention: one robot at a time), besides
+#: openable receptacles: the appliances and the sink basin.
+SPOT_RECEPTACLES: frozenset[str] = HEATERS | BREWERS | frozenset({"SinkBasin"})
 
 #: "In the sink" means in its basin: AI2-THOR puts objects in the SinkBasin (the Sink
 #: itself is often not a receptacle). Goal references to the left mean either.

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, fields
 from operator import attrgetter
 
 from emboteam.errors import UnknownObjectError
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import SPOT_RECEPTACLES, load_catalogue
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 
@@ -173,8 +173,7 @@ class WorldState:
         spot = object_id
         for r in self.ancestors(object_id):
             rec = self.objects[r]
-            if (rec.has("openable") and rec.has("receptacle")) or rec.type in ("Microwave", "Toaster", "CoffeeMachine",
-                                                   "SinkBasin", "StoveBurner"):
+            if (rec.has("openable") and rec.has("receptacle")) or rec.type in SPOT_RECEPTACLES:
                 spot = r
         return spot
 

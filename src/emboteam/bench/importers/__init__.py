@@ -1,1 +1,1 @@
-"""Importers of other benchmarks' task formats into :class:`~emboteam.bench.task.BenchTask`."""
+"""Importers of other benchmarks' task formats into :class:`~emboteam.task.BenchTask`."""

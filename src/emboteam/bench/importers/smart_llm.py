@@ -33,10 +33,10 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
-from emboteam.bench.solvability import analyse_goal
-from emboteam.bench.suites import Suite, UnknownSuiteError
-from emboteam.bench.task import BenchTask
+from emboteam.bench.suite import Suite, UnknownSuiteError
 from emboteam.errors import EmboTeamError
+from emboteam.sim.capability import analyse_goal
+from emboteam.task import BenchTask
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.checker import GoalValidationError, check_goal, validate_goal
 from emboteam.world.goals import Condition, Goal, ObjectRef, Predicate

@@ -20,15 +20,16 @@ from collections.abc import Sequence
 
 from pydantic import BaseModel, ConfigDict
 
-from emboteam.bench.task import BenchTask
+from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceEvent, DisturbanceOutcome
 from emboteam.exec.executor import UNREACHABLE_ERRORS, UnsavableTaskError
 from emboteam.exec.result import ExecutionResult
 from emboteam.hp.plan import MergedPlan
+from emboteam.hp.planner import HybridPlanner
 from emboteam.pddl.errors import PlanningError
-from emboteam.pipeline import RunConfig
 from emboteam.sim.disturbances import DisturbanceSpecError, Resolved, resolve
 from emboteam.sim.simulator import Simulator
+from emboteam.task import EpisodeTask
 from emboteam.world.checker import check_goal
 from emboteam.world.goals import Goal
 from emboteam.world.robots import RobotProfile
@@ -45,12 +46,6 @@ class Prepared(BaseModel):
     reference_steps: int = 0
 
 
-def _reference_plan(goal: Goal, state: WorldState) -> MergedPlan:
-    from emboteam.modes import planner_for
-
-    return planner_for("full").plan_goal(goal, state)
-
-
 def plan_objects(plan: MergedPlan, state: WorldState) -> list[str]:
     """Pickupable objects the plan's steps act on (slices it creates included): what a
     random move may take."""
@@ -64,13 +59,16 @@ def plan_objects(plan: MergedPlan, state: WorldState) -> list[str]:
     return found
 
 
-def prepare(task: BenchTask, cfg: RunConfig, state: WorldState, team: Sequence[RobotProfile]) -> Prepared:
-    """The configuration of a disturbed episode (see the module docstring)."""
+def prepare(task: EpisodeTask, cfg: RunConfig, state: WorldState, team: Sequence[RobotProfile],
+            planner: HybridPlanner) -> Prepared:
+    """The configuration of a disturbed episode (see the module docstring); ``planner``:
+    the full system's."""
     spec = cfg.disturbance
     nominal, objects, steps = 0.0, [], 0
-    if task.goal.conditions:
+    goal = task.ground_truth
+    if goal is not None:
         try:
-            ref = _reference_plan(task.goal, state)
+            ref = planner.plan_goal(goal, state)
         except PlanningError as exc:
             raise DisturbanceSpecError(f"no fault-free reference plan to place the disturbance in: {exc}") from None
         nominal, objects, steps = ref.makespan, plan_objects(ref, state), len(ref.steps)
@@ -87,14 +85,14 @@ def prepare(task: BenchTask, cfg: RunConfig, state: WorldState, team: Sequence[R
                     reference_steps=steps)
 
 
-def _ceiling(goal: Goal, state: WorldState) -> tuple[bool | None, str, tuple[str, ...]]:
+def _ceiling(goal: Goal, state: WorldState, planner: HybridPlanner) -> tuple[bool | None, str, tuple[str, ...]]:
     left = tuple(sorted(r for r, s in state.robots.items() if not s.down))
     if check_goal(goal, state).success:
         return True, "the goal held right after the disturbance", left
     if not left:
         return False, f"{UnsavableTaskError.__name__}: no robot is left working", left
     try:
-        plan = _reference_plan(goal, state)
+        plan = planner.plan_goal(goal, state)
     except UNREACHABLE_ERRORS as exc:
         return False, f"{UnsavableTaskError.__name__}: {type(exc).__name__}: {exc}", left
     except PlanningError as exc:
@@ -102,23 +100,23 @@ def _ceiling(goal: Goal, state: WorldState) -> tuple[bool | None, str, tuple[str
     return True, f"a plan of {len(plan.steps)} steps for {', '.join(left)}", left
 
 
-def disturbance_outcome(task: BenchTask, prepared: Prepared, sim: Simulator, result: ExecutionResult,
-                        success: bool, initial: WorldState) -> DisturbanceOutcome:
+def disturbance_outcome(task: EpisodeTask, prepared: Prepared, sim: Simulator, result: ExecutionResult,
+                        success: bool, initial: WorldState, planner: HybridPlanner) -> DisturbanceOutcome:
     """The ceiling and the reaction of one disturbed episode (see the module docstring)."""
     events = tuple(DisturbanceEvent(t=round(t, 6), kind=k, detail=d) for t, k, d, _ in sim.disturbances)
     network = {k: v for k, v in result.network.items() if v}
     disturbed = bool(events) or bool(network)
-    goal = task.goal
+    goal = task.ground_truth
     t0 = time.perf_counter()
     if success:
         savable: bool | None = True
         why = "succeeded"
         after = sim.disturbances[-1][3] if sim.disturbances else initial
         left = tuple(sorted(r for r, s in after.robots.items() if not s.down))
-    elif not goal.conditions:
+    elif goal is None:
         savable, why, left = None, "no ground-truth goal to plan for", tuple(sorted(sim.state.robots))
     else:
-        savable, why, left = _ceiling(goal, sim.disturbances[-1][3] if sim.disturbances else initial)
+        savable, why, left = _ceiling(goal, sim.disturbances[-1][3] if sim.disturbances else initial, planner)
     return DisturbanceOutcome(
         spec=prepared.cfg.disturbance.label, nominal_makespan=round(prepared.resolved.nominal_makespan, 4),
         events=events, disturbed=disturbed, savable=savable, ceiling=why,

@@ -1,4 +1,12 @@
-"""Which robots can achieve a goal under the simulator's rules: a capability analysis.
+"""The capability model: what it takes to make a condition true in a scene, under the
+simulator's rules. Next to ``sim/rules.py`` and ``sim/physics.py`` because it is their
+consequence; every other answer to the question is a view of it (docs/architecture.md):
+the benchmark's solvability claims and the SMART-LLM importer's flags read
+:func:`analyse_goal`; the planner's allocation and time estimates (``hp/requirements.py``)
+build their roles from :class:`Role` and the appliances the helpers here pick; the
+appliances and heat/cold/water sources come from the catalogue only.
+``tests/test_capability_agreement.py`` runs what the model proposes in the simulator, for
+every predicate and every appliance.
 
 For every goal condition we enumerate the *methods* that make it true in the symbolic
 simulator (``sim/rules.py``, ``sim/physics.py``): an apple gets into a fridge by someone
@@ -30,10 +38,20 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from emboteam.sim.physics import WATER_SOURCES
-from emboteam.sim.rules import INTERLOCKED, piece_ids
+from emboteam.sim.physics import is_cold_source
+from emboteam.sim.rules import piece_ids
 from emboteam.world.actions import Action, Skill
-from emboteam.world.catalogue import KNIVES, load_catalogue, place_types
+from emboteam.world.catalogue import (
+    BREWERS,
+    BURNERS,
+    COLD_SOURCES,
+    HEATERS,
+    INTERLOCKED,
+    KNIVES,
+    WATER_SOURCES,
+    load_catalogue,
+    place_types,
+)
 from emboteam.world.checker import check_condition, matches
 from emboteam.world.goals import Condition, Goal, ObjectRef, Predicate
 from emboteam.world.robots import RobotProfile
@@ -55,21 +73,34 @@ class Step:
 
 @dataclass(frozen=True, slots=True)
 class Role:
-    """What one robot of a method must be able to do."""
+    """A job one robot must do: any one of ``options`` (skills it must all have), lifting
+    ``lift`` kg. The methods here give one option per role; the planner's coarser view
+    (``hp/requirements.py``) gives several, and marks ``certain`` the roles every way of
+    satisfying the condition needs (only those may reject a team outright)."""
 
     name: str
-    skills: frozenset[Skill]
-    lift: float
+    options: tuple[frozenset[Skill], ...]
+    lift: float = 0.0
+    certain: bool = False
+
+    @classmethod
+    def of(cls, name: str, *options: Iterable[Skill], lift: float = 0.0, certain: bool = False) -> Role:
+        return cls(name, tuple(frozenset(o) for o in options), lift, certain)
+
+    @property
+    def skills(self) -> frozenset[Skill]:
+        """The skills of the first option (a method's role has just one)."""
+        return self.options[0]
 
     def covered_by(self, robot: RobotProfile) -> bool:
-        return self.skills <= robot.skills and self.lift <= robot.mass_capacity
+        return robot.mass_capacity >= self.lift and any(opt <= robot.skills for opt in self.options)
 
     def shortfall(self, robot: RobotProfile) -> list[str]:
-        """What the robot lacks for this role (empty if it covers it)."""
-        out = [s.value for s in Skill if s in self.skills - robot.skills]
+        """What the robot lacks for this role (empty if it covers it), by the closest option."""
+        lacking = min(([s.value for s in Skill if s in opt - robot.skills] for opt in self.options), key=len)
         if self.lift > robot.mass_capacity:
-            out.append(f"lifting {self.lift:g} kg (max {robot.mass_capacity:g})")
-        return out
+            lacking.append(f"lifting {self.lift:g} kg (max {robot.mass_capacity:g})")
+        return lacking
 
 
 @dataclass(frozen=True, slots=True)
@@ -86,7 +117,7 @@ class Method:
         for s in self.steps:
             skills.setdefault(s.role, {Skill.GoToObject}).add(s.action.skill)
             lift[s.role] = max(lift.get(s.role, 0.0), s.lift)
-        return tuple(Role(n, frozenset(skills[n]), lift[n]) for n in skills)
+        return tuple(Role(n, (frozenset(skills[n]),), lift[n]) for n in skills)
 
     @property
     def skills(self) -> frozenset[Skill]:
@@ -158,11 +189,6 @@ class GoalAnalysis:
     def robot_can(self, robot: RobotProfile) -> bool:
         """Could this robot alone cover every condition? False proves it cannot."""
         return all(c.solo_method(robot) is not None for c in self.conditions)
-
-    def needs_teamwork(self, team: Sequence[RobotProfile]) -> list[Condition]:
-        """Conditions no single member can achieve alone: each forces a hand-over."""
-        return [c.condition for c in self.conditions
-                if c.team_method(team) is not None and all(c.solo_method(r) is None for r in team)]
 
     def gaps(self, robot: RobotProfile) -> list[str]:
         return [c.why_not(robot) for c in self.conditions if c.solo_method(robot) is None]
@@ -297,8 +323,10 @@ class _Builder:
 
     def movers(self, c: _Cand) -> list[tuple[str, str, float]]:
         """What can be carried to bring a candidate somewhere: itself, or a pickupable
-        container it sits in (carrying a plate carries the apple on it)."""
-        out = [(c.id, c.type, c.mass)]
+        container it sits in (carrying a plate carries the apple on it). Only what can be
+        picked up moves."""
+        movable = self._obj(c.id).has("pickupable") if c.exists else _type_has(c.type, "pickupable")
+        out = [(c.id, c.type, c.mass)] if movable else []
         if c.exists:
             for rid in self.s.ancestors(c.id):
                 r = self._obj(rid)
@@ -338,7 +366,7 @@ class _Builder:
         return next((k for k in self.of_types("StoveKnob") if burner in k.controls), None)
 
     def burner_of(self, oid: str) -> str | None:
-        return next((a for a in self.s.ancestors(oid) if self._obj(a).type == "StoveBurner"), None)
+        return next((a for a in self.s.ancestors(oid) if self._obj(a).type in BURNERS), None)
 
     def water_sources(self) -> list[ObjectState]:
         return [f for f in self.of_types(*WATER_SOURCES) if f.has("toggleable") and f.controls]
@@ -354,7 +382,7 @@ class _Builder:
 
     def heat(self, c: _Cand, cook: bool) -> list[_Alt]:
         alts: list[_Alt] = []
-        for m in self.of_types("Microwave"):
+        for m in self.of_types(*sorted(HEATERS & INTERLOCKED)):
             for a in self.bring(c, m.id):
                 # the door is open after a delivery (or was): close it, then power on
                 door = [Step("opener", Action(skill=Skill.CloseObject, target=m.id), m.id)] \
@@ -363,10 +391,11 @@ class _Builder:
                 power = [] if m.is_on and not stopped else \
                     [Step("switcher", Action(skill=Skill.SwitchOn, target=m.id), m.id)]
                 alts.append((f"microwave {m.id}", _join(a, door, power)))
-        for t in self.of_types("Toaster", *(() if cook else ("CoffeeMachine",))):
+        plain = sorted(HEATERS - INTERLOCKED - BURNERS) + ([] if cook else sorted(BREWERS))
+        for t in self.of_types(*plain):
             alts += [(f"{t.type} {t.id}", _join(a, self.switch(t.id, True))) for a in self.bring(c, t.id)]
-        vessels = tuple(sorted(self.cat.receptacle_whitelist.get("StoveBurner", ())))  # Pan, Pot, Kettle
-        for burner in self.of_types("StoveBurner"):
+        vessels = tuple(sorted({v for b in BURNERS for v in self.cat.receptacle_whitelist.get(b, ())}))  # Pan, Pot, Kettle
+        for burner in self.of_types(*BURNERS):
             knob = self.knob_for(burner.id)
             if knob is None:
                 continue
@@ -437,8 +466,8 @@ class _Builder:
         if pred is Predicate.cold:
             if o is not None and o.temperature == "Cold":
                 return [(name, ())]
-            return [(f"fridge {f.id}", _join(a)) for f in self.of_types("Fridge")
-                    if f.has("isColdSource") for a in self.bring(c, f.id)]
+            return [(f"fridge {f.id}", _join(a)) for f in self.of_types(*COLD_SOURCES)
+                    if is_cold_source(f) for a in self.bring(c, f.id)]
         if pred is Predicate.clean:
             if o is None or not o.is_dirty:
                 return [(name, ())]
@@ -456,7 +485,7 @@ class _Builder:
             if liquid in (None, "water"):
                 alts += self.water(c)
             if liquid in (None, "coffee"):
-                for cm in self.of_types("CoffeeMachine"):
+                for cm in self.of_types(*BREWERS):
                     alts += [(f"coffee {cm.id}", _join(a, self.switch(cm.id, True)))
                              for a in self.bring(c, cm.id)]
             return alts
@@ -469,6 +498,43 @@ class _Builder:
         if not o.has("sliceable") or self.cat.slice_product(o.type) is None:
             return []
         return [("sliced", _join(a)) for a in self.cut(c.id)]
+
+
+# ---- the appliances the planner's estimate picks (hp/requirements.py) -----------------------
+
+
+def heater_for(state: WorldState, type_name: str | None, *, cook: bool) -> str | None:
+    """The appliance to heat an object of ``type_name`` in: the first heater that takes it
+    directly (microwave, toaster), else, to make it hot, a brewer (a Mug in a coffee
+    machine), else the first stove burner (in a pan or pot)."""
+    cat = load_catalogue()
+    direct = HEATERS - BURNERS
+    for pool in (direct, frozenset() if cook else BREWERS):
+        for h in state.objects.values():
+            if h.type in pool and type_name is not None and cat.can_place(type_name, h.type):
+                return h.id
+    burners = list(state.of_type(*BURNERS))
+    return burners[0].id if burners else None
+
+
+def cold_source(state: WorldState) -> str | None:
+    """The first object that cools what is in it (a fridge flagged ``isColdSource``)."""
+    return next((f.id for f in state.of_type(*COLD_SOURCES) if is_cold_source(f)), None)
+
+
+def brewer(state: WorldState) -> str | None:
+    """The first coffee machine."""
+    return next((c.id for c in state.of_type(*BREWERS)), None)
+
+
+def water_basin(state: WorldState) -> tuple[str | None, str | None]:
+    """The first water source and a receptacle its water reaches (a faucet and its basin)."""
+    for f in state.objects.values():
+        if f.type in WATER_SOURCES:
+            for b in f.controls:
+                if b in state.objects and state.objects[b].has("receptacle"):
+                    return f.id, b
+    return None, None
 
 
 # ---- combining candidates -----------------------------------------------------------------

@@ -1,4 +1,8 @@
-"""A benchmark task: an instruction in a floor plan for a team, with its ground-truth goal.
+"""What an episode runs: a benchmark task (with its ground-truth goal) or a typed instruction.
+
+Both are :class:`EpisodeTask` s; the pipeline takes either, so an instruction typed on the
+command line is not dressed up as a benchmark task. A benchmark task is an instruction in
+a floor plan for a team, with its ground-truth goal.
 
 Task files write the goal in the goal language (``["inside(Apple, Fridge)", "off(LightSwitch)"]``)
 and the team as SMART-LLM profile numbers (``[23, 25]``); both are accepted here, as are the
@@ -8,6 +12,7 @@ is an error rather than a silently ignored key.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
@@ -86,9 +91,12 @@ class BenchTask(BaseModel):
 
     def initial_state(self) -> WorldState:
         """A fresh state of the floor plan with the team placed and the setup applied."""
-        state = WorldState.from_scene(load_scene(self.floor_plan), self.team())
-        apply_changes(state, self.setup)
-        return state
+        return initial_state(self.floor_plan, self.team(), self.setup)
+
+    @property
+    def ground_truth(self) -> Goal | None:
+        """The goal the episode is scored against (None for a goal without conditions)."""
+        return self.goal if self.goal.conditions else None
 
     def check(self) -> None:
         """Raise :class:`InvalidTaskError` unless the floor plan, the team, the setup and
@@ -105,3 +113,55 @@ class BenchTask(BaseModel):
             validate_goal(self.goal, scene)
         except EmboTeamError as exc:
             raise InvalidTaskError(f"task {self.key}: {exc}") from None
+
+
+class Instruction(BaseModel):
+    """An instruction typed by a user: a floor plan and a team, but no ground-truth goal,
+    so success is judged against the goal the front end understood (the episode says so
+    in its ``category``, ``imported``)."""
+
+    model_config = ConfigDict(frozen=True)
+
+    instruction: str
+    floor_plan: str
+    robots: tuple[str, ...] = Field(min_length=1, description="profile numbers or names")
+
+    setup: tuple[StateChange, ...] = ()
+
+    @property
+    def key(self) -> str:
+        """How an episode of a typed instruction is keyed (the CLI's JSON contract)."""
+        return "adhoc/instruction"
+
+    @property
+    def category(self) -> Category:
+        return "imported"
+
+    @classmethod
+    def typed(cls, instruction: str, floor_plan: str, robots: str | Sequence[str]) -> Instruction:
+        """From the command line: the floor plan normalised, the team as profile numbers."""
+        fp = load_scene(floor_plan).floor_plan
+        team = parse_team(robots if isinstance(robots, str) else ",".join(robots))
+        return cls(instruction=instruction, floor_plan=fp, robots=tuple(str(p.number or p.name) for p in team))
+
+    @property
+    def ground_truth(self) -> Goal | None:
+        return None
+
+    def team(self) -> tuple[RobotProfile, ...]:
+        return parse_team(list(self.robots))
+
+    def initial_state(self) -> WorldState:
+        return initial_state(self.floor_plan, self.team(), self.setup)
+
+
+#: what the pipeline runs: a benchmark task, or an instruction typed on the command line
+EpisodeTask = BenchTask | Instruction
+
+
+def initial_state(floor_plan: str, team: Sequence[RobotProfile], setup: Sequence[StateChange] = ()) -> WorldState:
+    """The one place an episode's initial state is built: the scene, the team placed, the
+    task's setup applied."""
+    state = WorldState.from_scene(load_scene(floor_plan), team)
+    apply_changes(state, setup)
+    return state
