@@ -350,7 +350,6 @@ VAGUE_NOUNS = frozenset({"dinner", "lunch", "breakfast", "supper", "meal", "brun
                          "bedroom", "bathroom", "living room", "place", "table"})
 
 LIQUIDS = frozenset({"water", "coffee", "wine"})
-UNSUPPORTED_LIQUIDS = frozenset({"milk", "juice", "tea", "soda", "beer", "oil", "soup", "lemonade"})
 
 
 @dataclass(frozen=True, slots=True)
@@ -637,10 +636,6 @@ MASS_NOUNS = frozenset({
     "dishware", "crockery", "tableware", "dinnerware", "cookware", "kitchenware",
     "stationery", "seating", "toiletries", "cleaning supplies", "valuables", "belongings",
     "fruit and vegetable", "fruit and veggie", "salt and pepper"})
-
-#: words that name a piece of something ("a slice of bread", "apple slices")
-PIECE_WORDS = frozenset({"slice", "piece", "chunk", "wedge", "bit", "half", "segment",
-                         "portion", "sliver", "cracked", "sliced", "chopped", "diced", "cut"})
 
 #: what is switched instead of an object that cannot be (the stove by its knobs)
 SWITCHED_BY: dict[str, tuple[str, ...]] = {
