@@ -95,7 +95,9 @@ def ask_structured(client: LLMClient, request: LLMRequest, convert: Callable[[di
         response = client.complete(request.model_copy(update={"messages": tuple(messages), "stage": stage}))
         obj = response.parsed
         if obj is None:
-            cut = " (cut off at max_tokens)" if response.finish_reason in ("length", "max_tokens") else ""
+            cut = (f" (cut off at the {request.max_tokens}-token limit: state each condition once, "
+                   f"in fewer and shorter subtasks or items)"
+                   if response.finish_reason in ("length", "max_tokens") else "")
             last_error = f"- the answer is not a JSON object{cut}"
         else:
             problems = schema_errors(obj, schema)
