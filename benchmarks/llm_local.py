@@ -3,7 +3,8 @@
 Runs the full system (``RunConfig(mode="full")``, no faults, seed 0) with
 
 - ``--frontend llm`` (the paper's pure LLM front end) on a fixed subset of
-  :data:`LLM_SUBSET` (9 tasks over every floor plan; a call takes ~40 s on 2 cores);
+  :data:`LLM_SUBSET` (9 tasks over every floor plan; a call takes about a minute with one
+  thread on the shared machine);
 - ``--frontend hybrid --llm-when doubt`` on all 42 tasks (the LLM is asked only when the
   offline reading is in doubt);
 - ``--frontend offline`` on the same tasks, the reference hybrid must not fall below.
@@ -20,7 +21,12 @@ model needed) and exits 1 if any metric differs from results.json.
     .venv/bin/python benchmarks/llm_local.py                          # everything (about an hour)
     .venv/bin/python benchmarks/llm_local.py --frontend llm --tasks fp1-fridge-apple-tomato
     .venv/bin/python benchmarks/llm_local.py --replay                 # seconds, no model
-    EMBOTEAM_LLAMACPP_THREADS=2 nice .venv/bin/python benchmarks/llm_local.py --frontend hybrid
+    EMBOTEAM_LLAMACPP_THREADS=1 nice .venv/bin/python benchmarks/llm_local.py --frontend llm
+
+On a machine shared with other busy processes use ONE thread: llama.cpp's threads meet
+at a spinning barrier after every operation, so a second thread that is not scheduled
+stalls the first (measured on the 2-core machine at load 5-6: 0.03-0.05 s per generated
+token with 1 thread, 0.1-0.64 s with 2; prompt 84-139 against 34-62 tokens/s).
 """
 
 from __future__ import annotations
