@@ -223,6 +223,25 @@ def per_task(data: dict[str, Any], frontend: str) -> str:
     return "\n".join(out)
 
 
+def call_stats(frontend: str) -> str:
+    """One line on the recorded calls of ``frontend`` (from its cassette): how long a call
+    took and how fast llama.cpp generated, the numbers that decide how big a run fits."""
+    entries = [json.loads(p.read_text()) for p in sorted(cassette_dir(frontend).glob("*.json"))
+               if p.name != "cassette.json"]
+    answered = [e["response"] for e in entries if "response" in e]
+    if not answered:
+        return ""
+    lat = [r["latency"] for r in answered]
+    out_tokens = [r["output_tokens"] for r in answered]
+    cut = sum(1 for r in answered if r["finish_reason"] == "length")
+    timeouts = len(entries) - len(answered)
+    return (f"`{frontend}`: {len(entries)} recorded calls, {timeouts} timed out; per answered call median "
+            f"{statistics.median(lat):.0f} s (max {max(lat):.0f} s), prompt median "
+            f"{statistics.median(r['input_tokens'] for r in answered):.0f} tokens, completion median "
+            f"{statistics.median(out_tokens):.0f} tokens ({cut} cut at the cap), "
+            f"{sum(out_tokens) / sum(lat):.1f} completion tokens per second of call.")
+
+
 def write_doc(data: dict[str, Any]) -> None:
     """Replace this script's section of docs/results.md (between its markers)."""
     missing = {f: [t.id for t in tasks_of(f, ()) if t.id not in data["runs"].get(f, {})] for f in ("hybrid", "llm")}
@@ -238,6 +257,10 @@ def write_doc(data: dict[str, Any]) -> None:
             "", "```", ".venv/bin/python benchmarks/llm_local.py          # records what is missing (resumable)",
             ".venv/bin/python benchmarks/llm_local.py --replay # the same numbers from the cassettes", "```",
             "", table(data), ""]
+    stats = [line for line in (call_stats(f) for f in ("hybrid", "llm")) if line]
+    if stats:
+        body += ["Calls (wall-clock as recorded, prompt evaluation included):", "",
+                 *(f"- {line}" for line in stats), ""]
     for frontend in ("hybrid", "llm"):
         detail = per_task(data, frontend)
         if detail:
