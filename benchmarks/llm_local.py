@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import shutil
 import statistics
 import sys
@@ -210,14 +211,30 @@ def table(data: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+#: long phrases of the feedback, shortened so the table shows what the checks found
+_SHORTER = ((re.compile(r"no acceptable answer after (\d+) call\(s\); last problems: - "), r"\1 calls, last: "),
+            (re.compile(r"the answer is not a JSON object: it was cut off at the (\d+)-token limit; state each "
+                        r"condition once, in fewer and shorter items"), r"cut at \1 tokens"),
+            (re.compile(r" ?- in the part before the cut: "), "; before the cut: "),
+            (re.compile(r": give each subtask once"), ""),
+            (re.compile(r", which the instruction does not mention \(it is from the worked example, not this "
+                        r"task\): remove it"), " (copied from the example)"))
+
+
+def short_error(error: str) -> str:
+    for pattern, repl in _SHORTER:
+        error = pattern.sub(repl, error)
+    return error
+
+
 def per_task(data: dict[str, Any], frontend: str) -> str:
     rows = [r for r in data["runs"].get(frontend, {}).values() if frontend == "llm" or r["llm_calls"]]
     if not rows:
         return ""
     out = ["| task | success | GCR | LLM calls | tokens | s | error |", "|---|---|---:|---:|---:|---:|---|"]
     for r in rows:
-        err = (r["error"] or "").replace("|", "/")
-        err = err if len(err) <= 140 else err[:140] + "..."
+        err = short_error(r["error"] or "").replace("|", "/")
+        err = err if len(err) <= 240 else err[:240] + "..."
         out.append(f"| {r['task']} | {'yes' if r['success'] else 'no'} | {r['gcr']:.2f} | {r['llm_calls']} | "
                    f"{r['tokens']} | {r['seconds']:.0f} | {err} |")
     return "\n".join(out)
@@ -264,7 +281,7 @@ def write_doc(data: dict[str, Any]) -> None:
     for frontend in ("hybrid", "llm"):
         detail = per_task(data, frontend)
         if detail:
-            label = "tasks where `hybrid` called the LLM" if frontend == "hybrid" else "`llm`, per task"
+            label = "tasks where `hybrid` called the LLM" if frontend == "hybrid" else "`llm`"
             body += [f"Per task, {label}:", "", detail, ""]
     body.append(END)
     text = DOC.read_text(encoding="utf-8")
