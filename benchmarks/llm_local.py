@@ -3,7 +3,8 @@
 Runs the full system (``RunConfig(mode="full")``, no faults, seed 0) with
 
 - ``--frontend llm`` (the paper's pure LLM front end) on a fixed subset of
-  :data:`LLM_SUBSET` (9 tasks over every floor plan; a call takes ~40 s on 2 cores);
+  :data:`LLM_SUBSET` (9 tasks over every floor plan; a call takes about a minute with one
+  thread on the shared machine);
 - ``--frontend hybrid --llm-when doubt`` on all 42 tasks (the LLM is asked only when the
   offline reading is in doubt);
 - ``--frontend offline`` on the same tasks, the reference hybrid must not fall below.
@@ -20,13 +21,19 @@ model needed) and exits 1 if any metric differs from results.json.
     .venv/bin/python benchmarks/llm_local.py                          # everything (about an hour)
     .venv/bin/python benchmarks/llm_local.py --frontend llm --tasks fp1-fridge-apple-tomato
     .venv/bin/python benchmarks/llm_local.py --replay                 # seconds, no model
-    EMBOTEAM_LLAMACPP_THREADS=2 nice .venv/bin/python benchmarks/llm_local.py --frontend hybrid
+    EMBOTEAM_LLAMACPP_THREADS=1 nice .venv/bin/python benchmarks/llm_local.py --frontend llm
+
+On a machine shared with other busy processes use ONE thread: llama.cpp's threads meet
+at a spinning barrier after every operation, so a second thread that is not scheduled
+stalls the first (measured on the 2-core machine at load 5-6: 0.03-0.05 s per generated
+token with 1 thread, 0.1-0.64 s with 2; prompt 84-139 against 34-62 tokens/s).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
 import shutil
 import statistics
 import sys
@@ -203,17 +210,52 @@ def table(data: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+#: long phrases of the feedback, shortened so the table shows what the checks found
+_SHORTER = ((re.compile(r"no acceptable answer after (\d+) call\(s\); last problems: - "), r"\1 calls, last: "),
+            (re.compile(r"the answer is not a JSON object: it was cut off at the (\d+)-token limit; state each "
+                        r"condition once, in fewer and shorter items"), r"cut at \1 tokens"),
+            (re.compile(r" ?- in the part before the cut: "), "; before the cut: "),
+            (re.compile(r": give each subtask once"), ""),
+            (re.compile(r", which the instruction does not mention \(it is from the worked example, not this "
+                        r"task\): remove it"), " (copied from the example)"))
+
+
+def short_error(error: str) -> str:
+    for pattern, repl in _SHORTER:
+        error = pattern.sub(repl, error)
+    return error
+
+
 def per_task(data: dict[str, Any], frontend: str) -> str:
     rows = [r for r in data["runs"].get(frontend, {}).values() if frontend == "llm" or r["llm_calls"]]
     if not rows:
         return ""
     out = ["| task | success | GCR | LLM calls | tokens | s | error |", "|---|---|---:|---:|---:|---:|---|"]
     for r in rows:
-        err = (r["error"] or "").replace("|", "/")
-        err = err if len(err) <= 140 else err[:140] + "..."
+        err = short_error(r["error"] or "").replace("|", "/")
+        err = err if len(err) <= 240 else err[:240] + "..."
         out.append(f"| {r['task']} | {'yes' if r['success'] else 'no'} | {r['gcr']:.2f} | {r['llm_calls']} | "
                    f"{r['tokens']} | {r['seconds']:.0f} | {err} |")
     return "\n".join(out)
+
+
+def call_stats(frontend: str) -> str:
+    """One line on the recorded calls of ``frontend`` (from its cassette): how long a call
+    took and how fast llama.cpp generated, the numbers that decide how big a run fits."""
+    entries = [json.loads(p.read_text()) for p in sorted(cassette_dir(frontend).glob("*.json"))
+               if p.name != "cassette.json"]
+    answered = [e["response"] for e in entries if "response" in e]
+    if not answered:
+        return ""
+    lat = [r["latency"] for r in answered]
+    out_tokens = [r["output_tokens"] for r in answered]
+    cut = sum(1 for r in answered if r["finish_reason"] == "length")
+    timeouts = len(entries) - len(answered)
+    return (f"`{frontend}`: {len(entries)} recorded calls, {timeouts} timed out; per answered call median "
+            f"{statistics.median(lat):.0f} s (max {max(lat):.0f} s), prompt median "
+            f"{statistics.median(r['input_tokens'] for r in answered):.0f} tokens, completion median "
+            f"{statistics.median(out_tokens):.0f} tokens ({cut} cut at the cap), "
+            f"{sum(out_tokens) / sum(lat):.1f} completion tokens per second of call.")
 
 
 def write_doc(data: dict[str, Any]) -> None:
@@ -231,10 +273,14 @@ def write_doc(data: dict[str, Any]) -> None:
             "", "```", ".venv/bin/python benchmarks/llm_local.py          # records what is missing (resumable)",
             ".venv/bin/python benchmarks/llm_local.py --replay # the same numbers from the cassettes", "```",
             "", table(data), ""]
+    stats = [line for line in (call_stats(f) for f in ("hybrid", "llm")) if line]
+    if stats:
+        body += ["Calls (wall-clock as recorded, prompt evaluation included):", "",
+                 *(f"- {line}" for line in stats), ""]
     for frontend in ("hybrid", "llm"):
         detail = per_task(data, frontend)
         if detail:
-            label = "tasks where `hybrid` called the LLM" if frontend == "hybrid" else "`llm`, per task"
+            label = "tasks where `hybrid` called the LLM" if frontend == "hybrid" else "`llm`"
             body += [f"Per task, {label}:", "", detail, ""]
     body.append(END)
     text = DOC.read_text(encoding="utf-8")

@@ -5,6 +5,7 @@ Layout::
     DIR/cassette.json      {"format": "emboteam-llm-cassette", "version": 1,
                             "recorded_with": ["openai:gpt-4o-mini@http://host/v1", ...]}
     DIR/<key>.json         {"key", "stage", "request": <canonical request>, "response": {...}}
+                           or, for a call that timed out for good, "failure": {"kind": "timeout", "message"}
 
 ``<key>`` is :meth:`LLMRequest.key`, a hash of the provider-independent request, so a
 benchmark recorded with one model replays without it, and a request the recording never
@@ -12,7 +13,9 @@ saw fails loudly (:class:`LLMReplayMiss`, naming the stage and the key) instead 
 being answered by something else. Nothing secret is written: requests hold prompts and
 schemas, the spec is stored without URL credentials, API keys never reach this module.
 Entries are written atomically (temp file + rename), so parallel workers can record
-into one folder.
+into one folder. A final time-out (the in-process llama.cpp backend's, which is not
+retried) is recorded too: a benchmark run on a slow machine then replays with the same
+failed call instead of a replay miss.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from emboteam.llm.backend import Backend
+from emboteam.llm.backend import Backend, PermanentFailure
 from emboteam.llm.errors import LLMConfigError, LLMReplayMiss
 from emboteam.llm.messages import LLMRequest, LLMResponse
 
@@ -97,6 +100,14 @@ class Cassette:
             "response": {f: getattr(response, f) for f in _STORED},
         })
 
+    def save_failure(self, request: LLMRequest, failure: PermanentFailure) -> None:
+        """A final time-out, replayed as the same failure."""
+        key = request.key()
+        _write_atomic(self.entry_path(key), {
+            "key": key, "stage": request.stage, "request": request.canonical(),
+            "failure": {"kind": failure.kind, "message": str(failure)},
+        })
+
     def load(self, request: LLMRequest) -> LLMResponse:
         key = request.key()
         path = self.entry_path(key)
@@ -106,12 +117,19 @@ class Cassette:
                                 stage=request.stage, key=key)
         try:
             entry = json.loads(path.read_text(encoding="utf-8"))
-            stored = entry["response"]
             if entry.get("request") != json.loads(json.dumps(request.canonical())):
                 raise ValueError("stored request differs from the request (corrupt or edited entry)")
-            return LLMResponse(**{f: stored[f] for f in _STORED if f in stored}, replayed=True)
-        except (OSError, ValueError, KeyError, TypeError) as exc:
+            failure = entry.get("failure")
+            if failure is not None:
+                if failure.get("kind") != "timeout":
+                    raise ValueError(f"unknown recorded failure {failure.get('kind')!r}")
+                recorded = PermanentFailure("timeout", f"(recorded) {failure['message']}")
+            else:
+                stored = entry["response"]
+                return LLMResponse(**{f: stored[f] for f in _STORED if f in stored}, replayed=True)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
             raise LLMReplayMiss(f"unusable cassette entry {path}: {exc}", stage=request.stage, key=key) from None
+        raise recorded
 
 
 class RecordingBackend:
@@ -124,7 +142,12 @@ class RecordingBackend:
         self.cassette.open_for_recording(inner.name)
 
     def send(self, request: LLMRequest) -> LLMResponse:
-        response = self.inner.send(request)
+        try:
+            response = self.inner.send(request)
+        except PermanentFailure as failure:
+            if failure.kind == "timeout":  # final (not retried): part of what the run did
+                self.cassette.save_failure(request, failure)
+            raise
         self.cassette.save(request, response)
         return response
 

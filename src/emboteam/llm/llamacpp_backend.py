@@ -6,14 +6,16 @@ so even a tiny model emits schema-shaped JSON. Unlike the HTTP backends, the sch
 length and item-count bounds are kept: the grammar enforces them, which also bounds the
 generation.
 
-Time-outs: generation runs in this process, so there is no socket to time out. A
-stopping criterion checks the deadline after every generated token and ends the
-generation (prompt evaluation itself is not interruptible). ``create_chat_completion``
+Time-outs: generation runs in this process, so there is no socket to time out. The
+deadline is checked before every batch of the prompt (``Llama.eval`` is wrapped to feed
+the prompt in ``n_batch`` chunks: a 1,300-token prompt took 30-50 s on a loaded 2-core
+machine) and after every generated token (a stopping criterion). ``create_chat_completion``
 takes no stopping criteria, but every llama-cpp-python chat handler generates through
 ``llama.create_completion``, so that method is wrapped on our own ``Llama`` instance,
 under its lock, for the duration of the call. (A logits processor cannot do it: in
 llama-cpp-python 0.3 it runs as a ctypes callback whose exceptions are swallowed.)
-Retrying would redo the same computation, so a time-out here is final.
+Retrying would redo the same computation, so a time-out here is final; a recording
+cassette stores it, so a replay fails the same way.
 """
 
 from __future__ import annotations
@@ -67,6 +69,10 @@ def _threads_from_env() -> int | None:
     return int(raw)
 
 
+class _PastDeadline(Exception):
+    """Raised between prompt batches once the deadline has passed (caught in ``_generate``)."""
+
+
 class LlamaCppBackend:
     """A GGUF file; ``spec.model`` is its path."""
 
@@ -105,20 +111,30 @@ class LlamaCppBackend:
             return timed_out
 
         llama = self._llama
-        plain = llama.create_completion
+        plain_completion, plain_eval = llama.create_completion, llama.eval
 
         def create_completion(*args: Any, **kw: Any) -> Any:
             criteria = StoppingCriteriaList([past_deadline])
             if kw.get("stopping_criteria") is not None:
                 criteria.extend(kw["stopping_criteria"])
             kw["stopping_criteria"] = criteria
-            return plain(*args, **kw)
+            return plain_completion(*args, **kw)
 
-        llama.create_completion = create_completion
+        def eval_in_batches(tokens: Any) -> None:
+            tokens = list(tokens)
+            step = max(1, int(llama.n_batch))
+            for i in range(0, len(tokens), step):
+                if past_deadline(None, None):
+                    raise _PastDeadline
+                plain_eval(tokens[i:i + step])
+
+        llama.create_completion, llama.eval = create_completion, eval_in_batches
         try:
             return llama.create_chat_completion(**kwargs), timed_out
+        except _PastDeadline:
+            return None, True
         finally:
-            del llama.create_completion  # back to the class's method
+            del llama.create_completion, llama.eval  # back to the class's methods
 
     def send(self, request: LLMRequest) -> LLMResponse:
         kwargs: dict[str, Any] = {
@@ -138,7 +154,7 @@ class LlamaCppBackend:
             except RuntimeError as exc:  # llama.cpp's own failures (decode errors)
                 raise PermanentFailure("server", f"llama.cpp failed: {exc}") from None
         latency = time.monotonic() - start
-        if timed_out:
+        if timed_out or out is None:
             raise PermanentFailure("timeout", f"generation outlived the {self._timeout:g} s time-out "
                                    f"({latency:.1f} s)")
         choice = out["choices"][0]

@@ -23,6 +23,7 @@ from emboteam.errors import EmboTeamError
 from emboteam.llm.client import LLMClient
 from emboteam.llm.errors import LLMError, LLMMalformedOutput
 from emboteam.llm.messages import LLMRequest, Message
+from emboteam.llm.truncated import complete_prefix
 
 log = logging.getLogger(__name__)
 
@@ -75,6 +76,28 @@ def _problems(exc: Exception) -> str:
     return f"- {exc}"
 
 
+def _cut_off_problems(text: str, max_tokens: int, schema: dict[str, Any], convert: Callable[[dict[str, Any]], T],
+                      ) -> str:
+    """Feedback on an answer cut at the token limit: the limit, and what the checks find
+    in its complete part (a looping model's repetitions), never an acceptance."""
+    head = (f"- the answer is not a JSON object: it was cut off at the {max_tokens}-token limit; "
+            "state each condition once, in fewer and shorter items")
+    partial = complete_prefix(text)
+    if partial is None:
+        return head
+    problems = [p for p in schema_errors(partial, schema) if "is too short" not in p]
+    if not problems:
+        try:
+            convert(partial)
+        except LLMError:
+            raise
+        except (ValueError, EmboTeamError) as exc:
+            problems = [line.removeprefix("- ") for line in _problems(exc).splitlines()]
+    if not problems:
+        return head
+    return head + "\n" + "\n".join(f"- in the part before the cut: {p}" for p in problems)
+
+
 def ask_structured(client: LLMClient, request: LLMRequest, convert: Callable[[dict[str, Any]], T], *,
                    repair_rounds: int = 2, feedback: str = FEEDBACK) -> T:
     """Ask until ``convert`` accepts an answer, at most ``1 + repair_rounds`` calls.
@@ -94,9 +117,10 @@ def ask_structured(client: LLMClient, request: LLMRequest, convert: Callable[[di
         stage = request.stage if round_no == 0 or request.stage.endswith(".repair") else f"{request.stage}.repair"
         response = client.complete(request.model_copy(update={"messages": tuple(messages), "stage": stage}))
         obj = response.parsed
-        if obj is None:
-            cut = " (cut off at max_tokens)" if response.finish_reason in ("length", "max_tokens") else ""
-            last_error = f"- the answer is not a JSON object{cut}"
+        if obj is None and response.finish_reason in ("length", "max_tokens"):
+            last_error = _cut_off_problems(response.text, request.max_tokens, schema, convert)
+        elif obj is None:
+            last_error = "- the answer is not a JSON object"
         else:
             problems = schema_errors(obj, schema)
             if problems:

@@ -41,6 +41,25 @@ MAX_INSTRUCTION_CHARS = 2000
 
 Validator = Callable[[TaskSpec], None]
 
+#: completion tokens of the answer form, measured with Qwen2.5's tokenizer: the frame
+#: ``{"subtasks":[]}`` and one subtask with one condition, an 80-character description
+#: and two dependencies (75, plus the whitespace the grammar lets a model put in)
+FRAME_TOKENS, SUBTASK_TOKENS = 8, 80
+#: subtasks a valid answer needs at most: the MACE-THOR goals have 1-5 conditions, and a
+#: valid answer states each once; one more for a commonsense step
+NEEDED_SUBTASKS = 6
+
+
+def answer_token_cap(subtasks: int = NEEDED_SUBTASKS) -> int:
+    """Completion tokens a valid answer of ``subtasks`` one-condition subtasks needs.
+
+    The schema allows more (8 subtasks of up to 6 conditions): only a model that loops,
+    repeating a subtask until the schema's limit, comes near it. On a 2-core CPU every
+    token costs 0.1-1 s, so the cap, not the schema, bounds a looping answer (the
+    recorded 531-token loop took 43 min); the cut-off answer is fed back like any other.
+    """
+    return FRAME_TOKENS + subtasks * SUBTASK_TOKENS
+
 
 class InstructionError(EmboTeamError):
     """An instruction or team the front end cannot work with (empty, absurdly long)."""
@@ -82,7 +101,7 @@ class LLMFrontend:
     stage = "pfg"
 
     def __init__(self, client: LLMClient, *, fewshot: int = 1, repair_rounds: int = 2, max_subtasks: int = 8,
-                 max_conditions: int = 6, max_tokens: int = 1024, seed: int = 0, focus: bool = True) -> None:
+                 max_conditions: int = 6, max_tokens: int | None = None, seed: int = 0, focus: bool = True) -> None:
         self.client = client
         self.fewshot = fewshot
         #: list in full only the types the instruction touches (False: the whole scene, as
@@ -91,7 +110,8 @@ class LLMFrontend:
         self.repair_rounds = repair_rounds
         self.max_subtasks = max_subtasks
         self.max_conditions = max_conditions
-        self.max_tokens = max_tokens
+        self.max_tokens = max_tokens if max_tokens is not None else answer_token_cap(min(max_subtasks,
+                                                                                           NEEDED_SUBTASKS))
         self.seed = seed
 
     # ---- prompt ----------------------------------------------------------------------
