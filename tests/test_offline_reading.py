@@ -452,3 +452,10 @@ def test_a_fresh_one_is_another_instance_than_the_one_singled_out() -> None:
     reading = read("The loo roll on the floor should go in the bin and a fresh one on the holder.", 403)
     held = {c.subject.id for c in reading.spec.goal().conditions}
     assert len(held) == 2 and None not in held
+
+
+def test_an_object_placed_twice_ends_where_it_is_placed_last() -> None:
+    assert goal(read("Pick the pillow and the newspaper up off the floor - pillow on the sofa, paper on "
+                     "the coffee table.", 209)) == {"inside(Pillow, Sofa)", "inside(Newspaper, CoffeeTable)"}
+    assert goal(read("Put the potato in the pot. Then put the pot on the stove.")) == {
+        "inside(Potato, Pot)", "inside(Pot, StoveBurner)"}       # a pot is no potato

@@ -89,11 +89,14 @@ def steps(clauses: Sequence[Clause]) -> list[list[int]]:
 
 def refs_overlap(a: ObjectRef, b: ObjectRef) -> bool:
     """Can the two references name the same object (a slice type its whole's)?"""
-    ta = set(a.types) if a.id is None else {a.id.split("_")[0]}
-    tb = set(b.types) if b.id is None else {b.id.split("_")[0]}
     if a.id is not None and b.id is not None:
         return a.id == b.id
-    return bool(ta & tb) or any(t.startswith(u) or u.startswith(t) for t in ta for u in tb)
+    cat = load_catalogue()
+    # a slice is its whole's ("AppleSliced" overlaps "Apple"); a name's prefix is not
+    # ("Pot" is no "Potato", "Pen" no "Pencil")
+    ta = {cat.source_type(t) or t for t in (a.types if a.id is None else (a.id.split("_")[0],))}
+    tb = {cat.source_type(t) or t for t in (b.types if b.id is None else (b.id.split("_")[0],))}
+    return bool(ta & tb)
 
 
 #: what is done to an object that is not held while it happens (it is cut on a surface,

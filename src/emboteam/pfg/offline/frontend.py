@@ -376,6 +376,29 @@ def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
     _drop_drafts(drafts, fulfilled)
 
 
+def _drop_superseded_placements(drafts: dict[int, list[Draft]], grounder: Grounder) -> None:
+    """"Pick the pillow and the paper up - pillow on the sofa, paper on the coffee table":
+    an object placed twice ends where it is placed last; the earlier placement of one
+    object (an id, or a kind the scene has one of) is no goal (both cannot hold at the
+    end). "The toilet paper on the holder, the spare roll on the shelf" is two rolls."""
+    order = [(ci, k, d) for ci in sorted(drafts) for k, d in enumerate(drafts[ci])]
+
+    def one_object(ref: ObjectRef) -> bool:
+        return ref.id is not None or sum(len(grounder.instances(t)) for t in ref.types) == 1
+
+    def superseded(ci: int, d: Draft) -> bool:
+        if d.intermediate or not d.conditions or any(
+                c.predicate is not Predicate.inside or c.count != 1 or not one_object(c.subject)
+                for c in d.conditions):
+            return False
+        at = next(i for i, (_, _, e) in enumerate(order) if e is d)
+        later = [c for _, _, e in order[at + 1:] if not e.intermediate for c in e.conditions
+                 if c.predicate is Predicate.inside]
+        return all(any(refs_overlap(c.subject, c2.subject) and c2.receptacle != c.receptacle
+                       for c2 in later) for c in d.conditions)
+    _drop_drafts(drafts, superseded)
+
+
 def _drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
     """"Take the sponge and the towels out of the cupboard and put them on the counter":
     holding is how they get there, not a goal of its own (and two things held "at once"
@@ -562,6 +585,7 @@ class OfflineFrontend:
                 unknown.extend(parsed.unknown)
         _drop_fulfilled_wishes(drafts)
         _drop_holds_before_placing(drafts)
+        _drop_superseded_placements(drafts, semantics.g)
         if not drafts:
             if failed:
                 raise failed[0]
