@@ -7,7 +7,7 @@ Fast Downward is GPL-licensed: it runs as a separate process, never imported int
 - ``"sas"`` (default): we ground the problem ourselves (:mod:`emboteam.pddl.sas`) and pipe
   the finite-domain task into the *search binary* (``builds/release/bin/downward``), with
   the CPU-time and address-space limits the driver would set (``driver/limits.py``),
-  applied with ``prlimit`` before the task is written to its stdin. No driver, no
+  set on the process before the task is written to its stdin. No driver, no
   translator, no second interpreter: a call costs the search itself plus process start.
 - ``"pddl"``: the driver script (``fast-downward.py``) with domain and problem files, run
   with our interpreter; the translator grounds. Kept as the reference the SAS path is
@@ -28,7 +28,6 @@ import json
 import math
 import os
 import resource
-import shutil
 import signal
 import subprocess
 import sys
@@ -126,11 +125,6 @@ def _pool(workers: int) -> ThreadPoolExecutor:
         if pool is None:
             pool = _POOLS[workers] = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="emboteam-fd")
         return pool
-
-
-@cache
-def _prlimit_command() -> str | None:
-    return shutil.which("prlimit")
 
 
 @cache
@@ -312,12 +306,10 @@ class FastDownward:
         seconds_limit = max(1, math.ceil(self.time_limit))
         memory = self.memory_limit_mb * 1024 * 1024
         # the limits driver/limits.py sets (CPU: soft = limit, hard = limit + 1; address
-        # space). A preexec_fn is unsafe with the threads solve_problems uses, so util-linux's
-        # prlimit sets them and execs the search; without it they are set from outside
-        # right after the start (the search reads nothing before its stdin, written after).
-        limiter = _prlimit_command()
-        if limiter is not None:
-            cmd = [limiter, f"--cpu={seconds_limit}:{seconds_limit + 1}", f"--as={memory}:{memory}", "--", *cmd]
+        # space), set on the started process from outside: a preexec_fn is unsafe with the
+        # threads solve_problems uses, and the search reads its task (stdin, written below)
+        # before it allocates or computes anything that matters. (util-linux's prlimit as a
+        # wrapper would set them before the exec, at the cost of a second exec per call.)
         with tempfile.TemporaryDirectory(prefix="emboteam-fd-") as tmp:
             work = Path(tmp)
             t0 = time.perf_counter()
@@ -326,12 +318,11 @@ class FastDownward:
                                         stderr=subprocess.PIPE, text=True)
             except OSError as exc:
                 raise PlannerInputError(f"cannot run Fast Downward's search: {exc}") from None
-            if limiter is None:
-                try:
-                    resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
-                    resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
-                except (ProcessLookupError, PermissionError, ValueError, OSError):
-                    pass  # it already exited (bad options): its exit code says why
+            try:
+                resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
+                resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
+            except (ProcessLookupError, PermissionError, ValueError, OSError):
+                pass  # it already exited (bad options): its exit code says why
             try:
                 out, err = proc.communicate(sas, timeout=self.time_limit + 30.0)
             except subprocess.TimeoutExpired:
