@@ -99,8 +99,11 @@ class PlannerConfig:
     time_limit: float = 10.0
     #: MB per Fast Downward call
     memory_limit_mb: int = 2048
-    #: Fast Downward calls run in parallel
-    workers: int = 2
+    #: Fast Downward calls run in parallel. Three on two cores: a thread grounds its
+    #: problem (holding the GIL), then waits on its search process, so with two threads
+    #: nobody grounds while both searches run; a third keeps grounding meanwhile (32 robots
+    #: x 96 conditions: 0.68 -> 0.64 s, docs/planning.md section 3)
+    workers: int = 3
     #: also cache plans on disk here
     cache_dir: str | None = None
     #: plan per subtask (False: one joint problem)

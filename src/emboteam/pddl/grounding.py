@@ -696,4 +696,19 @@ def ground_task(domain: CompiledDomain, robots: Sequence[str], things: Sequence[
     layers = {f: gc.aux[f] if f in gc.aux else domain.layers[f[0]] for f in derived_facts}
     fluents = sorted(f for f in used if f not in layers)
     return GroundTask("search", fluents=fluents, derived=dict(sorted(layers.items())), init=g.init,
-                      goal=tuple(goal), operators=ops, axioms=axioms)
+                      goal=tuple(goal), operators=_canonical_operators(ops), axioms=_canonical_axioms(axioms))
+
+
+def _canonical_operators(ops: Sequence[GroundOperator]) -> list[GroundOperator]:
+    """Operators (and their effects) in a fixed order. The grounding joins over sets of
+    strings, whose order changes with Python's hash seed; Fast Downward breaks ties by
+    operator order, so without this the same problem got different plans in different
+    processes (and the sweep's makespans moved with them)."""
+    out = [GroundOperator(op.name, op.pre, tuple(sorted(op.effects, key=lambda e: (e.fact, e.value, e.conditions))))
+           for op in ops]
+    return sorted(out, key=lambda op: op.name)
+
+
+def _canonical_axioms(axioms: Sequence[GroundAxiom]) -> list[GroundAxiom]:
+    """Axioms in a fixed order (see :func:`_canonical_operators`)."""
+    return sorted((GroundAxiom(ax.head, tuple(sorted(ax.body))) for ax in axioms), key=lambda ax: (ax.head, ax.body))

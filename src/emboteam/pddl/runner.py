@@ -7,7 +7,7 @@ Fast Downward is GPL-licensed: it runs as a separate process, never imported int
 - ``"sas"`` (default): we ground the problem ourselves (:mod:`emboteam.pddl.sas`) and pipe
   the finite-domain task into the *search binary* (``builds/release/bin/downward``), with
   the CPU-time and address-space limits the driver would set (``driver/limits.py``),
-  applied with ``prlimit`` before the task is written to its stdin. No driver, no
+  set on the process before the task is written to its stdin. No driver, no
   translator, no second interpreter: a call costs the search itself plus process start.
 - ``"pddl"``: the driver script (``fast-downward.py``) with domain and problem files, run
   with our interpreter; the translator grounds. Kept as the reference the SAS path is
@@ -22,6 +22,8 @@ passes on.
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import hashlib
 import importlib.util
 import json
@@ -126,11 +128,6 @@ def _pool(workers: int) -> ThreadPoolExecutor:
         if pool is None:
             pool = _POOLS[workers] = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="emboteam-fd")
         return pool
-
-
-@cache
-def _prlimit_command() -> str | None:
-    return shutil.which("prlimit")
 
 
 @cache
@@ -312,44 +309,56 @@ class FastDownward:
         seconds_limit = max(1, math.ceil(self.time_limit))
         memory = self.memory_limit_mb * 1024 * 1024
         # the limits driver/limits.py sets (CPU: soft = limit, hard = limit + 1; address
-        # space). A preexec_fn is unsafe with the threads solve_problems uses, so util-linux's
-        # prlimit sets them and execs the search; without it they are set from outside
-        # right after the start (the search reads nothing before its stdin, written after).
-        limiter = _prlimit_command()
-        if limiter is not None:
-            cmd = [limiter, f"--cpu={seconds_limit}:{seconds_limit + 1}", f"--as={memory}:{memory}", "--", *cmd]
-        with tempfile.TemporaryDirectory(prefix="emboteam-fd-") as tmp:
-            work = Path(tmp)
-            t0 = time.perf_counter()
-            try:
-                proc = subprocess.Popen(cmd, cwd=work, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                        stderr=subprocess.PIPE, text=True)
-            except OSError as exc:
-                raise PlannerInputError(f"cannot run Fast Downward's search: {exc}") from None
-            if limiter is None:
-                try:
-                    resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
-                    resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
-                except (ProcessLookupError, PermissionError, ValueError, OSError):
-                    pass  # it already exited (bad options): its exit code says why
-            try:
-                out, err = proc.communicate(sas, timeout=self.time_limit + 30.0)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.communicate()
-                raise PlannerTimeoutError(f"Fast Downward did not stop within {self.time_limit:g} s "
-                                          "and was killed") from None
-            seconds = time.perf_counter() - t0
-            with self._lock:
-                self.calls += 1
-                self.seconds += seconds
-            done = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
-            if proc.returncode == 127 and "shared libraries" in (err or ""):
-                # the dynamic loader could not map the binary within the address-space limit
-                raise PlannerMemoryError(f"Fast Downward's search cannot even start within {self.memory_limit_mb} MB: "
-                                         f"{_excerpt(done)}")
-            return interpret(proc.returncode, _read_plan(work), _excerpt(done), seconds=seconds,
-                             time_limit=self.time_limit, memory_limit_mb=self.memory_limit_mb)
+        # space), set on the started process from outside: a preexec_fn is unsafe with the
+        # threads solve_problems uses, and the search reads its task (stdin, written below)
+        # before it allocates or computes anything that matters. (util-linux's prlimit as a
+        # wrapper would set them before the exec, at the cost of a second exec per call.)
+        work = _workdir()
+        _clear_plans(work)
+        t0 = time.perf_counter()
+        try:
+            proc = subprocess.Popen(cmd, cwd=work, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, text=True)
+        except OSError as exc:
+            raise PlannerInputError(f"cannot run Fast Downward's search: {exc}") from None
+        try:
+            resource.prlimit(proc.pid, resource.RLIMIT_CPU, (seconds_limit, seconds_limit + 1))
+            resource.prlimit(proc.pid, resource.RLIMIT_AS, (memory, memory))
+        except (ProcessLookupError, PermissionError, ValueError, OSError):
+            pass  # it already exited (bad options): its exit code says why
+        # a wall-clock guard on top of the CPU limit (a search stuck without using CPU).
+        # communicate() with a timeout would poll for the exit with sleeps of 0.5 ms and
+        # more after the output ends; without one it waits for the exit itself
+        killed = threading.Event()
+
+        def kill() -> None:
+            killed.set()
+            proc.kill()
+
+        guard = threading.Timer(self.time_limit + 30.0, kill)
+        guard.daemon = True
+        guard.start()
+        try:
+            out, err = proc.communicate(sas)
+        finally:
+            guard.cancel()
+        if killed.is_set():
+            _clear_plans(work)
+            raise PlannerTimeoutError(f"Fast Downward did not stop within {self.time_limit:g} s "
+                                      "and was killed")
+        seconds = time.perf_counter() - t0
+        with self._lock:
+            self.calls += 1
+            self.seconds += seconds
+        done = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+        plan = _read_plan(work)
+        _clear_plans(work)
+        if proc.returncode == 127 and "shared libraries" in (err or ""):
+            # the dynamic loader could not map the binary within the address-space limit
+            raise PlannerMemoryError(f"Fast Downward's search cannot even start within {self.memory_limit_mb} MB: "
+                                     f"{_excerpt(done)}")
+        return interpret(proc.returncode, plan, _excerpt(done), seconds=seconds,
+                         time_limit=self.time_limit, memory_limit_mb=self.memory_limit_mb)
 
     def solve_many(self, jobs: Sequence[tuple[str, str]], workers: int = 2
                    ) -> list[SolveResult | PlanningError]:
@@ -424,6 +433,38 @@ def _read_plan(work: Path) -> tuple[str, ...] | None:
         return None
     return tuple(line.strip() for line in path.read_text().splitlines()
                  if line.strip() and not line.startswith(";"))
+
+
+_WORKDIRS = threading.local()
+
+
+def _workdir() -> Path:
+    """This thread's working directory for search processes (their plan files), made
+    once per thread and process and kept: creating and removing a directory per call
+    cost about 3 ms on the machine this was measured on (ext4 /tmp), a plan file in a
+    kept one 0.04 ms. A forked child makes its own (it must not share plan files with
+    its parent). Removed at exit by the process that made it (a child that leaves with
+    ``os._exit`` leaves its empty directory behind)."""
+    pid = os.getpid()
+    held: tuple[int, Path] | None = getattr(_WORKDIRS, "held", None)
+    if held is not None and held[0] == pid and held[1].is_dir():
+        return held[1]
+    work = Path(tempfile.mkdtemp(prefix="emboteam-fd-"))
+    _WORKDIRS.held = (pid, work)
+    atexit.register(_remove_workdir, pid, work)
+    return work
+
+
+def _remove_workdir(pid: int, work: Path) -> None:
+    if os.getpid() == pid:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def _clear_plans(work: Path) -> None:
+    """Remove the plan files of a finished call (``sas_plan``, ``sas_plan.N``)."""
+    for path in work.glob("sas_plan*"):
+        with contextlib.suppress(OSError):
+            path.unlink()
 
 
 def _excerpt(proc: subprocess.CompletedProcess[str], limit: int = 600) -> str:

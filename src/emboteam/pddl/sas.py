@@ -25,7 +25,7 @@ from emboteam.pddl.grounding import Fact, GroundTask, compile_domain, ground_tas
 from emboteam.pddl.problem import Problem
 
 #: bump when the emitted task changes for the same problem (it is part of cache keys)
-EMITTER_VERSION = "sas-1"
+EMITTER_VERSION = "sas-2"
 
 
 @dataclass(frozen=True)
