@@ -19,7 +19,15 @@ import math
 from collections.abc import Sequence
 
 from emboteam.world.actions import Action, Skill
-from emboteam.world.catalogue import KNIVES, load_catalogue, place_types
+from emboteam.world.catalogue import (
+    BREWERS,
+    COLD_SOURCES,
+    INTERLOCKED,
+    KNIVES,
+    WATER_SOURCES,
+    load_catalogue,
+    place_types,
+)
 from emboteam.world.goals import Condition, Goal, ObjectRef, Predicate
 from emboteam.world.robots import RobotProfile
 from emboteam.world.state import ObjectState, WorldState
@@ -96,22 +104,22 @@ def script_for(cond: Condition, state: WorldState, near: tuple[float, float],
                 Action(skill=S.SliceObject, target=o.id), Action(skill=S.GoToObject, target=back),
                 Action(skill=S.PutObject, target=knife.id, receptacle=back)]
     if p in (Predicate.hot, Predicate.cooked):
-        oven = _first(state, "Microwave")
+        oven = _first(state, *sorted(INTERLOCKED))      # the microwave: closed, then run
         if oven is None:
             return []
         return [*_fetch(o, state), *_deliver(o, oven, state),
                 Action(skill=S.CloseObject, target=oven.id), Action(skill=S.SwitchOn, target=oven.id)]
     if p is Predicate.cold:
-        fridge = _first(state, "Fridge")
+        fridge = _first(state, *sorted(COLD_SOURCES))
         return [] if fridge is None else _fetch(o, state) + _deliver(o, fridge, state)
     if p in (Predicate.clean, Predicate.filled):
         if cond.liquid == "coffee":
-            machine = _first(state, "CoffeeMachine")
+            machine = _first(state, *sorted(BREWERS))
             if machine is None:
                 return []
             return [*_fetch(o, state), *_deliver(o, machine, state),
                     Action(skill=S.SwitchOn, target=machine.id)]
-        basin, faucet = _first(state, "SinkBasin"), _first(state, "Faucet")
+        basin, faucet = _first(state, "SinkBasin"), _first(state, *sorted(WATER_SOURCES))
         if basin is None or faucet is None:
             return []
         return [*_fetch(o, state), *_deliver(o, basin, state), Action(skill=S.GoToObject, target=faucet.id),
