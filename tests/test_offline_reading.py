@@ -459,3 +459,24 @@ def test_an_object_placed_twice_ends_where_it_is_placed_last() -> None:
                      "the coffee table.", 209)) == {"inside(Pillow, Sofa)", "inside(Newspaper, CoffeeTable)"}
     assert goal(read("Put the potato in the pot. Then put the pot on the stove.")) == {
         "inside(Potato, Pot)", "inside(Pot, StoveBurner)"}       # a pot is no potato
+
+
+def test_a_clause_that_only_misses_its_object_is_no_reason_to_guess_from_cue_words() -> None:
+    with pytest.raises(GroundingError):          # FloorPlan414 has no lamp: no other reading
+        read("Switch the lamp on and off.", 414)
+
+
+def test_on_and_off_again_is_a_sequence_ending_off() -> None:
+    assert goal(read("Put the mug in the sink, turn the tap on and off again.")) == {
+        "inside(Mug, SinkBasin)", "switched_off(Faucet)"}
+
+
+def test_it_under_when_is_what_goes_in_not_the_place() -> None:
+    assert goal(read("The apple goes in the bowl. Put the bowl in the fridge when it's in.")) >= {
+        "inside(Apple, Bowl)"}
+    assert "inside(Bowl, Bowl)" not in goal(read("The apple goes in the bowl. Close the fridge when it's in."))
+
+
+def test_the_water_of_a_filled_vessel_is_the_vessel() -> None:
+    assert goal(read("Fill the kettle at the sink and stick it on the stove so the water's hot.")) == {
+        "filled(Kettle, water)", "inside(Kettle, StoveBurner)", "hot(Kettle)"}

@@ -155,6 +155,23 @@ def _whereabouts(clause: Clause, parsed: ParsedClause) -> bool:
         f.act is lexicon.Act.PLACE and not f.verb for f in parsed.frames)
 
 
+def _again_sequence(clause: Clause, parsed: ParsedClause) -> None:
+    """"turn the tap on and off again": with "again" after it, "on and off" is a sequence
+    that ends in the second state, not both at once."""
+    words = [i.text for i in clause.items if i.punct is None]
+    if not words or words[-1] != "again":
+        return
+    for f in parsed.frames:
+        last: dict[int, Target] = {}
+        for t in f.targets:
+            last[id(t.head)] = t
+        if len(last) < len(f.targets):
+            f.targets = [t for t in f.targets if last[id(t.head)] is t]
+            f.state = f.targets[-1].state or f.state
+            if f.state is not None and f.state[0] is lexicon.Stat.SWITCH:
+                f.act = lexicon.Act.SWITCH_ON if f.state[1] else lexicon.Act.SWITCH_OFF
+
+
 def _pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
     """Is the clause a question pointing at an object and where it is?"""
     words = [i.text for i in clause.items if i.punct is None]
@@ -524,6 +541,7 @@ class OfflineFrontend:
                 guessed.add(k)
                 unread.append(ReadingNote(dropped, "not understood; read the rest of the clause without it"))
             _purpose_acts(c, parsed)
+            _again_sequence(c, parsed)
             parsed_clauses.append(parsed)
         silent = _drop_conditions(clauses, parsed_clauses) | chat
         silent |= _labelled_lists(clauses, parsed_clauses)
@@ -569,8 +587,11 @@ class OfflineFrontend:
                     # be read is skipped with a note when another act can be
                     (skipped if frame.weak or exc.vague else failed).append(exc)
                     continue
-            if not out and (len(failed) > failed_before or not any(
+            grounding = [e for e in failed[failed_before:] if isinstance(e, GroundingError) and not e.vague]
+            if not out and not grounding and (len(failed) > failed_before or not any(
                     f.report or f.negated or f.past for f in parsed.frames)):
+                # the clause's shape was not understood (an object that is not in the
+                # scene is no reason to read it another way)
                 out = _read_cues(clause, semantics, ci)
                 if out:
                     guessed.add(ci)

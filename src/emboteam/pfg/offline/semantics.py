@@ -317,7 +317,12 @@ class Semantics:
         if stat is Stat.CLEAN and positive:
             out += self._act(Frame(Act.CLEAN, "clean", [t]), Act.CLEAN, clause)
             return out
-        ref = self.ground(head, STAT_NEEDS[stat], self._group, clause)
+        if head.noun is None and head.liquid is not None and head.pron is None and stat is Stat.HOT:
+            # "fill the kettle ... so the water's hot": the water is in what was filled
+            head = Head(text=head.text, pron="it")
+            ref = self.discourse.resolve(head, "fill")
+        else:
+            ref = self.ground(head, STAT_NEEDS[stat], self._group, clause)
         pred = _stat_predicate(stat, positive)
         if pred is None:
             return out
@@ -590,6 +595,14 @@ class Semantics:
         stranded = self._stranded_place(frame, head)
         if stranded is not None:
             obj = self.ground(head, "hold", g, clause)
+            if head.pron is not None and obj.types & stranded.types:
+                # "put the watch in the box, close the box when it's in": "it" is what goes
+                # in, not the place it goes in
+                inner = next((m.ref for m in reversed(self.history) if m.role == "object"
+                              and m.head.noun is not None and not m.ref.types & stranded.types), None)
+                if inner is None:
+                    return []
+                obj = inner
             return self._each(P.inside, obj, stranded, receptacle=stranded.single())
         if frame.verb in _VERBS_TO_BIN:
             return Act.TRASH
@@ -625,6 +638,10 @@ class Semantics:
         the tub" discard it (the place says which cloth)."""
         if t.dest and frame.verb in _THROWING and frame.particle is None:
             return self._place(frame, t, g, clause)
+        stranded = self._stranded_place(frame, t.head) if frame.verb in _THROWING else None
+        if stranded is not None:      # "open the hamper, throw the pillow in"
+            obj = self.ground(t.head, "hold", g, clause)
+            return self._each(P.inside, obj, stranded, receptacle=stranded.single())
         obj = self.ground(t.head, "hold", g, clause)
         can = self.g.types_ref(("GarbageCan",), "garbage can")
         return self._each(P.inside, obj, can, receptacle=can.single())
