@@ -480,3 +480,10 @@ def test_it_under_when_is_what_goes_in_not_the_place() -> None:
 def test_the_water_of_a_filled_vessel_is_the_vessel() -> None:
     assert goal(read("Fill the kettle at the sink and stick it on the stove so the water's hot.")) == {
         "filled(Kettle, water)", "inside(Kettle, StoveBurner)", "hot(Kettle)"}
+
+
+def test_under_the_coffee_maker_is_in_it_and_under_a_table_is_no_goal() -> None:
+    assert goal(read("Put the mug under the coffee maker and start it.")) == {
+        "inside(Mug, CoffeeMachine)", "switched_on(CoffeeMachine)"}
+    with pytest.raises(OfflineParseError):
+        read("Put the mug under the table.")

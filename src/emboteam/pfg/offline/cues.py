@@ -28,7 +28,7 @@ Act = lx.Act
 Stat = lx.Stat
 
 #: prepositions (canonical, :data:`lexicon.PREPOSITIONS`) that introduce where an object goes
-_PLACE_PREPS = frozenset({"in", "on", "to", "at", "near", "by", "under"})
+_PLACE_PREPS = frozenset({"in", "on", "to", "at", "near", "by"})
 #: acts that say nothing about the goal on their own ("get", "leave", "go"): a cue only
 #: together with a state word or a place
 _GENERIC_ACTS = frozenset({Act.CAUSE, Act.GO, Act.MAKE, Act.VAGUE})

@@ -21,7 +21,7 @@ from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
 from emboteam.pfg.offline.tagger import NounReading
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import BREWERS, load_catalogue
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.state import ObjectState
 
@@ -787,9 +787,10 @@ class Semantics:
                obj: Ref | None = None) -> list[Draft]:
         obj = obj if obj is not None else self.ground(t.head, "hold", g, clause)
         dest_heads = t.dest
-        if t.prep == "under":
+        if t.prep == "under" and not any(
+                set(d.noun.concept.types) & BREWERS for d in dest_heads if d.noun is not None):
             raise OfflineParseError("'under' cannot be stated as a goal (only in/on)",
-                                    phrase=frame.text)
+                                    phrase=frame.text)      # "under the coffee maker" is in it
         if t.prep == "near":
             dest = self._beside(dest_heads[0], g, clause)
         else:
