@@ -4,12 +4,14 @@ The clause grammar (:mod:`~emboteam.pfg.offline.frames`) must accept a clause to
 people do not always say things in a shape it knows ("I just need the pan in the sink",
 "if you could get a potato cooked and onto a plate"). Such a clause still carries cues:
 an act or a state word, the objects it names and the places they go. This reader turns
-the cues into candidate frames, most specific first, and lets the semantics
+the cues into candidate frames of three kinds (the clause's act, a state word, a
+placement), most specific first, and lets the semantics
 (:class:`~emboteam.pfg.offline.semantics.Semantics`) decide: a candidate the scene cannot
-ground (no such object, no receptacle that takes it, no skill in the team) is dropped,
-and the first one that grounds is the reading. Whatever it gives is marked unsure (the
-hybrid front end shows it to the LLM) and reported with a note saying it was read from
-its cue words.
+ground (no such object, no receptacle that takes it) is dropped, and the first of each
+kind that grounds is kept. Whatever it gives is marked unsure (the hybrid front end shows
+it to the LLM) and reported with a note saying it was read from its cue words. It never
+reads a statement ("the mug's in the cupboard"), a prohibition, or an object after
+"except", "not", "instead of".
 
 Kept apart from the grammar on purpose: it never decides what the grammar reads, it only
 reads what the grammar left unread.
@@ -129,7 +131,8 @@ def _targets(objects: list[Head], places: list[tuple[str, Head]]) -> list[Target
     if not places:
         return [Target(h) for h in objects]
     prep, dest = places[-1]
-    return [Target(h, [dest], "in" if prep == "in" else "on") for h in objects]
+    role = "in" if prep == "in" else "near" if prep in ("near", "by") else "on"
+    return [Target(h, [dest], role) for h in objects]
 
 
 def candidate_frames(clause: Clause) -> list[tuple[str, Frame]]:
