@@ -23,7 +23,9 @@ from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
+from emboteam.pfg.offline.errors import OfflineParseError
 from emboteam.pfg.offline.phrases import Frame, Head, Target, np_start, parse_np
+from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import Item
 
 Act = lx.Act
@@ -157,4 +159,31 @@ def candidate_frames(clause: Clause) -> list[tuple[str, Frame]]:
                                    text=text)))
     if cues.places:
         out.append(("place", Frame(Act.PLACE, "put", _targets(cues.objects, cues.places), text=text)))
+    return out
+
+
+def cue_mentions(clause: Clause) -> list[Head]:
+    """The noun phrases of a clause the grammar found none in ("where's the pot?")."""
+    cues = collect(clause.items)
+    return [*cues.objects, *(h for _, h in cues.places)]
+
+
+def read_cues(clause: Clause, semantics: Semantics, ci: int) -> list[Draft]:
+    """The drafts of a clause read from its cue words (:mod:`~emboteam.pfg.offline.cues`):
+    the first candidate of each kind that the scene grounds, no placement beside an act
+    that already places."""
+    out: list[Draft] = []
+    kinds: set[str] = set()
+    for kind, frame in candidate_frames(clause):
+        if kind in kinds or (kind == "place" and "places" in kinds):
+            continue
+        try:
+            got = semantics.frame(frame, ci)
+        except OfflineParseError:
+            continue
+        if got:
+            out = concat(out, got)
+            kinds.add(kind)
+            if frame.act in (Act.PLACE, Act.TRASH):
+                kinds.add("places")
     return out

@@ -4,28 +4,48 @@ from __future__ import annotations
 
 import logging
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
+from emboteam.pfg.offline.clause_passes import (
+    again_sequence,
+    attach_means,
+    drop_conditions,
+    elided_participle,
+    gapped_objects,
+    known_objects,
+    labelled_lists,
+    pointing_question,
+    purpose_acts,
+    repeat_for_also,
+    share_objects,
+    small_talk,
+    whereabouts,
+)
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
 from emboteam.pfg.offline.constructions import places_to_locations
 from emboteam.pfg.offline.corrections import apply_corrections
-from emboteam.pfg.offline.cues import candidate_frames, collect, is_statement
-from emboteam.pfg.offline.decompose import assemble, refs_overlap
+from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
+from emboteam.pfg.offline.decompose import assemble
+from emboteam.pfg.offline.draft_passes import (
+    drop_fulfilled_wishes,
+    drop_holds_before_placing,
+    drop_superseded_placements,
+)
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.morphology import warm_spelling
-from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start
+from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
-from emboteam.pfg.offline.tagger import Item, tag
+from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.world.goals import ObjectRef, Predicate
+from emboteam.world.goals import ObjectRef
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -62,17 +82,6 @@ def _reread_after_prefix(clause: Clause, directive: bool) -> tuple[ParsedClause,
     return None
 
 
-def _known_objects(items: list[Item]) -> list[Head] | None:
-    """The noun phrases of a clause that is only noun phrases of known words ("the
-    bread", "then the tomato"; not "wibble the tomato"), else None."""
-    words = [i for i in items if i.punct is None]
-    if not all(i.noun is not None or i.det or i.quant is not None or i.pron
-               or i.number is not None or i.text in lexicon.COMMON_WORDS for i in words):
-        return None
-    # commas stay: they separate the phrases of a list ("keys, watch and the card")
-    return np_list([i for i in items if i.punct in (None, ",")]) or np_list(words)
-
-
 def _unread(clause: Clause, parsed: ParsedClause) -> bool:
     """Did a clause that gave no act say something the parser could not read? A statement
     ("my phone is on the bed", "there's a potato on the counter") introduces objects, and
@@ -85,7 +94,7 @@ def _unread(clause: Clause, parsed: ParsedClause) -> bool:
         return False     # "if you have time", "before you leave": a circumstance
     if items and items[0].text in ("not", "instead", "rather", "except"):
         return False     # "not the apple", "instead of the cup": a rejected alternative
-    if _known_objects(items):
+    if known_objects(items):
         return False     # "The bread. Slice it.": a topic for what follows
     return bool(parsed.unknown) or any(i.verb is not None or i.noun is not None for i in clause.items)
 
@@ -108,354 +117,6 @@ def _vague_phrase(clause: Clause) -> str | None:
         if m:
             return m.group(0)
     return None
-
-
-#: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
-_NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
-#: a person's own doings under "when", "before", "if": "when I get home", "before you go"
-#: are a time, not a request
-_PERSON = frozenset({"i", "we", "you"})
-
-
-#: verbs of a question that points something out ("see the box on the table?")
-_POINTING = frozenset({"see", "notice", "spot", "remember", "know"})
-
-
-#: acts a purpose infinitive asks of what was just placed ("put it on the hob to boil")
-_PURPOSE_ACTS = frozenset({lexicon.Act.HEAT, lexicon.Act.COOK, lexicon.Act.COOL, lexicon.Act.CLEAN,
-                           lexicon.Act.MICROWAVE, lexicon.Act.TOAST})
-
-
-def _purpose_acts(clause: Clause, parsed: ParsedClause) -> None:
-    """"put the kettle on the hob to boil", "pop the wine in the fridge to chill": the
-    placement is for the act after "to", which is asked of the same objects."""
-    items = clause.items
-    placing = [f for f in parsed.frames if f.act in (lexicon.Act.PLACE, lexicon.Act.GO)]
-    if not placing:
-        return
-    for k in range(len(items) - 1):
-        verb = items[k + 1].verb
-        if items[k].text == "to" and verb is not None and verb.sense.act in _PURPOSE_ACTS \
-                and items[k + 1].noun is None and (k + 2 >= len(items) or not np_start(items[k + 2])
-                                                   or items[k + 2].pron in ("it", "them")):
-            heads = [t.head for f in placing for t in f.targets]
-            parsed.frames.append(Frame(verb.sense.act, verb.lemma, [Target(h) for h in heads],
-                                       text=clause.text))
-            return
-
-
-#: words that make "X should be in Y" a guess about where X is, not a wish
-_WHEREABOUTS = frozenset({"somewhere", "probably", "presumably", "somewhere in", "anywhere"})
-
-
-def _whereabouts(clause: Clause, parsed: ParsedClause) -> bool:
-    """"The mug should be in a cabinet somewhere", "the remote must be on the sofa
-    somewhere": a verbless placement with a word of guessing says where something is."""
-    return any(i.text in _WHEREABOUTS for i in clause.items) and bool(parsed.frames) and all(
-        f.act is lexicon.Act.PLACE and not f.verb for f in parsed.frames)
-
-
-def _again_sequence(clause: Clause, parsed: ParsedClause) -> None:
-    """"turn the tap on and off again": with "again" after it, "on and off" is a sequence
-    that ends in the second state, not both at once."""
-    words = [i.text for i in clause.items if i.punct is None]
-    if not words or words[-1] != "again":
-        return
-    for f in parsed.frames:
-        last: dict[int, Target] = {}
-        for t in f.targets:
-            last[id(t.head)] = t
-        if len(last) < len(f.targets):
-            f.targets = [t for t in f.targets if last[id(t.head)] is t]
-            f.state = f.targets[-1].state or f.state
-            if f.state is not None and f.state[0] is lexicon.Stat.SWITCH:
-                f.act = lexicon.Act.SWITCH_ON if f.state[1] else lexicon.Act.SWITCH_OFF
-
-
-def _pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
-    """Is the clause a question pointing at an object and where it is?"""
-    words = [i.text for i in clause.items if i.punct is None]
-    while words and words[0] in ("do", "did", "can", "you", "could"):
-        words = words[1:]
-    return bool(clause.extra.get("question")) and bool(words) and words[0] in _POINTING and \
-        bool(parsed.frames) and all(f.act is lexicon.Act.PLACE for f in parsed.frames)
-
-
-def _small_talk(clause: Clause) -> bool:
-    """"Cheers love", "love you!", "you're a star": no object, no state, no pronoun to
-    act on, and only verbs that ask for nothing by themselves."""
-    items = clause.items
-    if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
-           or i.recipe is not None for i in items):
-        return False
-    verbs = [i.verb for i in items if i.verb is not None]
-    return bool(verbs) and all(v.sense.act in _NO_REQUEST for v in verbs)
-
-
-def _requests(p: ParsedClause) -> bool:
-    return any(f.act not in _NO_REQUEST and not f.report and not f.wish for f in p.frames)
-
-
-def condition_groups(clauses: list[Clause]) -> list[list[int]]:
-    """The clauses of each "if": the "if" clause and the clauses it coordinates ("if the
-    laptop were shut and the pillow were on the armchair")."""
-    groups: list[list[int]] = []
-    for k, c in enumerate(clauses):
-        if c.link == "if":
-            groups.append([k])
-        elif groups and groups[-1][-1] == k - 1 and c.link == AND and c.sentence == clauses[k - 1].sentence \
-                and not (c.items and c.items[0].verb is not None):
-            groups[-1].append(k)
-    return groups
-
-
-def _drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
-    """"If the fridge is open, close it": a state under "if" is the condition of an act
-    of its sentence, not a goal (its objects stay for the pronouns). Without such an act
-    the "if" clauses are what is wished ("I'd appreciate it if the laptop were closed").
-    "When I get home": the speaker's own doings under a subordinator are a time. Returns
-    the clauses that were read this way (no note for them)."""
-    silent: set[int] = set()
-    for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
-        if c.link not in (AND, THEN, "purpose") and c.items and c.items[0].text in _PERSON \
-                and all(f.act in _NO_REQUEST and f.state is None for f in p.frames) \
-                and not any(h.noun is not None and h.noun.concept.kind not in ("room", "anything")
-                            for h in p.mentions):
-            parsed[k] = replace(p, frames=[])
-            silent.add(k)
-    for group in condition_groups(clauses):
-        if any(_requests(parsed[k]) for k in group):
-            continue
-        sentence = clauses[group[0]].sentence
-        acted = any(clauses[j].sentence == sentence and j not in group and _requests(parsed[j])
-                    for j in range(len(clauses)))
-        for k in group:
-            if acted:
-                parsed[k] = replace(parsed[k], frames=[])
-            elif any(f.report for f in parsed[k].frames):
-                # "... and the pillow were on the armchair": wished, as the "if" is
-                parsed[k] = parse_clause(clauses[k], directive=True)
-        if not acted:
-            for j, c in enumerate(clauses):
-                # "I'd love it if ...": the "it" is what the "if" says, nothing of its own
-                if c.sentence == sentence and j not in group and parsed[j].frames and all(
-                        f.act in _NO_REQUEST and all(t.head.pron is not None for t in f.targets)
-                        for f in parsed[j].frames):
-                    parsed[j] = replace(parsed[j], frames=[], mentions=[])
-                    silent.add(j)
-    return silent
-
-
-def _labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
-    """"Bed: pillow and teddy. Desk: book and laptop.", "Things for the box: the pen and
-    the pencil.": a place before a colon, then only objects, puts them there. Returns the
-    label clauses (read, no note)."""
-    labels: set[int] = set()
-    for k in range(len(clauses) - 1):
-        c, nxt = clauses[k], clauses[k + 1]
-        # "things for the desk" reads as a placement that lacks its place
-        placing = all(f.act is lexicon.Act.PLACE and not any(t.dest for t in f.targets)
-                      for f in parsed[k].frames)
-        if not c.extra.get("colon") or not placing or parsed[k + 1].frames \
-                or nxt.sentence != c.sentence + 1:
-            continue
-        label = [h for h in parsed[k].mentions if h.noun is not None] or _known_objects(c.items)
-        if not label:
-            continue
-        place = label[-1]
-        heads = _known_objects(nxt.items)
-        if place.noun is None or not heads or any(h.noun is None for h in heads):
-            continue
-        place.role = "dest"
-        parsed[k].frames = []
-        parsed[k + 1].frames = [Frame(lexicon.Act.PLACE, "put", [Target(h, [place], "in") for h in heads],
-                                      text=nxt.text)]
-        labels.add(k)
-    return labels
-
-
-def _attach_means(parsed: list[ParsedClause]) -> None:
-    """"cook the potato, the microwave is fine", "the stove is fine - fry the egg": a
-    clause that only names an appliance gives the means of the act next to it (the one
-    before, else the one after)."""
-    for k, p in enumerate(parsed):
-        if p.means is None:
-            continue
-        for other in (parsed[k - 1] if k > 0 else None, parsed[k + 1] if k + 1 < len(parsed) else None):
-            if other is not None and other.frames:
-                for f in other.frames:
-                    f.means = f.means or p.means
-                break
-
-
-#: acts whose object may be left out on purpose ("dim", "water" the plants, "go")
-_NO_OBJECT_ACTS = frozenset({lexicon.Act.DIM, lexicon.Act.BRIGHTEN, lexicon.Act.WATER,
-                             lexicon.Act.GO, lexicon.Act.MAKE, lexicon.Act.VAGUE})
-
-
-def _share_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
-    """"open and close the fridge", "wash and dry the mug": a verb without an object,
-    coordinated with the next clause of its sentence, shares that clause's objects."""
-    for k in range(len(parsed) - 1):
-        p, nxt = parsed[k], parsed[k + 1]
-        if clauses[k + 1].sentence != clauses[k].sentence or clauses[k + 1].link != "and" \
-                or len(p.frames) != 1 or not nxt.frames or not nxt.frames[0].targets:
-            continue
-        frame = p.frames[0]
-        if frame.targets or frame.act is None or frame.act in _NO_OBJECT_ACTS or frame.report:
-            continue
-        frame.targets = [Target(t.head, [], None) for t in nxt.frames[0].targets]
-
-
-def _elided_participle(clause: Clause, before: ParsedClause | None) -> list[Frame]:
-    """"I'd like my mug washed and then filled with water": a clause that is only a
-    state participle asks that state of the objects of the clause before it."""
-    words = [i for i in clause.items if i.punct is None and i.text not in lexicon.FILLER_WORDS]
-    if before is None or not before.frames or not words or words[0].state is None \
-            or words[0].verb is None or words[0].verb.form != "ed" or words[0].noun is not None or before.clause.sentence != clause.sentence \
-            or any(np_start(i) and i.liquid is None for i in words[1:]):
-        return []
-    targets = [t for f in before.frames for t in f.targets if t.head.noun is not None or t.head.pron]
-    if not targets:
-        return []
-    liquid = next((i.liquid for i in words if i.liquid is not None), None)
-    return [Frame(lexicon.Act.CAUSE, "get", [Target(t.head) for t in targets], state=words[0].state,
-                  liquid=liquid, text=clause.text)]
-
-
-def _gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
-    """"Put the apple in the fridge, then the tomato" (". Then the tomato."): a clause that
-    is only objects, sequenced right after an act, has that act (gapping)."""
-    for k in range(1, len(parsed)):
-        p, c = parsed[k], clauses[k]
-        if p.frames or p.also or c.link != THEN or not parsed[k - 1].frames:
-            continue
-        heads = _known_objects(p.clause.items)
-        if heads and all(h.noun is not None for h in heads):
-            p.also = heads
-
-
-def _repeat_for_also(parsed: list[ParsedClause]) -> None:
-    """"Put the apple in the fridge. Oh, and the tomato too.": the act of the clause
-    before, with its place, on the new objects."""
-    for k, p in enumerate(parsed):
-        if not p.also or p.frames or k == 0:
-            continue
-        before = next((q for q in reversed(parsed[:k]) if q.frames), None)
-        if before is None:
-            continue
-        last = before.frames[-1]
-        model = last.targets[-1] if last.targets else Target(Head())
-        p.frames = [replace(last, targets=[Target(h, list(model.dest), model.prep) for h in p.also],
-                            instruments=list(last.instruments), room_states=[])]
-
-
-#: what a later act brings about: a wished state it makes true needs no subtask of its own
-_FULFILS: dict[Predicate, frozenset[Predicate]] = {
-    Predicate.hot: frozenset({Predicate.hot, Predicate.cooked}),
-    Predicate.cold: frozenset({Predicate.cold}),
-    Predicate.cooked: frozenset({Predicate.cooked}),
-    Predicate.clean: frozenset({Predicate.clean}),
-    Predicate.filled: frozenset({Predicate.filled}),
-}
-
-
-def _drop_drafts(drafts: dict[int, list[Draft]], gone_of: Callable[[int, Draft], bool]) -> None:
-    """Remove the drafts ``gone_of(clause, draft)`` picks, keeping the others' order
-    (their ``after`` indices renumbered)."""
-    for ci in sorted(drafts):
-        gone = {k for k, d in enumerate(drafts[ci]) if gone_of(ci, d)}
-        if not gone:
-            continue
-        kept = [k for k in range(len(drafts[ci])) if k not in gone]
-        index = {old: new for new, old in enumerate(kept)}
-        out = []
-        for k in kept:
-            d = drafts[ci][k]
-            d.after = [index[a] for a in d.after if a in index]
-            out.append(d)
-        if out:
-            drafts[ci] = out
-        else:
-            del drafts[ci]
-
-
-def _drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
-    """"I'd love a warm slice of bread - toast some for me": the wish introduces what a
-    later clause says how to make; toasting makes it warm (cooking heats), so the wish adds
-    no subtask of its own."""
-    def fulfilled(ci: int, d: Draft) -> bool:
-        later = [c for cj, ds in drafts.items() if cj > ci for e in ds if not e.wished
-                 for c in e.conditions]
-        return d.wished and all(any(c2.predicate in _FULFILS.get(c.predicate, frozenset())
-                                    and refs_overlap(c.subject, c2.subject) for c2 in later)
-                                for c in d.conditions)
-    _drop_drafts(drafts, fulfilled)
-
-
-def _drop_superseded_placements(drafts: dict[int, list[Draft]], grounder: Grounder) -> None:
-    """"Pick the pillow and the paper up - pillow on the sofa, paper on the coffee table":
-    an object placed twice ends where it is placed last; the earlier placement of one
-    object (an id, or a kind the scene has one of) is no goal (both cannot hold at the
-    end). "The toilet paper on the holder, the spare roll on the shelf" is two rolls."""
-    order = [(ci, k, d) for ci in sorted(drafts) for k, d in enumerate(drafts[ci])]
-
-    def one_object(ref: ObjectRef) -> bool:
-        return ref.id is not None or sum(len(grounder.instances(t)) for t in ref.types) == 1
-
-    def superseded(ci: int, d: Draft) -> bool:
-        if d.intermediate or not d.conditions or any(
-                c.predicate is not Predicate.inside or c.count != 1 or not one_object(c.subject)
-                for c in d.conditions):
-            return False
-        at = next(i for i, (_, _, e) in enumerate(order) if e is d)
-        later = [c for _, _, e in order[at + 1:] if not e.intermediate for c in e.conditions
-                 if c.predicate is Predicate.inside]
-        return all(any(refs_overlap(c.subject, c2.subject) and c2.receptacle != c.receptacle
-                       for c2 in later) for c in d.conditions)
-    _drop_drafts(drafts, superseded)
-
-
-def _drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
-    """"Take the sponge and the towels out of the cupboard and put them on the counter":
-    holding is how they get there, not a goal of its own (and two things held "at once"
-    would ask for two free hands)."""
-    placed = [(ci, k, c) for ci, ds in drafts.items() for k, d in enumerate(ds) for c in d.conditions
-              if c.predicate is Predicate.inside]
-
-    def before_placing(ci: int, d: Draft) -> bool:
-        return bool(d.conditions) and all(
-            c.predicate is Predicate.held and any(
-                cj >= ci and refs_overlap(c.subject, p.subject) for cj, _, p in placed)
-            for c in d.conditions)
-    _drop_drafts(drafts, before_placing)
-
-
-def _cue_mentions(clause: Clause) -> list[Head]:
-    """The noun phrases of a clause the grammar found none in ("where's the pot?")."""
-    cues = collect(clause.items)
-    return [*cues.objects, *(h for _, h in cues.places)]
-
-
-def _read_cues(clause: Clause, semantics: Semantics, ci: int) -> list[Draft]:
-    """The drafts of a clause read from its cue words (:mod:`~emboteam.pfg.offline.cues`):
-    the first candidate of each kind that the scene grounds, no placement beside an act
-    that already places."""
-    out: list[Draft] = []
-    kinds: set[str] = set()
-    for kind, frame in candidate_frames(clause):
-        if kind in kinds or (kind == "place" and "places" in kinds):
-            continue
-        try:
-            got = semantics.frame(frame, ci)
-        except OfflineParseError:
-            continue
-        if got:
-            out = concat(out, got)
-            kinds.add(kind)
-            if frame.act in (lexicon.Act.PLACE, lexicon.Act.TRASH):
-                kinds.add("places")
-    return out
 
 
 class OfflineFrontend:
@@ -518,10 +179,10 @@ class OfflineFrontend:
                 c.sentence and c.link == "and"
             parsed = parse_clause(c, directive=inherit)
             dropped: str | None = None
-            if _small_talk(c):
+            if small_talk(c):
                 parsed = replace(parsed, frames=[])
                 chat.add(k)
-            elif not parsed.frames and (elided := _elided_participle(c, before)):
+            elif not parsed.frames and (elided := elided_participle(c, before)):
                 parsed = replace(parsed, frames=elided)
             elif not parsed.frames and _unread(c, parsed):
                 # "I reckon you should chuck the egg in the bin", "swap the TV off": read
@@ -530,7 +191,7 @@ class OfflineFrontend:
                 reread = _reread_after_prefix(c, inherit)
                 if reread is not None:
                     parsed, dropped = reread
-            if _pointing_question(c, parsed) or _whereabouts(c, parsed):
+            if pointing_question(c, parsed) or whereabouts(c, parsed):
                 # "(do you) see the box on the coffee table?": where the box is, for what
                 # follows, not a request
                 for f in parsed.frames:
@@ -540,15 +201,15 @@ class OfflineFrontend:
             elif dropped is not None:
                 guessed.add(k)
                 unread.append(ReadingNote(dropped, "not understood; read the rest of the clause without it"))
-            _purpose_acts(c, parsed)
-            _again_sequence(c, parsed)
+            purpose_acts(c, parsed)
+            again_sequence(c, parsed)
             parsed_clauses.append(parsed)
-        silent = _drop_conditions(clauses, parsed_clauses) | chat
-        silent |= _labelled_lists(clauses, parsed_clauses)
-        _attach_means(parsed_clauses)
-        _share_objects(clauses, parsed_clauses)
-        _gapped_objects(clauses, parsed_clauses)
-        _repeat_for_also(parsed_clauses)
+        silent = drop_conditions(clauses, parsed_clauses) | chat
+        silent |= labelled_lists(clauses, parsed_clauses)
+        attach_means(parsed_clauses)
+        share_objects(clauses, parsed_clauses)
+        gapped_objects(clauses, parsed_clauses)
+        repeat_for_also(parsed_clauses)
         for ci, (clause, parsed) in enumerate(zip(clauses, parsed_clauses, strict=True)):
             chore = _vague_phrase(clause)
             if chore is not None:
@@ -561,7 +222,7 @@ class OfflineFrontend:
                 continue
             if not parsed.frames:
                 if ci not in silent and _unread(clause, parsed):
-                    cued = _read_cues(clause, semantics, ci)
+                    cued = read_cues(clause, semantics, ci)
                     if cued:
                         drafts[ci] = cued
                         guessed.add(ci)
@@ -571,7 +232,7 @@ class OfflineFrontend:
                     unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
                 # "keys, watch and the credit card - pop all three in the box": a clause of
                 # noun phrases names every one of them ("watch" is no verb here)
-                for h in _known_objects(clause.items) or parsed.mentions or _cue_mentions(clause):
+                for h in known_objects(clause.items) or parsed.mentions or cue_mentions(clause):
                     semantics.note(h, ci)
                 unknown.extend(parsed.unknown)
                 continue
@@ -592,7 +253,7 @@ class OfflineFrontend:
                     f.report or f.negated or f.past for f in parsed.frames)):
                 # the clause's shape was not understood (an object that is not in the
                 # scene is no reason to read it another way)
-                out = _read_cues(clause, semantics, ci)
+                out = read_cues(clause, semantics, ci)
                 if out:
                     guessed.add(ci)
                     unread.append(ReadingNote(clause.text, "read from its key words: the "
@@ -604,9 +265,9 @@ class OfflineFrontend:
                 semantics.note(h, ci)
             if not any(f.act is not None or f.state is not None for f in parsed.frames):
                 unknown.extend(parsed.unknown)
-        _drop_fulfilled_wishes(drafts)
-        _drop_holds_before_placing(drafts)
-        _drop_superseded_placements(drafts, semantics.g)
+        drop_fulfilled_wishes(drafts)
+        drop_holds_before_placing(drafts)
+        drop_superseded_placements(drafts, semantics.g)
         if not drafts:
             if failed:
                 raise failed[0]

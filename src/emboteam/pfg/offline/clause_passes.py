@@ -1,0 +1,268 @@
+"""Passes over the parsed clauses of one instruction, before their semantics: what one
+clause means depends on its neighbours. A state under "if" is a condition; "when I get
+home" is a time; a place before a colon labels the objects after it; a verb without an
+object shares the next one's; a participle, a purpose infinitive or "again" finishes the
+act before it; a question pointing at an object, a guess where it is and small talk ask
+for nothing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from emboteam.pfg.offline import lexicon
+from emboteam.pfg.offline.clauses import AND, THEN, Clause
+from emboteam.pfg.offline.frames import parse_clause
+from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start
+from emboteam.pfg.offline.tagger import Item
+
+
+def known_objects(items: list[Item]) -> list[Head] | None:
+    """The noun phrases of a clause that is only noun phrases of known words ("the
+    bread", "then the tomato"; not "wibble the tomato"), else None."""
+    words = [i for i in items if i.punct is None]
+    if not all(i.noun is not None or i.det or i.quant is not None or i.pron
+               or i.number is not None or i.text in lexicon.COMMON_WORDS for i in words):
+        return None
+    # commas stay: they separate the phrases of a list ("keys, watch and the card")
+    return np_list([i for i in items if i.punct in (None, ",")]) or np_list(words)
+
+
+#: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
+_NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
+#: a person's own doings under "when", "before", "if": "when I get home", "before you go"
+#: are a time, not a request
+_PERSON = frozenset({"i", "we", "you"})
+
+
+#: verbs of a question that points something out ("see the box on the table?")
+_POINTING = frozenset({"see", "notice", "spot", "remember", "know"})
+
+
+#: acts a purpose infinitive asks of what was just placed ("put it on the hob to boil")
+_PURPOSE_ACTS = frozenset({lexicon.Act.HEAT, lexicon.Act.COOK, lexicon.Act.COOL, lexicon.Act.CLEAN,
+                           lexicon.Act.MICROWAVE, lexicon.Act.TOAST})
+
+
+def purpose_acts(clause: Clause, parsed: ParsedClause) -> None:
+    """"put the kettle on the hob to boil", "pop the wine in the fridge to chill": the
+    placement is for the act after "to", which is asked of the same objects."""
+    items = clause.items
+    placing = [f for f in parsed.frames if f.act in (lexicon.Act.PLACE, lexicon.Act.GO)]
+    if not placing:
+        return
+    for k in range(len(items) - 1):
+        verb = items[k + 1].verb
+        if items[k].text == "to" and verb is not None and verb.sense.act in _PURPOSE_ACTS \
+                and items[k + 1].noun is None and (k + 2 >= len(items) or not np_start(items[k + 2])
+                                                   or items[k + 2].pron in ("it", "them")):
+            heads = [t.head for f in placing for t in f.targets]
+            parsed.frames.append(Frame(verb.sense.act, verb.lemma, [Target(h) for h in heads],
+                                       text=clause.text))
+            return
+
+
+#: words that make "X should be in Y" a guess about where X is, not a wish
+_WHEREABOUTS = frozenset({"somewhere", "probably", "presumably", "somewhere in", "anywhere"})
+
+
+def whereabouts(clause: Clause, parsed: ParsedClause) -> bool:
+    """"The mug should be in a cabinet somewhere", "the remote must be on the sofa
+    somewhere": a verbless placement with a word of guessing says where something is."""
+    return any(i.text in _WHEREABOUTS for i in clause.items) and bool(parsed.frames) and all(
+        f.act is lexicon.Act.PLACE and not f.verb for f in parsed.frames)
+
+
+def again_sequence(clause: Clause, parsed: ParsedClause) -> None:
+    """"turn the tap on and off again": with "again" after it, "on and off" is a sequence
+    that ends in the second state, not both at once."""
+    words = [i.text for i in clause.items if i.punct is None]
+    if not words or words[-1] != "again":
+        return
+    for f in parsed.frames:
+        last: dict[int, Target] = {}
+        for t in f.targets:
+            last[id(t.head)] = t
+        if len(last) < len(f.targets):
+            f.targets = [t for t in f.targets if last[id(t.head)] is t]
+            f.state = f.targets[-1].state or f.state
+            if f.state is not None and f.state[0] is lexicon.Stat.SWITCH:
+                f.act = lexicon.Act.SWITCH_ON if f.state[1] else lexicon.Act.SWITCH_OFF
+
+
+def pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
+    """Is the clause a question pointing at an object and where it is?"""
+    words = [i.text for i in clause.items if i.punct is None]
+    while words and words[0] in ("do", "did", "can", "you", "could"):
+        words = words[1:]
+    return bool(clause.extra.get("question")) and bool(words) and words[0] in _POINTING and \
+        bool(parsed.frames) and all(f.act is lexicon.Act.PLACE for f in parsed.frames)
+
+
+def small_talk(clause: Clause) -> bool:
+    """"Cheers love", "love you!", "you're a star": no object, no state, no pronoun to
+    act on, and only verbs that ask for nothing by themselves."""
+    items = clause.items
+    if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
+           or i.recipe is not None for i in items):
+        return False
+    verbs = [i.verb for i in items if i.verb is not None]
+    return bool(verbs) and all(v.sense.act in _NO_REQUEST for v in verbs)
+
+
+def requests(p: ParsedClause) -> bool:
+    return any(f.act not in _NO_REQUEST and not f.report and not f.wish for f in p.frames)
+
+
+def condition_groups(clauses: list[Clause]) -> list[list[int]]:
+    """The clauses of each "if": the "if" clause and the clauses it coordinates ("if the
+    laptop were shut and the pillow were on the armchair")."""
+    groups: list[list[int]] = []
+    for k, c in enumerate(clauses):
+        if c.link == "if":
+            groups.append([k])
+        elif groups and groups[-1][-1] == k - 1 and c.link == AND and c.sentence == clauses[k - 1].sentence \
+                and not (c.items and c.items[0].verb is not None):
+            groups[-1].append(k)
+    return groups
+
+
+def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
+    """"If the fridge is open, close it": a state under "if" is the condition of an act
+    of its sentence, not a goal (its objects stay for the pronouns). Without such an act
+    the "if" clauses are what is wished ("I'd appreciate it if the laptop were closed").
+    "When I get home": the speaker's own doings under a subordinator are a time. Returns
+    the clauses that were read this way (no note for them)."""
+    silent: set[int] = set()
+    for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
+        if c.link not in (AND, THEN, "purpose") and c.items and c.items[0].text in _PERSON \
+                and all(f.act in _NO_REQUEST and f.state is None for f in p.frames) \
+                and not any(h.noun is not None and h.noun.concept.kind not in ("room", "anything")
+                            for h in p.mentions):
+            parsed[k] = replace(p, frames=[])
+            silent.add(k)
+    for group in condition_groups(clauses):
+        if any(requests(parsed[k]) for k in group):
+            continue
+        sentence = clauses[group[0]].sentence
+        acted = any(clauses[j].sentence == sentence and j not in group and requests(parsed[j])
+                    for j in range(len(clauses)))
+        for k in group:
+            if acted:
+                parsed[k] = replace(parsed[k], frames=[])
+            elif any(f.report for f in parsed[k].frames):
+                # "... and the pillow were on the armchair": wished, as the "if" is
+                parsed[k] = parse_clause(clauses[k], directive=True)
+        if not acted:
+            for j, c in enumerate(clauses):
+                # "I'd love it if ...": the "it" is what the "if" says, nothing of its own
+                if c.sentence == sentence and j not in group and parsed[j].frames and all(
+                        f.act in _NO_REQUEST and all(t.head.pron is not None for t in f.targets)
+                        for f in parsed[j].frames):
+                    parsed[j] = replace(parsed[j], frames=[], mentions=[])
+                    silent.add(j)
+    return silent
+
+
+def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
+    """"Bed: pillow and teddy. Desk: book and laptop.", "Things for the box: the pen and
+    the pencil.": a place before a colon, then only objects, puts them there. Returns the
+    label clauses (read, no note)."""
+    labels: set[int] = set()
+    for k in range(len(clauses) - 1):
+        c, nxt = clauses[k], clauses[k + 1]
+        # "things for the desk" reads as a placement that lacks its place
+        placing = all(f.act is lexicon.Act.PLACE and not any(t.dest for t in f.targets)
+                      for f in parsed[k].frames)
+        if not c.extra.get("colon") or not placing or parsed[k + 1].frames \
+                or nxt.sentence != c.sentence + 1:
+            continue
+        label = [h for h in parsed[k].mentions if h.noun is not None] or known_objects(c.items)
+        if not label:
+            continue
+        place = label[-1]
+        heads = known_objects(nxt.items)
+        if place.noun is None or not heads or any(h.noun is None for h in heads):
+            continue
+        place.role = "dest"
+        parsed[k].frames = []
+        parsed[k + 1].frames = [Frame(lexicon.Act.PLACE, "put", [Target(h, [place], "in") for h in heads],
+                                      text=nxt.text)]
+        labels.add(k)
+    return labels
+
+
+def attach_means(parsed: list[ParsedClause]) -> None:
+    """"cook the potato, the microwave is fine", "the stove is fine - fry the egg": a
+    clause that only names an appliance gives the means of the act next to it (the one
+    before, else the one after)."""
+    for k, p in enumerate(parsed):
+        if p.means is None:
+            continue
+        for other in (parsed[k - 1] if k > 0 else None, parsed[k + 1] if k + 1 < len(parsed) else None):
+            if other is not None and other.frames:
+                for f in other.frames:
+                    f.means = f.means or p.means
+                break
+
+
+#: acts whose object may be left out on purpose ("dim", "water" the plants, "go")
+_NO_OBJECT_ACTS = frozenset({lexicon.Act.DIM, lexicon.Act.BRIGHTEN, lexicon.Act.WATER,
+                             lexicon.Act.GO, lexicon.Act.MAKE, lexicon.Act.VAGUE})
+
+
+def share_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
+    """"open and close the fridge", "wash and dry the mug": a verb without an object,
+    coordinated with the next clause of its sentence, shares that clause's objects."""
+    for k in range(len(parsed) - 1):
+        p, nxt = parsed[k], parsed[k + 1]
+        if clauses[k + 1].sentence != clauses[k].sentence or clauses[k + 1].link != "and" \
+                or len(p.frames) != 1 or not nxt.frames or not nxt.frames[0].targets:
+            continue
+        frame = p.frames[0]
+        if frame.targets or frame.act is None or frame.act in _NO_OBJECT_ACTS or frame.report:
+            continue
+        frame.targets = [Target(t.head, [], None) for t in nxt.frames[0].targets]
+
+
+def elided_participle(clause: Clause, before: ParsedClause | None) -> list[Frame]:
+    """"I'd like my mug washed and then filled with water": a clause that is only a
+    state participle asks that state of the objects of the clause before it."""
+    words = [i for i in clause.items if i.punct is None and i.text not in lexicon.FILLER_WORDS]
+    if before is None or not before.frames or not words or words[0].state is None \
+            or words[0].verb is None or words[0].verb.form != "ed" or words[0].noun is not None or before.clause.sentence != clause.sentence \
+            or any(np_start(i) and i.liquid is None for i in words[1:]):
+        return []
+    targets = [t for f in before.frames for t in f.targets if t.head.noun is not None or t.head.pron]
+    if not targets:
+        return []
+    liquid = next((i.liquid for i in words if i.liquid is not None), None)
+    return [Frame(lexicon.Act.CAUSE, "get", [Target(t.head) for t in targets], state=words[0].state,
+                  liquid=liquid, text=clause.text)]
+
+
+def gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
+    """"Put the apple in the fridge, then the tomato" (". Then the tomato."): a clause that
+    is only objects, sequenced right after an act, has that act (gapping)."""
+    for k in range(1, len(parsed)):
+        p, c = parsed[k], clauses[k]
+        if p.frames or p.also or c.link != THEN or not parsed[k - 1].frames:
+            continue
+        heads = known_objects(p.clause.items)
+        if heads and all(h.noun is not None for h in heads):
+            p.also = heads
+
+
+def repeat_for_also(parsed: list[ParsedClause]) -> None:
+    """"Put the apple in the fridge. Oh, and the tomato too.": the act of the clause
+    before, with its place, on the new objects."""
+    for k, p in enumerate(parsed):
+        if not p.also or p.frames or k == 0:
+            continue
+        before = next((q for q in reversed(parsed[:k]) if q.frames), None)
+        if before is None:
+            continue
+        last = before.frames[-1]
+        model = last.targets[-1] if last.targets else Target(Head())
+        p.frames = [replace(last, targets=[Target(h, list(model.dest), model.prep) for h in p.also],
+                            instruments=list(last.instruments), room_states=[])]

@@ -1,0 +1,93 @@
+"""Passes over the drafts of one instruction, before dependencies are assembled: a draft
+that another makes unnecessary is no subtask of its own (a wish a later act fulfils,
+holding on the way to a place, a placement of one object that a later one supersedes).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from emboteam.pfg.offline.decompose import refs_overlap
+from emboteam.pfg.offline.grounding import Grounder
+from emboteam.pfg.offline.semantics import Draft
+from emboteam.world.goals import ObjectRef, Predicate
+
+#: what a later act brings about: a wished state it makes true needs no subtask of its own
+_FULFILS: dict[Predicate, frozenset[Predicate]] = {
+    Predicate.hot: frozenset({Predicate.hot, Predicate.cooked}),
+    Predicate.cold: frozenset({Predicate.cold}),
+    Predicate.cooked: frozenset({Predicate.cooked}),
+    Predicate.clean: frozenset({Predicate.clean}),
+    Predicate.filled: frozenset({Predicate.filled}),
+}
+
+
+def drop_drafts(drafts: dict[int, list[Draft]], gone_of: Callable[[int, Draft], bool]) -> None:
+    """Remove the drafts ``gone_of(clause, draft)`` picks, keeping the others' order
+    (their ``after`` indices renumbered)."""
+    for ci in sorted(drafts):
+        gone = {k for k, d in enumerate(drafts[ci]) if gone_of(ci, d)}
+        if not gone:
+            continue
+        kept = [k for k in range(len(drafts[ci])) if k not in gone]
+        index = {old: new for new, old in enumerate(kept)}
+        out = []
+        for k in kept:
+            d = drafts[ci][k]
+            d.after = [index[a] for a in d.after if a in index]
+            out.append(d)
+        if out:
+            drafts[ci] = out
+        else:
+            del drafts[ci]
+
+
+def drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
+    """"I'd love a warm slice of bread - toast some for me": the wish introduces what a
+    later clause says how to make; toasting makes it warm (cooking heats), so the wish adds
+    no subtask of its own."""
+    def fulfilled(ci: int, d: Draft) -> bool:
+        later = [c for cj, ds in drafts.items() if cj > ci for e in ds if not e.wished
+                 for c in e.conditions]
+        return d.wished and all(any(c2.predicate in _FULFILS.get(c.predicate, frozenset())
+                                    and refs_overlap(c.subject, c2.subject) for c2 in later)
+                                for c in d.conditions)
+    drop_drafts(drafts, fulfilled)
+
+
+def drop_superseded_placements(drafts: dict[int, list[Draft]], grounder: Grounder) -> None:
+    """"Pick the pillow and the paper up - pillow on the sofa, paper on the coffee table":
+    an object placed twice ends where it is placed last; the earlier placement of one
+    object (an id, or a kind the scene has one of) is no goal (both cannot hold at the
+    end). "The toilet paper on the holder, the spare roll on the shelf" is two rolls."""
+    order = [(ci, k, d) for ci in sorted(drafts) for k, d in enumerate(drafts[ci])]
+
+    def one_object(ref: ObjectRef) -> bool:
+        return ref.id is not None or sum(len(grounder.instances(t)) for t in ref.types) == 1
+
+    def superseded(ci: int, d: Draft) -> bool:
+        if d.intermediate or not d.conditions or any(
+                c.predicate is not Predicate.inside or c.count != 1 or not one_object(c.subject)
+                for c in d.conditions):
+            return False
+        at = next(i for i, (_, _, e) in enumerate(order) if e is d)
+        later = [c for _, _, e in order[at + 1:] if not e.intermediate for c in e.conditions
+                 if c.predicate is Predicate.inside]
+        return all(any(refs_overlap(c.subject, c2.subject) and c2.receptacle != c.receptacle
+                       for c2 in later) for c in d.conditions)
+    drop_drafts(drafts, superseded)
+
+
+def drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
+    """"Take the sponge and the towels out of the cupboard and put them on the counter":
+    holding is how they get there, not a goal of its own (and two things held "at once"
+    would ask for two free hands)."""
+    placed = [(ci, k, c) for ci, ds in drafts.items() for k, d in enumerate(ds) for c in d.conditions
+              if c.predicate is Predicate.inside]
+
+    def before_placing(ci: int, d: Draft) -> bool:
+        return bool(d.conditions) and all(
+            c.predicate is Predicate.held and any(
+                cj >= ci and refs_overlap(c.subject, p.subject) for cj, _, p in placed)
+            for c in d.conditions)
+    drop_drafts(drafts, before_placing)
