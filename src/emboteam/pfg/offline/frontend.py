@@ -248,11 +248,10 @@ class OfflineFrontend:
                     # be read is skipped with a note when another act can be
                     (skipped if frame.weak or exc.vague else failed).append(exc)
                     continue
-            grounding = [e for e in failed[failed_before:] if isinstance(e, GroundingError) and not e.vague]
-            if not out and not grounding and (len(failed) > failed_before or not any(
+            if not out and (len(failed) > failed_before or not any(
                     f.report or f.negated or f.past for f in parsed.frames)):
-                # the clause's shape was not understood (an object that is not in the
-                # scene is no reason to read it another way)
+                # the grammar's reading failed (a misread phrase often grounds nothing):
+                # read the clause from its cue words
                 out = read_cues(clause, semantics, ci)
                 if out:
                     guessed.add(ci)
