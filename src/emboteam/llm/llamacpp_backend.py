@@ -20,6 +20,7 @@ cassette stores it, so a replay fails the same way.
 
 from __future__ import annotations
 
+import atexit
 import hashlib
 import json
 import os
@@ -36,6 +37,18 @@ from emboteam.llm.spec import LLMSpec
 #: one loaded model per (file, context size): loading costs time and memory
 _MODELS: dict[tuple[str, int], tuple[Any, threading.Lock]] = {}
 _MODELS_LOCK = threading.Lock()
+
+
+@atexit.register
+def _close_models() -> None:
+    """Free the loaded models while Python still runs: llama-cpp-python's own finaliser
+    runs after its module is torn down at exit and prints a TypeError traceback."""
+    with _MODELS_LOCK:
+        for model, _ in _MODELS.values():
+            close = getattr(model, "close", None)
+            if close is not None:
+                close()
+        _MODELS.clear()
 
 
 def _load(path: str, n_ctx: int, n_threads: int | None) -> tuple[Any, threading.Lock]:
