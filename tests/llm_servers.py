@@ -189,3 +189,10 @@ def subtask(sid: str, *goal: dict[str, Any], robot: str | None = None, depends_o
 
 def taskspec_answer(*subtasks: dict[str, Any]) -> dict[str, Any]:
     return {"subtasks": list(subtasks)}
+
+
+#: the weak-model scenario both the front-end and the cut-off tests replay: two placements
+#: in FloorPlan1's fridge, and a retry policy that gives up at once
+FRIDGE = "Put the apple and the tomato in the fridge."
+APPLE = cond("inside", "Apple_1", receptacle="Fridge_1")
+TOMATO = cond("inside", "Tomato_1", receptacle="Fridge_1")

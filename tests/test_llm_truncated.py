@@ -15,12 +15,9 @@ from emboteam.pfg.llm_frontend import LLMFrontend
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
-from llm_servers import Reply, ScriptedServer, cond, subtask, taskspec_answer
+from llm_servers import APPLE, FRIDGE, TOMATO, Reply, ScriptedServer, subtask, taskspec_answer
 
 FAST = RetryPolicy(max_attempts=1, base_delay=0.01, max_delay=0.02)
-FRIDGE = "Put the apple and the tomato in the fridge."
-APPLE = cond("inside", "Apple_1", receptacle="Fridge_1")
-TOMATO = cond("inside", "Tomato_1", receptacle="Fridge_1")
 
 
 @pytest.fixture(autouse=True)
