@@ -486,3 +486,16 @@ def test_under_the_coffee_maker_is_in_it_and_under_a_table_is_no_goal() -> None:
         "inside(Mug, CoffeeMachine)", "switched_on(CoffeeMachine)"}
     with pytest.raises(OfflineParseError):
         read("Put the mug under the table.")
+
+
+def test_states_listed_before_sort_it_out_are_complaints() -> None:
+    reading = read("Someone left the kitchen in a state: fridge door wide open, coffee machine still "
+                   "running, light on. Sort it out before bed?")
+    assert goal(reading) == {"closed(Fridge)", "switched_off(CoffeeMachine)", "switched_off(LightSwitch)"}
+    assert reading.notes == ()
+
+
+def test_that_before_an_adjective_and_a_noun_is_a_determiner() -> None:
+    reading = read("The mug goes on the shelf, the bowl and the cup on the counter, and bin that old egg.")
+    assert goal(reading) == {"inside(Mug, Shelf)", "inside(Bowl, CounterTop)", "inside(Cup, CounterTop)",
+                             "inside(Egg, GarbageCan)"}

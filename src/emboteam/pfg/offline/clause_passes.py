@@ -266,3 +266,23 @@ def repeat_for_also(parsed: list[ParsedClause]) -> None:
         model = last.targets[-1] if last.targets else Target(Head())
         p.frames = [replace(last, targets=[Target(h, list(model.dest), model.prep) for h in p.also],
                             instruments=list(last.instruments), room_states=[])]
+
+
+def fix_up_complaints(parsed: list[ParsedClause]) -> set[int]:
+    """"Fridge door wide open, coffee machine still running, light on. Sort it out?": the
+    verbless states listed before a request to sort "it" out are complaints (the opposite
+    state is asked); the request itself adds nothing. Returns the request clauses."""
+    fixing: set[int] = set()
+    for k, p in enumerate(parsed):
+        if not any(f.act is lexicon.Act.VAGUE and f.targets and all(t.head.pron is not None for t in f.targets)
+                   for f in p.frames):
+            continue
+        described = [f for q in parsed[:k] for f in q.frames
+                     if f.state is not None and (f.report or (f.act is None and not f.verb and not f.wish))]
+        if not described:
+            continue
+        for f in described:
+            f.report = True       # "the fridge is wide open" already is one
+        parsed[k] = replace(p, frames=[f for f in p.frames if f.act is not lexicon.Act.VAGUE])
+        fixing.add(k)
+    return fixing

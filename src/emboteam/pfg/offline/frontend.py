@@ -14,6 +14,7 @@ from emboteam.pfg.offline.clause_passes import (
     attach_means,
     drop_conditions,
     elided_participle,
+    fix_up_complaints,
     gapped_objects,
     known_objects,
     labelled_lists,
@@ -206,6 +207,7 @@ class OfflineFrontend:
             parsed_clauses.append(parsed)
         silent = drop_conditions(clauses, parsed_clauses) | chat
         silent |= labelled_lists(clauses, parsed_clauses)
+        silent |= fix_up_complaints(parsed_clauses)
         attach_means(parsed_clauses)
         share_objects(clauses, parsed_clauses)
         gapped_objects(clauses, parsed_clauses)

@@ -246,11 +246,14 @@ def _determiner(s: _NP) -> str | None:
         return None
     if h.noun is not None:
         return _STOP
+    after = s.items[s.j + 2] if s.j + 2 < len(s.items) else None
+    adjective = nxt is not None and nxt.verb is None and nxt.prep is None and nxt.punct is None \
+        and nxt.conj is None and after is not None and after.noun is not None   # "that old cloth"
     if not (it.text not in ("this", "that", "these", "those", "some", "one")
             or ((nxt is not None and (np_start(nxt) or nxt.state is not None)
                  and nxt.verb is None) or (nxt is not None and (
                      nxt.noun is not None or nxt.liquid is not None
-                     or nxt.recipe is not None)))):
+                     or nxt.recipe is not None)) or adjective)):
         return None
     if it.text == "one":
         h.count = 1
