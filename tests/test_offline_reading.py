@@ -499,3 +499,18 @@ def test_that_before_an_adjective_and_a_noun_is_a_determiner() -> None:
     reading = read("The mug goes on the shelf, the bowl and the cup on the counter, and bin that old egg.")
     assert goal(reading) == {"inside(Mug, Shelf)", "inside(Bowl, CounterTop)", "inside(Cup, CounterTop)",
                              "inside(Egg, GarbageCan)"}
+
+
+def test_a_real_word_ending_in_s_is_no_typo_either() -> None:
+    assert goal(read("Put the keys in the box and close it, so nobody loses them.", 201)) == {
+        "inside(KeyChain, Box)", "closed(Box)"}
+
+
+def test_on_to_before_a_verb_is_the_particle_and_a_purpose() -> None:
+    assert goal(read("Put the mug in the sink, turn the tap on to rinse it, then turn off the light.")) >= {
+        "inside(Mug, SinkBasin)", "switched_on(Faucet)", "switched_off(LightSwitch)"}
+
+
+def test_it_on_there_under_once_is_where_it_will_be_not_a_switch() -> None:
+    reading = read("Put the pan on the stove. Put the egg in the pan once it's on there.")
+    assert goal(reading) == {"inside(Pan, StoveBurner)", "inside(Egg, Pan)"}

@@ -12,6 +12,7 @@ from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.clauses import AND, THEN, Clause
+from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start
 from emboteam.pfg.offline.tagger import Item
@@ -135,6 +136,14 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
     the clauses that were read this way (no note for them)."""
     silent: set[int] = set()
     for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
+        if c.link in ("after", "before", "while") and p.frames and is_statement(c.items) \
+                and all(not f.verb and f.targets and all(t.head.pron is not None for t in f.targets)
+                        for f in p.frames):
+            # "close the box when it's in", "once it's on there": where something already
+            # mentioned will be when the act happens, not a request of its own
+            parsed[k] = replace(p, frames=[])
+            silent.add(k)
+            continue
         if c.link not in (AND, THEN, "purpose") and c.items and c.items[0].text in _PERSON \
                 and all(f.act in _NO_REQUEST and f.state is None for f in p.frames) \
                 and not any(h.noun is not None and h.noun.concept.kind not in ("room", "anything")

@@ -146,8 +146,9 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
             # after a determiner ("the coach"), a verb starting a clause ("brake the egg");
             # elsewhere it is a word the parser does not need ("I keep losing my keys")
             slot = after_det or not out or out[-1] in PUNCT or out[-1] in _CLAUSE_OPENERS
-            fix = None if not slot and is_english_word(w) else correct(w, after_det)
-            if fix is None and w.endswith("s"):
+            real = not slot and is_english_word(w)
+            fix = None if real else correct(w, after_det)
+            if fix is None and not real and w.endswith("s"):
                 stem = correct(w[:-1], after_det)
                 fix = stem + "s" if stem is not None else None
             if fix is not None and verb_lemma(w) is None:
@@ -264,4 +265,21 @@ def tag(text: str) -> list[Item]:
             item.ordinal = lx.ORDINALS[w]
         items.append(item)
         i += 1
-    return items
+    return _place_not_switch(items)
+
+
+def _place_not_switch(items: list[Item]) -> list[Item]:
+    """"turn the tap on to rinse it": "on to" before a verb is the particle and an
+    infinitive, not "onto"; "once it's on there": "on" before "there"/"here" is a place,
+    not switched on."""
+    out: list[Item] = []
+    for k, it in enumerate(items):
+        nxt = items[k + 1] if k + 1 < len(items) else None
+        if it.text == "on to" and nxt is not None and nxt.verb is not None and nxt.noun is None:
+            out.extend(tag("on") + tag("to"))
+            continue
+        if it.text == "on" and nxt is not None and nxt.text in ("there", "here"):
+            it.state = None
+            it.particle = None
+        out.append(it)
+    return out
