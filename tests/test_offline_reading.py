@@ -514,3 +514,8 @@ def test_on_to_before_a_verb_is_the_particle_and_a_purpose() -> None:
 def test_it_on_there_under_once_is_where_it_will_be_not_a_switch() -> None:
     reading = read("Put the pan on the stove. Put the egg in the pan once it's on there.")
     assert goal(reading) == {"inside(Pan, StoveBurner)", "inside(Egg, Pan)"}
+
+
+def test_in_it_after_opening_a_drawer_is_the_drawer() -> None:
+    assert "inside(KeyChain, Drawer)" in goal(read(
+        "The pen goes on the desk. Then open a drawer and put the keychain in it.", 303))

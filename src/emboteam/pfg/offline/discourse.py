@@ -125,6 +125,13 @@ class Discourse:
             described = self._described_place(need)
             if described is not None:
                 return described
+            # "open a drawer and put the keys in it": the last thing named that can take
+            # them, whether it was acted on or named as a place
+            recent = next((m for m in reversed(self.history) if m.head.noun is not None and m.head.pron is None
+                           and m.head.noun.concept.kind not in ("room", "anything")
+                           and self.fits(m.ref, need)), None)
+            if recent is not None and recent.role == "object":
+                return recent.ref
         # what the last clauses acted on before where they put it ("put the lettuce in the
         # fridge after washing it": the lettuce), unless only a place fits ("close it")
         order = ("object", "place") if prefer == "object" else ("place", "object")
