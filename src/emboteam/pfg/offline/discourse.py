@@ -63,22 +63,12 @@ class Discourse:
             raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
                                     phrase=head.label())
         if head.pron in ("one", "it") and _OTHER & set(head.text.split()):
-            # "the loo roll on the floor goes in the bin and a fresh one on the holder": the
-            # same kind, another instance than the one just singled out
-            same = self.resolve(replace(head, text=head.pron), need, prefer)
-            other = self._another_instance(same)
+            other = self._another_one(head, need, prefer)
             if other is not None:
                 return other
         plural = head.pron in ("them", "they", "these", "those", "themselves", "ones")
         if head.piece and head.pron in ("it", "them"):
-            # "cut it up and put two pieces of it in the bowl": the pieces of what "it" is
-            whole = self.resolve(replace(head, piece=False, count=None), None, prefer)
-            products = [self.cat.slice_product(t) for t in whole.type_names()]
-            kinds = tuple(p[0] for p in products if p is not None)
-            if kinds:
-                n = head.count or 1
-                return Ref(head.label(), ((ObjectRef(types=kinds), n),), n > 1)
-            return whole
+            return self._pieces_of(head, prefer)
         if head.piece and head.pron is None:
             # "the slices": pieces of the last thing that can be cut (of each of the things
             # cut together: "slice the apple and the tomato, put the slices in a bowl")
@@ -122,16 +112,9 @@ class Discourse:
             if m.ref.plural and self.fits(m.ref, need):
                 return m.ref
         if prefer != "object":
-            described = self._described_place(need)
-            if described is not None:
-                return described
-            # "open a drawer and put the keys in it": the last thing named that can take
-            # them, whether it was acted on or named as a place
-            recent = next((m for m in reversed(self.history) if m.head.noun is not None and m.head.pron is None
-                           and m.head.noun.concept.kind not in ("room", "anything")
-                           and self.fits(m.ref, need)), None)
-            if recent is not None and recent.role == "object":
-                return recent.ref
+            place = self._place_pronoun(need)
+            if place is not None:
+                return place
         # what the last clauses acted on before where they put it ("put the lettuce in the
         # fridge after washing it": the lettuce), unless only a place fits ("close it")
         order = ("object", "place") if prefer == "object" else ("place", "object")
@@ -158,6 +141,34 @@ class Discourse:
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _another_one(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """"The loo roll on the floor goes in the bin and a fresh one on the holder": the
+        same kind, another instance than the one just singled out."""
+        same = self.resolve(replace(head, text=head.pron or ""), need, prefer)
+        return self._another_instance(same)
+
+    def _pieces_of(self, head: Head, prefer: str) -> Ref:
+        """"Cut it up and put two pieces of it in the bowl": the pieces of what "it" is."""
+        whole = self.resolve(replace(head, piece=False, count=None), None, prefer)
+        products = [self.cat.slice_product(t) for t in whole.type_names()]
+        kinds = tuple(p[0] for p in products if p is not None)
+        if not kinds:
+            return whole
+        n = head.count or 1
+        return Ref(head.label(), ((ObjectRef(types=kinds), n),), n > 1)
+
+    def _place_pronoun(self, need: str | None) -> Ref | None:
+        """"See the box on the table? Put the watch in it." (the thing described, not the
+        landmark); "open a drawer and put the keys in it" (the last thing named that can
+        take them, when it was acted on): else None, and the usual order decides."""
+        described = self._described_place(need)
+        if described is not None:
+            return described
+        recent = next((m for m in reversed(self.history) if m.head.noun is not None and m.head.pron is None
+                       and m.head.noun.concept.kind not in ("room", "anything")
+                       and self.fits(m.ref, need)), None)
+        return recent.ref if recent is not None and recent.role == "object" else None
 
     def _another_instance(self, ref: Ref) -> Ref | None:
         """Another object of the kind ``ref`` singled out by its id, or None when ``ref``
