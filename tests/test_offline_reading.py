@@ -519,3 +519,9 @@ def test_it_on_there_under_once_is_where_it_will_be_not_a_switch() -> None:
 def test_in_it_after_opening_a_drawer_is_the_drawer() -> None:
     assert "inside(KeyChain, Drawer)" in goal(read(
         "The pen goes on the desk. Then open a drawer and put the keychain in it.", 303))
+
+
+def test_sorting_out_the_lamp_puts_it_in_the_other_state() -> None:
+    # FloorPlan201's lamps are on at the start: sorting them out switches them off
+    assert goal(read("Sort out the lamp, put the remote on the couch.", 201)) == {
+        "switched_off(DeskLamp|FloorLamp)", "inside(RemoteControl, Sofa)"}

@@ -197,6 +197,10 @@ class Semantics:
             placed = [t for t in frame.targets if t.dest]
             return self._act(replace(frame, act=Act.PLACE, verb="put", targets=placed),
                              Act.PLACE, clause)
+        if act is Act.VAGUE and frame.verb == "sort" and self._switched_thing(frame):
+            # "sort out the lamp" (the one lamp is on): the one thing a lamp can be put
+            # right in is its switch, so the other state
+            return self._act(replace(frame, act=Act.TOGGLE), Act.TOGGLE, clause)
         if act in (Act.VAGUE,):
             raise OfflineParseError(
                 f"{frame.verb!r} is too vague for the offline parser: say which objects go "
@@ -241,6 +245,12 @@ class Semantics:
         if st is None or st[0] not in lx.INVERTIBLE:
             return []
         return self._state(frame, (st[0], not st[1]), False, clause)
+
+    def _switched_thing(self, frame: Frame) -> bool:
+        """Are the frame's objects one named light or lamp (nothing else to put right)?"""
+        targets = self._targets(frame)
+        return len(targets) == 1 and not targets[0].dest and targets[0].head.pron is None \
+            and targets[0].head.noun is not None and targets[0].head.noun.concept.kind in ("lights", "lamps")
 
     def _umbrella(self, frame: Frame) -> bool:
         """Is the act an umbrella over the placements listed after it? A vague verb, or
