@@ -525,3 +525,22 @@ def test_sorting_out_the_lamp_puts_it_in_the_other_state() -> None:
     # FloorPlan201's lamps are on at the start: sorting them out switches them off
     assert goal(read("Sort out the lamp, put the remote on the couch.", 201)) == {
         "switched_off(DeskLamp|FloorLamp)", "inside(RemoteControl, Sofa)"}
+
+
+@pytest.mark.parametrize("text", [
+    "Put the pan on the stove. Oh and the tomato that's sitting in the sink, that wants to go in the pan.",
+    "Put the pan on the stove. The tomato that was left in the sink needs to go in the pan.",
+])
+def test_a_be_inside_a_relative_clause_makes_no_statement(text: str) -> None:
+    # "that's sitting in the sink" only says which tomato: the clause is a wish, not a
+    # description of the room, so it is read (or, failing that, noted), never dropped
+    assert goal(read(text)) == {"inside(Pan, StoveBurner)", "inside(Tomato, Pan)"}
+
+
+def test_a_thing_that_wants_to_go_somewhere_is_to_be_put_there() -> None:
+    assert goal(read("The apple wants to go in the fridge.")) == {"inside(Apple, Fridge)"}
+
+
+def test_a_statement_with_a_relative_clause_is_still_a_statement() -> None:
+    reading = read("The tomato that's in the sink is mine. Put the apple in the fridge.")
+    assert goal(reading) == {"inside(Apple, Fridge)"} and not reading.notes

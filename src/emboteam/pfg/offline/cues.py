@@ -51,10 +51,27 @@ _MODAL_BEFORE_BE = frozenset({"should", "must", "could", "would", "will", "can",
                               "shall", "to"})
 
 
+#: words that open a relative clause ("the potato that's in the sink")
+_RELATIVE = frozenset({"that", "which", "who"})
+#: words that open a subordinate clause ("once it's on there")
+_SUBORDINATE = frozenset({"once", "when", "whenever", "after", "before", "until", "till", "while",
+                          "if", "because", "since", "as", "so"})
+
+
+def _embedded_be(items: list[Item], k: int) -> bool:
+    """Is the "be" at ``k`` inside a relative or subordinate clause ("the potato that's in
+    the sink", "once it's on there")? Then it says nothing about the main clause."""
+    if k >= 2 and items[k - 1].text in _RELATIVE:
+        return True     # "the potato that's ...": a relative clause (not "that's the one")
+    return k >= 2 and items[k - 2].text in _SUBORDINATE and (items[k - 1].pron is not None or items[k - 1].noun is not None)
+
+
 def is_statement(items: list[Item]) -> bool:
     """Does the clause say how things are ("the mug is in the cupboard")? A form of "be"
-    that no modal turns into a wish ("should be", "needs to be")."""
+    that no modal turns into a wish ("should be", "needs to be") and that is not inside a
+    relative or subordinate clause."""
     return any(it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
+               and not _embedded_be(items, k)
                for k, it in enumerate(items))
 
 

@@ -476,14 +476,17 @@ def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> in
             return end
     if not (k > j and k + 1 < n and items[k].text in ("is", "are", "was", "were")):
         return j
-    nxt = items[k + 1]
-    ends = k + 2 >= n or not np_start(items[k + 2])
-    if nxt.state is not None and (nxt.prep is None or ends):
+    p = k + 1
+    if p + 1 < n and position_participle(items[p]) and items[p + 1].prep in ("in", "on"):
+        p += 1      # "the potato that's sitting in the sink": the participle only says where
+    nxt = items[p]
+    ends = p + 1 >= n or not np_start(items[p + 1])
+    if nxt.state is not None and (nxt.prep is None or ends) and p == k + 1:
         h.filters.append(nxt.state)
         words.extend(x.text for x in items[j:k + 2])
         return k + 2
     if nxt.prep in ("in", "on") and not ends:
-        land, end = parse_np(items, k + 2)
+        land, end = parse_np(items, p + 1)
         if land is not None:
             land.role = "place"
             h.location.append((nxt.prep, land))
