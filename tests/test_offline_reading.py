@@ -544,3 +544,9 @@ def test_a_thing_that_wants_to_go_somewhere_is_to_be_put_there() -> None:
 def test_a_statement_with_a_relative_clause_is_still_a_statement() -> None:
     reading = read("The tomato that's in the sink is mine. Put the apple in the fridge.")
     assert goal(reading) == {"inside(Apple, Fridge)"} and not reading.notes
+
+
+def test_in_it_after_a_receptacle_put_on_a_surface_is_that_receptacle() -> None:
+    assert "inside(EggCracked, Pan)" in goal(read("Get the pan on the stove and crack an egg into it, then cook it.", 5))
+    # a container something was put *in* keeps the usual reading
+    assert "inside(Apple, Fridge)" in goal(read("Put the bowl in the fridge and put the apple in it.", 5))

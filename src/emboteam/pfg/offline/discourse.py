@@ -168,7 +168,22 @@ class Discourse:
         recent = next((m for m in reversed(self.history) if m.head.noun is not None and m.head.pron is None
                        and m.head.noun.concept.kind not in ("room", "anything")
                        and self.fits(m.ref, need)), None)
+        if recent is not None and recent.role == "dest":
+            return self._moved_receptacle(recent, need)
         return recent.ref if recent is not None and recent.role == "object" else None
+
+    def _moved_receptacle(self, dest: Mention, need: str | None) -> Ref | None:
+        """"Get the pan on the stove and crack an egg into it": a receptacle just put *on*
+        a surface is what "in it" means, not the surface (a container it was put *in*,
+        "the bowl in the fridge ... in it", stays for the usual order to decide)."""
+        if any(t in self.cat.in_receptacles for t in dest.ref.type_names()):
+            return None
+        k = self.history.index(dest)
+        moved = next((m for m in reversed(self.history[:k]) if m.role == "object"), None)
+        if moved is None or moved.clause != dest.clause or moved.head.pron is not None \
+                or not self.fits(moved.ref, need):
+            return None
+        return moved.ref
 
     def _another_instance(self, ref: Ref) -> Ref | None:
         """Another object of the kind ``ref`` singled out by its id, or None when ``ref``
