@@ -550,3 +550,20 @@ def test_in_it_after_a_receptacle_put_on_a_surface_is_that_receptacle() -> None:
     assert "inside(EggCracked, Pan)" in goal(read("Get the pan on the stove and crack an egg into it, then cook it.", 5))
     # a container something was put *in* keeps the usual reading
     assert "inside(Apple, Fridge)" in goal(read("Put the bowl in the fridge and put the apple in it.", 5))
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    # the state of what is to hold something comes after it is put in
+    ("I want the fridge shut with the apple in it.", ["inside(Apple, Fridge)", "closed(Fridge)"]),
+    ("I want the fridge shut with the apple inside.", ["inside(Apple, Fridge)", "closed(Fridge)"]),
+    # "goes in" with no place: in the one just named
+    ("Once the fridge is open, the apple goes in.", ["open(Fridge)", "inside(Apple, Fridge)"]),
+    ("Open the fridge, the apple goes back in there, then shut it.",
+     ["open(Fridge)", "inside(Apple, Fridge)", "closed(Fridge)"]),
+    # after a place, "and NP state" is a second subject with its own state
+    ("The apple should end up in the fridge and the fridge door closed.", ["inside(Apple, Fridge)", "closed(Fridge)"]),
+])
+def test_outcomes_of_open_put_close_sequences(text: str, expected: list[str]) -> None:
+    reading = read(text, 5)
+    assert [str(c) for s in reading.spec.subtasks for c in s.goal] == expected
+    assert not reading.notes

@@ -150,8 +150,9 @@ def _has_predicate(items: list[Item]) -> bool:
     if not items:
         return False
     last = items[-1]
-    return any(x.copula or (x.verb is not None and x.noun is None and x.state is None)
-               for x in items) or last.particle is not None or (
+    # a state word is a verb of its own at the head of an order ("open the fridge, ...")
+    return any(x.copula or (x.verb is not None and x.noun is None and (x.state is None or k == 0))
+               for k, x in enumerate(items)) or last.particle is not None or (
         last.state is not None and last.prep is None)
 
 
@@ -175,8 +176,16 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
                                                               or items[j + 1].noun is not None):
         return True     # "fry the egg - use the pan on the stove"
     kind = subject_here(items, j)
-    return verb_here(items, j) or (kind is not None and (comma or kind != "state")
+    return verb_here(items, j) or (kind is not None and (comma or kind != "state" or _ends_with_place(current or []))
                                    and _has_predicate(current or []))
+
+
+def _ends_with_place(items: list[Item]) -> bool:
+    """Does the clause so far end with where something goes ("... should end up in the
+    fridge")? Then "and the fridge closed" is another subject with its state, not a second
+    object of the same verb ("I need the tomato and the lettuce sliced")."""
+    p = max((k for k, x in enumerate(items) if x.prep in ("in", "on", "into", "onto", "inside")), default=-1)
+    return p > 0 and p + 1 < len(items) and _skip_np(items, p + 1) == len(items)
 
 
 _NP_WORDS = frozenset({"of", "all", "both", "each", "every"})

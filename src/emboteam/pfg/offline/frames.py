@@ -403,11 +403,16 @@ def _inside_the_one_named(s: _Tail, prep: str) -> None:
 def _holding(s: _Tail, head: Head) -> bool:
     """"the bowl with the apple in it": what the last object holds (then True)."""
     items, j, n = s.items, s.j, len(s.items)
-    if s.pending and j + 1 < n and items[j].prep in ("in", "on") \
-            and items[j + 1].pron in ("it", "them") and not (
-                head.liquid is not None and head.noun is None):
+    if not s.pending or (head.liquid is not None and head.noun is None):
+        return False
+    if j + 1 < n and items[j].prep in ("in", "on", "inside") and items[j + 1].pron in ("it", "them"):
         s.pending[-1].head.holds.append(head)
         s.j += 2
+        return True
+    if j < n and items[j].text == "inside" and (j + 1 == n or items[j + 1].punct is not None
+                                                or items[j + 1].conj is not None):
+        s.pending[-1].head.holds.append(head)      # "with the apple inside"
+        s.j += 1
         return True
     return False
 
@@ -604,6 +609,17 @@ def _state_word_at(items: list[Item], k: int) -> bool:
     return it.state is not None and not it.copula and (it.verb is None or it.verb.form == "ed")
 
 
+#: what may follow "goes" for "in the one just named": "goes in", "goes back in there"
+_BARE_IN = frozenset({"in", "inside", "back", "there", "too", "as", "well", "then", "next"})
+
+
+def _bare_in(items: list[Item], k: int) -> bool:
+    """Do only "in"-words follow a verb of going ("the apple goes in", "goes back inside")?"""
+    words = [x.text for x in items[k:] if x.punct is None]
+    return bool(words) and words[0] in ("in", "inside", "back") and any(w in ("in", "inside") for w in words) \
+        and all(w in _BARE_IN for w in words)
+
+
 def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool]) -> list[Frame]:
     """``NP [aux] predicate (, NP [aux] predicate)*``"""
     frames: list[Frame] = []
@@ -689,7 +705,14 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             frame.liquid = sub.liquid
             frame.means = sub.means
             frame.state = sub.state
-            if sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
+            if sub.act is Act.GO and dest is None and _bare_in(items, j + 1):
+                # "open the fridge; the apple goes in": in the one just named
+                there = Head(text="it", pron="it", role="dest")
+                mentions.append(there)
+                frame.act, frame.report = Act.PLACE, False
+                for t in subjects:
+                    t.dest, t.prep = [there], "in"
+            elif sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
                 frame.act = None         # "the toaster stays": leave it as it is
             elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
                 frame.act = Act.PLACE if sub.act is Act.GO else sub.act

@@ -282,7 +282,8 @@ class Semantics:
                 if not (placed and own_states and t.state is None):
                     # "get the bread sliced and the egg into the fridge": the egg has only
                     # its place; "get a potato cooked and onto a plate": both
-                    out = concat(out, self._state_of(t, state, flip, clause))
+                    out = concat(out, self._with_contents(t, self._state_of(t, state, flip, clause),
+                                                          frame.report or flip, clause))
                 if placed:
                     out = concat(out, self._place(frame, t, self._group, clause))
             except OfflineParseError as exc:
@@ -293,6 +294,19 @@ class Semantics:
         if not out and state[0] is Stat.BRIGHT and not self._targets(frame):
             out += self._lighting(state[1] != flip)
         return out
+
+    def _with_contents(self, t: Target, drafts: list[Draft], described: bool, clause: int) -> list[Draft]:
+        """"I want the fridge shut with the apple in it": what the object is to hold goes
+        in first, then the object gets its state (in a report or a complaint, "with the
+        apple in it" only describes)."""
+        if described or not drafts:
+            return drafts
+        g = self._group
+        before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
+                  for c, held in self._contents(t, g, clause) for r, n in held.groups]
+        for d in drafts:
+            d.after = [a + len(before) for a in d.after] + list(range(len(before)))
+        return before + drafts
 
     def _state_of(self, t: Target, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
         """The drafts that give one object its state ("leave the fridge closed and the
