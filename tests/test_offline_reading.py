@@ -567,3 +567,17 @@ def test_outcomes_of_open_put_close_sequences(text: str, expected: list[str]) ->
     reading = read(text, 5)
     assert [str(c) for s in reading.spec.subtasks for c in s.goal] == expected
     assert not reading.notes
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Turn the tap on, then off again.", 1, ["switched_on(Faucet)", "switched_off(Faucet)"]),
+    ("The cloth needs a rinse in the bath - tap on, then off again when you're done.", 403,
+     ["clean(Cloth)", "switched_on(Faucet)", "switched_off(Faucet)"]),
+    ("Open the fridge, then shut again.", 1, ["open(Fridge)", "closed(Fridge)"]),
+])
+def test_a_bare_state_after_then_is_asked_of_the_last_objects(text: str, fp: int, expected: list[str]) -> None:
+    reading = read(text, fp)
+    subtasks = reading.spec.subtasks
+    assert [str(c) for s in subtasks for c in s.goal] == expected
+    assert subtasks[-1].final and not any(s.final for s in subtasks if str(s.goal[0]).startswith(
+        ("switched_on", "open")))

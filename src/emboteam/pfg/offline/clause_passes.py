@@ -250,6 +250,32 @@ def elided_participle(clause: Clause, before: ParsedClause | None) -> list[Frame
                   liquid=liquid, text=clause.text)]
 
 
+#: words that may stand beside an elided state: "(then) off again", "back off afterwards"
+_ELIDED_STATE_EXTRAS = frozenset({"again", "back", "afterwards", "after", "too", "later"})
+
+
+def elided_state(clause: Clause, before: ParsedClause | None) -> list[Frame]:
+    """"Tap on, then off again", "open the box, then shut again": a clause that is only a
+    particle or a state asks it of the objects of the clause before it."""
+    words = [i for i in clause.items if i.punct is None and i.text not in _ELIDED_STATE_EXTRAS
+             and (i.text not in lexicon.FILLER_WORDS or i.text in ("on", "off"))
+             and i.sub is None and i.seq is None]
+    if before is None or not before.frames or len(words) != 1 or words[0].noun is not None \
+            or before.clause.sentence != clause.sentence:
+        return []
+    word = words[0]
+    targets = [Target(t.head) for f in before.frames for t in f.targets if t.head.noun is not None or t.head.pron]
+    if not targets:
+        return []
+    if word.text in ("on", "off"):
+        on = word.text == "on"
+        return [Frame(lexicon.Act.SWITCH_ON if on else lexicon.Act.SWITCH_OFF, "turn", targets,
+                      state=(lexicon.Stat.SWITCH, on), particle=word.text, text=clause.text)]
+    if word.state is not None and word.prep is None:
+        return [Frame(lexicon.Act.CAUSE, "get", targets, state=word.state, text=clause.text)]
+    return []
+
+
 def gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
     """"Put the apple in the fridge, then the tomato" (". Then the tomato."): a clause that
     is only objects, sequenced right after an act, has that act (gapping)."""

@@ -14,6 +14,7 @@ from emboteam.pfg.offline.clause_passes import (
     attach_means,
     drop_conditions,
     elided_participle,
+    elided_state,
     fix_up_complaints,
     gapped_objects,
     known_objects,
@@ -183,7 +184,7 @@ class OfflineFrontend:
             if small_talk(c):
                 parsed = replace(parsed, frames=[])
                 chat.add(k)
-            elif not parsed.frames and (elided := elided_participle(c, before)):
+            elif not parsed.frames and (elided := elided_participle(c, before) or elided_state(c, before)):
                 parsed = replace(parsed, frames=elided)
             elif not parsed.frames and _unread(c, parsed):
                 # "I reckon you should chuck the egg in the bin", "swap the TV off": read
