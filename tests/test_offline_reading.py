@@ -581,3 +581,14 @@ def test_a_bare_state_after_then_is_asked_of_the_last_objects(text: str, fp: int
     assert [str(c) for s in subtasks for c in s.goal] == expected
     assert subtasks[-1].final and not any(s.final for s in subtasks if str(s.goal[0]).startswith(
         ("switched_on", "open")))
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Put the lettuce in the fridge once it's been chopped.", ["sliced(Lettuce)", "inside(Lettuce, Fridge)"]),
+    ("Put the lettuce in the fridge after it is sliced.", ["sliced(Lettuce)", "inside(Lettuce, Fridge)"]),
+])
+def test_a_made_state_under_once_is_asked_for_first(text: str, expected: list[str]) -> None:
+    # unlike "once it's on there" (where it will be), a state an act makes is part of the task
+    reading = read(text, 5)
+    assert [str(c) for s in reading.spec.subtasks for c in s.goal] == expected
+    assert reading.spec.subtasks[1].depends_on == ("s1",)

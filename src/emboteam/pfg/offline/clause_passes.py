@@ -128,6 +128,12 @@ def condition_groups(clauses: list[Clause]) -> list[list[int]]:
     return groups
 
 
+#: states an act makes: "put the lettuce in the fridge once it's been chopped" asks for
+#: the chopping too (unlike "once it's in", "once it's on there": where it will be)
+_MADE_STATES = frozenset({lexicon.Stat.SLICED, lexicon.Stat.COOKED, lexicon.Stat.TOASTED, lexicon.Stat.CLEAN,
+                          lexicon.Stat.HOT, lexicon.Stat.COLD, lexicon.Stat.FILLED})
+
+
 def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"If the fridge is open, close it": a state under "if" is the condition of an act
     of its sentence, not a goal (its objects stay for the pronouns). Without such an act
@@ -138,7 +144,7 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
     for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
         if c.link in ("after", "before", "while") and p.frames and is_statement(c.items) \
                 and all(not f.verb and f.targets and all(t.head.pron is not None for t in f.targets)
-                        for f in p.frames):
+                        and (f.state is None or f.state[0] not in _MADE_STATES) for f in p.frames):
             # "close the box when it's in", "once it's on there": where something already
             # mentioned will be when the act happens, not a request of its own
             parsed[k] = replace(p, frames=[])
