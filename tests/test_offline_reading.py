@@ -592,3 +592,8 @@ def test_a_made_state_under_once_is_asked_for_first(text: str, expected: list[st
     reading = read(text, 5)
     assert [str(c) for s in reading.spec.subtasks for c in s.goal] == expected
     assert reading.spec.subtasks[1].depends_on == ("s1",)
+
+
+def test_back_before_a_place_in_a_terse_list_is_no_obstacle() -> None:
+    assert goal(read("Before bed: phone on the side table, lamp off, and the book back on the shelf.", 312)) == {
+        "inside(CellPhone, SideTable)", "switched_off(DeskLamp)", "inside(Book, Shelf)"}

@@ -227,7 +227,7 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
                                 "properly", "totally", "pretty", "bit", "a", "little",
                                 "somewhat", "quite", "rather", "extremely", "super", "well",
                                 "nicely", "brightly", "wide", "slightly", "partly", "partially",
-                                "entirely", "absolutely", "literally", "even", "just"):
+                                "entirely", "absolutely", "literally", "even", "just", "back"):
             pass
         else:
             break
