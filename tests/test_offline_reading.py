@@ -597,3 +597,15 @@ def test_a_made_state_under_once_is_asked_for_first(text: str, expected: list[st
 def test_back_before_a_place_in_a_terse_list_is_no_obstacle() -> None:
     assert goal(read("Before bed: phone on the side table, lamp off, and the book back on the shelf.", 312)) == {
         "inside(CellPhone, SideTable)", "switched_off(DeskLamp)", "inside(Book, Shelf)"}
+
+
+def test_a_slice_cut_off_the_loaf_cuts_the_loaf_and_it_is_the_slice() -> None:
+    reading = read("Toast please! Cut a slice off the loaf, pop it in the toaster and then switch the toaster on.", 14)
+    assert goal(reading) == {"sliced(Bread)", "cooked(Bread)", "inside(BreadSliced, Toaster)", "switched_on(Toaster)"}
+    assert goal(read("Cut two slices of bread and put them on the plate.", 14)) == {
+        "sliced(Bread)", "inside(2 of BreadSliced, Plate)"}
+
+
+def test_a_dash_between_a_list_and_its_place_is_no_boundary() -> None:
+    assert goal(read("Teddy bear, book and mug - onto the coffee table, all three of them.", 315)) == {
+        "inside(TeddyBear, CoffeeTable)", "inside(Book, CoffeeTable)", "inside(Mug, CoffeeTable)"}

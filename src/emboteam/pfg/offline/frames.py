@@ -661,6 +661,9 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             break
         k_subj = j
         j = _locative_modifiers(items, j, subjects, mentions)
+        if j + 2 < n and items[j].punct is not None and items[j + 1].prep in ("onto", "into", "in", "on", "to") \
+                and np_start(items[j + 2]):
+            j += 1      # "teddy bear, book and mug - onto the coffee table": the dash is no boundary
         local = dict(flags)
         j = _skip_aux(items, j, local)
         if j >= n:

@@ -567,8 +567,23 @@ class Semantics:
             act = Act.MICROWAVE     # "pop the potato in the microwave for a couple of minutes"
         if act in (Act.SLICE, Act.BREAK) and t.dest:
             return self._cut_into(frame, act, t, g, clause)
+        if act is Act.SLICE and t.head.piece and t.head.noun is not None:
+            return self._cut_pieces(frame, t, g, clause)
         rule = self._act_rules.get(act, self._plain_act)
         return rule(frame, act, t, g, clause)
+
+    def _cut_pieces(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
+        """"Cut two slices of bread (and put them on the plate)": the bread is what is cut,
+        and the pieces are what a pronoun after it means."""
+        whole = Target(replace(t.head, piece=False, count=None), t.dest, t.prep, t.particle, t.state)
+        out = self._plain_act(frame, Act.SLICE, whole, g, clause)
+        try:
+            pieces = self.g.ground(t.head, "hold")
+        except OfflineParseError:
+            return out
+        self.history[:] = [m for m in self.history if m.head is not whole.head]
+        self.history.append(Mention(pieces, t.head, clause, g, "object"))
+        return out
 
     def _whole_reading(self, frame: Frame, act: Act, t: Target, g: int,
                        clause: int) -> list[Draft] | None:
