@@ -609,3 +609,10 @@ def test_a_slice_cut_off_the_loaf_cuts_the_loaf_and_it_is_the_slice() -> None:
 def test_a_dash_between_a_list_and_its_place_is_no_boundary() -> None:
     assert goal(read("Teddy bear, book and mug - onto the coffee table, all three of them.", 315)) == {
         "inside(TeddyBear, CoffeeTable)", "inside(Book, CoffeeTable)", "inside(Mug, CoffeeTable)"}
+
+
+def test_a_placement_an_appliance_then_works_on_is_a_step_not_dropped() -> None:
+    reading = read("Potato in the microwave please, and switch it on. When it's done, put it on a plate.", 5)
+    steps = [(str(c), s.final) for s in reading.spec.subtasks for c in s.goal]
+    assert steps == [("inside(Potato, Microwave)", False), ("switched_on(Microwave)", True),
+                     ("inside(Potato, Plate)", True)]

@@ -73,9 +73,28 @@ def drop_superseded_placements(drafts: dict[int, list[Draft]], grounder: Grounde
         at = next(i for i, (_, _, e) in enumerate(order) if e is d)
         later = [c for _, _, e in order[at + 1:] if not e.intermediate for c in e.conditions
                  if c.predicate is Predicate.inside]
-        return all(any(refs_overlap(c.subject, c2.subject) and c2.receptacle != c.receptacle
-                       for c2 in later) for c in d.conditions)
+        if not all(any(refs_overlap(c.subject, c2.subject) and c2.receptacle != c.receptacle
+                       for c2 in later) for c in d.conditions):
+            return False
+        if _used_there(d, [e for _, _, e in order[at + 1:]]):
+            # "potato in the microwave, switch it on, then put it on a plate": a step
+            d.intermediate = True
+            return False
+        return True
     drop_drafts(drafts, superseded)
+
+
+def _used_there(placed: Draft, after: list[Draft]) -> bool:
+    """Does a draft after ``placed``, before the object is moved on, act on the receptacle
+    it was put in (the microwave switched on, the fridge closed)?"""
+    for e in after:
+        if any(c.predicate is Predicate.inside and any(refs_overlap(c.subject, p.subject) for p in placed.conditions)
+               for c in e.conditions):
+            return False
+        if any(c.predicate is not Predicate.inside and p.receptacle is not None and refs_overlap(c.subject, p.receptacle)
+               for c in e.conditions for p in placed.conditions):
+            return True
+    return False
 
 
 def drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
