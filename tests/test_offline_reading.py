@@ -616,3 +616,7 @@ def test_a_placement_an_appliance_then_works_on_is_a_step_not_dropped() -> None:
     steps = [(str(c), s.final) for s in reading.spec.subtasks for c in s.goal]
     assert steps == [("inside(Potato, Microwave)", False), ("switched_on(Microwave)", True),
                      ("inside(Potato, Plate)", True)]
+
+
+def test_a_place_right_after_a_wished_place_says_where_that_place_is() -> None:
+    assert goal(read("I want the potato cooked in the pan on the stove.", 5)) == {"inside(Potato, Pan)", "cooked(Potato)"}

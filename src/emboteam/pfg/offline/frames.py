@@ -449,9 +449,10 @@ def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
         for t in waiting:
             t.dest = [head, *head.alternatives]
             t.prep = prep
-    elif s.last_np and adjacent and prep in ("in", "on") and \
+    elif (s.last_np or s.pending) and adjacent and prep in ("in", "on") and \
             s.items[at].text in ("in", "on", "inside", "at"):
-        for t in s.last_np:
+        # "(cooked) in the pan on the stove": where the destination is
+        for t in s.last_np or s.pending:
             if t.dest:
                 t.dest[0].location.append((prep, head))
         head.role = "place"
