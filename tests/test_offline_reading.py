@@ -620,3 +620,15 @@ def test_a_placement_an_appliance_then_works_on_is_a_step_not_dropped() -> None:
 
 def test_a_place_right_after_a_wished_place_says_where_that_place_is() -> None:
     assert goal(read("I want the potato cooked in the pan on the stove.", 5)) == {"inside(Potato, Pan)", "cooked(Potato)"}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Could you lock my phone and keys in the safe?",
+     {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)", "closed(Safe)"}),
+    ("The safe needs opening so my credit card and keys can go in, then lock it up again.",
+     {"inside(CreditCard, Safe)", "inside(KeyChain, Safe)", "closed(Safe)"}),
+    ("Make sure the safe is closed at the end with my keys in it.", {"inside(KeyChain, Safe)", "closed(Safe)"}),
+])
+def test_locking_things_in_a_safe(text: str, expected: set[str]) -> None:
+    reading = read(text, 308)
+    assert goal(reading) == expected and not reading.notes

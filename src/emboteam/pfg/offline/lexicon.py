@@ -118,7 +118,7 @@ VERBS: dict[str, VerbSense] = {
     **{w: _v(A.BREAK) for w in (
         "break", "smash", "shatter", "crack", "destroy", "crush", "wreck", "bust")},
     "open": _v(A.OPEN), "unclose": _v(A.OPEN), "unseal": _v(A.OPEN), "raise": _v(A.OPEN),
-    **{w: _v(A.CLOSE) for w in ("close", "shut", "seal", "lower", "draw")},
+    **{w: _v(A.CLOSE) for w in ("close", "shut", "seal", "lower", "draw", "lock")},
     **{w: _v(A.SWITCH) for w in ("turn", "switch", "flip", "flick", "power", "click")},
     **{w: _v(A.SWITCH_ON) for w in (
         "activate", "start", "run", "boot", "enable", "light", "ignite", "kindle",

@@ -569,8 +569,18 @@ class Semantics:
             return self._cut_into(frame, act, t, g, clause)
         if act is Act.SLICE and t.head.piece and t.head.noun is not None:
             return self._cut_pieces(frame, t, g, clause)
+        if act is Act.CLOSE and t.dest and t.prep in ("in", "inside", "into"):
+            return self._shut_in(frame, t, g, clause)
         rule = self._act_rules.get(act, self._plain_act)
         return rule(frame, act, t, g, clause)
+
+    def _shut_in(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
+        """"Lock my keys in the safe": the keys go in, then the safe is shut."""
+        placed = self._place(frame, t, g, clause)
+        shut = self._plain_act(frame, Act.CLOSE, Target(t.dest[0]), g, clause)
+        for d in shut:
+            d.after = [a + len(placed) for a in d.after] + list(range(len(placed)))
+        return placed + shut
 
     def _cut_pieces(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
         """"Cut two slices of bread (and put them on the plate)": the bread is what is cut,
