@@ -632,3 +632,15 @@ def test_a_place_right_after_a_wished_place_says_where_that_place_is() -> None:
 def test_locking_things_in_a_safe(text: str, expected: set[str]) -> None:
     reading = read(text, 308)
     assert goal(reading) == expected and not reading.notes
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Take the pillow off the sofa and put it on the armchair, and while you're at it switch the TV off.",
+     {"inside(Pillow, ArmChair)", "switched_off(Television)"}),
+    ("Candle in the box, box shut, lamp on.", {"inside(Candle, Box)", "closed(Box)", "switched_on(FloorLamp)"}),
+    # the "was" of a relative clause makes no complaint of the wish
+    ("I'd like the statue on the dining table and the drawer it was in shut.",
+     {"inside(Statue, DiningTable)", "closed(Drawer)"}),
+])
+def test_living_room_orders(text: str, expected: set[str]) -> None:
+    assert goal(read(text, 220)) == expected

@@ -176,6 +176,8 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
                                                               or items[j + 1].noun is not None):
         return True     # "fry the egg - use the pan on the stove"
     kind = subject_here(items, j)
+    if kind == "state" and comma and _ends_with_place(current or []):
+        return True     # "candle in the box, box shut, lamp on": terse items, each complete
     return verb_here(items, j) or (kind is not None and (comma or kind != "state" or _ends_with_place(current or []))
                                    and _has_predicate(current or []))
 
@@ -298,10 +300,12 @@ def segment(items: list[Item]) -> list[Clause]:
             elif current.link not in (AND, THEN) and len(current.items) >= 2 \
                     and current.items[0].text in _HUMAN \
                     and any((x.verb is not None and x.noun is None) or x.particle is not None
-                            for x in current.items[1:]) \
-                    and it.verb is not None and it.noun is None and verb_here(sentence, j):
-                # "before you go put the apple in the fridge": a person's act, then the
-                # request
+                            or (x.copula and k + 1 < len(current.items))
+                            for k, x in enumerate(current.items[1:], 1)) \
+                    and it.verb is not None and verb_here(sentence, j) \
+                    and (it.noun is None or current.items[-1].pron is not None):
+                # "before you go put the apple in the fridge", "while you're at it switch
+                # the TV off": a person's act, then the request
                 boundary = AND
                 skip = 0
             elif it.robot is not None and current.items and any(x.is_content() for x in current.items):

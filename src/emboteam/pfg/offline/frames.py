@@ -673,7 +673,7 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
         frame = Frame(None, "", targets=subjects, negated=local.get("neg", False),
                       too=local.get("too", False), text=" ".join(x.text for x in items))
         frame.report = not local.get("modal", False) and not flags.get("directive", False) \
-            and any(x.copula and x.text in ("is", "are", "was", "were", "am", "been") for x in items[:j]) \
+            and any(x.copula and x.text in ("is", "are", "was", "were", "am", "been") for x in items[k_subj:j]) \
             and not local.get("terse", False)
         is_participle = it.verb is not None and (it.verb.form in ("ed", "ing") or (
             it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS)))
