@@ -644,3 +644,9 @@ def test_locking_things_in_a_safe(text: str, expected: set[str]) -> None:
 ])
 def test_living_room_orders(text: str, expected: set[str]) -> None:
     assert goal(read(text, 220)) == expected
+
+
+def test_not_this_one_only_that_one_does_the_act_on_that_one() -> None:
+    reading = read("Don't turn off the desk lamp, only the floor lamp.", 201)
+    assert "switched_off(FloorLamp)" in goal(reading) and "switched_off(DeskLamp)" not in goal(reading)
+    assert goal(read("Don't put the apple in the fridge, just the tomato.", 5)) == {"inside(Tomato, Fridge)"}

@@ -287,7 +287,7 @@ def gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
     is only objects, sequenced right after an act, has that act (gapping)."""
     for k in range(1, len(parsed)):
         p, c = parsed[k], clauses[k]
-        if p.frames or p.also or c.link != THEN or not parsed[k - 1].frames:
+        if p.frames or p.also or (c.link != THEN and "only" not in c.extra) or not parsed[k - 1].frames:
             continue
         heads = known_objects(p.clause.items)
         if heads and all(h.noun is not None for h in heads):
@@ -305,8 +305,10 @@ def repeat_for_also(parsed: list[ParsedClause]) -> None:
             continue
         last = before.frames[-1]
         model = last.targets[-1] if last.targets else Target(Head())
+        # "don't turn off the desk lamp, only the floor lamp": the act itself, not negated
+        negated = last.negated and "only" not in p.clause.extra
         p.frames = [replace(last, targets=[Target(h, list(model.dest), model.prep) for h in p.also],
-                            instruments=list(last.instruments), room_states=[])]
+                            instruments=list(last.instruments), room_states=[], negated=negated)]
 
 
 def fix_up_complaints(parsed: list[ParsedClause]) -> set[int]:

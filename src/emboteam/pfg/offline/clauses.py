@@ -266,6 +266,7 @@ def segment(items: list[Item]) -> list[Clause]:
                 clauses.append(c)
 
         j = 0
+        only_next = False
         while j < len(sentence):
             it = sentence[j]
             boundary: str | None = None
@@ -318,7 +319,14 @@ def segment(items: list[Item]) -> list[Clause]:
                                              or _sentence_adverb(sentence[k])):
                     k += 1
                 comma = any(sentence[x].punct == "," for x in range(j, k))
-                if k < len(sentence) and _starts_new(sentence, k, current.items, comma):
+                if k + 1 < len(sentence) and sentence[k].text in ("only", "just") \
+                        and any(x.neg for x in current.items) and sentence[k + 1].det:
+                    # "don't turn off the desk lamp, only the floor lamp": the act, not
+                    # negated, on what follows
+                    boundary = AND
+                    skip = k + 1 - j
+                    only_next = True
+                elif k < len(sentence) and _starts_new(sentence, k, current.items, comma):
                     boundary = AND
                     skip = k - j
             elif (it.sub is not None and j > 0) or (it.sub is not None and j == 0):
@@ -341,6 +349,9 @@ def segment(items: list[Item]) -> list[Clause]:
             if current.items:
                 first_in_sentence = False
             current = Clause([], boundary, None, s_index, initial=first_in_sentence)
+            if only_next:
+                current.extra["only"] = "1"
+                only_next = False
             j += skip
         if end == ":":
             current.extra["colon"] = "1"     # "Bed: pillow and teddy": a label for what follows
