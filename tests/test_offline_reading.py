@@ -650,3 +650,9 @@ def test_not_this_one_only_that_one_does_the_act_on_that_one() -> None:
     reading = read("Don't turn off the desk lamp, only the floor lamp.", 201)
     assert "switched_off(FloorLamp)" in goal(reading) and "switched_off(DeskLamp)" not in goal(reading)
     assert goal(read("Don't put the apple in the fridge, just the tomato.", 5)) == {"inside(Tomato, Fridge)"}
+
+
+@pytest.mark.parametrize("text", ["I want the apple cold and the bread in slices.", "The bread should be in slices."])
+def test_in_slices_is_a_state_not_a_place(text: str) -> None:
+    reading = read(text, 5)
+    assert "sliced(Bread)" in goal(reading) and not reading.notes

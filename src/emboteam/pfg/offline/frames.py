@@ -345,6 +345,13 @@ def _manner_or_purpose(s: _Tail) -> str | None:
     if it.prep == "in" and nxt is not None and is_piece_word(nxt) and (
             after is None or after.noun is None):
         s.j += 2
+        if s.frame.act in (None, Act.CAUSE, Act.PLACE) and not s.frame.verb:
+            # "I want the bread in slices": the state of being cut, not a place
+            for t in s.pending:
+                if not t.dest and t.state is None:
+                    t.state = (Stat.SLICED, True)
+            s.frame.act = None if s.frame.act is Act.PLACE else s.frame.act
+            s.frame.state = s.frame.state or (Stat.SLICED, True)
         return _GO
     if it.text == "to" and nxt is not None and not np_start(nxt) and nxt.prep is None \
             and nxt.punct is None:
