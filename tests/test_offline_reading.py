@@ -656,3 +656,21 @@ def test_not_this_one_only_that_one_does_the_act_on_that_one() -> None:
 def test_in_slices_is_a_state_not_a_place(text: str) -> None:
     reading = read(text, 5)
     assert "sliced(Bread)" in goal(reading) and not reading.notes
+
+
+@pytest.mark.parametrize("text", ["Hiya! Put the apple in the fridge.", "Put the apple in the fridge. Ta.",
+                                  "Careful, put the apple in the fridge."])
+def test_an_interjection_is_no_unread_span(text: str) -> None:
+    reading = read(text, 17)
+    assert goal(reading) == {"inside(Apple, Fridge)"} and not reading.notes and not reading.doubtful
+
+
+def test_a_sequenced_unknown_word_is_still_a_note() -> None:
+    assert [n.span for n in read("Put the apple in the fridge. Then wibble.", 17).notes] == ["wibble"]
+
+
+def test_a_perfect_under_when_is_the_persons_act_not_a_request() -> None:
+    reading = read("Grab the egg from the fridge, crack it into the pan and fry it. "
+                   "Close the fridge when you've got the egg out.", 17)
+    assert goal(reading) == {"sliced(Egg)", "inside(EggCracked, Pan)", "cooked(Egg)", "closed(Fridge)"}
+    assert not reading.notes

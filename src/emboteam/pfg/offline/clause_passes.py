@@ -102,12 +102,17 @@ def pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
 
 def small_talk(clause: Clause) -> bool:
     """"Cheers love", "love you!", "you're a star": no object, no state, no pronoun to
-    act on, and only verbs that ask for nothing by themselves."""
+    act on, and only verbs that ask for nothing by themselves; or one or two words with
+    none of these ("Hiya!", "Careful,")."""
     items = clause.items
     if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
            or i.recipe is not None for i in items):
         return False
     verbs = [i.verb for i in items if i.verb is not None]
+    words = [i for i in items if i.punct is None]
+    if not verbs and 0 < len(words) <= 2 and clause.link == AND \
+            and all(i.number is None and i.robot is None and i.seq is None for i in words):
+        return True     # "Hiya!", "Oi,", "Careful,": an interjection, nothing to act on
     return bool(verbs) and all(v.sense.act in _NO_REQUEST for v in verbs)
 
 

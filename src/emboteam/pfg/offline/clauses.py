@@ -304,6 +304,7 @@ def segment(items: list[Item]) -> list[Clause]:
                             or (x.copula and k + 1 < len(current.items))
                             for k, x in enumerate(current.items[1:], 1)) \
                     and it.verb is not None and verb_here(sentence, j) \
+                    and current.items[-1].text not in ("have", "has", "had", "ve") \
                     and (it.noun is None or current.items[-1].pron is not None):
                 # "before you go put the apple in the fridge", "while you're at it switch
                 # the TV off": a person's act, then the request

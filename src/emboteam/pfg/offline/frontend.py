@@ -61,6 +61,11 @@ log = logging.getLogger(__name__)
 ParseResult = Reading
 
 
+#: a prefix of only these is the person's own words ("(when) you have got the egg out"),
+#: nothing left unread
+_PERSON_WORDS = frozenset({"you", "i", "we", "have", "has", "had", "ve", "will", "ll", "would", "d"})
+
+
 def _note(exc: OfflineParseError) -> ReadingNote:
     """A skipped clause as the note the user sees: the span and why."""
     return ReadingNote(exc.phrase or "", exc.message, "vague" if exc.vague else "unread")
@@ -200,7 +205,7 @@ class OfflineFrontend:
                     places_to_locations(f)
                 parsed = replace(parsed, frames=[])
                 chat.add(k)
-            elif dropped is not None:
+            elif dropped is not None and not set(dropped.split()) <= _PERSON_WORDS:
                 guessed.add(k)
                 unread.append(ReadingNote(dropped, "not understood; read the rest of the clause without it"))
             purpose_acts(c, parsed)
