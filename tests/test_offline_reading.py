@@ -674,3 +674,9 @@ def test_a_perfect_under_when_is_the_persons_act_not_a_request() -> None:
                    "Close the fridge when you've got the egg out.", 17)
     assert goal(reading) == {"sliced(Egg)", "inside(EggCracked, Pan)", "cooked(Egg)", "closed(Fridge)"}
     assert not reading.notes
+
+
+def test_a_number_before_a_full_stop_numbers_the_next_item() -> None:
+    reading = read("Three things: 1. telly off 2. lamp on 3. remote on the sofa", 220)
+    assert goal(reading) == {"switched_off(Television)", "switched_on(FloorLamp)", "inside(RemoteControl, Sofa)"}
+    assert not reading.notes

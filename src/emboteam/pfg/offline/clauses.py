@@ -112,6 +112,16 @@ def _sentences(items: list[Item]) -> list[tuple[list[Item], str | None]]:
     for it in items:
         if it.punct in _SENTENCE_END:
             if out[-1][0]:
+                marker = out[-1][0][-1]
+                if it.punct == "." and len(out[-1][0]) > 1 and marker.number is not None \
+                        and marker.noun is None and out[-1][0][-2].number is None:
+                    # "1. telly off 2. lamp on": "2." numbers the next item, not this one
+                    out[-1][0].pop()
+                    out[-1] = (out[-1][0], it.punct)
+                    out.append(([marker], None))
+                    out[-1] = (out[-1][0], it.punct)
+                    out.append(([], None))
+                    continue
                 out[-1] = (out[-1][0], it.punct)
                 out.append(([], None))
             continue
