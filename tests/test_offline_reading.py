@@ -680,3 +680,10 @@ def test_a_number_before_a_full_stop_numbers_the_next_item() -> None:
     reading = read("Three things: 1. telly off 2. lamp on 3. remote on the sofa", 220)
     assert goal(reading) == {"switched_off(Television)", "switched_on(FloorLamp)", "inside(RemoteControl, Sofa)"}
     assert not reading.notes
+
+
+def test_another_instance_undoes_nothing_done_to_the_first() -> None:
+    # FloorPlan411 has two rolls: one goes in the bin, the other on the holder, both final
+    reading = read("Bin the empty loo roll and put a new one on the holder.", 411)
+    assert [(str(c), s.final) for s in reading.spec.subtasks for c in s.goal] == [
+        ("inside(ToiletPaper, GarbageCan)", True), ("inside(ToiletPaper, ToiletPaperHanger)", True)]

@@ -247,7 +247,8 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
         later = [j for j in kept[pos + 1:] if nodes[j].clause != nodes[i].clause
                  or nodes[j].draft.after]
         for c in nodes[i].draft.conditions:
-            if any(undoes(c2, c) for j in later for c2 in nodes[j].draft.conditions):
+            if any(undoes(c2, c) for j in later for c2 in nodes[j].draft.conditions
+                   if not (nodes[j].draft.another and c.subject.id is None)):
                 final[i] = False
         if nodes[i].draft.intermediate:
             final[i] = False

@@ -17,7 +17,8 @@ from emboteam.world.state import ObjectState
 
 _names = ref_types
 #: words that make "one" another instance of the kind just named ("a fresh one")
-_OTHER = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean"})
+#: words that make "one" another instance ("a new one", "another one")
+OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean"})
 
 
 @dataclass
@@ -62,7 +63,7 @@ class Discourse:
                 raise self.unresolved[-1]
             raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
                                     phrase=head.label())
-        if head.pron in ("one", "it") and _OTHER & set(head.text.split()):
+        if head.pron in ("one", "it") and OTHER_WORDS & set(head.text.split()):
             other = self._another_one(head, need, prefer)
             if other is not None:
                 return other

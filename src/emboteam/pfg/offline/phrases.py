@@ -387,6 +387,10 @@ def _verb_or_preposition(s: _NP) -> str | None:
     """A verb, a preposition, a particle or a state word ends the phrase."""
     it, h = s.it, s.h
     if it.verb is not None and h.noun is None and it.noun is None and not it.det:
+        prev, nxt = s.items[s.j - 1] if s.j > 0 else None, s.nxt
+        if prev is not None and prev.det and nxt is not None and nxt.noun is not None \
+                and it.text in lx.COMMON_WORDS:
+            return s.take(it.text)      # "the empty loo roll", "the used towel": an adjective
         return _STOP
     if it.prep is not None or it.particle is not None or it.state is not None:
         return _STOP

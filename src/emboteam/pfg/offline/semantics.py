@@ -16,7 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.discourse import Discourse, Mention
+from emboteam.pfg.offline.discourse import OTHER_WORDS, Discourse, Mention
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
@@ -45,6 +45,9 @@ class Draft:
     #: a state wished for an object ("I'd love a warm slice of bread"): dropped when a
     #: later clause's act brings it about ("... toast some for me")
     wished: bool = False
+    #: "bin the loo roll and put a new one on the holder": another instance of a kind
+    #: named before, so it undoes nothing done to the first
+    another: bool = False
 
 
 #: which capability a role needs, for grounding and for choosing a pronoun's antecedent
@@ -485,6 +488,9 @@ class Semantics:
                 d.wished = True
                 before.append(d)
         main = self._one(frame, one, t, g, clause) if one is not None else []
+        if t.head.pron in ("one", "it") and OTHER_WORDS & set(t.head.text.split()):
+            for d in main:
+                d.another = True
         for d in main:
             d.after = [a + len(before) for a in d.after] + list(range(len(before)))
         return before + main
