@@ -687,3 +687,11 @@ def test_another_instance_undoes_nothing_done_to_the_first() -> None:
     reading = read("Bin the empty loo roll and put a new one on the holder.", 411)
     assert [(str(c), s.final) for s in reading.spec.subtasks for c in s.goal] == [
         ("inside(ToiletPaper, GarbageCan)", True), ("inside(ToiletPaper, ToiletPaperHanger)", True)]
+
+
+@pytest.mark.parametrize("text", ["Put the apple in the fridge. Open it first.",
+                                  "Put the apple in the fridge, the fridge needs opening first."])
+def test_a_clause_ending_in_first_goes_before_the_one_before_it(text: str) -> None:
+    subtasks = read(text, 5).spec.subtasks
+    assert [str(s.goal[0]) for s in subtasks] == ["open(Fridge)", "inside(Apple, Fridge)"]
+    assert subtasks[1].depends_on == ("s1",)

@@ -46,6 +46,12 @@ class Node:
     after: set[int]
 
 
+def _done_first(clause: Clause) -> bool:
+    """Does the clause end in "first" or "beforehand" ("... open it first")?"""
+    words = [i.text for i in clause.items if i.punct is None]
+    return bool(words) and words[-1] in ("first", "beforehand") and len(words) > 1
+
+
 def steps(clauses: Sequence[Clause]) -> list[list[int]]:
     """Clause indices grouped into steps, in execution order: clauses of one step may run
     in parallel, each step after the one before."""
@@ -68,7 +74,12 @@ def steps(clauses: Sequence[Clause]) -> list[list[int]]:
             if link in ("after", "before") and c.initial:
                 pending = (link, ci)
             continue
-        if link == THEN:
+        if _done_first(c) and link != THEN:
+            # "put the fork in the drawer, the drawer needs opening first": this clause's
+            # step comes before the step of the clause before it
+            pos = next(k for k, g in enumerate(groups) if ci - 1 in g)
+            groups.insert(pos, [ci])
+        elif link == THEN:
             groups.append([ci])
         elif link in ("after", "before") and c.initial:
             groups.append([ci])
