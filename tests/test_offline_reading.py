@@ -695,3 +695,11 @@ def test_a_clause_ending_in_first_goes_before_the_one_before_it(text: str) -> No
     subtasks = read(text, 5).spec.subtasks
     assert [str(s.goal[0]) for s in subtasks] == ["open(Fridge)", "inside(Apple, Fridge)"]
     assert subtasks[1].depends_on == ("s1",)
+
+
+def test_who_should_carry_a_placed_object_adds_no_goal() -> None:
+    reading = read("The wine bottle goes in the fridge - it's heavy, so the strong robot should carry it.", 20)
+    assert [(str(c), s.final) for s in reading.spec.subtasks for c in s.goal] == [("inside(WineBottle, Fridge)", True)]
+    assert not reading.notes
+    # handing something over is a goal of its own
+    assert "held(Apple)" in goal(read("Put the apple on the table, then pick it up and give it to me.", 20))

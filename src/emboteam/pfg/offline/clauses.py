@@ -144,7 +144,19 @@ def team_subject(items: list[Item], j: int) -> int:
     for words in TEAM_SUBJECTS:
         if tuple(x.text for x in items[j:j + len(words)]) == words:
             return j + len(words)
+    if j < len(items) and items[j].text in ("the", "a", "whichever", "any"):
+        # "the strong robot", "the strongest robot": a member described by its build
+        k = j + 1
+        while k < len(items) and k - j <= 3 and items[k].noun is None and items[k].verb is None \
+                and items[k].punct is None and items[k].text not in _ROBOT_HEADS:
+            k += 1
+        if k > j + 1 and k < len(items) and items[k].text in _ROBOT_HEADS:
+            return k + 1
     return j
+
+
+#: nouns that name a team member
+_ROBOT_HEADS = frozenset({"robot", "robots", "bot", "bots"})
 
 
 def _has_predicate(items: list[Item]) -> bool:

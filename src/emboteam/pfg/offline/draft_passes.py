@@ -105,8 +105,10 @@ def drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
               if c.predicate is Predicate.inside]
 
     def before_placing(ci: int, d: Draft) -> bool:
+        # "the wine goes in the fridge - the strong robot should carry it": a placement
+        # before "carry it" makes the carrying its means too
         return bool(d.conditions) and all(
             c.predicate is Predicate.held and any(
-                cj >= ci and refs_overlap(c.subject, p.subject) for cj, _, p in placed)
+                (cj >= ci or d.carried) and refs_overlap(c.subject, p.subject) for cj, _, p in placed)
             for c in d.conditions)
     drop_drafts(drafts, before_placing)

@@ -48,7 +48,13 @@ class Draft:
     #: "bin the loo roll and put a new one on the holder": another instance of a kind
     #: named before, so it undoes nothing done to the first
     another: bool = False
+    #: "... so the strong robot should carry it": holding what a pronoun names, for no one
+    #: (a placement of the same object elsewhere makes it the means, not a goal)
+    carried: bool = False
 
+
+#: verbs of carrying: with a pronoun and no place, who carries what is placed elsewhere
+_CARRYING = frozenset({"carry", "move", "lift", "take", "handle", "shift", "haul", "lug"})
 
 #: which capability a role needs, for grounding and for choosing a pronoun's antecedent
 ACT_NEEDS: dict[Act, str | None] = {
@@ -491,6 +497,9 @@ class Semantics:
         if t.head.pron in ("one", "it") and OTHER_WORDS & set(t.head.text.split()):
             for d in main:
                 d.another = True
+        if t.head.pron is not None and not t.dest and not frame.recipient and frame.verb in _CARRYING:
+            for d in main:
+                d.carried = all(c.predicate is P.held for c in d.conditions)
         for d in main:
             d.after = [a + len(before) for a in d.after] + list(range(len(before)))
         return before + main
