@@ -107,7 +107,10 @@ TINY_SUITE = "\n".join(json.dumps({"task": task, "robot list": [1, 2], "object_s
     ("Turn off the light", [{"name": "LightSwitch", "contains": [], "state": "OFF"}]),
     ("Put the tomato in the fridge", [{"name": "Fridge", "contains": ["Tomato"], "state": None}]),
     ("Open the fridge", [{"name": "Fridge", "contains": [], "state": "OPEN"}]),
-]) + "\n"
+] * 6) + "\n"
+#: episodes in it: enough that a run is still going when the first one is reported (four
+#: finished before the interrupt arrived on an idle machine)
+TINY_EPISODES = 24
 
 
 def _bench(tmp_path: Path, out: Path) -> tuple[subprocess.Popen[str], list[str], threading.Thread]:
@@ -146,7 +149,7 @@ def test_ctrl_c_says_what_is_saved_and_how_to_resume(tmp_path: Path) -> None:
     text = "".join(lines)
     assert "Traceback" not in text and "leaked semaphore" not in text
     last = [line for line in lines if line.strip()][-1]
-    m = re.fullmatch(r"error: interrupted: (\d+) of 4 episodes are saved in (\S+); continue with: (.+)\n", last)
+    m = re.fullmatch(rf"error: interrupted: (\d+) of {TINY_EPISODES} episodes are saved in (\S+); continue with: (.+)\n", last)
     assert m, text
     assert int(m.group(1)) >= 1 and m.group(2) == str(out)
     resume = m.group(3)
@@ -154,7 +157,7 @@ def test_ctrl_c_says_what_is_saved_and_how_to_resume(tmp_path: Path) -> None:
     # the command it gives continues the run
     done = subprocess.run([EMBOTEAM, *resume.split()[1:], "--json"], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
-    assert one_object(done.stdout)["n"] == 4
+    assert one_object(done.stdout)["n"] == TINY_EPISODES
 
 
 def test_sigkill_leaves_no_leaked_semaphore_warning(tmp_path: Path) -> None:
