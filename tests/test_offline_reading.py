@@ -703,3 +703,8 @@ def test_who_should_carry_a_placed_object_adds_no_goal() -> None:
     assert not reading.notes
     # handing something over is a goal of its own
     assert "held(Apple)" in goal(read("Put the apple on the table, then pick it up and give it to me.", 20))
+
+
+def test_it_after_pieces_can_be_the_whole_they_come_from() -> None:
+    reading = read("Three slices of apple on the plate please - cut it first.", 20)
+    assert [str(c) for s in reading.spec.subtasks for c in s.goal] == ["sliced(Apple)", "inside(3 of AppleSliced, Plate)"]

@@ -131,6 +131,9 @@ class Discourse:
             if self.fits(m.ref, need):
                 self._doubt_unless_alone(m.ref, need)    # the last resort
                 return m.ref
+        whole = self._whole_of_pieces(need)
+        if whole is not None:
+            return whole
         for m in reversed(self.history):
             # "is the stove on? turn it off": the stove mentioned as such, switched by what
             # switches it (its knobs), as the grounder reads "turn the stove off"
@@ -142,6 +145,15 @@ class Discourse:
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _whole_of_pieces(self, need: str | None) -> Ref | None:
+        """"Three slices of apple on the plate - cut it first": the whole the last pieces
+        come from, when only it can do what the verb asks."""
+        for m in reversed(self.history):
+            wholes = tuple(dict.fromkeys(w for t in m.ref.type_names() if (w := self.cat.source_type(t))))
+            if wholes and any(self.g.can(w, need) for w in wholes if need is not None):
+                return Ref(" ".join(wholes), ((ObjectRef(types=wholes), 1),))
+        return None
 
     def _another_one(self, head: Head, need: str | None, prefer: str) -> Ref | None:
         """"The loo roll on the floor goes in the bin and a fresh one on the holder": the
