@@ -708,3 +708,14 @@ def test_who_should_carry_a_placed_object_adds_no_goal() -> None:
 def test_it_after_pieces_can_be_the_whole_they_come_from() -> None:
     reading = read("Three slices of apple on the plate please - cut it first.", 20)
     assert [str(c) for s in reading.spec.subtasks for c in s.goal] == ["sliced(Apple)", "inside(3 of AppleSliced, Plate)"]
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("I don't want the lights on any more.", {"switched_off(LightSwitch)"}),
+    ("Any chance the tomato could end up sliced and on a plate?", {"sliced(Tomato)", "inside(Tomato, Plate)"}),
+    ("How about putting the bread in the toaster and switching it on?",
+     {"inside(BreadSliced, Toaster)", "switched_on(Toaster)"}),
+])
+def test_indirect_requests(text: str, expected: set[str]) -> None:
+    reading = read(text, 20)
+    assert goal(reading) == expected and not reading.notes

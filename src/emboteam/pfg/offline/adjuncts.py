@@ -58,6 +58,11 @@ def drop_time_adjuncts(items: list[Item]) -> list[Item]:
     out: list[Item] = []
     k = 0
     while k < len(items):
+        if items[k].text == "anymore" or (items[k].text == "any" and k + 1 < len(items)
+                                          and items[k + 1].text in ("more", "longer")
+                                          and (k + 2 == len(items) or items[k + 2].punct is not None)):
+            k += 1 if items[k].text == "anymore" else 2     # "... on any more": when, not what
+            continue
         introduced = items[k].text in _INTRODUCERS or (
             items[k].text == "on" and k + 1 < len(items)
             and (items[k + 1].text in _DAYS or (k + 2 < len(items) and items[k + 2].text in _DAYS)))

@@ -91,6 +91,7 @@ _PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
     r"what (?:i|we) (?:want|need|would like|would love) is",
     r"(?:be )?(?:so kind as to|kind enough to|a dear and|a star and)",
     r"time to|it is time to|now is the time to",
+    r"(?:how|what) about(?= \w+ing\b)",       # "how about putting the bread in the toaster"
     r"to",
     # "don't forget the TV is still on", "remember that the fridge is open": a reminder of
     # a state, read as the statement (a complaint)
@@ -229,6 +230,9 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
                                 "nicely", "brightly", "wide", "slightly", "partly", "partially",
                                 "entirely", "absolutely", "literally", "even", "just", "back"):
             pass
+        elif t in ("end", "ends", "wind", "winds") and j + 2 < len(items) and items[j + 1].text == "up" \
+                and items[j + 2].state is not None and items[j + 2].prep is None:
+            j += 1      # "should end up sliced (and on a plate)": as "be"
         else:
             break
         j += 1
