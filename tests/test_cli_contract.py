@@ -116,9 +116,12 @@ TINY_EPISODES = 24
 def _bench(tmp_path: Path, out: Path) -> tuple[subprocess.Popen[str], list[str], threading.Thread]:
     (tmp_path / "suite").mkdir(exist_ok=True)
     (tmp_path / "suite" / "FloorPlan1.json").write_text(TINY_SUITE)
+    # a foreground terminal's Ctrl-C: SIGINT handled by default even when pytest itself was
+    # started in the background (where the shell ignores SIGINT, and children inherit that)
     proc = subprocess.Popen([EMBOTEAM, "bench", "--suite", f"smart-llm:{tmp_path / 'suite'}", "--frontend", "oracle",
                              "--workers", "1", "--out", str(out)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     lines: list[str] = []
 
     def read() -> None:
