@@ -719,3 +719,12 @@ def test_it_after_pieces_can_be_the_whole_they_come_from() -> None:
 def test_indirect_requests(text: str, expected: set[str]) -> None:
     reading = read(text, 20)
     assert goal(reading) == expected and not reading.notes
+
+
+def test_a_perfect_is_a_statement_and_a_past_intention_no_request() -> None:
+    reading = read("Right, so I was going to bake this weekend, but honestly the egg and the apple "
+                   "on the counter have both gone off, so chuck them in the bin.", 22, )
+    assert goal(reading) == {"inside(Egg, GarbageCan)", "inside(Apple, GarbageCan)"}
+    assert not reading.notes
+    # a perfect that reports a state still is a complaint
+    assert goal(read("The light has been left on, switch it off.")) == {"switched_off(LightSwitch)"}

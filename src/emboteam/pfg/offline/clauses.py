@@ -215,6 +215,12 @@ def _ends_with_place(items: list[Item]) -> bool:
 _NP_WORDS = frozenset({"of", "all", "both", "each", "every"})
 
 
+#: words after which "to" starts an infinitive of the same clause, not a purpose
+_TO_INFINITIVE_HEADS = frozenset({"going", "gonna", "want", "wants", "wanted", "need", "needs", "needed",
+                                  "have", "has", "had", "used", "ought", "able", "about", "supposed",
+                                  "meant", "trying", "try", "tried", "planning", "plan", "hoping", "hope"})
+
+
 def _skip_np(items: list[Item], j: int) -> int:
     """The index after a simple noun phrase at ``j`` (``j`` when there is none)."""
     k = j
@@ -243,6 +249,10 @@ def subject_here(items: list[Item], j: int) -> str | None:
     k = _skip_np(items, j)
     if k == j or k >= n:
         return None
+    while k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
+        k = _skip_np(items, k + 1)      # "the egg and the apple ... have both gone off"
+    if k >= n:
+        return None
     if items[k].prep in ("in", "on", "from") and k + 1 < n:
         # "the mug on the counter is dirty": a place that describes the subject
         m = _skip_np(items, k + 1)
@@ -252,6 +262,9 @@ def subject_here(items: list[Item], j: int) -> str | None:
     end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None
     if it.copula and it.text != "to":
         return "copula"
+    if it.text in ("have", "has") and k + 1 < n and (items[k + 1].text in ("both", "all", "already", "just")
+                                                      or items[k + 1].verb is not None):
+        return "copula"     # a perfect: "... have both gone off", "... has been left on"
     if end and (it.particle in ("on", "off", "up", "down") or (
             it.state is not None and it.prep is None)):
         return "state"
@@ -326,7 +339,7 @@ def segment(items: list[Item]) -> list[Clause]:
                             or (x.copula and k + 1 < len(current.items))
                             for k, x in enumerate(current.items[1:], 1)) \
                     and it.verb is not None and verb_here(sentence, j) \
-                    and current.items[-1].text not in ("have", "has", "had", "ve") \
+                    and current.items[-1].text not in ("have", "has", "had", "ve", "to") \
                     and (it.noun is None or current.items[-1].pron is not None):
                 # "before you go put the apple in the fridge", "while you're at it switch
                 # the TV off": a person's act, then the request
@@ -358,10 +371,15 @@ def segment(items: list[Item]) -> list[Clause]:
                                             and nxt.verb.form == "ing")
                 if it.text == "as" and nxt is not None and nxt.text in ("to", "well", "soon"):
                     is_sub = nxt.text != "well"
+                if it.text == "to" and j > 0 and sentence[j - 1].text in _TO_INFINITIVE_HEADS:
+                    is_sub = False      # "I was going to bake": an infinitive, no purpose
                 if it.text == "so" and nxt is not None and nxt.text in ("that",):
                     skip = 2
                 if is_sub:
                     boundary = it.sub
+                if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
+                        and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
+                    boundary = AND      # "so I was going to bake": what happened, no purpose
             if boundary is None:
                 current.items.append(it)
                 j += 1

@@ -66,12 +66,30 @@ def _embedded_be(items: list[Item], k: int) -> bool:
     return k >= 2 and items[k - 2].text in _SUBORDINATE and (items[k - 1].pron is not None or items[k - 1].noun is not None)
 
 
+#: past participles of "have gone off" kind (the regular ones end in -ed)
+_PARTICIPLES = frozenset({"gone", "been", "got", "gotten", "left", "fallen", "broken", "run", "come"})
+
+
+def _perfect(items: list[Item], k: int) -> bool:
+    """Is "have"/"has" at ``k`` a perfect ("the egg and the apple have both gone off"): a
+    report of what happened, with no modal before it ("should have")?"""
+    if items[k].text not in ("have", "has") or (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE):
+        return False
+    m = k + 1
+    while m < len(items) and items[m].text in ("both", "all", "already", "just", "now", "since"):
+        m += 1
+    if m >= len(items):
+        return False
+    verb = items[m].verb
+    return items[m].text in _PARTICIPLES or (verb is not None and verb.form == "ed")
+
+
 def is_statement(items: list[Item]) -> bool:
-    """Does the clause say how things are ("the mug is in the cupboard")? A form of "be"
-    that no modal turns into a wish ("should be", "needs to be") and that is not inside a
-    relative or subordinate clause."""
-    return any(it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
-               and not _embedded_be(items, k)
+    """Does the clause say how things are ("the mug is in the cupboard", "the egg has gone
+    off")? A form of "be" that no modal turns into a wish ("should be", "needs to be") and
+    that is not inside a relative or subordinate clause, or a perfect."""
+    return any((it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
+                and not _embedded_be(items, k)) or (k > 0 and _perfect(items, k))
                for k, it in enumerate(items))
 
 

@@ -47,3 +47,8 @@ class OfflineParseError(EmboTeamError):
 class GroundingError(OfflineParseError):
     """A noun phrase names nothing in the scene (unknown word, a type the floor plan lacks,
     more objects than there are, or an object that cannot do what is asked)."""
+
+
+class IncapableError(GroundingError):
+    """The phrase names objects of the scene, but none can do what is asked ("no egg can be
+    switched"): in a complaint, the words described something else ("the egg has gone off")."""

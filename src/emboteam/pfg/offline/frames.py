@@ -684,7 +684,8 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
         frame = Frame(None, "", targets=subjects, negated=local.get("neg", False),
                       too=local.get("too", False), text=" ".join(x.text for x in items))
         frame.report = not local.get("modal", False) and not flags.get("directive", False) \
-            and any(x.copula and x.text in ("is", "are", "was", "were", "am", "been") for x in items[k_subj:j]) \
+            and any((x.copula and x.text in ("is", "are", "was", "were", "am", "been"))
+                    or x.text in ("has", "have") for x in items[k_subj:j]) \
             and not local.get("terse", False)
         is_participle = it.verb is not None and (it.verb.form in ("ed", "ing") or (
             it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS)))
@@ -923,7 +924,10 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
             v = items[j]
             assert v.verb is not None
             frame = _verb_frame(items, j, flags, mentions)
-            if v.verb.lemma in _WANT:
+            before = {x.text for x in items[1:j]}
+            if first.text in ("i", "we") and before & {"was", "were"} and before & {"going", "gonna"}:
+                frame.report = frame.past = True    # "I was going to bake": what did not happen
+            elif v.verb.lemma in _WANT:
                 frame.report = False
             elif not flags.get("modal") and v.verb.form in ("ed", "ing", "s") and \
                     clause.link not in ("if", "after", "before", "by"):

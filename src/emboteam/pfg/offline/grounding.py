@@ -16,7 +16,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.errors import GroundingError
+from emboteam.pfg.offline.errors import GroundingError, IncapableError
 from emboteam.pfg.offline.phrases import Head
 from emboteam.pfg.offline.tagger import NounReading
 from emboteam.pfg.offline.text import split_camel
@@ -194,8 +194,9 @@ class Grounder:
                         "break": "broken", "cook": "cooked", "dirty": "made dirty",
                         "fill": "filled", "hold": "picked up", "receptacle": "used as a place"}
                 noun = head.noun.phrase
-                raise self.fail(f"no {noun} in {self.scene.floor_plan} can be {verb[need]} "
-                                f"({'/'.join(types)})", noun)
+                raise IncapableError(f"no {noun} in {self.scene.floor_plan} can be {verb[need]} "
+                                     f"({'/'.join(types)})", phrase=noun,
+                                     suggestions=lambda: self.suggestions(noun))
             types = list(dict.fromkeys(able))
         return types
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.discourse import OTHER_WORDS, Discourse, Mention
-from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
+from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
 from emboteam.pfg.offline.tagger import NounReading
@@ -297,6 +297,12 @@ class Semantics:
                     out = concat(out, self._place(frame, t, self._group, clause))
             except OfflineParseError as exc:
                 failed.append(exc)      # "ugh, the light is on": the light still is
+        if flip and frame.report:
+            # "the egg has gone off": a report of a state the object cannot be put out of
+            # is a statement about something else, not a complaint
+            failed = [e for e in failed if not isinstance(e, IncapableError)]
+            if not failed and not out:
+                return out
         if failed and not out:
             raise failed[0]
         self.skipped.extend(failed)
