@@ -728,3 +728,10 @@ def test_a_perfect_is_a_statement_and_a_past_intention_no_request() -> None:
     assert not reading.notes
     # a perfect that reports a state still is a complaint
     assert goal(read("The light has been left on, switch it off.")) == {"switched_off(LightSwitch)"}
+
+
+def test_a_label_that_can_be_carried_goes_to_the_place_after_its_colon() -> None:
+    reading = read("Apple: fridge. Tomato: sink. Light: off.", 5)
+    assert goal(reading) == {"inside(Apple, Fridge)", "inside(Tomato, SinkBasin)", "switched_off(LightSwitch)"}
+    # a place as the label keeps its reading
+    assert goal(read("Fridge: apple and tomato.", 5)) == {"inside(Apple, Fridge)", "inside(Tomato, Fridge)"}

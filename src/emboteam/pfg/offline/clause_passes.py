@@ -16,6 +16,7 @@ from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start
 from emboteam.pfg.offline.tagger import Item
+from emboteam.world.catalogue import load_catalogue
 
 
 def known_objects(items: list[Item]) -> list[Head] | None:
@@ -184,6 +185,25 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
     return silent
 
 
+def _types(head: Head) -> tuple[str, ...]:
+    return head.noun.concept.types if head.noun is not None else ()
+
+
+def _movable(head: Head) -> bool:
+    """Can everything the phrase names be picked up (an apple, a mug)?"""
+    cat = load_catalogue()
+    types = [t for t in _types(head) if t in cat.types]
+    return bool(types) and all(cat.type(t).has("pickupable") for t in types)
+
+
+def _fixed_place(head: Head) -> bool:
+    """Is the phrase a receptacle that cannot be picked up (a fridge, a sink, a counter)?"""
+    cat = load_catalogue()
+    types = [t for t in _types(head) if t in cat.types]
+    return bool(types) and all(cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
+                               for t in types)
+
+
 def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"Bed: pillow and teddy. Desk: book and laptop.", "Things for the box: the pen and
     the pencil.": a place before a colon, then only objects, puts them there. Returns the
@@ -202,8 +222,18 @@ def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int
             continue
         place = label[-1]
         heads = known_objects(nxt.items)
+        stated = elided_state(nxt, ParsedClause(nxt, [Frame(None, "", [Target(place)])], [place], [])) \
+            if place.noun is not None and not heads and nxt.sentence == c.sentence + 1 else []
+        if stated:
+            # "Light: off.": the state of what the label names
+            parsed[k].frames, parsed[k + 1].frames = [], stated
+            labels.add(k)
+            continue
         if place.noun is None or not heads or any(h.noun is None for h in heads):
             continue
+        if len(label) == 1 and len(heads) == 1 and _movable(place) and _fixed_place(heads[0]):
+            # "Apple: fridge.": the label is what goes, the item is where
+            place, heads = heads[0], label
         place.role = "dest"
         parsed[k].frames = []
         parsed[k + 1].frames = [Frame(lexicon.Act.PLACE, "put", [Target(h, [place], "in") for h in heads],
