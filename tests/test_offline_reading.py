@@ -735,3 +735,9 @@ def test_a_label_that_can_be_carried_goes_to_the_place_after_its_colon() -> None
     assert goal(reading) == {"inside(Apple, Fridge)", "inside(Tomato, SinkBasin)", "switched_off(LightSwitch)"}
     # a place as the label keeps its reading
     assert goal(read("Fridge: apple and tomato.", 5)) == {"inside(Apple, Fridge)", "inside(Tomato, Fridge)"}
+
+
+@pytest.mark.parametrize("text", ["I've left my phone on the bed, can it go on the desk?",
+                                  "My phone is on the bed, can it go on the desk?"])
+def test_what_i_have_done_is_a_report_and_a_question_after_a_comma_its_own_clause(text: str) -> None:
+    assert goal(read(text, 318)) == {"inside(CellPhone, Desk)"}

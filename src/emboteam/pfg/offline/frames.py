@@ -199,6 +199,17 @@ _WANT = frozenset({"want", "need", "like", "love", "prefer", "wish", "require", 
 _REFLEXIVE = frozenset({"itself", "themselves", "himself", "herself"})
 
 
+#: irregular past participles after "have" ("I've left it", "it has gone")
+_IRREGULAR_PARTICIPLES = frozenset({"left", "put", "gone", "got", "gotten", "taken", "done", "made",
+                                    "broken", "forgotten", "lost", "set", "thrown", "kept", "brought"})
+
+
+def _participle(it: Item) -> bool:
+    """Is the word a past participle (a perfect after "have"), not an infinitive ("have to")?"""
+    return it.verb is not None and it.noun is None and (
+        it.verb.form == "ed" or it.text in _IRREGULAR_PARTICIPLES)
+
+
 def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
     """Skip copulas, modals, negation and adverbs before a predicate, noting them."""
     while j < len(items):
@@ -210,6 +221,9 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
             break      # "i need the potato cooked": the wish itself
         if it.neg:
             frame_flags["neg"] = not frame_flags.get("neg", False)
+        elif t in ("has", "have", "had", "ve") and j + 1 < len(items) and _participle(items[j + 1]) \
+                and not (j > 0 and items[j - 1].text in ("should", "must", "could", "would", "might")):
+            frame_flags["perfect"] = True     # "I've left my phone on the bed": what was done
         elif (t in lx.MODALS and it.verb is None) or t in ("should", "must", "ought", "can",
                                                           "could", "would", "will", "shall",
                                                           "might", "may") or (t in ("needs", "need", "has", "have", "had", "wants") and j + 1 < len(items) and \
@@ -925,8 +939,11 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
             assert v.verb is not None
             frame = _verb_frame(items, j, flags, mentions)
             before = {x.text for x in items[1:j]}
-            if first.text in ("i", "we") and before & {"was", "were"} and before & {"going", "gonna"}:
-                frame.report = frame.past = True    # "I was going to bake": what did not happen
+            if first.text in ("i", "we") and ((before & {"was", "were"} and before & {"going", "gonna"})
+                                              or (flags.get("perfect") and not flags.get("modal"))):
+                # "I was going to bake": what did not happen; "I've left my phone on the
+                # bed": what was done
+                frame.report = frame.past = True
             elif v.verb.lemma in _WANT:
                 frame.report = False
             elif not flags.get("modal") and v.verb.form in ("ed", "ing", "s") and \
