@@ -13,6 +13,7 @@ from emboteam.hp.llm_stages import (
     apply_orderings_report,
     propose_orderings,
     review_spec,
+    review_token_cap,
 )
 from emboteam.llm import LLMRefusal, RetryPolicy, make_client
 from emboteam.pfg.llm_frontend import LLMFrontend
@@ -58,6 +59,9 @@ def test_pfg_plus_review_is_two_calls_on_the_happy_path(scene1: Scene, state1: W
     assert {k: v.calls for k, v in client.usage.by_stage().items()} == {"pfg": 1, "hp.validate": 1}
     review_prompt = srv.requests[1]["messages"][-1]["content"]
     assert '"id":"s2"' in review_prompt and "TomatoSliced" in review_prompt
+    # only what the instruction and the spec touch is listed with ids; the answer is capped
+    assert "Tomato_1" in review_prompt and "Toaster_1" not in review_prompt
+    assert srv.requests[1]["max_tokens"] == review_token_cap(spec) < 2048
 
 
 def test_review_correction_replaces_the_spec(scene1: Scene, state1: WorldState,

@@ -26,7 +26,8 @@ from emboteam.llm.client import LLMClient
 from emboteam.llm.errors import LLMMalformedOutput
 from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
-from emboteam.pfg.llm_frontend import quote_instruction
+from emboteam.pfg.focus import focus_types
+from emboteam.pfg.llm_frontend import answer_token_cap, quote_instruction
 from emboteam.pfg.prompts import load_prompt, render, render_scene, render_team
 from emboteam.pfg.schema import SceneVocabulary, taskspec_from_answer, taskspec_schema, taskspec_to_answer
 from emboteam.pfg.taskspec import TaskSpec
@@ -75,18 +76,33 @@ def review_schema(vocab: SceneVocabulary, spec: TaskSpec, *, max_subtasks: int =
     }
 
 
+#: completion tokens of the review's verdict and reason (300 characters, about 80 tokens)
+REVIEW_FRAME_TOKENS = 100
+
+
+def review_token_cap(spec: TaskSpec) -> int:
+    """Completion tokens a review needs: its verdict and reason, and at most the spec's
+    subtasks once more with one to spare (a corrected list). A looping model is cut off
+    here, not at the schema's limit (see :func:`emboteam.pfg.llm_frontend.answer_token_cap`)."""
+    return REVIEW_FRAME_TOKENS + answer_token_cap(len(spec.subtasks) + 1)
+
+
 def review_spec(client: LLMClient, spec: TaskSpec, instruction: str, scene: Scene, state: WorldState,
-                team: Sequence[RobotProfile], *, repair_rounds: int = 1, max_tokens: int = 2048,
+                team: Sequence[RobotProfile], *, repair_rounds: int = 1, max_tokens: int | None = None,
                 seed: int = 0) -> SpecReview:
-    """Ask the LLM whether ``spec`` does what ``instruction`` says; one call when it does."""
+    """Ask the LLM whether ``spec`` does what ``instruction`` says; one call when it does.
+    The scene lists in full only the types the instruction and the spec touch."""
     vocab = SceneVocabulary.build(scene, state, team)
+    detail = focus_types(instruction, state, spec)
     request = LLMRequest(
         stage=REVIEW_STAGE,
         messages=(Message(role="system", content=load_prompt("hp_validate_system").strip()),
                   Message(role="user", content=render(
                       "hp_validate_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
-                      scene=render_scene(state), team=render_team(team), subtasks=_subtasks_json(spec)))),
-        json_schema=review_schema(vocab, spec), schema_name="review", max_tokens=max_tokens, seed=seed)
+                      scene=render_scene(state, detail=detail), team=render_team(team),
+                      subtasks=_subtasks_json(spec)))),
+        json_schema=review_schema(vocab, spec), schema_name="review",
+        max_tokens=max_tokens if max_tokens is not None else review_token_cap(spec), seed=seed)
 
     def convert(answer: dict[str, Any]) -> SpecReview:
         reason = str(answer["reason"]).strip()
