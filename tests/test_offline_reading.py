@@ -741,3 +741,14 @@ def test_a_label_that_can_be_carried_goes_to_the_place_after_its_colon() -> None
                                   "My phone is on the bed, can it go on the desk?"])
 def test_what_i_have_done_is_a_report_and_a_question_after_a_comma_its_own_clause(text: str) -> None:
     assert goal(read(text, 318)) == {"inside(CellPhone, Desk)"}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("The kitchen's a bit of a mess. Mug in the sink. Don't worry about the pan.", {"inside(Mug, SinkBasin)"}),
+    ("Right, three jobs: slice the bread, then make sure the fridge is shut.", {"sliced(Bread)", "closed(Fridge)"}),
+    ("Could you get the potato cooked - microwave's fine - and put the bread in the fridge?",
+     {"cooked(Potato)", "inside(Bread, Fridge)"}),
+])
+def test_reassurance_headings_and_means_leave_no_note(text: str, expected: set[str]) -> None:
+    reading = read(text, 26)
+    assert goal(reading) == expected and not reading.notes

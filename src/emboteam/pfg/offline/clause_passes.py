@@ -101,14 +101,23 @@ def pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
         bool(parsed.frames) and all(f.act is lexicon.Act.PLACE for f in parsed.frames)
 
 
+#: "don't worry about ...", "no rush": reassurance, nothing to do
+_NO_WORRIES = frozenset({"worry", "bother", "rush", "stress", "panic", "fuss", "hurry"})
+
+
 def small_talk(clause: Clause) -> bool:
     """"Cheers love", "love you!", "you're a star": no object, no state, no pronoun to
     act on, and only verbs that ask for nothing by themselves; or one or two words with
     none of these ("Hiya!", "Careful,")."""
     items = clause.items
+    texts = [i.text for i in items]
+    if any(i.neg for i in items) and set(texts) & _NO_WORRIES:
+        return True     # "don't worry about the pan", "no rush"
     if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
            or i.recipe is not None for i in items):
         return False
+    if clause.extra.get("colon") and any(i.number is not None for i in items):
+        return True     # "Right, three jobs:": a heading for the list that follows
     verbs = [i.verb for i in items if i.verb is not None]
     words = [i for i in items if i.punct is None]
     if not verbs and 0 < len(words) <= 2 and clause.link == AND \

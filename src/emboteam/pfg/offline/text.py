@@ -41,7 +41,9 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
      r"empty|full|broken|wide|too|so|very|really|left|been|\w+ing|\w+ed|"
      # "the mug's in one of the cupboards": a place or an article after it, never a noun
      r"in|on|inside|under|by|next|behind|near|at|over|here|there|gone|somewhere|probably|"
-     r"maybe|a|an|the)\b)", " is"),
+     r"maybe|a|an|the|"
+     # "microwave's fine": an evaluation
+     r"fine|ok|okay|good|best|easiest|better|enough)\b)", " is"),
     (r"'s\b", ""),          # possessive: "the robot's arm" -> "the robot arm"
     (r"s'(?=\s|$)", "s"),   # plural possessive
     (r"'", ""),
