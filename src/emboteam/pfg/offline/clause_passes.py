@@ -111,7 +111,9 @@ def small_talk(clause: Clause) -> bool:
     none of these ("Hiya!", "Careful,")."""
     items = clause.items
     texts = [i.text for i in items]
-    if any(i.neg for i in items) and set(texts) & _NO_WORRIES:
+    if any(i.neg for i in items) and set(texts) & _NO_WORRIES and not any(
+            i.state is not None or (i.verb is not None and i.text not in _NO_WORRIES and i.text != "do")
+            for i in items):
         return True     # "don't worry about the pan", "no rush"
     if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
            or i.recipe is not None for i in items):
