@@ -752,3 +752,15 @@ def test_what_i_have_done_is_a_report_and_a_question_after_a_comma_its_own_claus
 def test_reassurance_headings_and_means_leave_no_note(text: str, expected: set[str]) -> None:
     reading = read(text, 26)
     assert goal(reading) == expected and not reading.notes
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Put the bar of soap on the side of the bath.", 404, {"inside(SoapBar, BathtubBasin)"}),
+    ("Keys and watch: into the cardboard box on the floor, then fold the box shut.", 201,
+     {"inside(KeyChain, Box)", "inside(Watch, Box)", "closed(Box)"}),
+    ("Toilet paper: off the floor and onto the holder. Cloth: out of the tub, onto the counter. Candle: lit.", 423,
+     {"inside(ToiletPaper, ToiletPaperHanger)", "inside(Cloth, CounterTop)", "switched_on(Candle)"}),
+])
+def test_parts_of_places_and_labels_with_places(text: str, fp: int, expected: set[str]) -> None:
+    reading = read(text, fp)
+    assert goal(reading) == expected and not reading.notes

@@ -14,7 +14,7 @@ from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
-from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start
+from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start, parse_np
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
 
@@ -215,6 +215,29 @@ def _fixed_place(head: Head) -> bool:
                                for t in types)
 
 
+#: prepositions that say where something goes, most telling first
+_GOES_TO = ("into", "onto", "to", "in", "on")
+
+
+def _label_to_place(label: list[Head], nxt: Clause) -> Frame | None:
+    """The label's objects put where the item after the colon says, when the item is only
+    places ("into the cardboard box on the floor", "off the floor and onto the holder")."""
+    items = [i for i in nxt.items if i.punct is None]
+    if not items or items[0].prep is None or not all(_movable(h) for h in label):
+        return None
+    for prep in _GOES_TO:
+        at = next((k for k, i in enumerate(items) if i.prep == prep and k + 1 < len(items)
+                   and np_start(items[k + 1])), None)
+        if at is None:
+            continue
+        dest, _ = parse_np(items, at + 1)
+        if dest is None or dest.noun is None:
+            return None
+        dest.role = "dest"
+        return Frame(lexicon.Act.PLACE, "put", [Target(h, [dest], "in") for h in label], text=nxt.text)
+    return None
+
+
 def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"Bed: pillow and teddy. Desk: book and laptop.", "Things for the box: the pen and
     the pencil.": a place before a colon, then only objects, puts them there. Returns the
@@ -228,11 +251,20 @@ def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int
         if not c.extra.get("colon") or not placing or parsed[k + 1].frames \
                 or nxt.sentence != c.sentence + 1:
             continue
-        label = [h for h in parsed[k].mentions if h.noun is not None] or known_objects(c.items)
+        named = [h for h in parsed[k].mentions if h.noun is not None]
+        listed = known_objects(c.items) or []
+        label = listed if len(listed) > len(named) else named or listed    # "keys and watch": both
         if not label:
             continue
         place = label[-1]
         heads = known_objects(nxt.items)
+        placed = _label_to_place(label, nxt)
+        if placed is not None:
+            # "Keys and watch: into the box.", "Cloth: out of the tub, onto the counter."
+            parsed[k].frames, parsed[k + 1].frames = [], [placed]
+            parsed[k + 1].mentions.extend(t.dest[0] for t in placed.targets[:1])
+            labels.add(k)
+            continue
         stated = elided_state(nxt, ParsedClause(nxt, [Frame(None, "", [Target(place)])], [place], [])) \
             if place.noun is not None and not heads and nxt.sentence == c.sentence + 1 else []
         if stated:

@@ -182,3 +182,29 @@ def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
     mentions.extend(heads)
     return Frame(Act.CAUSE, "want", [Target(h) for h in heads], wish=True,
                  text=" ".join(x.text for x in items))
+
+
+#: parts of a place that are the place for a goal: AI2-THOR has no "edge of the bathtub"
+PLACE_PARTS = frozenset({"side", "edge", "top", "corner", "rim", "end", "middle", "surface", "bottom",
+                         "back", "front", "ledge", "lip"})
+
+
+def parts_as_places(items: list[Item]) -> list[Item]:
+    """"on the side of the bath", "on the edge of the bathtub", "on top of the counter": the
+    place is the bath, the bathtub, the counter (in/on is the only relation a goal states)."""
+    out: list[Item] = []
+    k = 0
+    while k < len(items):
+        it = items[k]
+        if it.prep in ("on", "onto", "in", "at", "to") and k + 1 < len(items):
+            m = k + 1
+            if items[m].det and m + 1 < len(items):
+                m += 1
+            if items[m].text in PLACE_PARTS and items[m].noun is None and m + 2 < len(items) \
+                    and items[m + 1].text == "of" and (items[m + 2].det or items[m + 2].noun is not None):
+                out.append(it)
+                k = m + 2      # "on the side of the bath" -> "on the bath"
+                continue
+        out.append(it)
+        k += 1
+    return out

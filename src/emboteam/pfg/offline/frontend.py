@@ -28,7 +28,7 @@ from emboteam.pfg.offline.clause_passes import (
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent
-from emboteam.pfg.offline.constructions import places_to_locations
+from emboteam.pfg.offline.constructions import parts_as_places, places_to_locations
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble
@@ -167,7 +167,7 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        clauses = segment(drop_time_adjuncts(apply_corrections(tag(text))))
+        clauses = segment(parts_as_places(drop_time_adjuncts(apply_corrections(tag(text)))))
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
         unknown: list[str] = []
@@ -191,7 +191,9 @@ class OfflineFrontend:
                 chat.add(k)
             elif not parsed.frames and (elided := elided_participle(c, before) or elided_state(c, before)):
                 parsed = replace(parsed, frames=elided)
-            elif not parsed.frames and _unread(c, parsed):
+            elif not parsed.frames and _unread(c, parsed) and not (
+                    k > 0 and clauses[k - 1].extra.get("colon") and c.items and c.items[0].prep is not None):
+                # (a place after a label's colon is the label's: clause_passes.labelled_lists)
                 # "I reckon you should chuck the egg in the bin", "swap the TV off": read
                 # from the first place the grammar can read, the words before it are a note
                 # and what it gives is unsure
