@@ -764,3 +764,14 @@ def test_reassurance_headings_and_means_leave_no_note(text: str, expected: set[s
 def test_parts_of_places_and_labels_with_places(text: str, fp: int, expected: set[str]) -> None:
     reading = read(text, fp)
     assert goal(reading) == expected and not reading.notes
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Use a knife on the bread, get one slice into the toaster and switch it on.", 4,
+     {"sliced(Bread)", "inside(BreadSliced, Toaster)", "switched_on(Toaster)"}),
+    ("Use the knife on the counter to slice the bread", 4, {"sliced(Bread)"}),
+    ("mug to teh desk, phone on the bed, and kil the lights", 305,
+     {"inside(Mug, Desk)", "inside(CellPhone, Bed)", "switched_off(LightSwitch)"}),
+])
+def test_tools_used_on_things_and_letter_slips(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -53,6 +53,7 @@ from emboteam.pfg.offline.phrases import (
     unknown_words,
 )
 from emboteam.pfg.offline.tagger import Item
+from emboteam.world.catalogue import load_catalogue
 
 Act = lx.Act
 Stat = lx.Stat
@@ -909,6 +910,9 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
         for f in found:
             places_to_locations(f)
         return ParsedClause(clause, [], mentions, unknown_words(mentions))
+    tool_use = _tool_on(items, clause, mentions)
+    if tool_use is not None:
+        return tool_use
     means = instrument_clause(items, mentions)
     if means is not None:
         return ParsedClause(clause, [], mentions, [], means=means)
@@ -1014,6 +1018,37 @@ def _why_question(items: list[Item]) -> list[Item]:
     return [*items[2:end], items[1], *items[end:]]
 
 
+#: what a tool does to what it is used on
+_TOOL_ACTS = {"Knife": Act.SLICE, "ButterKnife": Act.SLICE, "DishSponge": Act.CLEAN, "Cloth": Act.CLEAN,
+              "ScrubBrush": Act.CLEAN}
+
+
+#: what a target must be for a tool's act
+_TOOL_TARGETS = {Act.SLICE: "sliceable", Act.CLEAN: "dirtyable"}
+
+
+def _tool_on(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
+    """"use a knife on the bread": what the tool does, to what it is used on (not "use the
+    knife on the counter", where the counter says which knife)."""
+    if items[0].text not in ("use", "using") or items[0].noun is not None:
+        return None
+    head, k = parse_np(items, 1)
+    n = len(items)
+    act = _TOOL_ACTS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None else None
+    if head is None or act is None or not (k + 1 < n and items[k].prep == "on" and np_start(items[k + 1])):
+        return None
+    target, _ = parse_np(items, k + 1)
+    cat = load_catalogue()
+    if target is None or target.noun is None or not any(
+            t in cat.types and cat.type(t).has(_TOOL_TARGETS[act]) for t in target.noun.concept.types):
+        return None
+    head.role = "place"
+    mentions.extend([head, target])
+    frame = Frame(act, "use", [Target(target)], text=" ".join(i.text for i in items))
+    frame.instruments.append(head)
+    return ParsedClause(clause, [frame], mentions, [])
+
+
 def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
     """"use the stove to fry the egg", "using the microwave, heat the soup": the act of the
     rest of the clause, with the named appliance as its means."""
@@ -1021,6 +1056,7 @@ def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedCl
         return None
     head, k = parse_np(items, 1)
     n = len(items)
+    k = skip_locative(items, k)     # "use the knife on the counter to slice the bread"
     while k < n and (items[k].text in ("to", "and", "for") or items[k].punct is not None):
         k += 1
     if head is None or k >= n or items[k].verb is None:

@@ -159,10 +159,23 @@ def correct(word: str, nouns_only: bool = False) -> str | None:
                 return stem + suffix
             # otherwise only a one-letter slip of a word we know ("containg")
             return _closest(word, 1, nouns_only)
+    doubled = word + word[-1]
+    if len(word) >= 3 and doubled in lx.VERBS and not nouns_only:
+        return doubled      # "kil the lights": a doubled last letter typed once
     limit = allowed_distance(word)
     if limit == 0:
         return None
     return _closest(word, limit, nouns_only)
+
+
+#: function words whose letters people swap ("teh", "adn"): a transposition is read back
+_SWAPPED_FUNCTION_WORDS = {"".join(sorted(w)): w for w in ("the", "and", "off", "out", "put", "into", "onto", "then")}
+
+
+def unswap(word: str) -> str | None:
+    """The function word a letter swap stands for ("teh" -> "the"), or ``None``."""
+    fix = _SWAPPED_FUNCTION_WORDS.get("".join(sorted(word)))
+    return fix if fix is not None and fix != word and sum(a != b for a, b in zip(fix, word, strict=True)) == 2 else None
 
 
 def _closest(word: str, limit: int, nouns_only: bool) -> str | None:

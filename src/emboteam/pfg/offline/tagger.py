@@ -20,6 +20,7 @@ from emboteam.pfg.offline.morphology import (
     is_english_word,
     singular,
     singular_candidates,
+    unswap,
     verb_lemma,
 )
 from emboteam.pfg.offline.text import PUNCT, tokenize
@@ -147,7 +148,7 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
             # elsewhere it is a word the parser does not need ("I keep losing my keys")
             slot = after_det or not out or out[-1] in PUNCT or out[-1] in _CLAUSE_OPENERS
             real = not slot and is_english_word(w)
-            fix = None if real else correct(w, after_det)
+            fix = unswap(w) or (None if real else correct(w, after_det))
             if fix is None and not real and w.endswith("s"):
                 stem = correct(w[:-1], after_det)
                 fix = stem + "s" if stem is not None else None
