@@ -775,3 +775,12 @@ def test_parts_of_places_and_labels_with_places(text: str, fp: int, expected: se
 ])
 def test_tools_used_on_things_and_letter_slips(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_come_home_to_states_and_a_prohibition_after_a_parenthesis() -> None:
+    assert goal(read("I'd love to come home to the telly already on, the floor lamp off and the remote "
+                     "waiting for me on the coffee table.", 203)) == {
+        "switched_on(Television)", "switched_off(FloorLamp)", "inside(RemoteControl, CoffeeTable)"}
+    reading = read("There's a potato in the fridge. Take it out and heat it up in the microwave (leave the "
+                   "microwave going), and don't leave the fridge door hanging open afterwards.", 28)
+    assert goal(reading) >= {"hot(Potato)", "switched_on(Microwave)", "closed(Fridge)"}

@@ -194,6 +194,8 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     k = team_subject(items, j)
     if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
         return True     # ", the other should put ...", "while another turns off ..."
+    if it.text in ("do", "please") and j + 2 < len(items) and items[j + 1].neg and items[j + 2].verb is not None:
+        return True     # "..., and don't leave the fridge door open": a prohibition of its own
     if comma and it.text in ("can", "could", "would", "will", "should") and j + 2 < len(items) \
             and (items[j + 1].pron is not None or items[j + 1].det or items[j + 1].text in _HUMAN):
         return True     # "I've left my phone on the bed, can it go on the desk?"

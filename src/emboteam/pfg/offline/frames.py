@@ -74,6 +74,9 @@ _PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
     + r" (?:could|can|would|might|will)(?: please)?",
     r"(?:if " + _WHO + r" (?:could|can|would|have time),? ?)",
     r"(?:would|do) " + _WHO + r" mind|mind",
+    # "I'd love to come home to the telly on": the state found on coming home is the wish
+    r"(?:i|we) (?:would|will|do)? ?(?:want|like|love) to (?:come home|come back|get home|get back|"
+    r"wake up|walk in|come down) to",
     r"(?:i|we) (?:would|will|do|really)? ?(?:want|need|like|love|wish|expect|require|ask) "
     + _WHO + r"? ?to",
     r"(?:i|we) (?:would|will)? ?(?:want|need|like|love) to",

@@ -81,6 +81,14 @@ def split_camel(text: str) -> str:
     return text
 
 
+#: a posture before a state says nothing more ("the door hanging open" is open); "leave
+#: the microwave going" is running
+_POSTURES: tuple[tuple[str, str], ...] = (
+    (r"\b(?:hanging|standing|sitting|lying|swinging) (open|ajar|on|off)\b", r"\1"),
+    (r"\b(leave|leaving|left|keep|keeping|kept)((?: [a-z]+){1,3}) going\b", r"\1\2 running"),
+)
+
+
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
     for pattern, repl in _REPLACE:
@@ -90,6 +98,8 @@ def normalize(text: str) -> str:
     for pattern, repl in _CONTRACTIONS:
         text = re.sub(pattern, repl, text)
     text = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", text)   # counter-top, well-lit
+    for pattern, repl in _POSTURES:
+        text = re.sub(pattern, repl, text)
     text = re.sub(r"(?<=\d)(st|nd|rd|th)\b", "", text)   # 2nd -> 2
     text = re.sub(r"([.,;:!?])", r" \1 ", text)
     text = re.sub(r"[^a-z0-9.,;:!? ]+", " ", text)
