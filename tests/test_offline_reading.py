@@ -784,3 +784,10 @@ def test_come_home_to_states_and_a_prohibition_after_a_parenthesis() -> None:
     reading = read("There's a potato in the fridge. Take it out and heat it up in the microwave (leave the "
                    "microwave going), and don't leave the fridge door hanging open afterwards.", 28)
     assert goal(reading) >= {"hot(Potato)", "switched_on(Microwave)", "closed(Fridge)"}
+
+
+def test_a_chain_of_arrows_is_a_sequence_and_a_bare_place_takes_the_last_object() -> None:
+    reading = read("Tea time -> kettle out of the cupboard -> fill it with water at the sink -> onto a burner. "
+                   "Don't turn the heat on yet.", 15)
+    assert goal(reading) >= {"filled(Kettle, water)", "inside(Kettle, StoveBurner)"}
+    assert goal(read("Apple -> fridge, bread -> counter.", 5)) == {"inside(Apple, Fridge)", "inside(Bread, CounterTop)"}

@@ -360,6 +360,24 @@ def elided_state(clause: Clause, before: ParsedClause | None) -> list[Frame]:
     return []
 
 
+def elided_place(clause: Clause, before: ParsedClause | None) -> list[Frame]:
+    """"fill it with water at the sink, then onto a burner": a clause that is only a place
+    puts the objects of the clause before it there."""
+    items = [i for i in clause.items
+             if (i.punct is None and i.seq is None and i.text not in lexicon.FILLER_WORDS) or i.prep is not None]
+    if before is None or not before.frames or len(items) < 2 or items[0].prep not in ("onto", "into", "on", "in", "to") \
+            or not np_start(items[1]):
+        return []
+    dest, end = parse_np(items, 1)
+    if dest is None or dest.noun is None or end != len(items):
+        return []
+    targets = [t for f in before.frames for t in f.targets if t.head.noun is not None or t.head.pron]
+    if not targets:
+        return []
+    dest.role = "dest"
+    return [Frame(lexicon.Act.PLACE, "put", [Target(t.head, [dest], "in") for t in targets[-1:]], text=clause.text)]
+
+
 def gapped_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
     """"Put the apple in the fridge, then the tomato" (". Then the tomato."): a clause that
     is only objects, sequenced right after an act, has that act (gapping)."""

@@ -14,6 +14,7 @@ from emboteam.pfg.offline.clause_passes import (
     attach_means,
     drop_conditions,
     elided_participle,
+    elided_place,
     elided_state,
     fix_up_complaints,
     gapped_objects,
@@ -189,7 +190,8 @@ class OfflineFrontend:
             if small_talk(c):
                 parsed = replace(parsed, frames=[])
                 chat.add(k)
-            elif not parsed.frames and (elided := elided_participle(c, before) or elided_state(c, before)):
+            elif not parsed.frames and (elided := elided_participle(c, before) or elided_state(c, before)
+                                        or elided_place(c, before)):
                 parsed = replace(parsed, frames=elided)
             elif not parsed.frames and _unread(c, parsed) and not (
                     k > 0 and clauses[k - 1].extra.get("colon") and c.items and c.items[0].prep is not None):

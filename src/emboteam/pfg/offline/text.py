@@ -89,8 +89,22 @@ _POSTURES: tuple[tuple[str, str], ...] = (
 )
 
 
+_ARROW = r"\s*(?:->|=>|\u2192|\u27f6)\s*"
+
+
+def _arrows(text: str) -> str:
+    """An arrow between a thing and a place is "to" ("apple -> fridge"); a chain of arrows in
+    one sentence is a sequence of steps ("kettle out -> fill it -> onto a burner")."""
+    def chain(part: str) -> bool:
+        middle = re.split(_ARROW, part)[1:-1]
+        return any(not re.search(r"[,;]", m) and len(m.split()) >= 3 for m in middle)
+
+    return ".".join(re.sub(_ARROW, " , then ", part) if chain(part) else part for part in text.split("."))
+
+
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
+    text = _arrows(text)
     for pattern, repl in _REPLACE:
         text = re.sub(pattern, repl, text)
     text = split_camel(text)
