@@ -791,3 +791,16 @@ def test_a_chain_of_arrows_is_a_sequence_and_a_bare_place_takes_the_last_object(
                    "Don't turn the heat on yet.", 15)
     assert goal(reading) >= {"filled(Kettle, water)", "inside(Kettle, StoveBurner)"}
     assert goal(read("Apple -> fridge, bread -> counter.", 5)) == {"inside(Apple, Fridge)", "inside(Bread, CounterTop)"}
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("There are two cloths lying on the floor. Both of them belong in the laundry hamper; "
+     "put the lid back down on the hamper once they're in.", 317, {"inside(2 of Cloth, LaundryHamper)", "closed(LaundryHamper)"}),
+    ("salad prep: slice the lettuce and the tomato (both on the table), then one slice of each goes in the bowl", 23,
+     {"sliced(Lettuce)", "sliced(Tomato)", "inside(LettuceSliced, Bowl)", "inside(TomatoSliced, Bowl)"}),
+    ("Could you cook the potato? There's already a frying pan on the stove, so drop the potato in that pan "
+     "and fire up the burner under it.", 18, {"cooked(Potato)", "inside(Potato, Pan)", "switched_on(StoveKnob)"}),
+])
+def test_lids_slices_of_each_and_the_burner_under_it(text: str, fp: int, expected: set[str]) -> None:
+    reading = read(text, fp)
+    assert goal(reading) == expected and not reading.notes

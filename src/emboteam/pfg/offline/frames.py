@@ -459,12 +459,23 @@ def _with_phrase(s: _Tail, head: Head) -> None:
         s.j = skip_locative(items, s.j)
 
 
+#: acts that move nothing: a place after their object says which object
+_LOCATED_ACTS = frozenset({Act.SWITCH_ON, Act.SWITCH_OFF, Act.SWITCH, Act.OPEN, Act.CLOSE, Act.SLICE,
+                           Act.CLEAN, Act.BREAK})
+
+
 def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
     """Where the waiting objects go; right after a destination, a place that says where
     that destination is ("on a plate on the table", "in the cabinet under the sink"); a
     second place for the same objects makes the first where they were; with no object,
     the appliance is the means."""
     waiting = [t for t in s.pending if not t.dest]
+    if waiting and prep in ("under", "beneath", "below", "near") and s.frame.act in _LOCATED_ACTS:
+        # "fire up the burner under it": which burner, not where it goes
+        head.role = "place"
+        for t in waiting:
+            t.head.location.append((prep, head))
+        return
     stated = [k for k, t in enumerate(s.pending) if t.state is not None and not t.dest]
     if stated and stated[-1] < len(s.pending) - 1:
         # "get the bread sliced and the egg into the fridge": the place is the egg's only

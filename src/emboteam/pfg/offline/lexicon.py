@@ -122,7 +122,7 @@ VERBS: dict[str, VerbSense] = {
     **{w: _v(A.SWITCH) for w in ("turn", "switch", "flip", "flick", "power", "click")},
     **{w: _v(A.SWITCH_ON) for w in (
         "activate", "start", "run", "boot", "enable", "light", "ignite", "kindle",
-        "illuminate")},
+        "illuminate", "fire")},
     **{w: _v(A.SWITCH_OFF) for w in (
         "deactivate", "stop", "kill", "disable", "extinguish", "douse", "unplug", "blow",
         "snuff")},
@@ -700,6 +700,7 @@ def vocabulary() -> frozenset[str]:
     words |= set(LIQUIDS) | set(IRREGULAR_VERBS) | DETERMINERS | QUANTIFIERS | PRONOUNS
     words |= NEGATIONS | COPULAS | set(ORDINALS) | ROBOT_WORDS | COMMON_WORDS | CONTAINING
     words |= MEASURE_WORDS
+    words |= {verb for verb, _ in PARTICLE_VERBS}      # "fire (up)" is no typo of "file"
     return frozenset(words)
 
 

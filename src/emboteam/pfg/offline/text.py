@@ -23,6 +23,8 @@ _REPLACE: tuple[tuple[str, str], ...] = (
     (r"&", " and "),
     (r"\+", " and "),
     (r"(?<=[a-z])/(?=[a-z])", " or "),
+    # "(both on the table)": a parenthesis that says where things already are
+    (r"\(\s*(?:both|all|each|all three|they are|they're|it is|it's|which (?:is|are))\b[^)]*\)", " "),
     (r"\(|\)|\[|\]", " , "),
     (r"\.\.\.+", " . "),
 )
@@ -86,6 +88,11 @@ def split_camel(text: str) -> str:
 _POSTURES: tuple[tuple[str, str], ...] = (
     (r"\b(?:hanging|standing|sitting|lying|swinging) (open|ajar|on|off)\b", r"\1"),
     (r"\b(leave|leaving|left|keep|keeping|kept)((?: [a-z]+){1,3}) going\b", r"\1\2 running"),
+    # "put the lid back down on the hamper": close it (AI2-THOR has no lids apart)
+    (r"\b(?:put|pop|stick|drop|get) the lid (?:back )?(?:down )?(?:on|onto) ", "close "),
+    (r"\b(close|shut) the lid (?:of|on) ", r"\1 "),
+    # "one slice of each": one piece is "a" piece (the number would read "slice" as a verb)
+    (r"\bone (slice|piece|chunk|wedge|bit|half) of\b", r"a \1 of"),
 )
 
 
