@@ -804,3 +804,8 @@ def test_a_chain_of_arrows_is_a_sequence_and_a_bare_place_takes_the_last_object(
 def test_lids_slices_of_each_and_the_burner_under_it(text: str, fp: int, expected: set[str]) -> None:
     reading = read(text, fp)
     assert goal(reading) == expected and not reading.notes
+
+
+def test_open_after_a_determiner_is_an_adjective() -> None:
+    assert goal(read("Put the watch in the open box on the floor.", 210)) == {"inside(Watch, Box)"}
+    assert goal(read("Open the box.", 210)) == {"open(Box)"}

@@ -367,7 +367,9 @@ def _pronoun(s: _NP) -> str | None:
 def _state_adjective(s: _NP) -> str | None:
     """"the dirty mug", "sliced bread" (pieces), "toasted bread" (cooked pieces)."""
     it, nxt, h = s.it, s.nxt, s.h
-    if not (it.state is not None and it.text not in ("on", "off", "in", "open") and h.noun is None
+    after_det = s.j > 0 and s.items[s.j - 1].det     # "the open box": an adjective, not the verb
+    if not (it.state is not None and (it.text not in ("on", "off", "in", "open") or (it.text == "open" and after_det))
+            and h.noun is None
             and nxt is not None and (nxt.noun is not None or is_piece_word(nxt)
                                      or nxt.state is not None)):
         return None
