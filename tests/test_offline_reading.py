@@ -809,3 +809,10 @@ def test_lids_slices_of_each_and_the_burner_under_it(text: str, fp: int, expecte
 def test_open_after_a_determiner_is_an_adjective() -> None:
     assert goal(read("Put the watch in the open box on the floor.", 210)) == {"inside(Watch, Box)"}
     assert goal(read("Open the box.", 210)) == {"open(Box)"}
+
+
+def test_a_broken_off_word_is_corrected_and_the_speakers_own_plan_is_no_request() -> None:
+    reading = read("Frying pan is in one of the cupboards. Get it out, set it on the cooker, and crack- well, "
+                   "just put the egg from the sink into it. I'll do the rest myself.", 27)
+    assert goal(reading) == {"inside(Pan, StoveBurner)", "inside(Egg, Pan)"} and not reading.notes
+    assert goal(read("I'll need the apple in the fridge.", 27)) == {"inside(Apple, Fridge)"}

@@ -151,6 +151,18 @@ _MADE_STATES = frozenset({lexicon.Stat.SLICED, lexicon.Stat.COOKED, lexicon.Stat
                           lexicon.Stat.HOT, lexicon.Stat.COLD, lexicon.Stat.FILLED})
 
 
+def own_future(clause: Clause) -> bool:
+    """Does the clause say what the speaker will do ("I'll do the rest myself"), not what
+    they will want ("I'll need the apple in the fridge")?"""
+    words = [i for i in clause.items if i.punct is None]
+    if len(words) < 3 or words[0].text not in ("i", "we") or words[1].text not in ("will", "shall"):
+        return False
+    verb = words[2].verb
+    if verb is not None:
+        return verb.lemma not in ("want", "need", "like", "love", "prefer")
+    return words[2].copula
+
+
 def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"If the fridge is open, close it": a state under "if" is the condition of an act
     of its sentence, not a goal (its objects stay for the pronouns). Without such an act
@@ -159,6 +171,11 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
     the clauses that were read this way (no note for them)."""
     silent: set[int] = set()
     for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
+        if own_future(c):
+            # "I'll do the rest myself", "I'll be back at seven": the speaker's doing
+            parsed[k] = replace(p, frames=[])
+            silent.add(k)
+            continue
         if c.link in ("after", "before", "while") and p.frames and is_statement(c.items) \
                 and all(not f.verb and f.targets and all(t.head.pron is not None for t in f.targets)
                         and (f.state is None or f.state[0] not in _MADE_STATES) for f in p.frames):

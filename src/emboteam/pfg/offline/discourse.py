@@ -178,8 +178,10 @@ class Discourse:
         described = self._described_place(need)
         if described is not None:
             return described
+        sources = {id(land) for x in self.history for prep, land in x.head.location if prep == "from"}
         recent = next((m for m in reversed(self.history) if m.head.noun is not None and m.head.pron is None
                        and m.head.noun.concept.kind not in ("room", "anything")
+                       and id(m.head) not in sources      # "the egg from the sink into it"
                        and self.fits(m.ref, need)), None)
         if recent is not None and recent.role == "dest":
             return self._moved_receptacle(recent, need)
@@ -193,8 +195,7 @@ class Discourse:
             return None
         k = self.history.index(dest)
         moved = next((m for m in reversed(self.history[:k]) if m.role == "object"), None)
-        if moved is None or moved.clause != dest.clause or moved.head.pron is not None \
-                or not self.fits(moved.ref, need):
+        if moved is None or moved.clause != dest.clause or not self.fits(moved.ref, need):
             return None
         return moved.ref
 

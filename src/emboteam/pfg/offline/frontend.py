@@ -20,6 +20,7 @@ from emboteam.pfg.offline.clause_passes import (
     gapped_objects,
     known_objects,
     labelled_lists,
+    own_future,
     pointing_question,
     purpose_acts,
     repeat_for_also,
@@ -193,7 +194,7 @@ class OfflineFrontend:
             elif not parsed.frames and (elided := elided_participle(c, before) or elided_state(c, before)
                                         or elided_place(c, before)):
                 parsed = replace(parsed, frames=elided)
-            elif not parsed.frames and _unread(c, parsed) and not (
+            elif not parsed.frames and _unread(c, parsed) and not own_future(c) and not (
                     k > 0 and clauses[k - 1].extra.get("colon") and c.items and c.items[0].prep is not None):
                 # (a place after a label's colon is the label's: clause_passes.labelled_lists)
                 # "I reckon you should chuck the egg in the bin", "swap the TV off": read

@@ -109,9 +109,14 @@ def _arrows(text: str) -> str:
     return ".".join(re.sub(_ARROW, " , then ", part) if chain(part) else part for part in text.split("."))
 
 
+#: a word broken off by a dash and a hedge ("crack- well, just put the egg in"): a
+#: self-correction, read as "I mean" (offline/corrections.py)
+_BROKEN_OFF = re.compile(r"\b([A-Za-z]+)-\s+(?:well|actually|er|erm|um|hmm),?\s+(?:just\s+)?")
+
+
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
-    text = _arrows(text)
+    text = _BROKEN_OFF.sub(r"\1 , i mean , ", _arrows(text))
     for pattern, repl in _REPLACE:
         text = re.sub(pattern, repl, text)
     text = split_camel(text)
