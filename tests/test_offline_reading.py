@@ -816,3 +816,9 @@ def test_a_broken_off_word_is_corrected_and_the_speakers_own_plan_is_no_request(
                    "just put the egg from the sink into it. I'll do the rest myself.", 27)
     assert goal(reading) == {"inside(Pan, StoveBurner)", "inside(Egg, Pan)"} and not reading.notes
     assert goal(read("I'll need the apple in the fridge.", 27)) == {"inside(Apple, Fridge)"}
+
+
+def test_a_wish_for_objects_brought_somewhere_after_so_is_one_clause() -> None:
+    reading = read("I'm working from the desk today, so I'd like my phone and the book from the coffee table "
+                   "brought over to the desk. Not the keys, those can stay put. And the floor lamp can go off.", 229)
+    assert goal(reading) == {"inside(CellPhone, Desk)", "inside(Book, Desk)", "switched_off(FloorLamp)"}

@@ -155,6 +155,9 @@ def team_subject(items: list[Item], j: int) -> int:
     return j
 
 
+#: "I'd like my phone brought over": the verb after the object is the wished state
+_WISH_VERBS = frozenset({"want", "like", "need", "love", "prefer"})
+
 #: nouns that name a team member
 _ROBOT_HEADS = frozenset({"robot", "robots", "bot", "bots"})
 
@@ -345,6 +348,7 @@ def segment(items: list[Item]) -> list[Clause]:
                             for k, x in enumerate(current.items[1:], 1)) \
                     and it.verb is not None and verb_here(sentence, j) \
                     and current.items[-1].text not in ("have", "has", "had", "ve", "to") \
+                    and not any(x.verb is not None and x.verb.lemma in _WISH_VERBS for x in current.items) \
                     and (it.noun is None or current.items[-1].pron is not None):
                 # "before you go put the apple in the fridge", "while you're at it switch
                 # the TV off": a person's act, then the request
