@@ -124,7 +124,7 @@ class PlannerConfig:
     #: plan a second time with the clusters re-allocated from their measured seconds when
     #: that promises a shorter busiest robot (:mod:`emboteam.hp.rebalance`): "off", "lpt"
     #: (greedy, longest first) or "cp-sat" (OR-Tools, LPT as hint and fallback)
-    rebalance: TypingLiteral["off", "lpt", "cp-sat"] = "off"
+    rebalance: TypingLiteral["off", "lpt", "cp-sat"] = "cp-sat"
     #: with ``action_costs``: a plan of at least this cost (half seconds) gets a second,
     #: cost-bounded search (``pddl/runner.py``: REFINE_SEARCH); None: never
     refine_cost: int | None = None
@@ -150,6 +150,10 @@ class _Record:
     cluster: dict[str, str] = field(default_factory=dict)
     assigned: dict[str, tuple[str, ...]] = field(default_factory=dict)
     candidates: dict[str, tuple[str, ...]] = field(default_factory=dict)
+
+
+#: at most this many re-allocation passes (each a whole planning pass, kept when shorter)
+REBALANCE_PASSES = 2
 
 
 class _Fallback(Exception):
@@ -348,21 +352,23 @@ class HybridPlanner:
         the plan with the shorter makespan."""
         if self.config.rebalance == "off" or not self.config.validate:
             return plan
-        jobs = measured_jobs(plan, record.cluster, record.assigned, record.candidates)
-        work = work_of(plan)
-        prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance)
-        if prefer is None:
-            return plan
-        again: list[str] = []
-        try:
-            other = self._decomposed(spec, start, team, again, prefer=prefer)
-        except (_Fallback, PlanningError):
-            return plan
-        if other.makespan >= plan.makespan:
-            return plan
-        notes[:] = [*again, f"re-allocated from the measured plans: makespan {plan.makespan:.1f} -> "
-                    f"{other.makespan:.1f} s"]
-        return other
+        for _ in range(REBALANCE_PASSES):
+            jobs = measured_jobs(plan, record.cluster, record.assigned, record.candidates)
+            work = work_of(plan)
+            prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance)
+            if prefer is None:
+                return plan
+            again: list[str] = []
+            try:
+                other = self._decomposed(spec, start, team, again, prefer=prefer, record=(mine := _Record()))
+            except (_Fallback, PlanningError):
+                return plan
+            if other.makespan >= plan.makespan:
+                return plan
+            notes[:] = [*again, f"re-allocated from the measured plans: makespan {plan.makespan:.1f} -> "
+                        f"{other.makespan:.1f} s"]
+            plan, record = other, mine
+        return plan
 
     def _merge_causal(self, accepted: Sequence[GroundedStep], spec: TaskSpec, unit_of: Mapping[str, str],
                       team: Sequence[str], start: WorldState, notes: list[str]) -> MergedPlan:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from emboteam.hp.plan import MergedPlan
 
 #: re-plan only when the re-allocation promises the busiest robot this much less work
-GAIN = 0.9
+GAIN = 0.95
 #: fewer clusters a robot could swap than this: no second pass (a task of two or three
 #: conditions, as most of MACE-THOR's, rarely gains and would pay a second planning pass)
 MIN_JOBS = 4
