@@ -6,7 +6,7 @@ import random
 
 from emboteam.hp.goalgen import random_conditions
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
-from emboteam.hp.rebalance import Job, cp_sat, lpt, rebalance
+from emboteam.hp.rebalance import MAX_MOVES, Job, best_move, cp_sat, loads, lpt, rebalance
 from emboteam.hp.validate import simulate
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.goals import Goal
@@ -29,35 +29,37 @@ def test_cp_sat_beats_greedy_where_greedy_falls_short_and_is_deterministic() -> 
     answers = [cp_sat(jobs, TEAM, greedy) for _ in range(3)]
     assert all(a is not None and a[1] == 6 for a in answers)
     assert answers[0] == answers[1] == answers[2]  # one worker, fixed seed, deterministic limit
-    chosen = rebalance(jobs, TEAM, busiest=7.5)
-    assert chosen is not None
-    load = {r: sum(j.seconds for j in jobs if chosen[j.id] == r) for r in TEAM}
-    assert max(load.values()) == 6
+    # everything on robot1 (12 s): one move leaves 9 | 3, two moves 6 | 6
+    one, after_one = best_move(jobs, TEAM)
+    assert after_one == 9 and sum(r != "robot1" for r in one.values()) == 1
+    chosen = rebalance(jobs, TEAM, busiest=12.0)
+    assert chosen is not None and sum(r != "robot1" for r in chosen.values()) == 2
+    assert max(loads(jobs, TEAM, chosen).values()) == 6
+    assert rebalance(jobs, TEAM, busiest=12.0) == chosen
 
 
-def test_rebalancing_is_never_worse_than_greedy_and_respects_who_can() -> None:
+def test_rebalancing_is_never_worse_than_the_greedy_move_and_respects_who_can() -> None:
     rng = random.Random(3)
     team = ("a", "b", "c")
-    for _ in range(20):
-        jobs = [Job(f"j{i}", ("a",), rng.randint(1, 30), tuple(sorted(rng.sample(team, rng.randint(1, 3)))))
+    for _ in range(30):
+        jobs = [Job(f"j{i}", (rng.choice(team),), rng.randint(1, 30), ())
                 for i in range(rng.randint(4, 9))]
-        # a team job keeps its robots
-        jobs.append(Job("team", ("a", "b"), 10.0, ()))
-        _, greedy = lpt(jobs, team)
+        # who may take each: its own robot and maybe others
+        jobs = [Job(j.id, j.robots, j.seconds, tuple(sorted({j.robots[0], *rng.sample(team, rng.randint(0, 2))})))
+                for j in jobs]
+        jobs.append(Job("team", ("a", "b"), 10.0, ()))  # a team job stays with its robots
+        _, greedy = best_move(jobs, team)
         chosen = rebalance(jobs, team, busiest=1e9)
         assert chosen is not None and "team" not in chosen
         assert all(chosen[j.id] in j.candidates for j in jobs if j.candidates)
-        load = {r: 0.0 for r in team}
-        load["a"] += 5.0
-        load["b"] += 5.0
-        for j in jobs:
-            if j.candidates:
-                load[chosen[j.id]] += j.seconds
-        assert max(load.values()) <= greedy + 1e-9
+        assert sum(chosen[j.id] != j.robots[0] for j in jobs if j.candidates) <= MAX_MOVES
+        assert max(loads(jobs, team, chosen).values()) <= greedy + 1e-9
 
 
 def test_no_second_pass_for_small_gains_or_few_clusters() -> None:
-    assert rebalance(_jobs(5, 5, 5, 5), TEAM, busiest=10.0) is None  # already balanced
+    balanced = [Job("a", ("robot1",), 5, TEAM), Job("b", ("robot1",), 5, TEAM),
+                Job("c", ("robot2",), 5, TEAM), Job("d", ("robot2",), 5, TEAM)]
+    assert rebalance(balanced, TEAM, busiest=10.0) is None  # already balanced
     assert rebalance(_jobs(9, 1), TEAM, busiest=10.0) is None  # two clusters: not worth a pass
 
 

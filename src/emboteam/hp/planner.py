@@ -123,7 +123,9 @@ class PlannerConfig:
     action_costs: bool = False
     #: plan a second time with the clusters re-allocated from their measured seconds when
     #: that promises a shorter busiest robot (:mod:`emboteam.hp.rebalance`): "off", "lpt"
-    #: (greedy, longest first) or "cp-sat" (OR-Tools, LPT as hint and fallback)
+    #: (all clusters again, longest first) or "cp-sat" (at most two clusters move, chosen
+    #: by OR-Tools CP-SAT with the greedy best move as hint and fallback; repeated while
+    #: the plans get shorter)
     rebalance: TypingLiteral["off", "lpt", "cp-sat"] = "cp-sat"
     #: with ``action_costs``: a plan of at least this cost (half seconds) gets a second,
     #: cost-bounded search (``pddl/runner.py``: REFINE_SEARCH); None: never
@@ -152,8 +154,9 @@ class _Record:
     candidates: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
 
-#: at most this many re-allocation passes (each a whole planning pass, kept when shorter)
-REBALANCE_PASSES = 2
+#: at most this many re-allocation passes (each a whole planning pass, kept when shorter;
+#: the robots whose clusters stay get their plans from the cache)
+REBALANCE_PASSES = 4
 
 
 class _Fallback(Exception):

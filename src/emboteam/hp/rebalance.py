@@ -1,10 +1,22 @@
 """Re-allocation from measured plans: the allocator balances *estimates* (navigation along
 a subtask's objects plus its manipulation), and plans differ from them by tens of seconds
 (a drawer to open first, a knife to fetch, a detour lama-first takes). Once a plan is made
-and simulated, every cluster's seconds are known; :func:`rebalance` assigns the clusters
-again, longest first to the robot with the least measured work (LPT), and the planner
-plans once more with that assignment when it promises a busiest robot at least
-``GAIN`` shorter. The better plan (makespan in the simulator) is kept.
+and simulated, every cluster's seconds are known, and :func:`rebalance` proposes another
+assignment; the planner plans once more with it when it promises a busiest robot at least
+``1 - GAIN`` shorter, and keeps the plan with the shorter makespan in the simulator.
+
+Two ways (``PlannerConfig.rebalance``):
+
+- ``"cp-sat"`` (default): move at most ``MAX_MOVES`` clusters, as few as the best balance
+  needs, chosen by OR-Tools CP-SAT (the best single move, found greedily, is its hint and
+  its fallback, so it is never worse than greedy); the planner repeats this up to
+  ``REBALANCE_PASSES`` times while the plans get shorter. Few moves keep the other
+  robots' plans (and their cache entries): measured seconds transfer to another robot only
+  roughly (a cluster's first drive depends on where its robot comes from, and a robot's
+  order of clusters changes), and a whole new assignment from them was longer than the
+  first plan more often than not (docs/planning.md, "Makespan against the resource-aware
+  bound").
+- ``"lpt"``: every cluster again, longest first to the least loaded robot.
 """
 
 from __future__ import annotations
@@ -14,23 +26,26 @@ from dataclasses import dataclass
 
 from emboteam.hp.plan import MergedPlan
 
-#: re-plan only when the re-allocation promises the busiest robot this much less work
+#: re-plan only when the proposal promises the busiest robot at most this share of its work
 GAIN = 0.95
 #: fewer clusters a robot could swap than this: no second pass (a task of two or three
 #: conditions, as most of MACE-THOR's, rarely gains and would pay a second planning pass)
 MIN_JOBS = 4
+#: clusters one pass may move to another robot ("cp-sat")
+MAX_MOVES = 2
 #: CP-SAT's deterministic time limit (about seconds of one core)
 CP_SAT_BUDGET = 0.05
 
 
 @dataclass(frozen=True)
 class Job:
-    """One allocated cluster: its measured seconds and the robots that may take it."""
+    """One allocated cluster: its measured seconds, the robots that did it (the first is
+    the one it moves from) and the robots that may take it."""
 
     id: str
     robots: tuple[str, ...]
     seconds: float
-    #: robots able to do it alone (empty: a team; it keeps ``robots``)
+    #: robots able to do it alone (empty: a team, or named by the front end; it stays)
     candidates: tuple[str, ...]
 
 
@@ -58,6 +73,38 @@ def work_of(plan: MergedPlan) -> dict[str, float]:
     return out
 
 
+def loads(jobs: Sequence[Job], team: Sequence[str], assignment: Mapping[str, str]) -> dict[str, float]:
+    """Seconds per robot when the movable jobs go where ``assignment`` says (the others,
+    and movable jobs it does not name, stay with their robots)."""
+    out = {r: 0.0 for r in team}
+    for j in jobs:
+        where = (assignment[j.id],) if j.candidates and j.id in assignment else j.robots
+        for r in where:
+            out[r] = out.get(r, 0.0) + j.seconds / max(len(where), 1)
+    return out
+
+
+def best_move(jobs: Sequence[Job], team: Sequence[str]) -> tuple[dict[str, str], float]:
+    """The greedy proposal: the one move of a cluster off the busiest robot that leaves
+    the busiest robot least work (none if no move helps). Returns the assignment of the
+    movable jobs and the busiest robot's work under it."""
+    current = {j.id: j.robots[0] for j in jobs if j.candidates}
+    load = loads(jobs, team, current)
+    best, best_max = dict(current), max(load.values(), default=0.0)
+    top = max(load, key=lambda r: (load[r], r), default=None)
+    for j in sorted(jobs, key=lambda j: j.id):
+        if not j.candidates or current[j.id] != top:
+            continue
+        for r in j.candidates:
+            if r == top:
+                continue
+            trial = {**current, j.id: r}
+            m = max(loads(jobs, team, trial).values())
+            if m < best_max - 1e-9:
+                best, best_max = trial, m
+    return best, best_max
+
+
 def lpt(jobs: Sequence[Job], team: Sequence[str]) -> tuple[dict[str, str], float]:
     """Longest job first to the least loaded candidate (ties: team order). Jobs without
     candidates (teams) keep their robots. Returns the assignment of the single-robot jobs
@@ -77,12 +124,13 @@ def lpt(jobs: Sequence[Job], team: Sequence[str]) -> tuple[dict[str, str], float
 
 
 def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
-           deterministic_seconds: float = CP_SAT_BUDGET) -> tuple[dict[str, str], float] | None:
-    """The assignment minimising the busiest robot's work (jobs without candidates keep
-    their robots), by OR-Tools CP-SAT: one worker, a fixed seed and a *deterministic* time
-    limit, so the answer does not depend on the machine's load; ``hint`` (the LPT
-    assignment) is its starting solution. None when it proves nothing (no solution in the
-    limit, or OR-Tools missing)."""
+           deterministic_seconds: float = CP_SAT_BUDGET, max_moves: int | None = None
+           ) -> tuple[dict[str, str], float] | None:
+    """The assignment minimising the busiest robot's work (jobs without candidates stay), by OR-Tools CP-SAT: one worker, a fixed seed and a *deterministic* time
+    limit, so the answer does not depend on the machine's load; ``hint`` is its starting
+    solution. ``max_moves``: at most that many jobs leave their first robot, and among the
+    best balances the one with the fewest moves. None when it finds nothing (no solution
+    in the limit, or OR-Tools missing)."""
     try:
         from ortools.sat.python import cp_model
     except ImportError:  # pragma: no cover - ortools is a dependency
@@ -106,7 +154,14 @@ def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
     for r in sorted(fixed):
         model.add(busiest >= fixed[r] + sum(round(scale * j.seconds) * x[(j.id, r)]
                                             for j in movable if (j.id, r) in x))
-    model.minimize(busiest)
+    if max_moves is None:
+        model.minimize(busiest)
+    else:
+        # at most max_moves clusters leave their robot, as few as the best balance needs
+        stay = [x[(j.id, j.robots[0])] for j in movable if (j.id, j.robots[0]) in x]
+        moved = len(movable) - sum(stay)
+        model.add(moved <= max_moves)
+        model.minimize(busiest * (len(movable) + 1) + moved)
     solver = cp_model.CpSolver()
     solver.parameters.num_workers = 1
     solver.parameters.random_seed = 0
@@ -120,23 +175,20 @@ def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
 
 def rebalance(jobs: Sequence[Job], team: Sequence[str], busiest: float,
               solver: str = "cp-sat") -> dict[str, str] | None:
-    """A new robot for each single-robot cluster when that promises a busiest robot of at
-    most ``GAIN`` x ``busiest`` seconds (else None: not worth another planning pass).
-    ``solver``: "lpt" (greedy) or "cp-sat" (:func:`cp_sat`, LPT as its hint; taken only
-    where it beats LPT, so never worse than greedy)."""
+    """A robot for each movable cluster when that promises a busiest robot of at most
+    ``GAIN`` x ``busiest`` seconds (else None: not worth another planning pass).
+    ``solver``: "cp-sat" (at most ``MAX_MOVES`` moves, :func:`cp_sat`, with
+    :func:`best_move` as hint and fallback: never worse than the greedy move) or "lpt"
+    (:func:`lpt`, everything again)."""
     if len([j for j in jobs if j.candidates]) < MIN_JOBS:
         return None
-    assignment, best = lpt(jobs, team)
-    if solver == "cp-sat" and best > lower_bound(jobs, team) + 1e-9:
-        exact = cp_sat(jobs, team, assignment)
+    if solver == "lpt":
+        assignment, best = lpt(jobs, team)
+    else:
+        assignment, best = best_move(jobs, team)
+        exact = cp_sat(jobs, team, assignment, max_moves=MAX_MOVES)
         if exact is not None and exact[1] < best - 1e-9:
             assignment, best = exact
     if best > GAIN * busiest:
         return None
     return assignment
-
-
-def lower_bound(jobs: Sequence[Job], team: Sequence[str]) -> float:
-    """max(total work / robots, longest job): LPT at this bound is optimal already."""
-    total = sum(j.seconds for j in jobs)
-    return max(total / max(len(team), 1), max((j.seconds for j in jobs), default=0.0))
