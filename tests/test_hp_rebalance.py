@@ -50,13 +50,22 @@ def test_rebalancing_is_never_worse_than_the_greedy_move_and_respects_who_can() 
         jobs.append(Job("team", ("a", "b"), 10.0, ()))  # a team job stays with its robots
         _, greedy = best_move(jobs, team)
         chosen = rebalance(jobs, team, busiest=1e9)
-        assert chosen is not None and "team" not in chosen
+        now = loads(jobs, team, {})
+        top = max(now, key=lambda r: (now[r], r))
+        if chosen is None:  # only when the robot that ends last does a single cluster
+            assert sum(1 for j in jobs if j.candidates and j.robots[0] == top) < 2
+            continue
+        assert "team" not in chosen
         assert all(chosen[j.id] in j.candidates for j in jobs if j.candidates)
         assert sum(chosen[j.id] != j.robots[0] for j in jobs if j.candidates) <= MAX_MOVES
         assert max(loads(jobs, team, chosen).values()) <= greedy + 1e-9
 
 
 def test_no_second_pass_for_small_gains_or_few_clusters() -> None:
+    # the robot that ends last does one cluster: moving it moves its waits too
+    lone = [Job("a", ("robot1",), 20, TEAM), Job("b", ("robot2",), 2, TEAM),
+            Job("c", ("robot2",), 2, TEAM), Job("d", ("robot2",), 2, TEAM)]
+    assert rebalance(lone, TEAM, busiest=30.0) is None
     balanced = [Job("a", ("robot1",), 5, TEAM), Job("b", ("robot1",), 5, TEAM),
                 Job("c", ("robot2",), 5, TEAM), Job("d", ("robot2",), 5, TEAM)]
     assert rebalance(balanced, TEAM, busiest=10.0) is None  # already balanced
@@ -73,9 +82,9 @@ def _cell(robots: int, conditions: int) -> tuple[TaskSpec, WorldState]:
 
 
 def test_the_rebalanced_plan_is_valid_deterministic_and_not_longer() -> None:
-    # FloorPlan1, 4 robots x 24 random conditions: the estimates put 60 s on one robot; the
-    # clusters' measured seconds re-allocated, the second pass is about 43 s
-    spec, state = _cell(4, 24)
+    # FloorPlan1, 4 robots x 16 random conditions: 28.3 s as allocated from the estimates;
+    # moving clusters by their measured seconds, two more passes make it 26.5, then 23.5 s
+    spec, state = _cell(4, 16)
     off = HybridPlanner(PlannerConfig(rebalance="off")).plan(spec, state)
     on = [HybridPlanner(PlannerConfig(rebalance="cp-sat")).plan(spec, state) for _ in range(2)]
     assert on[0].makespan == on[1].makespan and [s.id for s in on[0].steps] == [s.id for s in on[1].steps]

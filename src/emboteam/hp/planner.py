@@ -52,7 +52,7 @@ from emboteam.hp.merge import (
     order,
 )
 from emboteam.hp.plan import MergedPlan
-from emboteam.hp.rebalance import measured_jobs, rebalance, work_of
+from emboteam.hp.rebalance import Job, finish_of, measured_jobs, rebalance, work_of
 from emboteam.hp.requirements import Need, check_team, covers, need_of
 from emboteam.hp.rounds import (
     Attempt,
@@ -157,6 +157,9 @@ class _Record:
 #: at most this many re-allocation passes (each a whole planning pass, kept when shorter;
 #: the robots whose clusters stay get their plans from the cache)
 REBALANCE_PASSES = 4
+#: no further pass once the passes have made this many Fast Downward calls (a pass of the
+#: 32-robot x 96-condition cell costs 10-20; the robots that keep their clusters hit the cache)
+REBALANCE_CALLS = 16
 
 
 class _Fallback(Exception):
@@ -351,14 +354,24 @@ class HybridPlanner:
     def _rebalanced(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str],
                     notes: list[str], record: _Record) -> MergedPlan:
         """Plan again with the clusters re-allocated from their measured seconds
-        (:mod:`emboteam.hp.rebalance`) when that promises a shorter busiest robot; keep
-        the plan with the shorter makespan."""
+        (:mod:`emboteam.hp.rebalance`) when that promises the robot that ends last an
+        earlier end; keep the plan with the shorter makespan, and try again from it (at
+        most ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
         if self.config.rebalance == "off" or not self.config.validate:
             return plan
+        calls0 = self.fd.calls
         for _ in range(REBALANCE_PASSES):
+            if self.fd.calls - calls0 >= REBALANCE_CALLS:
+                return plan  # the passes so far cost enough Fast Downward calls
             jobs = measured_jobs(plan, record.cluster, record.assigned, record.candidates)
+            # a robot's time is its work and its waits (for a spot, a tool, another robot):
+            # the waits stay with it as a job that does not move, so the robot that ends
+            # last is the one to relieve
+            ends = finish_of(plan, team)
             work = work_of(plan)
-            prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance)
+            jobs += [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
+                     if ends[r] - work.get(r, 0.0) > 1e-9]
+            prefer = rebalance(jobs, team, max(ends.values(), default=0.0), self.config.rebalance)
             if prefer is None:
                 return plan
             again: list[str] = []

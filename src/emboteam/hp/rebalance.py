@@ -73,6 +73,14 @@ def work_of(plan: MergedPlan) -> dict[str, float]:
     return out
 
 
+def finish_of(plan: MergedPlan, team: Sequence[str]) -> dict[str, float]:
+    """When each robot ends its last step (work and waits)."""
+    out = {r: 0.0 for r in team}
+    for s in plan.steps:
+        out[s.robot] = max(out.get(s.robot, 0.0), s.est_end)
+    return out
+
+
 def loads(jobs: Sequence[Job], team: Sequence[str], assignment: Mapping[str, str]) -> dict[str, float]:
     """Seconds per robot when the movable jobs go where ``assignment`` says (the others,
     and movable jobs it does not name, stay with their robots)."""
@@ -181,6 +189,13 @@ def rebalance(jobs: Sequence[Job], team: Sequence[str], busiest: float,
     :func:`best_move` as hint and fallback: never worse than the greedy move) or "lpt"
     (:func:`lpt`, everything again)."""
     if len([j for j in jobs if j.candidates]) < MIN_JOBS:
+        return None
+    current = {j.id: j.robots[0] for j in jobs if j.candidates}
+    now = loads(jobs, team, current)
+    top = max(now, key=lambda r: (now[r], r), default=None)
+    if sum(1 for r in current.values() if r == top) < 2:
+        # the robot that ends last does one cluster: moved elsewhere, that cluster meets the
+        # same spots and tools, and its waits go with it
         return None
     if solver == "lpt":
         assignment, best = lpt(jobs, team)
