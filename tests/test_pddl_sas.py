@@ -233,3 +233,49 @@ def test_the_sas_task_does_not_depend_on_the_hash_seed() -> None:
                              check=True)
         digests.add(out.stdout.strip())
     assert len(digests) == 1
+
+
+def test_action_costs_are_durations_in_half_seconds() -> None:
+    from emboteam.pddl.sas import operator_cost, plan_cost
+
+    state = WorldState.from_scene(load_scene("FloorPlan1"), parse_team("1"))
+    problem = build_problem(state, Goal.parse("inside(Apple, Fridge)").conditions, ["robot1"])
+    plain, costed = emit(problem), emit(problem, costs=True)
+    assert "begin_metric\n0\nend_metric" in plain.text and "begin_metric\n1\nend_metric" in costed.text
+    # the same task otherwise: only the metric and the operators' last lines differ
+    assert plain.operators == costed.operators and plain.variables == costed.variables
+    assert "begin_operator\nput robot1 apple_1 fridge_1" in costed.text
+    assert operator_cost("put robot1 apple_1 fridge_1") == 2  # 1 s
+    assert operator_cost("open robot1 fridge_1") == 3  # 1.5 s
+    assert operator_cost("goto robot1 apple_1") == 6  # GOTO_SECONDS = 3 s
+    assert plan_cost(("(goto robot1 apple_1)", "(pickup robot1 apple_1)")) == 8
+
+
+#: cost-aware searches: the second (bounded) search runs on every plan here (refine_cost=0)
+COST_AWARE = [c for c in ALL if c.scene in ("FloorPlan1", "FloorPlan15", "FloorPlan201")][:12]
+
+
+@pytest.mark.parametrize("alias", ["lama-wastar5", "lama-first"])
+def test_cost_aware_plans_run_in_the_simulator(alias: str) -> None:
+    """With action costs, the weighted A* configuration and the cost-bounded second search
+    (REFINE_SEARCH) give plans that run in the simulator and reach the goal, and the
+    second search never returns a dearer plan than the first."""
+    from emboteam.pddl.sas import plan_cost
+
+    first = FastDownward(alias, time_limit=60, action_costs=True)
+    refined = FastDownward(alias, time_limit=60, action_costs=True, refine_cost=0)
+    for case in COST_AWARE:
+        state = WorldState.from_scene(load_scene(case.scene), parse_team(case.team))
+        apply_changes(state, case.setup)
+        try:
+            problem = build_problem(state, Goal.parse(case.goal).conditions, list(state.robots), name="costs")
+        except EmboTeamError:
+            continue
+        a, b = first.solve_problem(problem), refined.solve_problem(problem)
+        assert a.solved == b.solved, case.id
+        if not a.solved:
+            continue
+        assert plan_cost(b.plan) <= plan_cost(a.plan), case.id
+        for out in (a, b):
+            why = _runs(case, problem, out.plan)
+            assert why is None, f"{alias} plan for {case.id} fails: {why}"

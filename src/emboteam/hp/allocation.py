@@ -58,8 +58,11 @@ def _team_for(needs: Sequence[Need], state: WorldState, team: Sequence[str],
 
 
 def allocate(subtasks: Sequence[Subtask], needs: Mapping[str, Sequence[Need]], state: WorldState,
-             team: Sequence[str], load: dict[str, float]) -> list[Assignment]:
-    """Assign robots to ``subtasks`` (updating ``load``, seconds of work per robot)."""
+             team: Sequence[str], load: dict[str, float],
+             prefer: Mapping[str, str] | None = None) -> list[Assignment]:
+    """Assign robots to ``subtasks`` (updating ``load``, seconds of work per robot).
+    ``prefer`` names a robot for some subtasks (a re-allocation from measured plans,
+    :mod:`emboteam.hp.rebalance`): it is taken when it can do the subtask alone."""
     profiles = {r: state.robots[r].profile for r in team}
     work = {t.id: max((estimate(state, r, needs[t.id]) for r in team), default=0.0) for t in subtasks}
     fixed = [t for t in subtasks if t.robot in profiles]
@@ -72,7 +75,9 @@ def allocate(subtasks: Sequence[Subtask], needs: Mapping[str, Sequence[Need]], s
             note = "as specified"
         else:
             solo = [r for r in team if all(covers([profiles[r]], n) for n in ns)]
-            if solo:
+            if prefer and prefer.get(t.id) in solo:
+                robots = (prefer[t.id],)
+            elif solo:
                 robots = (min(solo, key=lambda r: (load.get(r, 0.0) + estimate(state, r, ns), r)),)
             else:
                 robots = _team_for(ns, state, team, load)

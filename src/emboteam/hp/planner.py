@@ -34,7 +34,7 @@ from __future__ import annotations
 import itertools
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal as TypingLiteral
 
 from emboteam.hp.allocation import allocate
@@ -52,7 +52,8 @@ from emboteam.hp.merge import (
     order,
 )
 from emboteam.hp.plan import MergedPlan
-from emboteam.hp.requirements import Need, check_team, need_of
+from emboteam.hp.rebalance import Job, finish_of, measured_jobs, rebalance, work_of
+from emboteam.hp.requirements import Need, check_team, covers, need_of
 from emboteam.hp.rounds import (
     Attempt,
     Unit,
@@ -117,6 +118,18 @@ class PlannerConfig:
     #: what Fast Downward reads: "sas" (our own grounding, the search binary alone) or
     #: "pddl" (the driver: translator, then search); see pddl/runner.py
     planner_input: TypingLiteral["sas", "pddl"] = "sas"
+    #: SAS input: operators cost their durations in seconds (a configuration that reads
+    #: costs then minimises seconds, not actions; lama-first counts every action as 1)
+    action_costs: bool = False
+    #: plan a second time with the clusters re-allocated from their measured seconds when
+    #: that promises a shorter busiest robot (:mod:`emboteam.hp.rebalance`): "off", "lpt"
+    #: (all clusters again, longest first) or "cp-sat" (at most two clusters move, chosen
+    #: by OR-Tools CP-SAT with the greedy best move as hint and fallback; repeated while
+    #: the plans get shorter)
+    rebalance: TypingLiteral["off", "lpt", "cp-sat"] = "cp-sat"
+    #: with ``action_costs``: a plan of at least this cost (half seconds) gets a second,
+    #: cost-bounded search (``pddl/runner.py``: REFINE_SEARCH); None: never
+    refine_cost: int | None = None
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:
@@ -125,8 +138,28 @@ class PlannerConfig:
             raise PlanningError("planner workers and unit_conditions must be at least 1")
         if self.merge not in ("formal", "concatenate"):
             raise PlanningError(f"merge must be 'formal' or 'concatenate', not {self.merge!r}")
+        if self.rebalance not in ("off", "lpt", "cp-sat"):
+            raise PlanningError(f"rebalance must be 'off', 'lpt' or 'cp-sat', not {self.rebalance!r}")
         if self.planner_input not in ("sas", "pddl"):
             raise PlanningError(f"planner_input must be 'sas' or 'pddl', not {self.planner_input!r}")
+
+
+@dataclass
+class _Record:
+    """What a decomposed planning pass allocated: subtask -> cluster id, subtask -> robots,
+    cluster id -> robots able to do it alone (empty: it stays where it is)."""
+
+    cluster: dict[str, str] = field(default_factory=dict)
+    assigned: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    candidates: dict[str, tuple[str, ...]] = field(default_factory=dict)
+
+
+#: at most this many re-allocation passes (each a whole planning pass, kept when shorter;
+#: the robots whose clusters stay get their plans from the cache)
+REBALANCE_PASSES = 4
+#: no further pass once the passes have made this many Fast Downward calls (a pass of the
+#: 32-robot x 96-condition cell costs 10-20; the robots that keep their clusters hit the cache)
+REBALANCE_CALLS = 16
 
 
 class _Fallback(Exception):
@@ -151,7 +184,9 @@ class HybridPlanner:
         self.cache = PlanCache(self.config.cache_dir)
         self.fd = FastDownward(self.config.alias, time_limit=self.config.time_limit,
                                memory_limit_mb=self.config.memory_limit_mb, cache=self.cache,
-                               planner_input=self.config.planner_input)
+                               planner_input=self.config.planner_input,
+                               action_costs=self.config.action_costs,
+                               refine_cost=self.config.refine_cost)
 
     # ---- public API ---------------------------------------------------------------------
     def plan(self, spec: TaskSpec, state: WorldState) -> MergedPlan:
@@ -169,7 +204,8 @@ class HybridPlanner:
             plan = self._concatenated(spec, start, team, needs, notes)
         elif self.config.decompose:
             try:
-                plan = self._decomposed(spec, start, team, notes)
+                plan = self._decomposed(spec, start, team, notes, record=(record := _Record()))
+                plan = self._rebalanced(plan, spec, start, team, notes, record)
             except _Fallback as fb:
                 notes.append(f"decomposition failed ({fb}): planned as one joint problem")
                 plan = self._joint(spec, start, team, notes)
@@ -207,7 +243,11 @@ class HybridPlanner:
             f"{', '.join(robots)}", subtask=what, unmet=tuple(str(c) for c in shown))
 
     # ---- decomposed planning ------------------------------------------------------------
-    def _decomposed(self, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str]) -> MergedPlan:
+    def _decomposed(self, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str],
+                    prefer: Mapping[str, str] | None = None, record: _Record | None = None) -> MergedPlan:
+        """Plan in rounds, merge, validate. ``prefer``: a robot per cluster id (from
+        :func:`emboteam.hp.rebalance.rebalance`); ``record`` is filled with the clusters,
+        their robots and the robots able to do each alone."""
         forward = start.copy()
         universe = Universe(forward)
         accepted: list[GroundedStep] = []
@@ -230,11 +270,14 @@ class HybridPlanner:
             if fresh:
                 groups = clusters(fresh, forward, team)
                 needs = {g.id: [need_of(c, forward, team) for c in g.goal] for g in groups}
-                for a in allocate(groups, needs, forward, team, load):
+                for a in allocate(groups, needs, forward, team, load, prefer):
                     members = a.subtask.split("+")
                     for m in members:
                         assigned[m] = a.robots
                         cluster[m] = a.subtask
+                    if record is not None:
+                        record.candidates[a.subtask] = () if a.note == "as specified" else tuple(
+                            r for r in team if all(covers([forward.robots[r].profile], n) for n in needs[a.subtask]))
                     if a.note != "as specified":
                         notes.append(f"{', '.join(members)}: {a.note} -> {', '.join(a.robots)}")
             units = make_units(ready, assigned, attempts, counter, cluster, self.config.unit_conditions)
@@ -300,10 +343,48 @@ class HybridPlanner:
             if len(round_plans) > 1:
                 self._interleave(base, round_plans, round_start, forward, accepted, protected, universe)
             pending = [t for t in pending if t.id not in done]
+        if record is not None:
+            record.cluster.update(cluster)
+            record.assigned.update(assigned)
         try:
             return self._merge_causal(accepted, spec, unit_of, team, start, notes)
         except _Invalid as exc:
             raise _Fallback(f"the merged plan failed in the simulator: {exc}") from None
+
+    def _rebalanced(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str],
+                    notes: list[str], record: _Record) -> MergedPlan:
+        """Plan again with the clusters re-allocated from their measured seconds
+        (:mod:`emboteam.hp.rebalance`) when that promises the robot that ends last an
+        earlier end; keep the plan with the shorter makespan, and try again from it (at
+        most ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
+        if self.config.rebalance == "off" or not self.config.validate:
+            return plan
+        calls0 = self.fd.calls
+        for _ in range(REBALANCE_PASSES):
+            if self.fd.calls - calls0 >= REBALANCE_CALLS:
+                return plan  # the passes so far cost enough Fast Downward calls
+            jobs = measured_jobs(plan, record.cluster, record.assigned, record.candidates)
+            # a robot's time is its work and its waits (for a spot, a tool, another robot):
+            # the waits stay with it as a job that does not move, so the robot that ends
+            # last is the one to relieve
+            ends = finish_of(plan, team)
+            work = work_of(plan)
+            jobs += [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
+                     if ends[r] - work.get(r, 0.0) > 1e-9]
+            prefer = rebalance(jobs, team, max(ends.values(), default=0.0), self.config.rebalance)
+            if prefer is None:
+                return plan
+            again: list[str] = []
+            try:
+                other = self._decomposed(spec, start, team, again, prefer=prefer, record=(mine := _Record()))
+            except (_Fallback, PlanningError):
+                return plan
+            if other.makespan >= plan.makespan:
+                return plan
+            notes[:] = [*again, f"re-allocated from the measured plans: makespan {plan.makespan:.1f} -> "
+                        f"{other.makespan:.1f} s"]
+            plan, record = other, mine
+        return plan
 
     def _merge_causal(self, accepted: Sequence[GroundedStep], spec: TaskSpec, unit_of: Mapping[str, str],
                       team: Sequence[str], start: WorldState, notes: list[str]) -> MergedPlan:

@@ -70,7 +70,28 @@ SEARCH_ALIASES: dict[str, tuple[str, ...]] = {
         "cost_type=one),let(hff, eval_modify_costs(ff(),cost_type=one),"
         "lazy_greedy([hff,hlm],preferred=[hff,hlm],cost_type=one,reopen_closed=false)))"),
     "seq-opt-lmcut": ("--search", "astar(lmcut())"),
+    # ours, not the driver's: lama-first's heuristics on the action costs (+1, as LAMA's
+    # later iterations use them) in a lazy weighted A* (w=5, LAMA's second iteration):
+    # with ``action_costs`` it prefers plans of fewer seconds, where greedy search
+    # (lama-first) takes the first plan its heuristics lead to (docs/planning.md,
+    # "Makespan against the resource-aware bound")
+    "lama-wastar5": (
+        "--search",
+        "let(hlm, eval_modify_costs(landmark_sum(lm_factory=lm_reasonable_orders_hps(lm_rhw()),pref=false),"
+        "cost_type=plusone),let(hff, eval_modify_costs(ff(),cost_type=plusone),"
+        "lazy_wastar([hff,hlm],preferred=[hff,hlm],w=5)))"),
 }
+#: the entries of SEARCH_ALIASES the driver does not know (given to it as a search string)
+OWN_ALIASES = frozenset({"lama-wastar5"})
+
+#: the second pass for a long plan (``refine_cost``): the same heuristics in lazy A*
+#: (w=1), bounded by the first plan's cost (exclusive) and by ``max_time`` seconds; what
+#: it finds replaces the first plan only when cheaper
+REFINE_SEARCH = (
+    "let(hlm, eval_modify_costs(landmark_sum(lm_factory=lm_reasonable_orders_hps(lm_rhw()),pref=false),"
+    "cost_type=plusone),let(hff, eval_modify_costs(ff(),cost_type=plusone),"
+    "lazy_wastar([hff,hlm],preferred=[hff,hlm],w=1,bound={bound},max_time={seconds})))")
+REFINE_SECONDS = 0.1
 
 #: exit codes, from the driver's returncodes.py
 SOLVED = frozenset({0, 1, 2, 3})  # 1-3: a plan was found, a later portfolio run hit a limit
@@ -199,12 +220,18 @@ class FastDownward:
 
     def __init__(self, alias: str = "lama-first", *, time_limit: float = 30.0,
                  memory_limit_mb: int = 2048, cache: PlanCache | None = None,
-                 planner_input: PlannerInput = "sas") -> None:
+                 planner_input: PlannerInput = "sas", action_costs: bool = False,
+                 refine_cost: int | None = None) -> None:
         if time_limit <= 0 or memory_limit_mb <= 0:
             raise PlannerInputError("planner time and memory limits must be positive")
         if planner_input not in PLANNER_INPUTS:
             raise PlannerInputError(f"planner input must be 'sas' or 'pddl', not {planner_input!r}")
         self.planner_input = planner_input
+        #: SAS input only: operators cost their durations (:func:`emboteam.pddl.sas.operator_cost`)
+        self.action_costs = action_costs
+        #: SAS input with action costs: a plan costing this much or more gets a second,
+        #: cost-bounded search (:data:`REFINE_SEARCH`)
+        self.refine_cost = refine_cost if action_costs else None
         self.alias = alias
         self.time_limit = time_limit
         self.memory_limit_mb = memory_limit_mb
@@ -218,7 +245,10 @@ class FastDownward:
 
     @property
     def config(self) -> str:
-        return f"{self.alias}|{self.time_limit}|{self.memory_limit_mb}"
+        costs = "|costs" if self.action_costs and self.planner_input == "sas" else ""
+        if self.refine_cost is not None and costs:
+            costs += f"|refine>={self.refine_cost}"
+        return f"{self.alias}|{self.time_limit}|{self.memory_limit_mb}{costs}"
 
     def command(self, domain_file: str, problem_file: str) -> list[str]:
         limits = ["--overall-time-limit", f"{max(1, math.ceil(self.time_limit))}s",
@@ -226,6 +256,8 @@ class FastDownward:
         base = [sys.executable, str(driver_path()), *limits]
         if "(" in self.alias:
             return [*base, domain_file, problem_file, "--search", self.alias]
+        if self.alias in OWN_ALIASES:
+            return [*base, domain_file, problem_file, *SEARCH_ALIASES[self.alias]]
         return [*base, "--alias", self.alias, domain_file, problem_file]
 
     def search_args(self) -> list[str]:
@@ -276,7 +308,7 @@ class FastDownward:
             return hit
         args = self.search_args()  # an unknown alias fails before any work
         t0 = time.perf_counter()
-        task = emit(problem)
+        task = emit(problem, costs=self.action_costs)
         with self._lock:
             self.ground_seconds += time.perf_counter() - t0
         if task.verdict == "trivial":
@@ -286,9 +318,27 @@ class FastDownward:
                                  message="relaxed reachability proves the goal unreachable")
         else:
             result = self.solve_sas(task.text, args)
+            if self.refine_cost is not None and result.solved:
+                result = self._refined(task.text, result)
         if self.cache is not None:
             self.cache.put(key, result)
         return result
+
+    def _refined(self, sas: str, first: SolveResult) -> SolveResult:
+        """A cheaper plan than ``first`` from :data:`REFINE_SEARCH` when ``first`` is long."""
+        from emboteam.pddl.sas import plan_cost
+
+        cost = plan_cost(first.plan)
+        if cost < (self.refine_cost or 0):
+            return first
+        search = REFINE_SEARCH.format(bound=cost, seconds=REFINE_SECONDS)
+        try:
+            second = self.solve_sas(sas, ["--search", search])
+        except PlanningError:
+            return first
+        if second.solved and plan_cost(second.plan) < cost:
+            return second
+        return first
 
     def solve_problems(self, problems: Sequence[Problem], workers: int = 2) -> list[SolveResult | PlanningError]:
         """:meth:`solve_problem` for several problems in parallel (grounding of one overlaps
