@@ -104,7 +104,7 @@ def _arrows(text: str) -> str:
     one sentence is a sequence of steps ("kettle out -> fill it -> onto a burner")."""
     def chain(part: str) -> bool:
         middle = re.split(_ARROW, part)[1:-1]
-        return any(not re.search(r"[,;]", m) and len(m.split()) >= 3 for m in middle)
+        return any(not re.search(r"[,;&+]|\band\b", m) and len(m.split()) >= 3 for m in middle)
 
     return ".".join(re.sub(_ARROW, " , then ", part) if chain(part) else part for part in text.split("."))
 
