@@ -822,3 +822,9 @@ def test_a_wish_for_objects_brought_somewhere_after_so_is_one_clause() -> None:
     reading = read("I'm working from the desk today, so I'd like my phone and the book from the coffee table "
                    "brought over to the desk. Not the keys, those can stay put. And the floor lamp can go off.", 229)
     assert goal(reading) == {"inside(CellPhone, Desk)", "inside(Book, Desk)", "switched_off(FloorLamp)"}
+
+
+def test_what_keeps_happening_is_a_statement() -> None:
+    reading = read("My watch, keys and credit card keep going missing. Put all three in the box.", 210)
+    assert goal(reading) == {"inside(Watch, Box)", "inside(KeyChain, Box)", "inside(CreditCard, Box)"}
+    assert not reading.notes

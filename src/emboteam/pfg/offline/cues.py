@@ -84,12 +84,19 @@ def _perfect(items: list[Item], k: int) -> bool:
     return items[m].text in _PARTICIPLES or (verb is not None and verb.form == "ed")
 
 
+def _habitual(items: list[Item], k: int) -> bool:
+    """"my keys keep going missing": "keep(s)" and a present participle after a subject."""
+    nxt = items[k + 1].verb if k + 1 < len(items) else None
+    return items[k].text in ("keep", "keeps") and k > 0 and items[k - 1].noun is not None \
+        and nxt is not None and nxt.form == "ing"
+
+
 def is_statement(items: list[Item]) -> bool:
     """Does the clause say how things are ("the mug is in the cupboard", "the egg has gone
     off")? A form of "be" that no modal turns into a wish ("should be", "needs to be") and
     that is not inside a relative or subordinate clause, or a perfect."""
     return any((it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
-                and not _embedded_be(items, k)) or (k > 0 and _perfect(items, k))
+                and not _embedded_be(items, k)) or (k > 0 and _perfect(items, k)) or _habitual(items, k)
                for k, it in enumerate(items))
 
 
