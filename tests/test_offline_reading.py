@@ -828,3 +828,9 @@ def test_what_keeps_happening_is_a_statement() -> None:
     reading = read("My watch, keys and credit card keep going missing. Put all three in the box.", 210)
     assert goal(reading) == {"inside(Watch, Box)", "inside(KeyChain, Box)", "inside(CreditCard, Box)"}
     assert not reading.notes
+
+
+def test_a_source_before_a_destination_is_no_vague_placement() -> None:
+    reading = read("Loo roll off the floor and onto the holder, candle lit, and open the shower curtain, please.", 407)
+    assert goal(reading) == {"inside(ToiletPaper, ToiletPaperHanger)", "switched_on(Candle)", "open(ShowerCurtain)"}
+    assert not reading.notes

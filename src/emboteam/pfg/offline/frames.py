@@ -664,6 +664,7 @@ def _bare_in(items: list[Item], k: int) -> bool:
 def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool]) -> list[Frame]:
     """``NP [aux] predicate (, NP [aux] predicate)*``"""
     frames: list[Frame] = []
+    sources: list[Frame] = []
     j = 0
     n = len(items)
     while j < n and (items[j].text in ("could", "can", "would", "will", "should", "must", "may")
@@ -789,6 +790,8 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
                 j = _parse_tail_until_next(items, j, frame, rest, mentions)
                 if frame.report and not any(t.dest for t in subjects):
                     frame.act = None
+                elif it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
+                    sources.append(frame)
         else:
             frames.append(frame)
             break
@@ -806,7 +809,10 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
                             if h not in mentions)
             frames.extend(more)
             break
-    return [f for f in frames if f.act is not None or f.state is not None]
+    # "loo roll off the floor and onto the holder": where it comes from, when a later
+    # predicate says where it goes
+    moved = any(f.act is Act.PLACE and any(t.dest for t in f.targets) for f in frames)
+    return [f for f in frames if (f.act is not None or f.state is not None) and not (moved and f in sources)]
 
 
 def _locative_modifiers(items: list[Item], j: int, subjects: list[Target],
