@@ -834,3 +834,9 @@ def test_a_source_before_a_destination_is_no_vague_placement() -> None:
     reading = read("Loo roll off the floor and onto the holder, candle lit, and open the shower curtain, please.", 407)
     assert goal(reading) == {"inside(ToiletPaper, ToiletPaperHanger)", "switched_on(Candle)", "open(ShowerCurtain)"}
     assert not reading.notes
+
+
+def test_a_new_subject_with_a_place_and_a_modal_after_a_comma_is_a_new_clause() -> None:
+    reading = read("the statue off the shelf should sit on the counter instead, the egg in the sink wants to go in "
+                   "the fridge before it goes off, and that ladle on the counter lives in a drawer.", 5)
+    assert goal(reading) == {"inside(Statue, CounterTop)", "inside(Egg, Fridge)", "inside(Ladle, Drawer)"}

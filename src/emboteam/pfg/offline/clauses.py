@@ -264,7 +264,9 @@ def subject_here(items: list[Item], j: int) -> str | None:
     if items[k].prep in ("in", "on", "from") and k + 1 < n:
         # "the mug on the counter is dirty": a place that describes the subject
         m = _skip_np(items, k + 1)
-        if m > k + 1 and m < n and (items[m].copula or items[m].text in ("goes", "belongs")):
+        verb = items[m].verb if m < n else None
+        if m > k + 1 and m < n and (items[m].copula or _modal_predicate(items, m) or (
+                verb is not None and verb.form == "s" and verb.sense.act is lx.Act.GO)):
             k = m
     it = items[k]
     end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None
@@ -279,7 +281,19 @@ def subject_here(items: list[Item], j: int) -> str | None:
     if it.verb is not None and it.verb.form == "s" and it.noun is None \
             and it.verb.sense.act is lx.Act.GO:
         return "verb"
+    if _modal_predicate(items, k) and items[j].text not in ("that", "which", "who"):
+        return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None
+
+
+#: words that open a predicate of a new subject: "should go", "wants to go", "can come out"
+_SUBJECT_MODALS = frozenset({"should", "can", "could", "must", "will", "would", "needs", "wants", "has",
+                             "might", "may", "ought"})
+
+
+def _modal_predicate(items: list[Item], k: int) -> bool:
+    return items[k].text in _SUBJECT_MODALS and k + 1 < len(items) and (
+        items[k + 1].verb is not None or items[k + 1].text in ("to", "be", "really", "also", "probably"))
 
 
 def _sentence_adverb(it: Item) -> bool:
