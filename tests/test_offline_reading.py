@@ -840,3 +840,15 @@ def test_a_new_subject_with_a_place_and_a_modal_after_a_comma_is_a_new_clause() 
     reading = read("the statue off the shelf should sit on the counter instead, the egg in the sink wants to go in "
                    "the fridge before it goes off, and that ladle on the counter lives in a drawer.", 5)
     assert goal(reading) == {"inside(Statue, CounterTop)", "inside(Egg, Fridge)", "inside(Ladle, Drawer)"}
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("The fork and spoon sitting in the sink, well, they're clean actually, so they can go in a drawer, "
+     "and the potato on the table by the coffee machine should really be in the fridge.", 19,
+     {"inside(Fork, Drawer)", "inside(Spoon, Drawer)", "inside(Potato, Fridge)"}),
+    ("Someone's left the egg and the lettuce in the sink, honestly, they both go in the fridge.", 12,
+     {"inside(Egg, Fridge)", "inside(Lettuce, Fridge)"}),
+    ("The fork is in the sink, it's clean, so it can go in a drawer.", 19, {"inside(Fork, Drawer)"}),
+])
+def test_things_they_go_somewhere_and_where_things_sit_is_no_goal(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

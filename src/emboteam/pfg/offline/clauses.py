@@ -261,7 +261,11 @@ def subject_here(items: list[Item], j: int) -> str | None:
         k = _skip_np(items, k + 1)      # "the egg and the apple ... have both gone off"
     if k >= n:
         return None
-    if items[k].prep in ("in", "on", "from") and k + 1 < n:
+    while items[k].prep in ("in", "on", "from", "by", "near", "beside", "next to") and k + 1 < n \
+            and _skip_np(items, k + 1) > k + 1 and _skip_np(items, k + 1) < n \
+            and items[_skip_np(items, k + 1)].prep in ("by", "near", "beside", "next to", "on", "in"):
+        k = _skip_np(items, k + 1)      # "the potato on the table by the coffee machine should ..."
+    if items[k].prep in ("in", "on", "from", "by", "near", "beside", "next to") and k + 1 < n:
         # "the mug on the counter is dirty": a place that describes the subject
         m = _skip_np(items, k + 1)
         verb = items[m].verb if m < n else None
@@ -278,9 +282,11 @@ def subject_here(items: list[Item], j: int) -> str | None:
     if end and (it.particle in ("on", "off", "up", "down") or (
             it.state is not None and it.prep is None)):
         return "state"
-    if it.verb is not None and it.verb.form == "s" and it.noun is None \
+    plural = items[j].text in ("they", "these", "those", "both", "all") or any(
+        x.conj == "and" or (x.noun is not None and x.noun.plural) for x in items[j:k])
+    if it.verb is not None and (it.verb.form == "s" or (plural and it.verb.form == "base")) and it.noun is None \
             and it.verb.sense.act is lx.Act.GO:
-        return "verb"
+        return "verb"       # "and the fork goes in the drawer", ", they both go in the fridge"
     if _modal_predicate(items, k) and items[j].text not in ("that", "which", "who"):
         return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None

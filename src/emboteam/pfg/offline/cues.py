@@ -91,12 +91,20 @@ def _habitual(items: list[Item], k: int) -> bool:
         and nxt is not None and nxt.form == "ing"
 
 
+def _posture(items: list[Item], k: int) -> bool:
+    """"the fork and spoon sitting in the sink": where something is, as a participle."""
+    verb = items[k].verb
+    return k > 0 and items[k - 1].noun is not None and verb is not None and verb.form == "ing" \
+        and verb.lemma in ("sit", "lie", "stand", "rest", "wait", "hang")
+
+
 def is_statement(items: list[Item]) -> bool:
     """Does the clause say how things are ("the mug is in the cupboard", "the egg has gone
     off")? A form of "be" that no modal turns into a wish ("should be", "needs to be") and
     that is not inside a relative or subordinate clause, or a perfect."""
     return any((it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
                 and not _embedded_be(items, k)) or (k > 0 and _perfect(items, k)) or _habitual(items, k)
+               or _posture(items, k)
                for k, it in enumerate(items))
 
 

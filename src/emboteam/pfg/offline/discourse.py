@@ -105,7 +105,10 @@ class Discourse:
         if plural:
             # the last coordinated objects ("the fork and the spoon ... them", "all three"),
             # not the place they went to
-            m = next((x for x in reversed(self.history) if x.role == "object"), self.history[-1])
+            # (named objects, not an earlier "they" that a verb's need narrowed: "the fork
+            # and spoon ... they're clean ... they can go in a drawer")
+            m = next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None),
+                     next((x for x in reversed(self.history) if x.role == "object"), self.history[-1]))
             group = [x for x in self.history if x.group == m.group and x.head.pron is None
                      and x.role == "object" and self.fits(x.ref, need)]
             if len(group) > 1:

@@ -732,6 +732,15 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             placed = [t for t in rest if t.dest]
             if placed and not frame.report:
                 frames.append(Frame(Act.PLACE, "put", placed, text=frame.text))
+        elif position_participle(it) and it.verb is not None and it.verb.form == "ing" and not local.get("modal"):
+            # "the fork and spoon sitting in the sink, ...": where they are, no request
+            sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
+            for t in subjects:
+                for d in (x for tt in sub.targets for x in tt.dest):
+                    d.role = "place"
+                    t.head.location.append(("in", d))
+            j = len(items)
+            break
         elif it.verb is not None and (is_participle or it.verb.sense.act is Act.GO):
             sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
             end = len(items)
@@ -815,6 +824,17 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
     return [f for f in frames if (f.act is not None or f.state is not None) and not (moved and f in sources)]
 
 
+def _after_modifiers(items: list[Item], k: int) -> int:
+    """The index after places chained at ``k`` ("on the table by the coffee machine")."""
+    n = len(items)
+    while k + 1 < n and items[k].prep in MODIFIER_PREPS and np_start(items[k + 1]):
+        land, m = parse_np(items, k + 1)
+        if land is None or m <= k + 1:
+            break
+        k = m
+    return k
+
+
 def _locative_modifiers(items: list[Item], j: int, subjects: list[Target],
                         mentions: list[Head]) -> int:
     """"the mug on the counter needs to go in the sink", "the cups in the cabinet belong
@@ -829,7 +849,7 @@ def _locative_modifiers(items: list[Item], j: int, subjects: list[Target],
         if not (p + 1 < n and items[p].prep in MODIFIER_PREPS and np_start(items[p + 1])):
             break
         land, k = parse_np(items, p + 1)
-        if land is None or not predicate_at(items, k):
+        if land is None or not predicate_at(items, _after_modifiers(items, k)):
             break
         j = p
         land.role = "place"
@@ -940,7 +960,8 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
     if used is not None:
         return used
     first = items[0]
-    human = first.text in _HUMAN_SUBJECTS and first.noun is None
+    human = first.text in _HUMAN_SUBJECTS and first.noun is None and not (
+        first.text in ("they", "them") and _things_they(items))
     if human:
         # "someone left the fridge open", "nobody needs the lights on", "i need X on Y"
         if first.text in ("nobody", "no"):
@@ -1067,6 +1088,16 @@ def _tool_on(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedC
     frame = Frame(act, "use", [Target(target)], text=" ".join(i.text for i in items))
     frame.instruments.append(head)
     return ParsedClause(clause, [frame], mentions, [])
+
+
+def _things_they(items: list[Item]) -> bool:
+    """Is "they" things, not people: in a state ("they're clean") or going somewhere
+    ("they can go in a drawer", "they both belong on the shelf")?"""
+    if len(items) > 2 and items[1].copula and items[2].state is not None:
+        return True
+    return any(it.verb is not None and it.verb.sense.act is Act.GO and k + 1 < len(items)
+               and items[k + 1].prep in ("in", "on", "into", "onto", "back", "away")
+               for k, it in enumerate(items[1:5], 1))
 
 
 def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:

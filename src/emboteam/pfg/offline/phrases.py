@@ -515,7 +515,7 @@ def fix_ellipsis(prev: Head, nxt: Head) -> None:
         prev.plural = nxt.plural or prev.plural
 
 
-MODIFIER_PREPS = frozenset({"in", "on", "from"})
+MODIFIER_PREPS = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "behind", "under", "beneath"})
 
 
 def predicate_at(items: list[Item], k: int) -> bool:

@@ -329,8 +329,8 @@ class Semantics:
         out: list[Draft] = []
         stat, positive = t.state or state
         if flip:
-            if stat not in lx.INVERTIBLE:
-                return []
+            if stat not in lx.INVERTIBLE or (stat is Stat.CLEAN and positive):
+                return []       # "it's clean": good news, no complaint
             positive = not positive
         head = t.head
         if stat is Stat.BRIGHT or (head.noun is not None and head.noun.concept.kind == "room"):
