@@ -852,3 +852,16 @@ def test_a_new_subject_with_a_place_and_a_modal_after_a_comma_is_a_new_clause() 
 ])
 def test_things_they_go_somewhere_and_where_things_sit_is_no_goal(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_a_condition_the_scene_cannot_have_is_left_out_with_a_note() -> None:
+    reading = read("Could you get the shower running so it's warm for me? And the candle on the side table goes up "
+                   "on a shelf.", 401)
+    assert goal(reading) == {"switched_on(ShowerHead)", "inside(Candle, Shelf)"}
+    assert any("cannot have it" in n.reason for n in reading.notes)
+
+
+def test_a_slice_off_it_is_a_slice_of_what_can_be_cut_and_that_is_the_slice() -> None:
+    reading = read("The loaf's on the counter, so once you've found a knife cut a slice off it, pop that in the "
+                   "toaster and switch it on.", 5)
+    assert {"sliced(Bread)", "inside(BreadSliced, Toaster)", "switched_on(Toaster)"} <= goal(reading)

@@ -125,8 +125,9 @@ class Discourse:
         for role in order:
             for m in reversed(self.history):
                 kind = "place" if m.role == "dest" else m.role
-                if kind == role and self.fits(m.ref, need) and m.head.noun is not None and \
-                        m.head.noun.concept.kind not in ("room", "anything"):
+                if kind == role and self.fits(m.ref, need) and (
+                        (m.head.noun is None and m.head.piece)          # "a slice off it ... pop that in"
+                        or (m.head.noun is not None and m.head.noun.concept.kind not in ("room", "anything"))):
                     if role != order[0]:    # not what the verb prefers: maybe a guess
                         self._doubt_unless_alone(m.ref, need)
                     return m.ref
@@ -166,7 +167,10 @@ class Discourse:
 
     def _pieces_of(self, head: Head, prefer: str) -> Ref:
         """"Cut it up and put two pieces of it in the bowl": the pieces of what "it" is."""
-        whole = self.resolve(replace(head, piece=False, count=None), None, prefer)
+        try:        # pieces come from something that can be cut ("a slice off it": the loaf)
+            whole = self.resolve(replace(head, piece=False, count=None), "slice", prefer)
+        except OfflineParseError:
+            whole = self.resolve(replace(head, piece=False, count=None), None, prefer)
         products = [self.cat.slice_product(t) for t in whole.type_names()]
         kinds = tuple(p[0] for p in products if p is not None)
         if not kinds:

@@ -1,16 +1,22 @@
 """Passes over the drafts of one instruction, before dependencies are assembled: a draft
 that another makes unnecessary is no subtask of its own (a wish a later act fulfils,
-holding on the way to a place, a placement of one object that a later one supersedes).
+holding on the way to a place, a placement of one object that a later one supersedes),
+and a draft the scene cannot satisfy is dropped with a note when others stay.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
+from emboteam.pddl.errors import ImpossibleGoalError
+from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
 from emboteam.pfg.offline.decompose import refs_overlap
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.semantics import Draft
-from emboteam.world.goals import ObjectRef, Predicate
+from emboteam.world.checker import GoalValidationError, validate_goal
+from emboteam.world.goals import Goal, ObjectRef, Predicate
+from emboteam.world.scene import Scene
+from emboteam.world.state import WorldState
 
 #: what a later act brings about: a wished state it makes true needs no subtask of its own
 _FULFILS: dict[Predicate, frozenset[Predicate]] = {
@@ -112,3 +118,29 @@ def drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
                 (cj >= ci or d.carried) and refs_overlap(c.subject, p.subject) for cj, _, p in placed)
             for c in d.conditions)
     drop_drafts(drafts, before_placing)
+
+
+def drop_impossible(drafts: dict[int, list[Draft]], scene: Scene, state: WorldState) -> list[tuple[str, str]]:
+    """Drafts whose conditions the scene cannot satisfy ("get the shower running so it's
+    warm" read as hot(ShowerHead)) go, with why, when something else of the instruction
+    stays: one misread phrase does not sink the task. The goal compiler decides, as the
+    planner will (with the pieces the whole reading cuts). Returns (description, why)."""
+    conditions = [c for ds in drafts.values() for d in ds for c in d.conditions]
+    robots = list(state.robots)
+    slices = slicing_targets(conditions, state, robots)
+
+    def why_not(d: Draft) -> str | None:
+        try:
+            validate_goal(Goal(conditions=tuple(d.conditions)), scene)
+            for c in d.conditions:
+                compile_condition(c, state, robots, slices=slices, narrow=False)
+        except (GoalValidationError, ImpossibleGoalError) as exc:
+            return str(exc)
+        return None
+
+    failing = {id(d): why for ds in drafts.values() for d in ds if d.conditions and (why := why_not(d))}
+    if not failing or len(failing) == sum(1 for ds in drafts.values() for d in ds if d.conditions):
+        return []       # nothing to drop, or nothing would be left: the planner says why
+    dropped = [(d.description, failing[id(d)]) for ds in drafts.values() for d in ds if id(d) in failing]
+    drop_drafts(drafts, lambda ci, d: id(d) in failing)
+    return dropped

@@ -37,6 +37,7 @@ from emboteam.pfg.offline.decompose import assemble
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
     drop_holds_before_placing,
+    drop_impossible,
     drop_superseded_placements,
 )
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
@@ -280,6 +281,8 @@ class OfflineFrontend:
         drop_fulfilled_wishes(drafts)
         drop_holds_before_placing(drafts)
         drop_superseded_placements(drafts, semantics.g)
+        for what, why in drop_impossible(drafts, scene, state):
+            unread.append(ReadingNote(what, f"left out, the scene cannot have it: {why}"))
         if not drafts:
             if failed:
                 raise failed[0]

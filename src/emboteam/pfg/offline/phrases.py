@@ -295,7 +295,8 @@ def _piece_word(s: _NP) -> str | None:
     s.h.piece = True
     s.take(s.it.text)
     s.skip_of()
-    if s.j + 1 < len(s.items) and s.items[s.j].text in ("off", "from") and s.items[s.j + 1].det:
+    if s.j + 1 < len(s.items) and s.items[s.j].text in ("off", "from") and (
+            s.items[s.j + 1].det or s.items[s.j + 1].pron in ("it", "that", "this")):
         s.j += 1        # "cut a slice off the loaf": the pieces of the loaf
     return _NEXT
 

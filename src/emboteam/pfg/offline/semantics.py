@@ -588,7 +588,7 @@ class Semantics:
             act = Act.MICROWAVE     # "pop the potato in the microwave for a couple of minutes"
         if act in (Act.SLICE, Act.BREAK) and t.dest:
             return self._cut_into(frame, act, t, g, clause)
-        if act is Act.SLICE and t.head.piece and t.head.noun is not None:
+        if act is Act.SLICE and t.head.piece and (t.head.noun is not None or t.head.pron is not None):
             return self._cut_pieces(frame, t, g, clause)
         if act is Act.CLOSE and t.dest and t.prep in ("in", "inside", "into"):
             return self._shut_in(frame, t, g, clause)
@@ -608,12 +608,13 @@ class Semantics:
         and the pieces are what a pronoun after it means."""
         whole = Target(replace(t.head, piece=False, count=None), t.dest, t.prep, t.particle, t.state)
         out = self._plain_act(frame, Act.SLICE, whole, g, clause)
-        try:
-            pieces = self.g.ground(t.head, "hold")
-        except OfflineParseError:
-            return out
+        cut = next((m.ref for m in reversed(self.history) if m.head is whole.head), None)
+        products = [p for p in (self.cat.slice_product(x) for x in (cut.type_names() if cut else ())) if p]
         self.history[:] = [m for m in self.history if m.head is not whole.head]
-        self.history.append(Mention(pieces, t.head, clause, g, "object"))
+        if products:
+            n = t.head.count or 1
+            pieces = Ref(t.head.label(), ((ObjectRef(types=tuple(p[0] for p in products)), n),), n > 1)
+            self.history.append(Mention(pieces, t.head, clause, g, "object"))
         return out
 
     def _whole_reading(self, frame: Frame, act: Act, t: Target, g: int,
