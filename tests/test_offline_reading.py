@@ -865,3 +865,10 @@ def test_a_slice_off_it_is_a_slice_of_what_can_be_cut_and_that_is_the_slice() ->
     reading = read("The loaf's on the counter, so once you've found a knife cut a slice off it, pop that in the "
                    "toaster and switch it on.", 5)
     assert {"sliced(Bread)", "inside(BreadSliced, Toaster)", "switched_on(Toaster)"} <= goal(reading)
+
+
+def test_a_question_with_two_subjects_one_off_a_table_and_one_lying_on_a_desk() -> None:
+    reading = read("We've got the builders in tomorrow, so could my phone off the coffee table and the keys that "
+                   "are lying on the desk go in the safe? Open it up, put them in, and then make sure it's shut "
+                   "properly, not just pushed to.", 204)
+    assert goal(reading) == {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)", "closed(Safe)"}

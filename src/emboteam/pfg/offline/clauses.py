@@ -172,6 +172,8 @@ def _has_predicate(items: list[Item]) -> bool:
         if words[:len(wish)] == wish:
             items = items[len(wish):]     # "make sure the fridge and the microwave are closed"
             break
+    while items and items[0].text in ("could", "can", "would", "will", "should", "may", "might"):
+        items = items[1:]     # "could my phone off the coffee table (and the keys go ...)": a question
     if not items:
         return False
     last = items[-1]
@@ -247,6 +249,20 @@ def _skip_np(items: list[Item], j: int) -> int:
     return k if named or (k > j and items[k - 1].number is not None) else j
 
 
+def _skip_relative(items: list[Item], k: int) -> int:
+    """The index after a relative clause of where a subject is ("that are lying on the
+    desk"), ``k`` when there is none."""
+    n = len(items)
+    if not (k + 2 < n and items[k].text in ("that", "which", "who") and items[k + 1].copula):
+        return k
+    m = k + 2
+    if m < n and items[m].verb is not None and items[m].verb.form == "ing":
+        m += 1
+    if m + 1 < n and items[m].prep in ("in", "on", "by", "near", "next to", "under") and _skip_np(items, m + 1) > m + 1:
+        return _skip_np(items, m + 1)
+    return k
+
+
 def subject_here(items: list[Item], j: int) -> str | None:
     """Does a subject with its own predicate start at ``j``? Which kind: "copula" (",
     the microwave is fine", ", all three need to be cold"), "verb" ("and the fork goes in
@@ -259,6 +275,7 @@ def subject_here(items: list[Item], j: int) -> str | None:
         return None
     while k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
         k = _skip_np(items, k + 1)      # "the egg and the apple ... have both gone off"
+    k = _skip_relative(items, k)        # "the keys that are lying on the desk go ..."
     if k >= n:
         return None
     while items[k].prep in ("in", "on", "from", "by", "near", "beside", "next to") and k + 1 < n \

@@ -192,7 +192,7 @@ IRREGULAR_VERBS: dict[str, str] = {
     "hung": "hang", "lit": "light", "stuck": "stick", "laid": "lay", "lain": "lie",
     "found": "find", "sat": "sit", "ran": "run", "had": "have", "has": "have",
     "shut": "shut", "cut": "cut", "put": "put", "set": "set", "dumped": "dump",
-    "ended": "end", "needs": "need", "wound": "wind", "blew": "blow", "blown": "blow",
+    "ended": "end", "needs": "need", "wound": "wind", "lying": "lie", "blew": "blow", "blown": "blow",
     "fed": "feed", "swept": "sweep", "chose": "choose", "done": "do", "did": "do",
 }
 

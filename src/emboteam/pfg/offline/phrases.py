@@ -516,7 +516,8 @@ def fix_ellipsis(prev: Head, nxt: Head) -> None:
         prev.plural = nxt.plural or prev.plural
 
 
-MODIFIER_PREPS = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "behind", "under", "beneath"})
+MODIFIER_PREPS = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "behind", "under", "beneath",
+                            "off", "out of"})
 
 
 def predicate_at(items: list[Item], k: int) -> bool:

@@ -86,7 +86,8 @@ def split_camel(text: str) -> str:
 #: a posture before a state says nothing more ("the door hanging open" is open); "leave
 #: the microwave going" is running
 _POSTURES: tuple[tuple[str, str], ...] = (
-    (r"\b(?:hanging|standing|sitting|lying|swinging) (open|ajar|on|off)\b", r"\1"),
+    (r"\b(?:hanging|standing|sitting|lying|swinging) (open|ajar|on|off)\b"
+     r"(?!\s+(?:the|a|an|my|your|his|her|our|their|this|that|top)\b)", r"\1"),
     (r"\b(leave|leaving|left|keep|keeping|kept)((?: [a-z]+){1,3}) going\b", r"\1\2 running"),
     # "put the lid back down on the hamper": close it (AI2-THOR has no lids apart)
     (r"\b(?:put|pop|stick|drop|get) the lid (?:back )?(?:down )?(?:on|onto) ", "close "),
