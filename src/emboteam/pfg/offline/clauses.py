@@ -256,7 +256,8 @@ def _skip_relative(items: list[Item], k: int) -> int:
     if not (k + 2 < n and items[k].text in ("that", "which", "who") and items[k + 1].copula):
         return k
     m = k + 2
-    if m < n and items[m].verb is not None and items[m].verb.form == "ing":
+    verb = items[m].verb if m < n else None
+    if verb is not None and verb.form == "ing":
         m += 1
     if m + 1 < n and items[m].prep in ("in", "on", "by", "near", "next to", "under") and _skip_np(items, m + 1) > m + 1:
         return _skip_np(items, m + 1)
