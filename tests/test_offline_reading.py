@@ -872,3 +872,10 @@ def test_a_question_with_two_subjects_one_off_a_table_and_one_lying_on_a_desk() 
                    "are lying on the desk go in the safe? Open it up, put them in, and then make sure it's shut "
                    "properly, not just pushed to.", 204)
     assert goal(reading) == {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)", "closed(Safe)"}
+
+
+def test_once_it_is_sliced_then_an_order_without_a_comma() -> None:
+    reading = read("Can you cut up the tomato by the coffee machine, the knife's in one of the drawers I think, and "
+                   "once it's sliced stick a couple of the slices in the fridge for my sandwich tomorrow?", 12)
+    assert goal(reading) == {"sliced(Tomato)", "inside(2 of TomatoSliced, Fridge)"}
+    assert "switched_on(StoveKnob)" in goal(read("Fill the pot at the sink, put it on the hob and turn that ring on.", 12))

@@ -392,6 +392,14 @@ def segment(items: list[Item]) -> list[Clause]:
                 # the TV off": a person's act, then the request
                 boundary = AND
                 skip = 0
+            elif current.link not in (AND, THEN) and len(current.items) >= 3 \
+                    and current.items[0].pron in ("it", "they", "that") and current.items[1].copula \
+                    and (current.items[-1].state is not None or current.items[-1].particle is not None) \
+                    and it.verb is not None and it.noun is None and it.verb.form == "base" and verb_here(sentence, j):
+                # "once it's sliced stick a couple of the slices in the fridge": the state, then
+                # the request
+                boundary = AND
+                skip = 0
             elif it.robot is not None and current.items and any(x.is_content() for x in current.items):
                 boundary = AND
                 skip = 0

@@ -458,7 +458,7 @@ _NOUNS: dict[str, Concept] = {
     "coffee maker": _obj("CoffeeMachine"), "coffeemaker": _obj("CoffeeMachine"),
     "espresso machine": _obj("CoffeeMachine"), "coffee pot": _obj("CoffeeMachine"),
     "stove": _obj("StoveBurner"), "stovetop": _obj("StoveBurner"), "stove top": _obj("StoveBurner"),
-    "burner": _obj("StoveBurner"), "hob": _obj("StoveBurner"), "cooktop": _obj("StoveBurner"),
+    "burner": _obj("StoveBurner"), "hob": _obj("StoveBurner"), "cooktop": _obj("StoveBurner"), "ring": _obj("StoveBurner"),
     "range": _obj("StoveBurner"), "gas": _obj("StoveBurner"), "cooker": _obj("StoveBurner"),
     "knob": _obj("StoveKnob"), "stove knob": _obj("StoveKnob"), "dial": _obj("StoveKnob"),
     "faucet": _obj("Faucet"), "tap": _obj("Faucet"), "spigot": _obj("Faucet"),
