@@ -879,3 +879,9 @@ def test_once_it_is_sliced_then_an_order_without_a_comma() -> None:
                    "once it's sliced stick a couple of the slices in the fridge for my sandwich tomorrow?", 12)
     assert goal(reading) == {"sliced(Tomato)", "inside(2 of TomatoSliced, Fridge)"}
     assert "switched_on(StoveKnob)" in goal(read("Fill the pot at the sink, put it on the hob and turn that ring on.", 12))
+
+
+def test_they_can_go_away_in_one_of_the_cupboards() -> None:
+    reading = read("The frying pan and my mug are both cluttering up the counter by the bread, they can go away in "
+                   "one of the cupboards, only they're all shut so you'll need to open one up first.", 14)
+    assert {"inside(Pan, Cabinet)", "inside(Mug, Cabinet)"} <= goal(reading)

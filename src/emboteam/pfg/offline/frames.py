@@ -1096,7 +1096,7 @@ def _things_they(items: list[Item]) -> bool:
     if len(items) > 2 and items[1].copula and items[2].state is not None:
         return True
     return any(it.verb is not None and it.verb.sense.act is Act.GO and k + 1 < len(items)
-               and items[k + 1].prep in ("in", "on", "into", "onto", "back", "away")
+               and (items[k + 1].prep in ("in", "on", "into", "onto") or items[k + 1].text in ("back", "away"))
                for k, it in enumerate(items[1:5], 1))
 
 
