@@ -885,3 +885,10 @@ def test_they_can_go_away_in_one_of_the_cupboards() -> None:
     reading = read("The frying pan and my mug are both cluttering up the counter by the bread, they can go away in "
                    "one of the cupboards, only they're all shut so you'll need to open one up first.", 14)
     assert {"inside(Pan, Cabinet)", "inside(Mug, Cabinet)"} <= goal(reading)
+
+
+def test_would_look_nicer_on_and_an_adjective_in_a_new_subject() -> None:
+    reading = read("Tidy-up time: my phone on the coffee table goes in the drawer, the vase on the dining table would "
+                   "look nicer on the side table, and the big floor lamp's still on from last night, could you turn it off?", 211)
+    assert {"inside(CellPhone, Drawer)", "switched_off(FloorLamp)"} <= goal(reading)
+    assert any(c.startswith("inside(Vase") and c.endswith("SideTable)") for c in goal(reading))

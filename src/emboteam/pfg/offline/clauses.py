@@ -223,6 +223,10 @@ def _ends_with_place(items: list[Item]) -> bool:
 
 
 _NP_WORDS = frozenset({"of", "all", "both", "each", "every"})
+#: adjectives inside a subject ("the big floor lamp's still on")
+_NP_ADJECTIVES = frozenset({"big", "small", "large", "little", "tiny", "huge", "tall", "short", "long", "old",
+                            "new", "spare", "other", "red", "green", "blue", "yellow", "black", "white", "brown",
+                            "grey", "gray", "wooden", "plastic", "metal", "glass", "main", "whole"})
 
 
 #: words after which "to" starts an infinitive of the same clause, not a purpose
@@ -240,7 +244,7 @@ def _skip_np(items: list[Item], j: int) -> int:
         if x.noun is not None or x.pron in ("it", "they", "them", "this", "that"):
             named = True
         elif not (x.det or x.quant is not None or x.number is not None or x.ordinal is not None
-                  or x.text in _NP_WORDS or x.text in lx.MEASURE_WORDS
+                  or x.text in _NP_WORDS or x.text in lx.MEASURE_WORDS or x.text in _NP_ADJECTIVES
                   or (x.state is not None and x.prep is None and x.particle is None)):
             break
         if x.punct is not None or x.conj is not None or (x.verb is not None and x.noun is None):

@@ -208,6 +208,10 @@ _IRREGULAR_PARTICIPLES = frozenset({"left", "put", "gone", "got", "gotten", "tak
                                     "broken", "forgotten", "lost", "set", "thrown", "kept", "brought"})
 
 
+#: "would look nicer on": a wished place
+_LOOKS = frozenset({"nicer", "better", "good", "great", "lovely", "best", "nice"})
+
+
 def _participle(it: Item) -> bool:
     """Is the word a past participle (a perfect after "have"), not an infinitive ("have to")?"""
     return it.verb is not None and it.noun is None and (
@@ -248,6 +252,10 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
                                 "nicely", "brightly", "wide", "slightly", "partly", "partially",
                                 "entirely", "absolutely", "literally", "even", "just", "back"):
             pass
+        elif t in ("look", "looks") and j + 2 < len(items) and items[j + 1].text in _LOOKS \
+                and items[j + 2].prep in ("on", "in"):
+            frame_flags["modal"] = True
+            j += 1      # "the vase would look nicer on the side table": where it should be
         elif t in ("end", "ends", "wind", "winds") and j + 2 < len(items) and items[j + 1].text == "up" \
                 and items[j + 2].state is not None and items[j + 2].prep is None:
             j += 1      # "should end up sliced (and on a plate)": as "be"
