@@ -892,3 +892,8 @@ def test_would_look_nicer_on_and_an_adjective_in_a_new_subject() -> None:
                    "look nicer on the side table, and the big floor lamp's still on from last night, could you turn it off?", 211)
     assert {"inside(CellPhone, Drawer)", "switched_off(FloorLamp)"} <= goal(reading)
     assert any(c.startswith("inside(Vase") and c.endswith("SideTable)") for c in goal(reading))
+
+
+def test_things_that_want_to_go_somewhere() -> None:
+    assert goal(read("There are two cloths lying on the bedroom floor, they both want to go in the laundry basket.", 307)) \
+        == {"inside(2 of Cloth, LaundryHamper)"}

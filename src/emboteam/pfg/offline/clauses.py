@@ -309,14 +309,16 @@ def subject_here(items: list[Item], j: int) -> str | None:
     if it.verb is not None and (it.verb.form == "s" or (plural and it.verb.form == "base")) and it.noun is None \
             and it.verb.sense.act is lx.Act.GO:
         return "verb"       # "and the fork goes in the drawer", ", they both go in the fridge"
-    if _modal_predicate(items, k) and items[j].text not in ("that", "which", "who"):
+    while k < n and items[k].text in ("both", "all", "each"):
+        k += 1      # "they both want to go in the basket"
+    if k < n and _modal_predicate(items, k) and items[j].text not in ("that", "which", "who"):
         return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None
 
 
 #: words that open a predicate of a new subject: "should go", "wants to go", "can come out"
 _SUBJECT_MODALS = frozenset({"should", "can", "could", "must", "will", "would", "needs", "wants", "has",
-                             "might", "may", "ought"})
+                             "might", "may", "ought", "need", "want"})
 
 
 def _modal_predicate(items: list[Item], k: int) -> bool:

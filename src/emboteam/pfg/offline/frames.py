@@ -234,7 +234,7 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
             frame_flags["perfect"] = True     # "I've left my phone on the bed": what was done
         elif (t in lx.MODALS and it.verb is None) or t in ("should", "must", "ought", "can",
                                                           "could", "would", "will", "shall",
-                                                          "might", "may") or (t in ("needs", "need", "has", "have", "had", "wants") and j + 1 < len(items) and \
+                                                          "might", "may") or (t in ("needs", "need", "has", "have", "had", "wants", "want") and j + 1 < len(items) and \
                 (items[j + 1].text in ("to", "be") or items[j + 1].verb is not None)):
             frame_flags["modal"] = True
         elif t == "too":

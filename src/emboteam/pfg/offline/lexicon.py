@@ -560,7 +560,7 @@ _NOUNS: dict[str, Concept] = {
     "teddy": _obj("TeddyBear"), "teddy bear": _obj("TeddyBear"), "stuffed animal": _obj("TeddyBear"),
     "plush": _obj("TeddyBear"), "plush toy": _obj("TeddyBear"), "soft toy": _obj("TeddyBear"),
     "boot": _obj("Boots"), "boots": _obj("Boots"), "shoe": _obj("Boots"),
-    "hamper": _obj("LaundryHamper"), "laundry basket": _obj("LaundryHamper"),
+    "hamper": _obj("LaundryHamper"), "laundry basket": _obj("LaundryHamper"), "basket": _obj("LaundryHamper"),
     "vacuum": _obj("VacuumCleaner"), "hoover": _obj("VacuumCleaner"),
     "picture": _obj("Painting"), "artwork": _obj("Painting"), "frame": _obj("Painting"),
     "blind": _obj("Blinds"), "blinds": _obj("Blinds"), "shade": _obj("Blinds"),
