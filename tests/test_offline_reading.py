@@ -897,3 +897,10 @@ def test_would_look_nicer_on_and_an_adjective_in_a_new_subject() -> None:
 def test_things_that_want_to_go_somewhere() -> None:
     assert goal(read("There are two cloths lying on the bedroom floor, they both want to go in the laundry basket.", 307)) \
         == {"inside(2 of Cloth, LaundryHamper)"}
+
+
+def test_an_aside_between_commas_and_a_perfect_of_an_unknown_verb() -> None:
+    reading = read("The salt and pepper have wandered over to the dining table again, put them back on the worktop "
+                   "would you, and the knife in the sink, dry or not, goes in a drawer.", 9)
+    assert goal(reading) == {"inside(SaltShaker, CounterTop)", "inside(PepperShaker, CounterTop)", "inside(Knife, Drawer)"}
+    assert not reading.notes

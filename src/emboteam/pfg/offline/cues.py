@@ -81,7 +81,8 @@ def _perfect(items: list[Item], k: int) -> bool:
     if m >= len(items):
         return False
     verb = items[m].verb
-    return items[m].text in _PARTICIPLES or (verb is not None and verb.form == "ed")
+    return items[m].text in _PARTICIPLES or (verb is not None and verb.form == "ed") or (
+        verb is None and items[m].noun is None and len(items[m].text) > 4 and items[m].text.endswith("ed"))
 
 
 def _habitual(items: list[Item], k: int) -> bool:
