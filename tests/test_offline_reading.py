@@ -904,3 +904,9 @@ def test_an_aside_between_commas_and_a_perfect_of_an_unknown_verb() -> None:
                    "would you, and the knife in the sink, dry or not, goes in a drawer.", 9)
     assert goal(reading) == {"inside(SaltShaker, CounterTop)", "inside(PepperShaker, CounterTop)", "inside(Knife, Drawer)"}
     assert not reading.notes
+
+
+def test_up_on_the_shelf_describes_the_subject() -> None:
+    assert "inside(AlarmClock, SideTable)" in goal(read(
+        "Can you put my phone and my keys off the desk in a drawer, and the alarm clock up on the shelf should "
+        "really be on the bedside table where I can reach it.", 306))

@@ -281,6 +281,8 @@ def subject_here(items: list[Item], j: int) -> str | None:
     while k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
         k = _skip_np(items, k + 1)      # "the egg and the apple ... have both gone off"
     k = _skip_relative(items, k)        # "the keys that are lying on the desk go ..."
+    if k + 1 < n and items[k].text in ("up", "down", "over", "back") and items[k + 1].prep is not None:
+        k += 1                          # "the alarm clock up on the shelf should ..."
     if k >= n:
         return None
     while items[k].prep in ("in", "on", "from", "by", "near", "beside", "next to") and k + 1 < n \

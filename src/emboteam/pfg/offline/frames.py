@@ -854,6 +854,8 @@ def _locative_modifiers(items: list[Item], j: int, subjects: list[Target],
         p = j
         if p + 2 < n and position_participle(items[p]) and items[p + 1].prep in MODIFIER_PREPS:
             p += 1          # "the lettuce sitting on the counter should ..."
+        if p + 2 < n and items[p].text in ("up", "down", "over", "back") and items[p + 1].prep in MODIFIER_PREPS:
+            p += 1          # "the alarm clock up on the shelf should ..."
         if not (p + 1 < n and items[p].prep in MODIFIER_PREPS and np_start(items[p + 1])):
             break
         land, k = parse_np(items, p + 1)
