@@ -910,3 +910,8 @@ def test_up_on_the_shelf_describes_the_subject() -> None:
     assert "inside(AlarmClock, SideTable)" in goal(read(
         "Can you put my phone and my keys off the desk in a drawer, and the alarm clock up on the shelf should "
         "really be on the bedside table where I can reach it.", 306))
+
+
+def test_the_one_next_to_the_bowl_corrects_which_ladle() -> None:
+    assert goal(read("that ladle on the counter, sorry, the one next to the bowl, lives in a drawer.", 5)) == {
+        "inside(Ladle, Drawer)"}

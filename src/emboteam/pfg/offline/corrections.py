@@ -67,6 +67,19 @@ def apply_corrections(items: list[Item]) -> list[Item]:
             continue
         head = fix[0]
         cut: int | None = None
+        if len(fix) > 2 and head.det and fix[1].text == "one" and fix[2].prep is not None:
+            # "that ladle on the counter, sorry, the one next to the bowl": the same object,
+            # told apart by another place
+            place = max((i for i, x in enumerate(before) if x.prep is not None and i > 0
+                         and before[i - 1].noun is not None), default=None)
+            if place is not None:
+                told = list(fix[2:])
+                comma = next((i for i, x in enumerate(told) if x.punct == ","), None)
+                if comma is not None:
+                    del told[comma]       # "..., the one next to the bowl, lives in a drawer"
+                out = [*before[:place], *told, *rest]
+                k = place + len(told)
+                continue
         if _starts_clause(head):
             # "put the phone on the desk... I mean, put it in the drawer": a new clause
             cut = max((i + 1 for i, x in enumerate(before) if x.punct in _BREAK), default=0)
