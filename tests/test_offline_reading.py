@@ -915,3 +915,10 @@ def test_up_on_the_shelf_describes_the_subject() -> None:
 def test_the_one_next_to_the_bowl_corrects_which_ladle() -> None:
     assert goal(read("that ladle on the counter, sorry, the one next to the bowl, lives in a drawer.", 5)) == {
         "inside(Ladle, Drawer)"}
+
+
+def test_coordinated_subjects_with_places_after_a_persons_clause() -> None:
+    reading = read("Before you go, my phone off the desk and the keys on the other desk should go in the safe, with "
+                   "the door shut properly once they're in, and then could you switch the desk lamp off?", 308)
+    assert goal(reading) == {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)", "closed(Safe)", "switched_off(DeskLamp)"}
+    assert not reading.notes

@@ -278,24 +278,20 @@ def subject_here(items: list[Item], j: int) -> str | None:
     k = _skip_np(items, j)
     if k == j or k >= n:
         return None
-    while k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
-        k = _skip_np(items, k + 1)      # "the egg and the apple ... have both gone off"
-    k = _skip_relative(items, k)        # "the keys that are lying on the desk go ..."
-    if k + 1 < n and items[k].text in ("up", "down", "over", "back") and items[k + 1].prep is not None:
-        k += 1                          # "the alarm clock up on the shelf should ..."
+    while True:
+        # a subject: noun phrases with where they are, coordinated ("my phone off the desk
+        # and the keys that are lying on the other desk should go ...")
+        k = _skip_relative(items, k)
+        if k + 1 < n and items[k].text in ("up", "down", "over", "back") and items[k + 1].prep is not None:
+            k += 1
+        while k + 1 < n and items[k].prep in _SUBJECT_PLACES and _skip_np(items, k + 1) > k + 1:
+            k = _skip_np(items, k + 1)
+        if k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
+            k = _skip_np(items, k + 1)
+            continue
+        break
     if k >= n:
         return None
-    while items[k].prep in ("in", "on", "from", "by", "near", "beside", "next to") and k + 1 < n \
-            and _skip_np(items, k + 1) > k + 1 and _skip_np(items, k + 1) < n \
-            and items[_skip_np(items, k + 1)].prep in ("by", "near", "beside", "next to", "on", "in"):
-        k = _skip_np(items, k + 1)      # "the potato on the table by the coffee machine should ..."
-    if items[k].prep in ("in", "on", "from", "by", "near", "beside", "next to") and k + 1 < n:
-        # "the mug on the counter is dirty": a place that describes the subject
-        m = _skip_np(items, k + 1)
-        verb = items[m].verb if m < n else None
-        if m > k + 1 and m < n and (items[m].copula or _modal_predicate(items, m) or (
-                verb is not None and verb.form == "s" and verb.sense.act is lx.Act.GO)):
-            k = m
     it = items[k]
     end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None
     if it.copula and it.text != "to":
@@ -317,6 +313,9 @@ def subject_here(items: list[Item], j: int) -> str | None:
         return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None
 
+
+#: places that may describe a subject ("the potato on the table by the coffee machine")
+_SUBJECT_PLACES = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "off", "out of", "under"})
 
 #: words that open a predicate of a new subject: "should go", "wants to go", "can come out"
 _SUBJECT_MODALS = frozenset({"should", "can", "could", "must", "will", "would", "needs", "wants", "has",

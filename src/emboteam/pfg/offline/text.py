@@ -92,6 +92,8 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # "put the lid back down on the hamper": close it (AI2-THOR has no lids apart)
     (r"\b(?:put|pop|stick|drop|get) the lid (?:back )?(?:down )?(?:on|onto) ", "close "),
     (r"\b(close|shut) the lid (?:of|on) ", r"\1 "),
+    # "..., with the door shut properly": and shut it
+    (r"\bwith the (?:door|lid) (?:shut|closed)\b", "and shut the door"),
     # ", dry or not,": an aside between commas, nothing to do
     (r",\s*[a-z]+ or not\s*,", " "),
     # "one slice of each": one piece is "a" piece (the number would read "slice" as a verb)
