@@ -922,3 +922,18 @@ def test_coordinated_subjects_with_places_after_a_persons_clause() -> None:
                    "the door shut properly once they're in, and then could you switch the desk lamp off?", 308)
     assert goal(reading) == {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)", "closed(Safe)", "switched_off(DeskLamp)"}
     assert not reading.notes
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # a report before "so" and a request is the reason, not a complaint
+    ("The soap and the spray bottle are cluttering up the counter, could they both go in a drawer please? The "
+     "drawers are all shut, so one of you will have to open one before they can go in.", 410,
+     {"inside(SprayBottle, Drawer)", "open(Drawer)"}),
+    # "shut it" after a named object that can be shut is that object, not where things went
+    ("The CD and the pen on the desk can go in the box that's there with them, the laptop's been left open "
+     "so shut it, and could you pull the blinds open?", 310,
+     {"inside(CD, Box)", "inside(Pen, Box)", "closed(Laptop)", "open(Blinds)"}),
+])
+def test_reasons_and_what_shut_it_means(text: str, fp: int, expected: set[str]) -> None:
+    reading = goal(read(text, fp))
+    assert expected <= reading and "open(6 of Drawer)" not in reading and "closed(Box)" not in reading

@@ -442,3 +442,17 @@ def fix_up_complaints(parsed: list[ParsedClause]) -> set[int]:
         parsed[k] = replace(p, frames=[f for f in p.frames if f.act is not lexicon.Act.VAGUE])
         fixing.add(k)
     return fixing
+
+
+def reasons(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
+    """"The drawers are all shut, so one of you will have to open one": a report followed
+    by "so" and what to do about it is the reason for the request, not a complaint of its
+    own (the objects stay for pronouns). Returns the report clauses (no note)."""
+    silent: set[int] = set()
+    for k in range(len(clauses) - 1):
+        p, nxt = parsed[k], clauses[k + 1]
+        if p.frames and all(f.report for f in p.frames) and nxt.link == "purpose" \
+                and nxt.sentence == clauses[k].sentence and any(i.verb is not None for i in nxt.items):
+            parsed[k] = replace(p, frames=[])
+            silent.add(k)
+    return silent

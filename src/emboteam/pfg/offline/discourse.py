@@ -57,7 +57,14 @@ class Discourse:
         return need is None or any(self.g.can(t, need) for t in ref.type_names())
 
     def resolve(self, head: Head, need: str | None, prefer: str = "object") -> Ref:
-        """The antecedent of "it", "them", "some", "the slices"."""
+        """The antecedent of "it", "them", "some", "the slices"; "one" is one of it."""
+        ref = self._resolve(head, need, prefer)
+        if head.pron == "one" and head.text.split() == ["one"] and ref.groups and ref.groups[0][0].id is None:
+            # "the drawers are all shut, so open one": one of them
+            return Ref(head.label(), ((ref.groups[0][0], 1),))
+        return ref
+
+    def _resolve(self, head: Head, need: str | None, prefer: str = "object") -> Ref:
         if not self.history:
             if self.unresolved:
                 raise self.unresolved[-1]
@@ -90,12 +97,15 @@ class Discourse:
                     return Ref(head.label(), ((ObjectRef(types=types), n),), n > 1)
         if need in ("open", "switch"):
             # "put the books in the drawer and close it", "put the mug in the coffee machine
-            # and switch it on": where things just went
+            # and switch it on": where things just went - unless something named after it
+            # can do it ("..., the laptop's been left open so shut it")
             for m in reversed(self.history):
                 if m.role == "dest":
                     if self.fits(m.ref, need):
                         return m.ref
                     break
+                if m.role == "object" and m.head.pron is None and m.head.noun is not None and self.fits(m.ref, need):
+                    return m.ref
         if not plural and head.pron == "it":
             # a chain of "it"s keeps its referent ("pack the pens into the box, close it, and
             # put it on the shelf": the box both times), as long as it fits the verb

@@ -943,7 +943,7 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
         flags["subject"] = True
     # "(robot 1) should slice ...", "(robot 2) will open ...": a modal before a verb
     while len(items) > 1 and items[0].text in ("should", "must", "will", "can", "shall", "could",
-                                               "would", "to", "is", "needs", "has") \
+                                               "would", "to", "is", "needs", "has", "have") \
             and ((items[1].verb is not None and items[1].noun is None) or items[1].text == "to"):
         items = items[1:]
     unknown: list[str] = []

@@ -23,6 +23,7 @@ from emboteam.pfg.offline.clause_passes import (
     own_future,
     pointing_question,
     purpose_acts,
+    reasons,
     repeat_for_also,
     share_objects,
     small_talk,
@@ -220,6 +221,7 @@ class OfflineFrontend:
         silent = drop_conditions(clauses, parsed_clauses) | chat
         silent |= labelled_lists(clauses, parsed_clauses)
         silent |= fix_up_complaints(parsed_clauses)
+        silent |= reasons(clauses, parsed_clauses)
         attach_means(parsed_clauses)
         share_objects(clauses, parsed_clauses)
         gapped_objects(clauses, parsed_clauses)
