@@ -937,3 +937,10 @@ def test_coordinated_subjects_with_places_after_a_persons_clause() -> None:
 def test_reasons_and_what_shut_it_means(text: str, fp: int, expected: set[str]) -> None:
     reading = goal(read(text, fp))
     assert expected <= reading and "open(6 of Drawer)" not in reading and "closed(Box)" not in reading
+
+
+def test_things_come_down_onto_places_and_the_remotes_down_the_side() -> None:
+    reading = read("The two vases on the same shelf together, could they come down onto the coffee table? The "
+                   "remote's down the side of the armchair, it can go in the box so it stops getting lost, and the "
+                   "lamp can go off.", 206)
+    assert {"inside(2 of Vase, CoffeeTable)", "inside(RemoteControl, Box)", "switched_off(FloorLamp)"} <= goal(reading)

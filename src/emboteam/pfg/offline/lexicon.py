@@ -144,7 +144,7 @@ VERBS: dict[str, VerbSense] = {
     **{w: _v(A.MAKE) for w in ("make", "prepare", "brew", "fix", "whip", "serve")},
     "watch": _v(A.WATCH),
     **{w: _v(A.GO, weak=True) for w in (
-        "go", "belong", "end", "stay", "live", "sit", "remain", "lie", "wind", "land")},
+        "go", "belong", "end", "stay", "live", "sit", "remain", "lie", "wind", "land", "come")},
     **{w: _v(A.CAUSE, weak=True) for w in (
         "leave", "keep", "get", "have", "render", "want", "need", "like", "prefer", "love",
         "fancy", "crave")},

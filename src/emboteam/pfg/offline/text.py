@@ -42,7 +42,7 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"'s(?=\s+(?:still|not|now|already|always|again|on|off|open|closed|shut|dirty|clean|"
      r"empty|full|broken|wide|too|so|very|really|left|been|\w+ing|\w+ed|"
      # "the mug's in one of the cupboards": a place or an article after it, never a noun
-     r"in|on|inside|under|by|next|behind|near|at|over|here|there|gone|somewhere|probably|"
+     r"in|on|inside|under|by|next|behind|near|at|over|here|there|gone|somewhere|probably|down|up|out|"
      r"maybe|a|an|the|"
      # "microwave's fine": an evaluation
      r"fine|ok|okay|good|best|easiest|better|enough)\b)", " is"),
