@@ -944,3 +944,7 @@ def test_things_come_down_onto_places_and_the_remotes_down_the_side() -> None:
                    "remote's down the side of the armchair, it can go in the box so it stops getting lost, and the "
                    "lamp can go off.", 206)
     assert {"inside(2 of Vase, CoffeeTable)", "inside(RemoteControl, Box)", "switched_off(FloorLamp)"} <= goal(reading)
+
+
+def test_into_the_fridge_with_that() -> None:
+    assert "inside(WineBottle, Fridge)" in goal(read("The wine wants chilling, so into the fridge with that.", 17))

@@ -94,6 +94,8 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     (r"\b(close|shut) the lid (?:of|on) ", r"\1 "),
     # "..., with the door shut properly": and shut it
     (r"\bwith the (?:door|lid) (?:shut|closed)\b", "and shut the door"),
+    # "so into the fridge with that": put that into the fridge
+    (r"\b(into|onto|in|on) the ([a-z]+(?: [a-z]+)?) with (that|it|them|those)\b", r"put \3 \1 the \2"),
     # ", dry or not,": an aside between commas, nothing to do
     (r",\s*[a-z]+ or not\s*,", " "),
     # "one slice of each": one piece is "a" piece (the number would read "slice" as a verb)
