@@ -948,3 +948,12 @@ def test_things_come_down_onto_places_and_the_remotes_down_the_side() -> None:
 
 def test_into_the_fridge_with_that() -> None:
     assert "inside(WineBottle, Fridge)" in goal(read("The wine wants chilling, so into the fridge with that.", 17))
+
+
+def test_the_little_one_on_the_desk_is_the_other_lamp_not_a_contradiction() -> None:
+    reading = read("Film night! Get the telly on, switch on the tall lamp in the corner and turn off the little one "
+                   "on the desk, it glares on the screen.", 204)
+    assert goal(reading) == {"switched_on(Television)", "switched_on(FloorLamp)", "switched_off(DeskLamp_1)"}
+    # a real contradiction is still one
+    with pytest.raises(ContradictoryInstruction):
+        read("Open and close the fridge.")

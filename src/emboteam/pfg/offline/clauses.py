@@ -199,6 +199,10 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     k = team_subject(items, j)
     if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
         return True     # ", the other should put ...", "while another turns off ..."
+    if comma and it.pron in ("it", "that", "this", "they") and j + 1 < len(items) and items[j + 1].noun is None \
+            and items[j + 1].verb is None and items[j + 1].prep is None and items[j + 1].text.endswith("s") \
+            and len(items[j + 1].text) > 3 and items[j + 1].text not in lx.vocabulary():
+        return True     # "..., it glares on the screen": a clause of its own with a verb we do not know
     if it.text in ("do", "please") and j + 2 < len(items) and items[j + 1].neg and items[j + 2].verb is not None:
         return True     # "..., and don't leave the fridge door open": a prohibition of its own
     if comma and it.text in ("can", "could", "would", "will", "should") and j + 2 < len(items) \

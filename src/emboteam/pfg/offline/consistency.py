@@ -20,7 +20,7 @@ from emboteam.pfg.offline.clauses import Clause
 from emboteam.pfg.offline.decompose import refs_overlap, steps
 from emboteam.pfg.offline.errors import OfflineParseError
 from emboteam.pfg.offline.semantics import Draft
-from emboteam.world.goals import Condition, Predicate
+from emboteam.world.goals import Condition, ObjectRef, Predicate
 
 P = Predicate
 #: state predicates that exclude each other (moves are not here: an object may be carried
@@ -60,3 +60,19 @@ def check_consistent(clauses: Sequence[Clause], drafts: dict[int, list[Draft]]) 
             for a, b in itertools.product(first.conditions, second.conditions):
                 if _opposed(a, b):
                     raise ContradictoryInstruction(first, second, a, b)
+
+
+def narrow_contrasts(drafts: dict[int, list[Draft]]) -> None:
+    """"Switch on the tall lamp and turn off the little one on the desk": when one of two
+    opposed requests names an instance and the other a choice of kinds that includes it, the
+    choice is the other kinds, not a contradiction."""
+    all_drafts = [d for ds in drafts.values() for d in ds]
+    for a_draft, b_draft in itertools.permutations(all_drafts, 2):
+        for k, b in enumerate(b_draft.conditions):
+            for a in a_draft.conditions:
+                if not _opposed(a, b) or a.subject.id is None or b.subject.id is not None:
+                    continue
+                kind = a.subject.id.split("_")[0]
+                rest = tuple(t for t in b.subject.types if t != kind)
+                if rest and len(rest) < len(b.subject.types):
+                    b_draft.conditions[k] = b.model_copy(update={"subject": ObjectRef(types=rest)})

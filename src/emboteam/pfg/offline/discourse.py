@@ -59,6 +59,15 @@ class Discourse:
     def resolve(self, head: Head, need: str | None, prefer: str = "object") -> Ref:
         """The antecedent of "it", "them", "some", "the slices"; "one" is one of it."""
         ref = self._resolve(head, need, prefer)
+        if head.text.split()[-1:] == ["one"] and head.location:
+            # "turn off the little one on the desk": the kind named before, there
+            named = next((m.head for m in reversed(self.history) if m.ref.groups == ref.groups
+                          and m.head.noun is not None), None)
+            if named is not None:
+                try:
+                    return self.g.ground(replace(named, location=list(head.location), filters=[]), need)
+                except OfflineParseError:
+                    pass
         if head.pron == "one" and head.text.split() == ["one"] and ref.groups and ref.groups[0][0].id is None:
             # "the drawers are all shut, so open one": one of them
             return Ref(head.label(), ((ref.groups[0][0], 1),))

@@ -472,13 +472,18 @@ _LOCATED_ACTS = frozenset({Act.SWITCH_ON, Act.SWITCH_OFF, Act.SWITCH, Act.OPEN, 
                            Act.CLEAN, Act.BREAK})
 
 
+#: acts a place after the object can only pick out ("turn off the little one on the desk")
+_SWITCH_ACTS = frozenset({Act.SWITCH_ON, Act.SWITCH_OFF, Act.SWITCH})
+
+
 def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
     """Where the waiting objects go; right after a destination, a place that says where
     that destination is ("on a plate on the table", "in the cabinet under the sink"); a
     second place for the same objects makes the first where they were; with no object,
     the appliance is the means."""
     waiting = [t for t in s.pending if not t.dest]
-    if waiting and prep in ("under", "beneath", "below", "near") and s.frame.act in _LOCATED_ACTS:
+    if waiting and ((prep in ("under", "beneath", "below", "near") and s.frame.act in _LOCATED_ACTS) or (
+            prep in ("in", "on", "by", "next to") and s.frame.act in _SWITCH_ACTS)):
         # "fire up the burner under it": which burner, not where it goes
         head.role = "place"
         for t in waiting:

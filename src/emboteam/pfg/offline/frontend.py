@@ -30,7 +30,7 @@ from emboteam.pfg.offline.clause_passes import (
     whereabouts,
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
-from emboteam.pfg.offline.consistency import check_consistent
+from emboteam.pfg.offline.consistency import check_consistent, narrow_contrasts
 from emboteam.pfg.offline.constructions import parts_as_places, places_to_locations
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
@@ -293,6 +293,7 @@ class OfflineFrontend:
         notes = (*(_note(e) for e in [*skipped, *failed, *semantics.skipped]), *unread)
         for note in notes:
             log.info("offline parser: %s", note)
+        narrow_contrasts(drafts)
         check_consistent(clauses, drafts)
         spec = assemble(text, clauses, drafts, team)
         unsure = _unsure(spec, semantics.g.doubts)
