@@ -16,8 +16,7 @@ from emboteam.world.goals import ObjectRef
 from emboteam.world.state import ObjectState
 
 _names = ref_types
-#: words that make "one" another instance of the kind just named ("a fresh one")
-#: words that make "one" another instance ("a new one", "another one")
+#: words that make "one" another instance of the kind just named ("a fresh one", "a new one")
 OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean"})
 
 
@@ -186,10 +185,11 @@ class Discourse:
 
     def _pieces_of(self, head: Head, prefer: str) -> Ref:
         """"Cut it up and put two pieces of it in the bowl": the pieces of what "it" is."""
+        of = replace(head, piece=False, count=None)
         try:        # pieces come from something that can be cut ("a slice off it": the loaf)
-            whole = self.resolve(replace(head, piece=False, count=None), "slice", prefer)
+            whole = self.resolve(of, "slice", prefer)
         except OfflineParseError:
-            whole = self.resolve(replace(head, piece=False, count=None), None, prefer)
+            whole = self.resolve(of, None, prefer)
         products = [self.cat.slice_product(t) for t in whole.type_names()]
         kinds = tuple(p[0] for p in products if p is not None)
         if not kinds:
