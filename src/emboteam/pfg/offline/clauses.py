@@ -178,8 +178,10 @@ def _has_predicate(items: list[Item]) -> bool:
         return False
     last = items[-1]
     # a state word is a verb of its own at the head of an order ("open the fridge, ...")
+    # ... and so is a word that is also a noun when it takes an object there ("bin the
+    # spray bottle, and the candle ... should go on a side table")
     return any(x.copula or (x.verb is not None and x.noun is None and (x.state is None or k == 0))
-               for k, x in enumerate(items)) or last.particle is not None or (
+               for k, x in enumerate(items)) or verb_here(items, 0) or last.particle is not None or (
         last.state is not None and last.prep is None)
 
 
@@ -211,7 +213,8 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     if it.text in ("use", "using") and j + 1 < len(items) and (items[j + 1].det
                                                               or items[j + 1].noun is not None):
         return True     # "fry the egg - use the pan on the stove"
-    kind = subject_here(items, j)
+    asked = current is not None and bool(current) and current[0].text in ("could", "can", "would", "will", "should", "may", "might")
+    kind = subject_here(items, j, asked)
     if kind == "state" and comma and _ends_with_place(current or []):
         return True     # "candle in the box, box shut, lamp on": terse items, each complete
     return verb_here(items, j) or (kind is not None and (comma or kind != "state" or _ends_with_place(current or []))
@@ -272,12 +275,13 @@ def _skip_relative(items: list[Item], k: int) -> int:
     return k
 
 
-def subject_here(items: list[Item], j: int) -> str | None:
+def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
     """Does a subject with its own predicate start at ``j``? Which kind: "copula" (",
     the microwave is fine", ", all three need to be cold"), "verb" ("and the fork goes in
     the drawer") or "state" ("- lights off, blinds down"); None when not. A noun phrase
     followed by a place or by another noun phrase is not one ("put the apple, the egg in
-    the fridge")."""
+    the fridge"). ``asked``: the sentence is a question with a modal, whose later subjects
+    take the verb's base form ("could the mug go ..., and the book go on the bed?")."""
     n = len(items)
     k = _skip_np(items, j)
     if k == j or k >= n:
@@ -296,8 +300,12 @@ def subject_here(items: list[Item], j: int) -> str | None:
         break
     if k >= n:
         return None
+    if k + 1 < n and items[k].text in ("left", "kept", "still", "now", "all") and (
+            items[k + 1].state is not None or items[k + 1].particle in ("on", "off")):
+        k += 1      # "... and the shower door left open"
     it = items[k]
-    end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None
+    end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None \
+        or items[k + 1].sub is not None   # "... closed once they're in", "... left open so it dries"
     if it.copula and it.text != "to":
         return "copula"
     if it.text in ("have", "has") and k + 1 < n and (items[k + 1].text in ("both", "all", "already", "just")
@@ -308,7 +316,8 @@ def subject_here(items: list[Item], j: int) -> str | None:
         return "state"
     plural = items[j].text in ("they", "these", "those", "both", "all") or any(
         x.conj == "and" or (x.noun is not None and x.noun.plural) for x in items[j:k])
-    if it.verb is not None and (it.verb.form == "s" or (plural and it.verb.form == "base")) and it.noun is None \
+    if it.verb is not None and (it.verb.form == "s" or ((plural or asked) and it.verb.form == "base")) \
+            and it.noun is None \
             and it.verb.sense.act is lx.Act.GO:
         return "verb"       # "and the fork goes in the drawer", ", they both go in the fridge"
     while k < n and items[k].text in ("both", "all", "each"):

@@ -210,6 +210,16 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
             for k, d in enumerate(drafts.get(ci, [])):
                 nodes.append(Node(d, ci, robot, {base + a for a in d.after}))
                 clause_nodes.setdefault(ci, []).append(base + k)
+    # within a clause, a receptacle is shut after what goes into it ("the remote and the
+    # card shut away inside the box": placed by one frame, the box shut by another)
+    for members in clause_nodes.values():
+        for b in members:
+            shut = [c.subject for c in nodes[b].draft.conditions if c.predicate is P.closed]
+            for a in members:
+                if a != b and any(c.predicate is P.inside and c.receptacle is not None
+                                  and any(refs_overlap(c.receptacle, x) for x in shut)
+                                  for c in nodes[a].draft.conditions):
+                    nodes[b].after.add(a)
     # step order: everything of a step after every subtask of the last non-empty step
     previous: list[int] = []
     for group in order:

@@ -67,7 +67,8 @@ class Discourse:
                     return self.g.ground(replace(named, location=list(head.location), filters=[]), need)
                 except OfflineParseError:
                     pass
-        if head.pron == "one" and head.text.split() == ["one"] and ref.groups and ref.groups[0][0].id is None:
+        if (head.pron == "one" or head.count == 1) and head.text.split() in (["one"], ["one", "of", "them"]) \
+                and ref.groups and ref.groups[0][0].id is None:
             # "the drawers are all shut, so open one": one of them
             return Ref(head.label(), ((ref.groups[0][0], 1),))
         return ref
@@ -181,7 +182,12 @@ class Discourse:
         """"The loo roll on the floor goes in the bin and a fresh one on the holder": the
         same kind, another instance than the one just singled out."""
         same = self.resolve(replace(head, text=head.pron or ""), need, prefer)
-        return self._another_instance(same)
+        other = self._another_instance(same)
+        if other is None and len(same.groups) == 1 and same.groups[0][0].id is None and same.groups[0][1] > 1:
+            # "both rolls ... one of them on the holder and the other on the counter": one
+            # more of the kind
+            return Ref(head.label(), ((same.groups[0][0], 1),))
+        return other
 
     def _pieces_of(self, head: Head, prefer: str) -> Ref:
         """"Cut it up and put two pieces of it in the bowl": the pieces of what "it" is."""

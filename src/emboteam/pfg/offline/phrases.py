@@ -247,8 +247,14 @@ def _determiner(s: _NP) -> str | None:
     if h.noun is not None:
         return _STOP
     after = s.items[s.j + 2] if s.j + 2 < len(s.items) else None
-    adjective = nxt is not None and nxt.verb is None and nxt.prep is None and nxt.punct is None \
-        and nxt.conj is None and after is not None and after.noun is not None   # "that old cloth"
+    # "that old cloth"; "toss that empty bottle": a word that could be a verb, between a
+    # demonstrative in object position and a noun, is an adjective (not "the knife that
+    # cut bread")
+    before = s.items[s.j - 1] if s.j > 0 else None
+    object_position = before is not None and (before.verb is not None or before.prep is not None)
+    adjective = nxt is not None and (nxt.verb is None or (object_position and nxt.verb.form == "base")) \
+        and nxt.prep is None and nxt.punct is None and nxt.conj is None and after is not None \
+        and after.noun is not None
     if not (it.text not in ("this", "that", "these", "those", "some", "one")
             or ((nxt is not None and (np_start(nxt) or nxt.state is not None)
                  and nxt.verb is None) or (nxt is not None and (

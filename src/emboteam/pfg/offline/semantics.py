@@ -116,6 +116,10 @@ def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef 
 _THROWING = frozenset({"chuck", "throw", "toss", "dump", "fling", "lob"})
 
 
+#: cooking verbs that happen in a pan: the food ends up in it
+_PAN_VERBS = frozenset({"fry", "saute", "sear"})
+
+
 class Semantics:
     """Turns frames into drafts, keeping the mention history for pronouns."""
 
@@ -288,6 +292,16 @@ class Semantics:
         for t in targets:
             try:
                 placed = bool(t.dest) and not (frame.report or flip)
+                if (t.state or state) == (Stat.OPEN, False) and frame.particle == "away" and not t.dest \
+                        and t.head.noun is not None \
+                        and not any(self.g.can(x, "open") for x in t.head.noun.concept.types):
+                    # "the remote shut away inside the box": the clause's other frame put it
+                    # in the box; the box is what is shut
+                    box = next((m for m in reversed(self.history) if m.clause == clause and m.role == "dest"
+                                and any(self.g.can(x, "open") for x in m.ref.type_names())), None)
+                    if box is not None:
+                        out = concat(out, self._each(P.closed, box.ref))
+                        continue
                 if not (placed and own_states and t.state is None):
                     # "get the bread sliced and the egg into the fridge": the egg has only
                     # its place; "get a potato cooked and onto a plate": both
@@ -754,6 +768,14 @@ class Semantics:
                                 cond(P.switched_on, mw.single())], obj, mw, intermediate=True)
             done.after = [0]
             return [step, done]
+        in_pan = any(m.noun is not None and "Pan" in m.noun.concept.types for m in means)
+        if act is Act.COOK and t.head.pron is None and (in_pan or (frame.verb in _PAN_VERBS and not means)) \
+                and self.g.has_type("Pan") and "Pan" not in obj.type_names():
+            # "fry me an egg", "cook the potato in the pan": what is fried ends up in the
+            # pan, cooked there
+            pan = self.g.types_ref(("Pan",), "pan")
+            done.conditions = [*(cond(P.inside, r, n, pan.single()) for r, n in obj.groups),
+                               *done.conditions]
         return [done]
 
     def _fill_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:

@@ -25,6 +25,8 @@ _REPLACE: tuple[tuple[str, str], ...] = (
     (r"(?<=[a-z])/(?=[a-z])", " or "),
     # "(both on the table)": a parenthesis that says where things already are
     (r"\(\s*(?:both|all|each|all three|they are|they're|it is|it's|which (?:is|are))\b[^)]*\)", " "),
+    # "1) lights off 2) ladle in the sink": a number and a bracket open an item of a list
+    (r"(?<![\w(])(\d{1,2})\)", r" , \1 , "),
     (r"\(|\)|\[|\]", " , "),
     (r"\.\.\.+", " . "),
 )
@@ -55,6 +57,7 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\bshouldnt\b", "should not"), (r"\bwouldnt\b", "would not"), (r"\bim\b", "i am"),
     (r"\bthats\b", "that is"), (r"\blets\b", "let us"), (r"\bpls\b|\bplz\b", "please"),
     # chat spellings
+    (r"(?<=[a-z]) n (?=[a-z])", " and "),     # "cd n pen"
     (r"\bu\b", "you"), (r"\bur\b", "your"), (r"\bthx\b|\bthnx\b|\bty\b", "thanks"),
 )
 
@@ -92,6 +95,32 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # "put the lid back down on the hamper": close it (AI2-THOR has no lids apart)
     (r"\b(?:put|pop|stick|drop|get) the lid (?:back )?(?:down )?(?:on|onto) ", "close "),
     (r"\b(close|shut) the lid (?:of|on) ", r"\1 "),
+    # "I want the book in the cabinet, with the cabinet door shut": and the cabinet shut
+    (r"\bwith the ([a-z]+ (?:door|doors|lid)) (shut|closed)\b", r"and the \1 \2"),
+    # "while you're at it the desk lamp can go off": a circumstance said without its comma
+    (r"\b((?:while|whilst) you are at it|(?:when|if|whenever) you (?:get|have|got) (?:a )?"
+     r"(?:chance|minute|moment|sec|second|time))\b(?!\s*[,.;:!?])", r"\1 ,"),
+    # "the apple should be in the bowl rather than rolling around next to the coffee
+    # maker": the rejected alternative is no request
+    (r"\b(?:rather than|instead of) [a-z]+ing\b[^,.;:!?]*", " "),
+    # "same with the bowl.": the act before, on the bowl too; "same story with the apple,
+    # which should be in the bowl": a link to what was said before, the apple is the topic
+    (r"\b(?:(?:the )?same (?:story|thing|deal|goes|again|problem)?|ditto) ?(?:with|for) "
+     r"((?:the|my|your|that|this|those|these|all the) [a-z ]+?)\s*(?=[.;!?]|$)", r"\1 too"),
+    (r"\b(?:(?:the )?same (?:story|thing|deal|goes|again|problem)|ditto) (?:with|for) ", ""),
+    # "the apple, which should be in the bowl": the relative clause is the request
+    (r",\s*which (should|needs to|need to|must|has to|have to|ought to|wants to|want to|can) ", r" \1 "),
+    # "the desk lamp can go off": a state to reach, not a going
+    (r"\b(can|could|should|must|may|might|will|to) go (off|on|out)\b"
+     r"(?!\s+(?:the|a|an|to|into|in|onto|my|your|top|there|here)\b)", r"\1 be \2"),
+    # "once it's out on the counter": where it is ("take it out, on the counter")
+    (r"\bout (?=on (?:the|a|an|my|your|top)\b)", ""),
+    # "my keys and my watch, both on the coffee table right now": where they are now
+    (r",\s*(?:both|all|all three|each|they are|it is) (?:(?:currently|still|now|already) )?"
+     r"(?:on|in|by|under|next to|inside|near) [^,.;:!?]*?(?:right now|at the moment|currently)\b", " "),
+    # "one on the holder and the other on the toilet": the other one of the kind
+    (r"\bthe other(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|and|,|\.|;|!|\?)\b|\s*$)",
+     "the other one"),
     # "..., with the door shut properly": and shut it
     (r"\bwith the (?:door|lid) (?:shut|closed)\b", "and shut the door"),
     # "so into the fridge with that": put that into the fridge
@@ -121,6 +150,52 @@ def _arrows(text: str) -> str:
 _BROKEN_OFF = re.compile(r"\b([A-Za-z]+)-\s+(?:well|actually|er|erm|um|hmm),?\s+(?:just\s+)?")
 
 
+_POSTURE = r"(?:lying|laying|sitting|standing|resting|perched|sat|stood|hanging)"
+#: places a thing can go onto or into: after a relative clause they become "from"
+_ON_IN = r"(?:on top of|on|in|inside|over on|out on|down on|up on)"
+_BESIDE = r"(?:next to|by|near|under|beside|behind|at)"
+_DET = r"(?:the|a|an|my|your|his|her|our|their|this|that|one)"
+_RELATIVE_PLACE = re.compile(
+    r"(,\s*)?\b(?:that|which) (?:is|are|was|were) (?:(?:still|currently|now|just) )?(?:" + _POSTURE + r" )?"
+    r"(" + _ON_IN + "|" + _BESIDE + r") (" + _DET + r" [^,.;:!?]{1,60})(\s*,\s*(?=[a-z]))?")
+_PARTICIPLE_PLACE = re.compile(r"\b(\w+) " + _POSTURE + r" (" + _ON_IN + "|" + _BESIDE + r") (?=" + _DET + r"\b)")
+#: words after which a posture is where something should be ("leave it sitting on the
+#: counter", "find the pen sitting on the dresser", "the book is lying on the bed")
+_RESULT_WORDS = frozenset({"is", "are", "was", "were", "be", "been", "being", "it", "them", "left", "leave",
+                           "keep", "kept", "still", "find", "found", "see", "want", "like", "need", "have",
+                           # "shut and sitting on the armchair": a second predicate
+                           "and", "or", "get", "gets", "got"})
+
+_WISH_WORDS = frozenset({"left", "leave", "keep", "kept", "find", "found", "see", "want", "like", "need"})
+
+
+def _where_things_are(text: str) -> str:
+    """"the pen that's lying on the side table", "my phone, which is sitting on a shelf,",
+    "the sponge lying in the tub": a relative clause or a participle of posture after a
+    noun says where the thing is now. It becomes "from the side table", which no verb reads
+    as where the thing goes ("put the vase that's on the shelf and the keys in the box");
+    a place beside something stays as it is. After "leave", "find" or a copula the posture
+    is the wished place ("leave it sitting on the counter")."""
+    def relative(m: re.Match[str]) -> str:
+        prep = "from" if re.fullmatch(_ON_IN, m.group(2)) else m.group(2)
+        if m.group(1) is not None and m.group(4) is not None:
+            return f" {prep} {m.group(3)} "         # an aside between commas
+        return f"{m.group(1) or ' '}{prep} {m.group(3)}{m.group(4) or ' '}"
+
+    def participle(m: re.Match[str]) -> str:
+        if m.group(1) in _RESULT_WORDS or not re.fullmatch(_ON_IN, m.group(2)):
+            return f"{m.group(1)} {m.group(2)} "
+        # "I want to ... find the racket on the bed, the pen sitting on the dresser": a
+        # wish or a finding earlier in the sentence makes it the wished place
+        sentence = re.split(r"[.!?;]", text[:m.start()])[-1].split()
+        if any(w in _WISH_WORDS for w in sentence):
+            return f"{m.group(1)} {m.group(2)} "
+        return f"{m.group(1)} from "
+
+    text = _RELATIVE_PLACE.sub(relative, text)
+    return _PARTICIPLE_PLACE.sub(participle, text)
+
+
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
     text = _BROKEN_OFF.sub(r"\1 , i mean , ", _arrows(text))
@@ -131,6 +206,7 @@ def normalize(text: str) -> str:
     for pattern, repl in _CONTRACTIONS:
         text = re.sub(pattern, repl, text)
     text = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", text)   # counter-top, well-lit
+    text = _where_things_are(text)
     for pattern, repl in _POSTURES:
         text = re.sub(pattern, repl, text)
     text = re.sub(r"(?<=\d)(st|nd|rd|th)\b", "", text)   # 2nd -> 2
