@@ -39,6 +39,16 @@ def test_scenes_lists_all_120_floor_plans() -> None:
     assert {s["room"] for s in scenes} == {"kitchen", "living_room", "bedroom", "bathroom"}
 
 
+def test_python_dash_m_runs_the_same_command_line() -> None:
+    proc = subprocess.run([sys.executable, "-m", "emboteam", "scenes", "--json"], capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert len(json.loads(proc.stdout)["scenes"]) == 120
+    bad = subprocess.run([sys.executable, "-m", "emboteam", "run", "--frobnicate"], capture_output=True, text=True,
+                         timeout=600)
+    assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
+
+
 def test_tasks_lists_the_suite() -> None:
     data = one_json(cli("tasks", "--suite", "mace-thor", "--json"))
     tasks = data["tasks"]
