@@ -47,7 +47,7 @@ from emboteam.world.catalogue import (
     load_catalogue,
 )
 from emboteam.world.goals import Condition, Predicate
-from emboteam.world.state import WorldState
+from emboteam.world.state import ObjectState, WorldState
 
 
 @dataclass(frozen=True)
@@ -107,18 +107,28 @@ def _water_support(state: WorldState) -> list[str]:
     return out
 
 
-def _heat_support(state: WorldState, types: set[str]) -> list[str]:
+def _heat_support(state: WorldState, types: set[str], active: Sequence[str] = ()) -> list[str]:
     """Appliances that can heat objects of ``types``: a microwave, toaster or coffee
     machine that takes them, a burner for what goes on a stove (pans, pots, kettles); for
     food that needs a pan, a pan or pot that takes it and a burner (its knobs follow by
-    closure)."""
+    closure). An appliance the ``active`` robots cannot use (a shut microwave and nobody
+    who opens) covers nothing: the pan on the stove is then the way."""
     cat = load_catalogue()
+    skills = {s for r in active if r in state.robots for s in state.robots[r].profile.skills}
+
+    def usable(h: ObjectState) -> bool:
+        if not active:
+            return True
+        opens = h.type not in cat.must_be_open or h.is_open or Skill.OpenObject in skills
+        return opens and (h.is_on or Skill.SwitchOn in skills)
+
     direct = [h.id for h in state.of_type(*(HEATERS - BURNERS), *BREWERS)
               if any(cat.can_place(t, h.type) for t in types)
               and (h.type not in BREWERS or "Mug" in types)]
     burners = [b.id for b in state.of_type(*BURNERS)]
     stove = burners[:1] if burners and any(cat.can_place(t, "StoveBurner") for t in types) else []
-    covered = {t for t in types if any(cat.can_place(t, state.objects[h].type) for h in direct + stove)}
+    covered = {t for t in types if any(cat.can_place(t, state.objects[h].type) for h in direct + stove
+                                       if usable(state.objects[h]))}
     if covered == types or not burners:
         return direct + stove
     containers = [c for c in state.of_type("Pan", "Pot")
@@ -171,7 +181,7 @@ def relevant_objects(state: WorldState, parts: Sequence[GoalPart], active: Seque
         if part.satisfied:
             support = []
         elif pred in (Predicate.hot, Predicate.cooked):
-            support = _heat_support(state, types)
+            support = _heat_support(state, types, active)
         elif pred is Predicate.cold:
             support = [f.id for f in state.of_type(*COLD_SOURCES) if is_cold_source(f)]
         elif pred is Predicate.clean or (pred is Predicate.filled and part.condition.liquid in (None, "water")):
