@@ -1003,6 +1003,11 @@ def test_the_little_one_on_the_desk_is_the_other_lamp_not_a_contradiction() -> N
     # a label with its place, and where things are "right now"
     ("Things for the side table: my keys and my watch, both on the coffee table at the moment.", 228,
      {"inside(KeyChain, SideTable)", "inside(Watch, SideTable)"}),
+    # "for the armchair" after a taking verb is where it goes ("pinch" takes)
+    ("Pinch the cushion off the sofa for the armchair.", 204, {"inside(Pillow, ArmChair)"}),
+    # an aside naming where each one is
+    ("Both CDs, the one on the bedside table and the one on the shelf, go in the box.", 303,
+     {"inside(2 of CD, Box)"}),
     # a question's later subject takes the base form
     ("Could the mug go onto the dresser, and the book that's on the dresser go on the bed?", 315,
      {"inside(Mug, Dresser)", "inside(Book, Bed)"}),

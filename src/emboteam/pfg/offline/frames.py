@@ -423,7 +423,22 @@ def _prepositional_phrase(s: _Tail) -> str | None:
                 s.frame.room_states.append((Stat.BRIGHT, pos))
     elif prep != "for":
         _destination(s, head, prep, at)
+    elif _taken_for_a_place(s, head):
+        # "pinch the cushion off the sofa for the armchair": taken to go there
+        _destination(s, head, "on", at)
     return _GO
+
+
+def _taken_for_a_place(s: _Tail, head: Head) -> bool:
+    """Is "for the armchair" where a taken object goes: a taking or placing verb whose
+    objects have no place yet (not a label: "things for the box: ..."), and furniture that can hold things (not "a knife for the
+    bread", which is no receptacle)."""
+    if s.frame.act not in (Act.PLACE, Act.HOLD) or not s.frame.verb or not s.pending or any(t.dest for t in s.pending) \
+            or head.noun is None or head.noun.concept.kind != "object":
+        return False
+    cat = load_catalogue()
+    return all(t in cat.types and cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
+               for t in head.noun.concept.types)
 
 
 def _inside_the_one_named(s: _Tail, prep: str) -> None:

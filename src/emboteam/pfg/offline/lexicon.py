@@ -110,7 +110,7 @@ VERBS: dict[str, VerbSense] = {
     **{w: _v(A.TRASH) for w in (
         "trash", "discard", "dispose", "bin", "junk", "chuck", "ditch", "scrap", "garbage")},
     **{w: _v(A.HOLD) for w in (
-        "pick", "grab", "hold", "lift", "collect", "retrieve", "obtain", "snatch", "seize",
+        "pick", "grab", "hold", "lift", "collect", "retrieve", "obtain", "snatch", "seize", "pinch", "nick",
         "hand", "give", "find", "locate", "acquire")},
     **{w: _v(A.SLICE) for w in (
         "slice", "cut", "chop", "dice", "mince", "carve", "cube", "julienne", "halve",
@@ -600,7 +600,7 @@ _NOUNS: dict[str, Concept] = {
     "towel bar": _obj("TowelHolder"), "towel ring": _obj("TowelHolder"),
     "towel hanger": _obj("TowelHolder"),
     "toilet brush": _obj("ScrubBrush"), "brush": _obj("ScrubBrush"),
-    "scrub brush": _obj("ScrubBrush"),
+    "scrub brush": _obj("ScrubBrush"), "scrubbing brush": _obj("ScrubBrush"),
     "rag": _obj("Cloth"), "washcloth": _obj("Cloth"), "wash cloth": _obj("Cloth"),
     "dishcloth": _obj("Cloth", "DishSponge"), "dish cloth": _obj("Cloth", "DishSponge"),
     "cloth": _obj("Cloth"), "towel": _obj("Towel", fallback=("HandTowel",)),

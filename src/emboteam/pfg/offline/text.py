@@ -118,6 +118,10 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # "my keys and my watch, both on the coffee table right now": where they are now
     (r",\s*(?:both|all|all three|each|they are|it is) (?:(?:currently|still|now|already) )?"
      r"(?:on|in|by|under|next to|inside|near) [^,.;:!?]*?(?:right now|at the moment|currently)\b", " "),
+    # "both the CDs, the one on the bedside table and the one up on the shelf, need to
+    # go ...": an aside naming where each one is, not where they go
+    (r",\s*the one (?:(?:up|down|over|out) )?(?:on|in|inside) ([^,.;:!?]+?) and the one "
+     r"(?:(?:up|down|over|out) )?(?:on|in|inside) ([^,.;:!?]+?)\s*,", " "),
     # "one on the holder and the other on the toilet": the other one of the kind
     (r"\bthe other(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|and|,|\.|;|!|\?)\b|\s*$)",
      "the other one"),
@@ -156,7 +160,7 @@ _ON_IN = r"(?:on top of|on|in|inside|over on|out on|down on|up on)"
 _BESIDE = r"(?:next to|by|near|under|beside|behind|at)"
 _DET = r"(?:the|a|an|my|your|his|her|our|their|this|that|one)"
 _RELATIVE_PLACE = re.compile(
-    r"(,\s*)?\b(?:that|which) (?:is|are|was|were) (?:(?:still|currently|now|just) )?(?:" + _POSTURE + r" )?"
+    r"(,\s*)?\b(?:that|which) (?:is|are|was|were) (?:(?:still|currently|now|just|already) )?(?:" + _POSTURE + r" )?"
     r"(" + _ON_IN + "|" + _BESIDE + r") (" + _DET + r" [^,.;:!?]{1,60})(\s*,\s*(?=[a-z]))?")
 _PARTICIPLE_PLACE = re.compile(r"\b(\w+) " + _POSTURE + r" (" + _ON_IN + "|" + _BESIDE + r") (?=" + _DET + r"\b)")
 #: words after which a posture is where something should be ("leave it sitting on the
