@@ -318,3 +318,14 @@ def test_a_bug_is_exit_70_in_one_line_and_one_json_object(monkeypatch: pytest.Mo
     assert line.startswith("internal error: RuntimeError: index [3] out of range") and "EMBOTEAM_DEBUG=1" in line
     data = one_object(result.stdout)
     assert data["success"] is False and data["exit_code"] == 70
+
+
+def test_abort_is_caught_with_the_click_that_typer_uses() -> None:
+    # typer releases that ship their own click have no Abort in its exceptions module: the
+    # handler must still name a class (it raised AttributeError on a broken pipe)
+    from emboteam.cli import _abort_class, _click_exceptions
+
+    abort = _abort_class(_click_exceptions())
+    assert issubclass(abort, BaseException)
+    import typer.exceptions
+    assert abort in (typer.exceptions.Abort, getattr(_click_exceptions(), "Abort", None))

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from dataclasses import replace
 from functools import wraps
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar, cast
 
 import typer
 from rich.console import Console
@@ -636,6 +636,15 @@ def _click_exceptions() -> Any:
     return exceptions
 
 
+def _abort_class(exceptions: Any) -> type[BaseException]:
+    """Click's Abort (Ctrl-C at a prompt): in click's exceptions module, or in
+    ``typer.exceptions`` for typer releases that ship their own click."""
+    abort = getattr(exceptions, "Abort", None)
+    if abort is None:
+        from typer.exceptions import Abort as abort
+    return cast(type[BaseException], abort)
+
+
 def _usage_message(exc: Any) -> str:
     """Click's message, with where to look: ``--help`` of the command that was called."""
     message = str(exc.format_message())
@@ -667,7 +676,7 @@ def main(argv: list[str] | None = None) -> None:
             code = fail(_usage_message(exc), EXIT_BAD_INPUT, as_json=as_json).exit_code
     except ce.ClickException as exc:
         code = fail(exc.format_message(), exc.exit_code or EXIT_BAD_INPUT, as_json=as_json).exit_code
-    except (ce.Abort, KeyboardInterrupt):
+    except (_abort_class(ce), KeyboardInterrupt):
         code = fail("interrupted", EXIT_INTERRUPTED, as_json=as_json).exit_code
     sys.exit(code if isinstance(code, int) else EXIT_OK)
 
