@@ -1021,3 +1021,55 @@ def test_shut_away_orders_the_shutting_after_the_placing() -> None:
     shut = next(s for s in spec.subtasks if "closed(Box)" in {str(c) for c in s.goal})
     placed = {s.id for s in spec.subtasks if any(str(c).startswith("inside(") for c in s.goal)}
     assert placed and placed <= set(shut.depends_on)
+
+
+# round 14: what the round-15 and round-16 development sets taught (paraphrases)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # a relabelled placement, a dash before a last short phrase as a colon
+    ("the rags on the floor - laundry basket please", 307, {"inside(2 of Cloth, LaundryHamper)"}),
+    # bullets
+    ("Before the guests come: \u2022 a new toilet roll on the holder \u2022 shower curtain pulled open "
+     "\u2022 light off", 401,
+     {"inside(ToiletPaper, ToiletPaperHanger)", "open(ShowerCurtain)", "switched_off(LightSwitch)"}),
+    # a third-person subordinate clause is what will happen; "same for X" repeats the request
+    ("The egg on the counter needs to go in the fridge before it goes off. Same for the tomato.", 2,
+     {"inside(Egg, Fridge)", "inside(Tomato, Fridge)"}),
+    # "I'd love it if ...": the wish, whatever else the sentence asks; a reason is dropped
+    ("I'd love it if the floor lamp was on when I get home, and the tissues moved over to the dresser "
+     "because I keep knocking them off.", 220, {"switched_on(FloorLamp)", "inside(TissueBox, Dresser)"}),
+    # "..., with the remote on the sofa": and the remote on the sofa
+    ("I'd like the television on when I get back, with the remote waiting for me on the sofa.", 220,
+     {"switched_on(Television)", "inside(RemoteControl, Sofa)"}),
+    # a participle with its state as a coordinated subject
+    ("Both toilet rolls should be stored in the cabinet, and the light switched off.", 422,
+     {"inside(2 of ToiletPaper, Cabinet)", "switched_off(LightSwitch)"}),
+    # "not the one in the bin": which one, not where
+    ("Put the roll from the toilet on the holder, not the one in the bin.", 420,
+     {"inside(ToiletPaper_2, ToiletPaperHanger)"}),
+    # a thing described by its use
+    ("The thing for unblocking the toilet goes in the cabinet.", 407, {"inside(Plunger, Cabinet)"}),
+    # states typed without commas; "end state"
+    ("end state soap in the sink tap running light off", 430,
+     {"inside(SoapBar, SinkBasin)", "switched_on(Faucet)", "switched_off(LightSwitch)"}),
+    # a list without commas before its "and"
+    ("put the book pen and pencil in the box", 317, {"inside(Book, Box)", "inside(Pen, Box)", "inside(Pencil, Box)"}),
+    # one subject, two third-person acts
+    ("robot 2 closes the drawer and turns off the light", 410, {"closed(Drawer)", "switched_off(LightSwitch)"}),
+    # words heard for others
+    ("put the toilet paper on the holder and through the old cloth away", 421,
+     {"inside(ToiletPaper, ToiletPaperHanger)", "inside(Cloth, GarbageCan)"}),
+    ("to slices of tomato on the plate", 27, {"inside(2 of TomatoSliced, Plate)"}),
+    # "the side table with the lamp on it": which table
+    ("pop my watch on the side table with the lamp on it", 210, {"inside(Watch, SideTable)"}),
+    # "get the lights": switch them the other way
+    ("could you get the lights?", 11, {"switched_off(LightSwitch)"}),
+])
+def test_round_14_structures(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected
+
+
+def test_the_old_one_on_the_toilet_is_the_one_there() -> None:
+    reading = read("We're out of loo roll on the holder, there's a spare in the cabinet. Put it on the holder "
+                   "and bin the old one that's on the toilet.", 424)
+    assert goal(reading) == {"inside(ToiletPaper, ToiletPaperHanger)", "inside(ToiletPaper_1, GarbageCan)"}
+    assert all(s.final for s in reading.spec.subtasks)

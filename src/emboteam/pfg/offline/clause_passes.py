@@ -163,6 +163,24 @@ def own_future(clause: Clause) -> bool:
     return words[2].copula
 
 
+_WISH_WORDS = frozenset({"love", "like", "appreciate", "prefer", "great", "nice", "good", "grateful", "brilliant",
+                         "lovely", "ideal", "perfect", "helpful", "amazing", "fantastic", "wonderful"})
+
+
+def _wish_for_it(clause: Clause) -> bool:
+    """"I'd love it", "it would be great", "I'd appreciate it": the "if" after it says what."""
+    words = [i.text for i in clause.items if i.punct is None]
+    return bool(words) and (words[-1] == "it" or words[0] == "it") and any(w in _WISH_WORDS for w in words)
+
+
+def _reported(items: list[Item]) -> bool:
+    """"(before) it goes off", "(once) they come out": a pronoun and a verb in the third
+    person, what will happen, not something asked."""
+    words = [i for i in items if i.punct is None]
+    return len(words) >= 2 and words[0].pron in ("it", "they", "that", "this") and words[1].verb is not None \
+        and words[1].verb.form == "s" and words[1].noun is None
+
+
 def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"If the fridge is open, close it": a state under "if" is the condition of an act
     of its sentence, not a goal (its objects stay for the pronouns). Without such an act
@@ -176,8 +194,9 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
             parsed[k] = replace(p, frames=[])
             silent.add(k)
             continue
-        if c.link in ("after", "before", "while") and p.frames and is_statement(c.items) \
-                and all(not f.verb and f.targets and all(t.head.pron is not None for t in f.targets)
+        if c.link in ("after", "before", "while") and p.frames and (is_statement(c.items) or _reported(c.items)) \
+                and all((not f.verb or _reported(c.items)) and f.targets
+                        and all(t.head.pron is not None for t in f.targets)
                         and (f.state is None or f.state[0] not in _MADE_STATES)
                         and not any(d.noun is not None for t in f.targets for d in t.dest)
                         for f in p.frames):
@@ -199,6 +218,9 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
         sentence = clauses[group[0]].sentence
         acted = any(clauses[j].sentence == sentence and j not in group and requests(parsed[j])
                     for j in range(len(clauses)))
+        before = clauses[group[0] - 1] if group[0] > 0 else None
+        if before is not None and before.sentence == sentence and _wish_for_it(before):
+            acted = False   # "I'd love it if X, ... and Y": the "if" is the wish, whatever else is asked
         for k in group:
             if acted:
                 parsed[k] = replace(parsed[k], frames=[])
@@ -258,6 +280,24 @@ def _label_to_place(label: list[Head], nxt: Clause) -> Frame | None:
     return None
 
 
+def _relabelled_placement(c: Clause, nxt: Clause, label: ParsedClause, item: ParsedClause) -> Frame | None:
+    """A label that reads as things with their place ("the cloths on the floor"), and after
+    the colon only another place ("laundry basket"): the label's place is where the things
+    are, the item is where they go."""
+    if not c.extra.get("colon") or item.frames or nxt.sentence != c.sentence + 1 or not label.frames:
+        return None
+    heads = known_objects([i for i in nxt.items if i.noun is not None or i.text not in lexicon.FILLER_WORDS]) or []
+    if len(heads) != 1 or heads[0].noun is None or not _fixed_place(heads[0]):
+        return None
+    if not all(f.act is lexicon.Act.PLACE and f.targets and all(t.dest and _movable(t.head) for t in f.targets)
+               for f in label.frames):
+        return None
+    place = heads[0]
+    place.role = "dest"
+    return Frame(lexicon.Act.PLACE, "put", [Target(t.head, [place], "in") for f in label.frames for t in f.targets],
+                 text=nxt.text)
+
+
 def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
     """"Bed: pillow and teddy. Desk: book and laptop.", "Things for the box: the pen and
     the pencil.": a place before a colon, then only objects, puts them there. Returns the
@@ -265,6 +305,12 @@ def labelled_lists(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int
     labels: set[int] = set()
     for k in range(len(clauses) - 1):
         c, nxt = clauses[k], clauses[k + 1]
+        relabelled = _relabelled_placement(c, nxt, parsed[k], parsed[k + 1])
+        if relabelled is not None:
+            # "the cloths on the floor: laundry basket": where they are, then where they go
+            parsed[k].frames, parsed[k + 1].frames = [], [relabelled]
+            labels.add(k)
+            continue
         # "things for the desk" reads as a placement that lacks its place
         placing = all(f.act is lexicon.Act.PLACE and not any(t.dest for t in f.targets)
                       for f in parsed[k].frames)

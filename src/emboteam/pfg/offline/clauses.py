@@ -210,6 +210,10 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     if comma and it.text in ("can", "could", "would", "will", "should") and j + 2 < len(items) \
             and (items[j + 1].pron is not None or items[j + 1].det or items[j + 1].text in _HUMAN):
         return True     # "I've left my phone on the bed, can it go on the desk?"
+    if it.verb is not None and it.verb.form == "s" and it.noun is None and current \
+            and any(x.verb is not None and x.verb.form == "s" and x.noun is None for x in current) \
+            and _next_is_object(items, j):
+        return True     # "robot 1 closes it and turns off the light": the same subject's next act
     if it.text in ("use", "using") and j + 1 < len(items) and (items[j + 1].det
                                                               or items[j + 1].noun is not None):
         return True     # "fry the egg - use the pan on the stove"
@@ -311,6 +315,14 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
     if it.text in ("have", "has") and k + 1 < n and (items[k + 1].text in ("both", "all", "already", "just")
                                                       or items[k + 1].verb is not None):
         return "copula"     # a perfect: "... have both gone off", "... has been left on"
+    if it.verb is not None and it.verb.form == "ed" and it.noun is None and k + 1 < n and (
+            items[k + 1].prep in ("in", "on", "into", "onto", "to", "over to", "inside")
+            or (items[k + 1].particle is not None and k + 2 < n and items[k + 2].prep is not None)):
+        return "state"      # "..., and the tissues moved over to the dresser": a thing and its wished place
+    if it.verb is not None and it.verb.form == "ed" and it.noun is None and k + 1 < n \
+            and items[k + 1].particle in ("on", "off", "up", "down") and (
+                k + 2 >= n or items[k + 2].punct is not None or items[k + 2].conj is not None):
+        return "state"      # "..., and the light switched off"
     if end and (it.particle in ("on", "off", "up", "down") or (
             it.state is not None and it.prep is None)):
         return "state"
@@ -326,6 +338,27 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None
 
+
+def _with_a_place(items: list[Item], j: int) -> bool:
+    """After "with": a thing and where it is to be ("with the remote on the sofa")."""
+    k = _skip_np(items, j)
+    return j < k < len(items) and items[k].prep in ("on", "in", "inside", "onto", "into")
+
+
+def _state_item_here(items: list[Item], j: int) -> bool:
+    """Does a "thing state" item start at ``j`` ("tap running", "light off")?"""
+    k = _skip_np(items, j)
+    if k == j or k >= len(items):
+        return False
+    it = items[k]
+    if it.prep is not None and k + 1 < len(items) and (items[k + 1].det or items[k + 1].noun is not None
+                                                       or items[k + 1].pron):
+        return False    # "the little one on the desk": a place, not a state
+    return it.text in _RUN_ON_STATES or it.particle in ("on", "off") or (it.state is not None and it.prep is None)
+
+
+#: states that end a "thing state" item of a run-on list (not "on": it is also a place)
+_RUN_ON_STATES = frozenset({"off", "running", "open", "closed", "shut", "ajar", "sliced", "clean"})
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")
 _SUBJECT_PLACES = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "off", "out of", "under"})
@@ -440,6 +473,11 @@ def segment(items: list[Item]) -> list[Clause]:
                 elif k < len(sentence) and _starts_new(sentence, k, current.items, comma):
                     boundary = AND
                     skip = k - j
+                elif comma and k + 1 < len(sentence) and sentence[k].prep == "with" \
+                        and _with_a_place(sentence, k + 1) and _has_predicate(current.items):
+                    # "..., with the remote on the sofa": and the remote on the sofa
+                    boundary = AND
+                    skip = k + 1 - j
             elif (it.sub is not None and j > 0) or (it.sub is not None and j == 0):
                 nxt = sentence[j + 1] if j + 1 < len(sentence) else None
                 is_sub = it.sub != "by" or (nxt is not None and nxt.verb is not None
@@ -455,6 +493,16 @@ def segment(items: list[Item]) -> list[Clause]:
                 if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
                         and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
                     boundary = AND      # "so I was going to bake": what happened, no purpose
+            if boundary is None and j > 1 and ((
+                    sentence[j - 1].text in _RUN_ON_STATES and sentence[j - 2].verb is None
+                    and not sentence[j - 2].det) or (
+                    sentence[j - 1].noun is not None and _ends_with_place(current.items))) \
+                    and (it.det or it.noun is not None) \
+                    and _state_item_here(sentence, j) and any(x.is_content() for x in current.items):
+                # "soap in the sink tap running light off": states typed without commas,
+                # each after its own subject
+                boundary = AND
+                skip = 0
             if boundary is None:
                 current.items.append(it)
                 j += 1

@@ -13,6 +13,7 @@ from dataclasses import replace
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
 from emboteam.pfg.offline.tagger import Item
+from emboteam.world.catalogue import load_catalogue
 
 Act = lx.Act
 
@@ -207,4 +208,29 @@ def parts_as_places(items: list[Item]) -> list[Item]:
                 continue
         out.append(it)
         k += 1
+    return out
+
+
+def _small_thing(it: Item) -> bool:
+    """A noun that names only things one can pick up (a book, a pen), not furniture."""
+    if it.noun is None or it.noun.concept.kind != "object" or it.verb is not None or not it.noun.concept.types:
+        return False
+    cat = load_catalogue()
+    return all(t in cat.types and cat.type(t).has("pickupable") for t in it.noun.concept.types)
+
+
+def commaless_lists(items: list[Item]) -> list[Item]:
+    """"put the book pen & pencil in the box": two things named side by side, before an
+    "and" that ends the list, are two items of it (no compound noun is two pickupable
+    things: "bread knife" is one word of the lexicon)."""
+    out: list[Item] = []
+    for k, it in enumerate(items):
+        out.append(it)
+        if not (_small_thing(it) and k + 1 < len(items) and _small_thing(items[k + 1])):
+            continue
+        m = k + 1
+        while m < len(items) and (_small_thing(items[m]) or items[m].det):
+            m += 1
+        if m < len(items) and items[m].conj == "and":
+            out.append(Item(text=",", punct=","))
     return out

@@ -17,7 +17,7 @@ from emboteam.world.state import ObjectState
 
 _names = ref_types
 #: words that make "one" another instance of the kind just named ("a fresh one", "a new one")
-OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean"})
+OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean", "old"})
 
 
 @dataclass
@@ -67,6 +67,10 @@ class Discourse:
                     return self.g.ground(replace(named, location=list(head.location), filters=[]), need)
                 except OfflineParseError:
                     pass
+            else:       # "a spare ... bin the old one that's on the toilet": the kind, there
+                there = self.g.located(ref.type_names(), head)
+                if there is not None:
+                    return there
         if (head.pron == "one" or head.count == 1) and head.text.split() in (["one"], ["one", "of", "them"]) \
                 and ref.groups and ref.groups[0][0].id is None:
             # "the drawers are all shut, so open one": one of them

@@ -361,6 +361,8 @@ def _rejected_alternative(s: _Tail) -> str | None:
     elif s.j < n and np_start(items[s.j]) and items[s.j].verb is None:
         left_out, k = parse_np(items, s.j)
         s.j = max(k, s.j + 1)
+        if left_out is not None and left_out.text.split()[-1:] == ["one"]:
+            s.j = skip_locative(items, s.j)     # "not the one in the bin": which one, not a place
         whole = s.pending[-1].head if s.pending else None
         if left_out is not None and whole is not None and not it.neg and (
                 whole.quant is not None or whole.plural):

@@ -292,6 +292,21 @@ class Grounder:
             return Ref(label, tuple(groups), True)
         return Ref(label, ((ObjectRef(types=tuple(types)), 1),), False)
 
+    def located(self, types: Iterable[str], head: Head) -> Ref | None:
+        """The instance of ``types`` that ``head``'s places single out ("the old one
+        that's on the toilet"), None when they single out none or all of them."""
+        places = []
+        for _, land in head.location:
+            try:
+                places.append(self.ground(land, None))
+            except GroundingError:
+                continue
+        pool = [o for t in types for o in self.instances(t)]
+        chosen = [o for o in pool if self._matches(o, head, places)] if places else []
+        if not chosen or len(chosen) == len(pool):
+            return None
+        return Ref(head.label(), ((ObjectRef(id=chosen[0].id), 1),))
+
     def light_sources(self, on: bool = False) -> Ref:
         """The lights to switch to make the room dark: its switch and its lamps; to make it
         bright (``on``) its main light is enough (its lamps where it has no light switch)."""

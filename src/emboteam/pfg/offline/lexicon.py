@@ -505,7 +505,7 @@ _NOUNS: dict[str, Concept] = {
     "dish soap": _obj("SoapBottle"), "hand soap": _obj("SoapBottle"),
     "soap dispenser": _obj("SoapBottle"), "liquid soap": _obj("SoapBottle"),
     "detergent": _obj("SoapBottle"), "dishwashing liquid": _obj("SoapBottle"),
-    "soap": _obj("SoapBar", "SoapBottle"), "bar of soap": _obj("SoapBar"),
+    "soap": _obj("SoapBar", fallback=("SoapBottle",)), "bar of soap": _obj("SoapBar"),
     "soapbar": _obj("SoapBar"),
     "spray": _obj("SprayBottle"), "cleaner": _obj("SprayBottle"),
     "cleaning spray": _obj("SprayBottle"), "spray cleaner": _obj("SprayBottle"),
@@ -521,7 +521,7 @@ _NOUNS: dict[str, Concept] = {
     "garbage bin": _obj("GarbageCan"), "wastebin": _obj("GarbageCan"),
     "trash bag": _obj("GarbageBag"), "bin bag": _obj("GarbageBag"),
     # --- living room, bedroom
-    "tv": _obj("Television"), "telly": _obj("Television"), "tv set": _obj("Television"),
+    "tv": _obj("Television"), "telly": _obj("Television"), "tee vee": _obj("Television"), "tv set": _obj("Television"),
     "television set": _obj("Television"), "screen": _obj("Television"),
     "remote": _obj("RemoteControl"), "tv remote": _obj("RemoteControl"),
     "clicker": _obj("RemoteControl"), "controller": _obj("RemoteControl"),
@@ -588,7 +588,8 @@ _NOUNS: dict[str, Concept] = {
     "shower": _obj("ShowerHead"), "showerhead": _obj("ShowerHead"),
     "shower head": _obj("ShowerHead"),
     "loo": _obj("Toilet"), "wc": _obj("Toilet"), "commode": _obj("Toilet"),
-    "toilet roll": _obj("ToiletPaper"), "loo roll": _obj("ToiletPaper"), "tp": _obj("ToiletPaper"),
+    "toilet roll": _obj("ToiletPaper"), "loo roll": _obj("ToiletPaper"), "loo paper": _obj("ToiletPaper"),
+    "toilet tissue": _obj("ToiletPaper"), "bog roll": _obj("ToiletPaper"), "tp": _obj("ToiletPaper"),
     "bathroom tissue": _obj("ToiletPaper"), "roll of toilet paper": _obj("ToiletPaper"),
     "toilet paper roll": _obj("ToiletPaper"),
     "toilet paper holder": _obj("ToiletPaperHanger"),
@@ -712,3 +713,4 @@ def correction_targets(nouns_only: bool = False) -> frozenset[str]:
     if not nouns_only:
         words |= set(VERBS) | set(STATES) | CONTAINING
     return frozenset(w for w in words if len(w) >= 3) - COMMON_WORDS
+

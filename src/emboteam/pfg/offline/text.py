@@ -19,6 +19,12 @@ _REPLACE: tuple[tuple[str, str], ...] = (
     (r"[\u2018\u2019\u201b`´]", "'"),
     (r"[\u201c\u201d\"]", " "),
     (r"\s*(?:->|=>|\u2192|\u27f6)\s*", " to "),
+    # "the cloths on the floor - laundry basket pls": a dash before a last short phrase
+    # labels it like a colon
+    (r"\s+(?:-|--|\u2013|\u2014)\s+(?=(?:the |a |an |my |into the |in the |on the )?[A-Za-z]+(?: [A-Za-z]+)?"
+     r"(?: please| pls| plz| thanks| thx)?\s*(?:[.!?]|$))", " : "),
+    # bullets: "\u2022 a new roll on the holder \u2022 light off"
+    (r"\s*[\u2022\u25cf\u25aa\u2023\u2043]\s*", " ; "),
     (r"\s*[\u2014\u2013]\s*|\s+-\s+|\s*--\s*", " , "),
     (r"&", " and "),
     (r"\+", " and "),
@@ -58,6 +64,21 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\bthats\b", "that is"), (r"\blets\b", "let us"), (r"\bpls\b|\bplz\b", "please"),
     # chat spellings
     (r"(?<=[a-z]) n (?=[a-z])", " and "),     # "cd n pen"
+    # words heard for others (typed by ear, or by speech recognition): "through the old
+    # cloth away", "loo role", "to slices of tomato"
+    (r"\bthrough ((?:(?:the|a|an|my|that|this|those|these|it|them)\b ?)?(?:[a-z]+ ){0,3})away\b", r"throw \1away"),
+    (r"\b(loo|toilet|kitchen|paper|towel) role(s?)\b", r"\1 roll\2"),
+    (r"(?<![a-z] )\b(?:to|too)(?= (?:slices|pieces|bits|halves|chunks|wedges) of\b)", "two"),
+    (r"\baswell\b", "as well"),
+    # "could you get the lights?": switch them (to the other state: toggle)
+    (r"\b(?:get|do|hit) the (lights?|lamps?)\b(?!\s+(?:on|off|out|for|from|and)\b)", r"toggle the \1"),
+    # "... because I keep knocking them off": a reason, nothing to do (a request after it
+    # needs its own clause: "because ..., so put ...")
+    (r"\b(?:because|cause|cos|coz|since) (?:i|we|it|they|he|she|you|the|that|this|there|my|our)\b[^,.;:!?]*", " "),
+    # "the remote waiting for me on the sofa": where it should be
+    (r"\b(?:waiting|ready) (?:for (?:me|you|us|him|her|them) )?(?=(?:on|in|by|at) (?:the|my|a)\b)", ""),
+    # "meanwhile", "in the meantime": at the same time, which independent clauses are
+    (r"\b(?:in the meantime|meanwhile|at the same time)\b,?", " , "),
     (r"\bu\b", "you"), (r"\bur\b", "your"), (r"\bthx\b|\bthnx\b|\bty\b", "thanks"),
 )
 
@@ -102,7 +123,7 @@ _POSTURES: tuple[tuple[str, str], ...] = (
      r"(?:chance|minute|moment|sec|second|time))\b(?!\s*[,.;:!?])", r"\1 ,"),
     # "the apple should be in the bowl rather than rolling around next to the coffee
     # maker": the rejected alternative is no request
-    (r"\b(?:rather than|instead of) [a-z]+ing\b[^,.;:!?]*", " "),
+    (r"\b(?:rather than|instead of) (?:being )?(?:[a-z]+ing|[a-z]+ed|lost|left|stuck|kept)\b[^,.;:!?]*", " "),
     # "same with the bowl.": the act before, on the bowl too; "same story with the apple,
     # which should be in the bowl": a link to what was said before, the apple is the topic
     (r"\b(?:(?:the )?same (?:story|thing|deal|goes|again|problem)?|ditto) ?(?:with|for) "
@@ -122,6 +143,11 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # go ...": an aside naming where each one is, not where they go
     (r",\s*the one (?:(?:up|down|over|out) )?(?:on|in|inside) ([^,.;:!?]+?) and the one "
      r"(?:(?:up|down|over|out) )?(?:on|in|inside) ([^,.;:!?]+?)\s*,", " "),
+    # "end state soap bar in the sink": a heading for the list of states that follows
+    (r"^\s*(?:the )?(?:end|final|target|goal) states?\b\s*(?:[:,-]\s*)?", "end state : "),
+    # "the side table with the lamp on it": which table, said by what it holds
+    # ("the bowl with the apple in it" says what the bowl should hold: kept)
+    (r" with (?:the|a|an|my) (?:[a-z]+ ){0,2}[a-z]+ on (?:it|top|them)\b", " "),
     # "one on the holder and the other on the toilet": the other one of the kind
     (r"\bthe other(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|and|,|\.|;|!|\?)\b|\s*$)",
      "the other one"),
@@ -200,6 +226,36 @@ def _where_things_are(text: str) -> str:
     return _PARTICIPLE_PLACE.sub(participle, text)
 
 
+#: what a thing described by its use is ("the thing for unblocking the loo", "the thing you
+#: cut bread with"): the verb of the use -> the noun the lexicon knows
+TOOL_FOR: dict[str, str] = {
+    "unblock": "plunger", "unclog": "plunger", "unblocking": "plunger", "unclogging": "plunger",
+    "plunge": "plunger", "cut": "knife", "slice": "knife", "chop": "knife", "spread": "butter knife",
+    "flip": "spatula", "stir": "spoon", "boil": "kettle", "water": "watering can",
+    "write": "pen", "wake": "alarm clock", "scrub": "scrub brush", "spray": "spray bottle",
+    "wipe": "cloth", "dry": "towel", "read": "book", "toast": "toaster", "fry": "pan",
+    "change": "remote", "flush": "toilet", "brew": "coffee machine", "chill": "fridge",
+}
+
+_DESCRIBED = r"(?:the|that|this|a) (?:thing|thingy|tool|gadget|device|whatsit|doodah|doohickey|one|stuff)"
+_PERSON_USE = r"(?: (?:that |which )?(?:you|we|i|u|people) (?:use|need|want|have)?)?"
+
+
+def _described_by_use(text: str) -> str:
+    """"the thing for unblocking the loo", "the thing you cut bread with", "the tool to
+    flip pancakes": the object the use names (:data:`TOOL_FOR`)."""
+    verbs = "|".join(sorted(TOOL_FOR, key=len, reverse=True))
+
+    def name(m: re.Match[str]) -> str:
+        verb = m.group(1)
+        return f"the {TOOL_FOR.get(verb) or TOOL_FOR.get(verb.rstrip('s'), verb)}"
+
+    text = re.sub(_DESCRIBED + _PERSON_USE + r" (?:for|to) (" + verbs + r")(?:ing)?\b"
+                  r"(?: (?:the|a|an|some|my|your|our) [a-z]+| [a-z]+s)?(?: with)?", name, text)
+    return re.sub(_DESCRIBED + r" (?:that |which )?(?:you|we|i|u) (" + verbs + r")s?\b(?: [a-z]+){0,3}? with\b",
+                  name, text)
+
+
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
     text = _BROKEN_OFF.sub(r"\1 , i mean , ", _arrows(text))
@@ -210,7 +266,7 @@ def normalize(text: str) -> str:
     for pattern, repl in _CONTRACTIONS:
         text = re.sub(pattern, repl, text)
     text = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", text)   # counter-top, well-lit
-    text = _where_things_are(text)
+    text = _described_by_use(_where_things_are(text))
     for pattern, repl in _POSTURES:
         text = re.sub(pattern, repl, text)
     text = re.sub(r"(?<=\d)(st|nd|rd|th)\b", "", text)   # 2nd -> 2
