@@ -260,12 +260,14 @@ class _Builder:
         return self.s.objects[oid]
 
     def access(self, oid: str) -> list[Step]:
-        """Open every closed container around an object, outermost first (an interlocked
-        appliance that runs must be switched off before its door opens)."""
+        """Open every closed container around an object that hides it, outermost first
+        (an interlocked appliance that runs must be switched off before its door opens). As
+        in the simulator (``WorldState.enclosing_closed``), only what things go *in* hides
+        them: a closed toilet does not hide what stands on its tank."""
         steps: list[Step] = []
         for rid in reversed(self.s.ancestors(oid)):
             r = self._obj(rid)
-            if r.has("openable") and r.has("receptacle") and not r.is_open:
+            if r.type in self.cat.must_be_open and not r.is_open:
                 steps += self.open(rid)
         return steps
 
