@@ -1073,3 +1073,29 @@ def test_the_old_one_on_the_toilet_is_the_one_there() -> None:
                    "and bin the old one that's on the toilet.", 424)
     assert goal(reading) == {"inside(ToiletPaper, ToiletPaperHanger)", "inside(ToiletPaper_1, GarbageCan)"}
     assert all(s.final for s in reading.spec.subtasks)
+
+
+# round 14, continued: non-native word order and words (round 17), benchmark style (round 18)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # the object before its verb
+    ("television turn on, the book put on sofa, desk lamp make off", 224,
+     {"switched_on(Television)", "inside(Book, Sofa)", "switched_off(DeskLamp)"}),
+    ("please the wine bottle bring to fridge", 13, {"inside(WineBottle, Fridge)"}),
+    ("laptop close it and put on sofa", 205, {"closed(Laptop)", "inside(Laptop, Sofa)"}),
+    ("cut tomato w/ knife and 1 slice put on the plate", 13, {"sliced(Tomato)", "inside(TomatoSliced, Plate)"}),
+    # ... but a participle after a noun is no verb ("the card shut away inside the box")
+    ("I'd like the remote and my credit card shut away inside the box", 218,
+     {"inside(RemoteControl, Box)", "inside(CreditCard, Box)", "closed(Box)"}),
+    # "open/close" of what only switches
+    ("close the light and open the desk lamp", 305, {"switched_off(LightSwitch)", "switched_on(DeskLamp)"}),
+    ("the cloth put in sink and open the water", 422, {"inside(Cloth, SinkBasin)", "switched_on(Faucet)"}),
+    # "is to warm" is too warm: a complaint, not a request to heat
+    ("the wine bottle, put it in the fridge please, is to warm", 17, {"inside(WineBottle, Fridge)"}),
+    ("the lamp on and tv also on please", 220, {"switched_on(FloorLamp)", "switched_on(Television)"}),
+    ("take the statue from shelf to coffee table + tv on", 207,
+     {"inside(Statue, CoffeeTable)", "switched_on(Television)"}),
+    # washing what is clean already, in the sink named: the washing itself
+    ("Rinse the cloth in the sink.", 428, {"inside(Cloth, SinkBasin_1)", "switched_on(Faucet_1)"}),
+])
+def test_round_14_word_order_and_words(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -234,3 +234,89 @@ def commaless_lists(items: list[Item]) -> list[Item]:
         if m < len(items) and items[m].conj == "and":
             out.append(Item(text=",", punct=","))
     return out
+
+
+#: verbs that non-native speakers often put after their object ("the book put on sofa",
+#: "desk lamp turn off", "the wine bottle bring to fridge")
+_OBJECT_FIRST_VERBS = frozenset({"put", "bring", "take", "turn", "switch", "make", "throw", "place", "move",
+                                 "carry", "set", "close", "open", "slice", "cut", "wash", "clean", "heat",
+                                 "toss", "give", "leave", "shut", "pop", "stick", "chuck", "bin", "fill"})
+_CLAUSE_OPENERS = frozenset({"please", "pls", "plz", "also", "then", "and", "now", "just", "so"})
+#: verbs whose base form is also a participle or a state: only with "it" after them
+_PARTICIPLE_LIKE = frozenset({"shut", "close", "open", "set", "clean", "wash", "cut", "slice"})
+_PIECE_WORDS = frozenset({"slice", "slices", "piece", "pieces", "bit", "bits", "half", "halves", "chunk", "chunks"})
+_NP_WORDS = frozenset({"big", "small", "little", "tall", "old", "new", "other", "my", "your", "our", "both", "all"})
+
+
+def _object_first_np(items: list[Item], j: int) -> int:
+    """The end of a noun phrase at ``j`` whose next word is one of the verbs above (``j``
+    when there is none): determiners, numbers, adjectives and nouns ("watch" is a noun
+    here, though it could be a verb)."""
+    k = j
+    named = False
+    while k < len(items):
+        it = items[k]
+        nxt = items[k + 1] if k + 1 < len(items) else None
+        verb_next = nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
+            and nxt.verb.lemma in _OBJECT_FIRST_VERBS
+        if (it.noun is not None or it.text in _PIECE_WORDS) and (
+                it.verb is None or verb_next or (nxt is not None and nxt.noun is not None)):
+            named = True
+        elif it.det or it.number is not None or it.quant is not None or it.text in _NP_WORDS:
+            pass
+        elif named and it.prep == "from" and nxt is not None and (nxt.det or nxt.noun is not None):
+            pass        # "the lettuce from sink put it in fridge": where it is, inside the phrase
+        else:
+            break
+        k += 1
+        if named and verb_next:
+            return k
+    return j
+
+
+def object_first(items: list[Item]) -> list[Item]:
+    """"the book put on sofa", "desk lamp make off", "labtop close it": an object before
+    its verb (non-native word order), at the start of a clause, is read after it ("put the
+    book on sofa"); a pronoun that repeats the object after the verb is the object."""
+    out: list[Item] = []
+    k = 0
+    start = True
+    while k < len(items):
+        it = items[k]
+        if start and it.text in _CLAUSE_OPENERS and it.noun is None:
+            out.append(it)
+            k += 1
+            continue
+        end = _object_first_np(items, k) if start else k
+        if end > k:
+            verb = items[end]
+            rest = end + 1
+            moved = [verb]
+            if rest < len(items) and items[rest].particle in ("on", "off", "up", "down", "away", "out") \
+                    and (rest + 1 >= len(items) or not (items[rest + 1].det or items[rest + 1].noun is not None)):
+                moved.append(items[rest])
+                rest += 1
+            nxt = items[rest] if rest < len(items) else None
+            if verb.verb is not None and verb.verb.lemma in _PARTICIPLE_LIKE \
+                    and not (nxt is not None and nxt.pron in ("it", "them")):
+                # "laptop shut, ...", "the card shut away inside the box": a state or a
+                # passive, not a verb after its object (unless "it" repeats the object)
+                out.append(it)
+                start = False
+                k += 1
+                continue
+            if nxt is not None and nxt.pron in ("it", "them"):
+                rest += 1       # "labtop close it": the object again
+            elif nxt is not None and (nxt.det or (nxt.noun is not None and nxt.prep is None)):
+                out.append(it)  # the verb has an object of its own: not this construction
+                start = False
+                k += 1
+                continue
+            out += [moved[0], *items[k:end], *moved[1:]]     # "turn the desk lamp off"
+            k = rest
+            start = False
+            continue
+        out.append(it)
+        start = it.punct is not None or it.conj == "and" or it.seq is not None
+        k += 1
+    return out

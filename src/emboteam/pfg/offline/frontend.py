@@ -31,7 +31,12 @@ from emboteam.pfg.offline.clause_passes import (
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import check_consistent, narrow_contrasts
-from emboteam.pfg.offline.constructions import commaless_lists, parts_as_places, places_to_locations
+from emboteam.pfg.offline.constructions import (
+    commaless_lists,
+    object_first,
+    parts_as_places,
+    places_to_locations,
+)
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble
@@ -171,7 +176,8 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        clauses = segment(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tag(text))))))
+        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tag(text))))))
+        clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
         unknown: list[str] = []

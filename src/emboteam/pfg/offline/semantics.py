@@ -584,6 +584,10 @@ class Semantics:
         microwave as means), then the act's rule (:attr:`_act_rules`) says what it asks."""
         if act in (Act.SWITCH_ON, Act.SWITCH_OFF) and t.particle in ("on", "off"):
             act = Act.SWITCH_ON if t.particle == "on" else Act.SWITCH_OFF
+        if act in (Act.OPEN, Act.CLOSE) and not t.dest and self._switched_not_opened(t.head):
+            # "open the light", "close the TV", "open the water": in many languages one
+            # verb opens doors and switches things on
+            act = Act.SWITCH_ON if act is Act.OPEN else Act.SWITCH_OFF
         special = self._whole_reading(frame, act, t, g, clause)
         if special is not None:
             return special
@@ -608,6 +612,15 @@ class Semantics:
             return self._shut_in(frame, t, g, clause)
         rule = self._act_rules.get(act, self._plain_act)
         return rule(frame, act, t, g, clause)
+
+    def _switched_not_opened(self, head: Head) -> bool:
+        """Does the phrase name only things that switch and none that open (a lamp, the
+        TV, running water), in this scene?"""
+        if head.noun is None:
+            return head.liquid == "water" and self.g.has_type("Faucet")
+        types = [x for x in (*head.noun.concept.types, *head.noun.concept.fallback) if self.g.has_type(x)]
+        return bool(types) and not any(self.g.can(x, "open") for x in types) \
+            and any(self.g.can(x, "switch") for x in types)
 
     def _shut_in(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
         """"Lock my keys in the safe": the keys go in, then the safe is shut."""
@@ -735,7 +748,8 @@ class Semantics:
         return self._each(P.switched_on, self.ground(t.head, "switch", g, clause))
 
     def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
-        return self._clean(t.head, g, clause)
+        in_sink = any(d.noun is not None and {"SinkBasin", "Sink"} & set(d.noun.concept.types) for d in t.dest)
+        return self._clean(t.head, g, clause, in_sink=in_sink)
 
     def _toast_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """Toast is cooked slices: cut what is whole first ("toast a slice of bread" too);
@@ -931,13 +945,21 @@ class Semantics:
                                  phrase=landmark.label())
         return self.g.types_ref(dict.fromkeys(places), f"beside {landmark.label()}")
 
-    def _clean(self, head: Head, g: int, clause: int) -> list[Draft]:
+    def _clean(self, head: Head, g: int, clause: int, in_sink: bool = False) -> list[Draft]:
         obj = self.ground(head, None, g, clause)
         dirtyable = [(r, n) for r, n in obj.groups if all(self.g.can(x, "dirty") for x in _names(r))]
-        rest = [(r, n) for r, n in obj.groups if (r, n) not in dirtyable]
+        # "wash the cloth in the sink" when no such cloth is dirty: clean already holds, so
+        # what is asked is the washing itself (in the sink under running water), as a goal
+        already = [(r, n) for r, n in dirtyable if in_sink and not any(o.is_dirty for o in self._objects(r))]
+        dirtyable = [(r, n) for r, n in dirtyable if (r, n) not in already]
+        rest = [(r, n) for r, n in obj.groups if (r, n) not in dirtyable and (r, n) not in already]
         out: list[Draft] = []
         if dirtyable:
             out += self._each(P.clean, Ref(obj.label, tuple(dirtyable)))
+        if already:
+            basin, faucet = self._sink()
+            out.append(self._draft([*(cond(P.inside, r, n, basin) for r, n in already),
+                                    cond(P.switched_on, faucet)], obj))
         if rest and not all(self.g.can(x, "hold") for r, _ in rest for x in _names(r)):
             # "clean up the desk", "wipe the counter": not a state the goal can name, an
             # umbrella for whatever the other clauses say

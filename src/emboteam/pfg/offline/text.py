@@ -70,6 +70,13 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\b(loo|toilet|kitchen|paper|towel) role(s?)\b", r"\1 roll\2"),
     (r"(?<![a-z] )\b(?:to|too)(?= (?:slices|pieces|bits|halves|chunks|wedges) of\b)", "two"),
     (r"\baswell\b", "as well"),
+    # "is to warm for the dinner": too warm; "its heavy": it is heavy
+    (r"\b(is|are|was|were|s) to (warm|hot|cold|dirty|full|heavy|big|small|bright|dark|loud|wet)\b", r"\1 too \2"),
+    (r"\bits (too |so |very |really )?(warm|hot|cold|dirty|full|heavy|big|small|bright|dark|loud|wet|late|"
+     r"broken|open|on|off|empty|clean|done|ready)\b", r"it is \1\2"),
+    (r"\bw/\s*", "with "),
+    # "the lamp on and tv also on": the state, said again
+    (r"(?<=[a-z]) (?:also|too) (on|off|open|closed|shut)\b", r" \1"),
     # "could you get the lights?": switch them (to the other state: toggle)
     (r"\b(?:get|do|hit) the (lights?|lamps?)\b(?!\s+(?:on|off|out|for|from|and)\b)", r"toggle the \1"),
     # "... because I keep knocking them off": a reason, nothing to do (a request after it
@@ -187,7 +194,7 @@ _BESIDE = r"(?:next to|by|near|under|beside|behind|at)"
 _DET = r"(?:the|a|an|my|your|his|her|our|their|this|that|one)"
 _RELATIVE_PLACE = re.compile(
     r"(,\s*)?\b(?:that|which) (?:is|are|was|were) (?:(?:still|currently|now|just|already) )?(?:" + _POSTURE + r" )?"
-    r"(" + _ON_IN + "|" + _BESIDE + r") (" + _DET + r" [^,.;:!?]{1,60})(\s*,\s*(?=[a-z]))?")
+    r"(" + _ON_IN + "|" + _BESIDE + r") ((?:" + _DET + r" )?[a-z][^,.;:!?]{0,60})(\s*,\s*(?=[a-z]))?")
 _PARTICIPLE_PLACE = re.compile(r"\b(\w+) " + _POSTURE + r" (" + _ON_IN + "|" + _BESIDE + r") (?=" + _DET + r"\b)")
 #: words after which a posture is where something should be ("leave it sitting on the
 #: counter", "find the pen sitting on the dresser", "the book is lying on the bed")
