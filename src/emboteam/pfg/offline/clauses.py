@@ -339,6 +339,24 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
     return None
 
 
+def _also_item(items: list[Item], j: int) -> bool:
+    """Is ``items[j:]`` a noun phrase and "too" ("and the lettuce too", "the mug as
+    well"), up to the end of the clause?"""
+    m = _skip_np(items, j)
+    n = len(items)
+    if m == j or m >= n:
+        return False
+    if items[m].text in ("too", "also"):
+        m += 1
+    elif items[m].text == "as" and m + 1 < n and items[m + 1].text == "well":
+        m += 2
+    elif items[m].text == "as well":
+        m += 1
+    else:
+        return False
+    return m >= n or items[m].punct is not None or items[m].sub is not None or items[m].conj is not None
+
+
 def _with_a_place(items: list[Item], j: int) -> bool:
     """After "with": a thing and where it is to be ("with the remote on the sofa")."""
     k = _skip_np(items, j)
@@ -473,6 +491,10 @@ def segment(items: list[Item]) -> list[Clause]:
                 elif k < len(sentence) and _starts_new(sentence, k, current.items, comma):
                     boundary = AND
                     skip = k - j
+                elif _also_item(sentence, k) and any(x.is_content() for x in current.items):
+                    # "the egg in the fridge, and the lettuce too": the act before, on it
+                    boundary = AND
+                    skip = k - j
                 elif comma and k + 1 < len(sentence) and sentence[k].prep == "with" \
                         and _with_a_place(sentence, k + 1) and _has_predicate(current.items):
                     # "..., with the remote on the sofa": and the remote on the sofa
@@ -490,6 +512,9 @@ def segment(items: list[Item]) -> list[Clause]:
                     skip = 2
                 if is_sub:
                     boundary = it.sub
+                if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
+                        and (nxt.noun is None or _next_is_object(sentence, j + 1)):
+                    boundary = THEN     # "... and after close the box": afterwards
                 if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
                         and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
                     boundary = AND      # "so I was going to bake": what happened, no purpose

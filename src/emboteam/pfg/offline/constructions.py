@@ -260,12 +260,14 @@ def _object_first_np(items: list[Item], j: int) -> int:
         verb_next = nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
             and nxt.verb.lemma in _OBJECT_FIRST_VERBS
         if (it.noun is not None or it.text in _PIECE_WORDS) and (
-                it.verb is None or verb_next or (nxt is not None and nxt.noun is not None)):
+                it.verb is None or verb_next or (nxt is not None and (nxt.noun is not None or nxt.conj == "and"))):
             named = True
         elif it.det or it.number is not None or it.quant is not None or it.text in _NP_WORDS:
             pass
         elif named and it.prep == "from" and nxt is not None and (nxt.det or nxt.noun is not None):
             pass        # "the lettuce from sink put it in fridge": where it is, inside the phrase
+        elif named and it.conj == "and" and nxt is not None and (nxt.det or nxt.noun is not None):
+            pass        # "my phone and keys put in safe": a list of objects
         else:
             break
         k += 1

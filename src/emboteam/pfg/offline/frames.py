@@ -1127,6 +1127,12 @@ def _things_they(items: list[Item]) -> bool:
     ("they can go in a drawer", "they both belong on the shelf")?"""
     if len(items) > 2 and items[1].copula and items[2].state is not None:
         return True
+    words = [it.text for it in items[:5]]
+    if "be" in words and any(it.verb is not None and it.verb.form == "ed" and k + 1 < len(items)
+                             and (items[k + 1].prep in ("in", "on", "into", "onto", "inside")
+                                  or items[k + 1].text in ("back", "away", "up"))
+                             for k, it in enumerate(items[2:6], 2)):
+        return True     # "they should be tucked in a drawer", "they ought to be locked up in the safe"
     return any(it.verb is not None and it.verb.sense.act is Act.GO and k + 1 < len(items)
                and (items[k + 1].prep in ("in", "on", "into", "onto") or items[k + 1].text in ("back", "away"))
                for k, it in enumerate(items[1:5], 1))

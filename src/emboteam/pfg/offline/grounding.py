@@ -187,6 +187,12 @@ class Grounder:
             able = [t for t in types if self.can(t, need)]
             if not able and need == "switch":
                 able = [s for t in types for s in lx.SWITCHED_BY.get(t, ()) if self.has_type(s)]
+                # "the bath running": what runs water into this scene's bath (its tap, when
+                # it has one), not every water source a bath can have
+                wired = [s for s in able if any(self.state.objects[c].type in types
+                                                for o in self.instances(s) for c in o.controls
+                                                if c in self.state.objects)]
+                able = wired or able
             if not able and need == "receptacle":
                 able = []
             if not able:

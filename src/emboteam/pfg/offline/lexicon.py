@@ -521,7 +521,8 @@ _NOUNS: dict[str, Concept] = {
     "garbage bin": _obj("GarbageCan"), "wastebin": _obj("GarbageCan"),
     "trash bag": _obj("GarbageBag"), "bin bag": _obj("GarbageBag"),
     # --- living room, bedroom
-    "tv": _obj("Television"), "telly": _obj("Television"), "tee vee": _obj("Television"), "tv set": _obj("Television"),
+    "tv": _obj("Television"), "telly": _obj("Television"), "tee vee": _obj("Television"),
+    "picture box": _obj("Television"), "goggle box": _obj("Television"), "tv set": _obj("Television"),
     "television set": _obj("Television"), "screen": _obj("Television"),
     "remote": _obj("RemoteControl"), "tv remote": _obj("RemoteControl"),
     "clicker": _obj("RemoteControl"), "controller": _obj("RemoteControl"),

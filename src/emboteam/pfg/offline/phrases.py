@@ -238,6 +238,17 @@ def _one_of(s: _NP) -> str | None:
     return None
 
 
+def _adjectives_then_noun(items: list[Item], k: int, most: int = 2) -> bool:
+    """Do up to ``most`` plain words from ``k`` lead to a noun ("that grotty old cloth")?"""
+    for m in range(k, min(k + most + 1, len(items))):
+        it = items[m]
+        if it.noun is not None:
+            return True
+        if it.verb is not None or it.prep is not None or it.punct is not None or it.conj is not None or it.det:
+            return False
+    return False
+
+
 def _determiner(s: _NP) -> str | None:
     """Articles, demonstratives and possessives ("the", "these", "my", "some"); a
     determiner after the noun starts a new phrase ("give the plate a rinse")."""
@@ -254,7 +265,7 @@ def _determiner(s: _NP) -> str | None:
     object_position = before is not None and (before.verb is not None or before.prep is not None)
     adjective = nxt is not None and (nxt.verb is None or (object_position and nxt.verb.form == "base")) \
         and nxt.prep is None and nxt.punct is None and nxt.conj is None and after is not None \
-        and after.noun is not None
+        and (after.noun is not None or _adjectives_then_noun(s.items, s.j + 2))
     if not (it.text not in ("this", "that", "these", "those", "some", "one")
             or ((nxt is not None and (np_start(nxt) or nxt.state is not None)
                  and nxt.verb is None) or (nxt is not None and (

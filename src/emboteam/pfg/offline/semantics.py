@@ -116,6 +116,9 @@ def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef 
 _THROWING = frozenset({"chuck", "throw", "toss", "dump", "fling", "lob"})
 
 
+#: things whose temperature is a tool's, not food's ("the pan's hot" is a warning)
+_COOKWARE = frozenset({"Pan", "Pot", "Kettle", "Toaster", "CoffeeMachine", "Microwave"})
+
 #: cooking verbs that happen in a pan: the food ends up in it
 _PAN_VERBS = frozenset({"fry", "saute", "sear"})
 
@@ -257,7 +260,18 @@ class Semantics:
         st = lx.ACT_STATE.get(frame.act) if frame.act is not None else None
         if st is None or st[0] not in lx.INVERTIBLE:
             return []
+        if frame.act is Act.WATCH:
+            # "nobody's using the laptop or those lamps": what opens is shut (a laptop),
+            # what only switches is switched off; each thing named ("or" is "and" here)
+            targets = [Target(replace(h, alternatives=[]), t.dest, t.prep, t.particle,
+                              (Stat.OPEN, False) if self._opens(h) else None)
+                       for t in frame.targets for h in (t.head, *t.head.alternatives)]
+            frame = replace(frame, targets=targets)
         return self._state(frame, (st[0], not st[1]), False, clause)
+
+    def _opens(self, head: Head) -> bool:
+        return head.noun is not None and any(self.g.has_type(x) and self.g.can(x, "open")
+                                             for x in head.noun.concept.types)
 
     def _switched_thing(self, frame: Frame) -> bool:
         """Are the frame's objects one named light or lamp (nothing else to put right)?"""
@@ -343,10 +357,20 @@ class Semantics:
         out: list[Draft] = []
         stat, positive = t.state or state
         if flip:
-            if stat not in lx.INVERTIBLE or (stat is Stat.CLEAN and positive):
+            if stat in (Stat.HOT, Stat.COLD) and self._perishable(t.head):
+                # "the wine's going to be warm by dinner", "my tea's gone cold": food or
+                # drink at the wrong temperature asks for the other one
+                stat, positive = (Stat.COLD, True) if stat is Stat.HOT else (Stat.HOT, True)
+            elif stat not in lx.INVERTIBLE or (stat is Stat.CLEAN and positive):
                 return []       # "it's clean": good news, no complaint
-            positive = not positive
+            else:
+                positive = not positive
         head = t.head
+        if stat is Stat.BRIGHT and not self._is_light(head) and head.noun is not None \
+                and head.noun.concept.kind == "object" and self._switched_not_opened(head):
+            # "the picture box is all dark": a screen that is dark is off
+            return self._each(P.switched_on if positive else P.switched_off,
+                              self.ground(head, "switch", self._group, clause))
         if stat is Stat.BRIGHT or (head.noun is not None and head.noun.concept.kind == "room"):
             if self._is_light(head):
                 ref = self.ground(head, "switch", self._group, clause)
@@ -612,6 +636,21 @@ class Semantics:
             return self._shut_in(frame, t, g, clause)
         rule = self._act_rules.get(act, self._plain_act)
         return rule(frame, act, t, g, clause)
+
+    def _perishable(self, head: Head) -> bool:
+        """Is the phrase food or drink (or what holds a drink), whose temperature matters:
+        a wine bottle, a tomato, a mug; not a pan, a kettle or an appliance?"""
+        if head.noun is not None:
+            names: tuple[str, ...] = head.noun.concept.types
+        elif head.pron is not None and self.history:
+            try:
+                names = self.discourse.resolve(head, None).type_names()     # "it's warm": the wine
+            except OfflineParseError:
+                return False
+        else:
+            return head.recipe is not None
+        types = [x for x in names if x in self.cat.types]
+        return bool(types) and all(self.cat.type(x).has("pickupable") and x not in _COOKWARE for x in types)
 
     def _switched_not_opened(self, head: Head) -> bool:
         """Does the phrase name only things that switch and none that open (a lamp, the
