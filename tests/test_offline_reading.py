@@ -1134,3 +1134,20 @@ def test_round_14_word_order_and_words(text: str, fp: int, expected: set[str]) -
 ])
 def test_round_14_indirect_speech(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 14, quantities and sets (round 19)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # "in it" is never the thing put in it; "along with" is "and"
+    ("Open the cabinet and put the bowl from the coffee table in it, along with two of the vases.", 206,
+     {"open(Cabinet)", "inside(Bowl, Cabinet)", "inside(2 of Vase, Cabinet)"}),
+    # "the two remaining ones", "the other": as many more of the kind as said
+    ("One vase can stay on the shelf; the two remaining ones go on the dining table.", 216,
+     {"inside(Vase, Shelf)", "inside(2 of Vase, DiningTable)"}),
+    ("There are two toilet rolls on the toilet: hang one on the holder and put the other in the drawer.", 419,
+     {"inside(ToiletPaper, ToiletPaperHanger)", "inside(ToiletPaper, Drawer)"}),
+    # "either sink": any one of them
+    ("Put the cloth in either sink.", 424, {"inside(Cloth, SinkBasin)"}),
+])
+def test_round_14_quantities(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

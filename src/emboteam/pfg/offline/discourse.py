@@ -17,7 +17,8 @@ from emboteam.world.state import ObjectState
 
 _names = ref_types
 #: words that make "one" another instance of the kind just named ("a fresh one", "a new one")
-OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean", "old"})
+OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean", "old",
+                         "remaining", "rest"})
 
 
 @dataclass
@@ -83,7 +84,7 @@ class Discourse:
                 raise self.unresolved[-1]
             raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
                                     phrase=head.label())
-        if head.pron in ("one", "it") and OTHER_WORDS & set(head.text.split()):
+        if head.pron in ("one", "it", "them", "ones") and OTHER_WORDS & set(head.text.split()):
             other = self._another_one(head, need, prefer)
             if other is not None:
                 return other
@@ -187,10 +188,11 @@ class Discourse:
         same kind, another instance than the one just singled out."""
         same = self.resolve(replace(head, text=head.pron or ""), need, prefer)
         other = self._another_instance(same)
-        if other is None and len(same.groups) == 1 and same.groups[0][0].id is None and same.groups[0][1] > 1:
-            # "both rolls ... one of them on the holder and the other on the counter": one
-            # more of the kind
-            return Ref(head.label(), ((same.groups[0][0], 1),))
+        if other is None and len(same.groups) == 1 and same.groups[0][0].id is None:
+            # "both rolls ... one of them on the holder and the other on the counter", "the
+            # other two": more of the kind, as many as said (one when no number)
+            n = head.count or 1
+            return Ref(head.label(), ((same.groups[0][0], n),), n > 1)
         return other
 
     def _pieces_of(self, head: Head, prefer: str) -> Ref:

@@ -538,7 +538,7 @@ class Semantics:
                 d.wished = True
                 before.append(d)
         main = self._one(frame, one, t, g, clause) if one is not None else []
-        if t.head.pron in ("one", "it") and OTHER_WORDS & set(t.head.text.split()):
+        if t.head.pron in ("one", "it", "them", "ones") and OTHER_WORDS & set(t.head.text.split()):
             for d in main:
                 d.another = True
         if t.head.pron is not None and not t.dest and not frame.recipient and frame.verb in _CARRYING:
@@ -940,7 +940,7 @@ class Semantics:
         if t.prep == "near":
             dest = self._beside(dest_heads[0], g, clause)
         else:
-            refs = [self.ground(d, "receptacle", g, clause, "dest") for d in dest_heads]
+            refs = [self._dest_ref(d, obj, g, clause) for d in dest_heads]
             types = tuple(dict.fromkeys(x for r in refs for x in r.type_names()))
             dest = Ref(" or ".join(r.label for r in refs),
                        ((ObjectRef(types=types), 1),) if len(refs) > 1 or len(refs[0].groups) > 1
@@ -967,6 +967,19 @@ class Semantics:
                 conditions.append(cond(P.filled, subject, n, liquid=liquid))
             drafts.append(self._draft(conditions, Ref(obj.label, ((r, n),)), dest))
         return drafts
+
+    def _dest_ref(self, d: Head, obj: Ref, g: int, clause: int) -> Ref:
+        """Where a placement goes; "it" is never the thing placed itself ("open the cabinet
+        and put the bowl from the table in it": the cabinet, not the bowl)."""
+        ref = self.ground(d, "receptacle", g, clause, "dest")
+        moved = [obj.groups, *(m.ref.groups for m in self.history if m.clause == clause and m.role == "object")]
+        if d.pron is None or ref.groups not in moved:
+            return ref
+        sources = {id(land) for m in self.history for prep, land in m.head.location if prep == "from"}
+        other = next((m.ref for m in reversed(self.history) if m.ref.groups not in moved and m.head.pron is None
+                      and m.head.noun is not None and m.head.noun.concept.kind not in ("room", "anything")
+                      and id(m.head) not in sources and self.discourse.fits(m.ref, "receptacle")), None)
+        return other if other is not None else ref
 
     def _beside(self, landmark: Head, g: int, clause: int) -> Ref:
         """"next to the bread": on whatever the bread is on."""

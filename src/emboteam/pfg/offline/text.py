@@ -70,6 +70,10 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\b(loo|toilet|kitchen|paper|towel) role(s?)\b", r"\1 roll\2"),
     (r"(?<![a-z] )\b(?:to|too)(?= (?:slices|pieces|bits|halves|chunks|wedges) of\b)", "two"),
     (r"\baswell\b", "as well"),
+    # "put the cloth in either sink": any one of them ("either X or Y" stays a choice)
+    (r"\beither (?:one )?(?:of the )?(?!(?:[a-z]+ ){1,3}or\b)(?=[a-z])", "a "),
+    # ", along with two of the vases": and two of the vases
+    (r",?\s*\b(?:along|together) with\b", " and"),
     # wishes said sideways: "I could really use a coffee", "I was hoping for the potato
     # baked", "a baked potato would be lovely"
     (r"\b(i|we) (?:could|can) (?:really |so |just )?(?:use|do with) (a|an|some|the|my)\b", r"\1 would love \2"),
@@ -221,6 +225,9 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # "the side table with the lamp on it": which table, said by what it holds
     # ("the bowl with the apple in it" says what the bowl should hold: kept)
     (r" with (?:the|a|an|my) (?:[a-z]+ ){0,2}[a-z]+ on (?:it|top|them)\b", " "),
+    # "the two remaining ones", "the remaining two": the other two
+    (r"\bthe (two|three|four|2|3|4) (?:remaining|leftover|other) (?:ones|of them)\b", r"the other \1"),
+    (r"\bthe (?:remaining|leftover|rest of the) (two|three|four|2|3|4)(?: ones)?\b", r"the other \1"),
     # "one on the holder and the other on the toilet": the other one of the kind
     (r"\bthe other(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|and|,|\.|;|!|\?)\b|\s*$)",
      "the other one"),
