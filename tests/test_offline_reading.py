@@ -1151,3 +1151,10 @@ def test_round_14_indirect_speech(text: str, fp: int, expected: set[str]) -> Non
 ])
 def test_round_14_quantities(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_the_bottle_after_the_spray_bottle_is_that_bottle() -> None:
+    reading = read("Throw out the spray bottle that's in the cabinet. Robot 1, open it; robot 2, take the bottle and "
+                   "toss it in the trash.", 417)
+    assert "inside(SprayBottle, GarbageCan)" in goal(reading)
+    assert not any("SoapBottle" in c for c in goal(reading))

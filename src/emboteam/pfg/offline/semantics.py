@@ -149,6 +149,8 @@ class Semantics:
             ref = self.discourse.resolve(head, need, role)
         elif head.container_of is not None:
             ref = self.discourse.container(head, need)
+        elif (named := self._shortened(head)) is not None:
+            ref = named
         else:
             ref = self.g.ground(head, need)
             if head.alternatives:
@@ -162,6 +164,16 @@ class Semantics:
         self.history.append(Mention(ref, head, clause, group, role))
         self.discourse.remember_places(ref, head)
         return ref
+
+    def _shortened(self, head: Head) -> Ref | None:
+        """"the spray bottle ... take the bottle out": a definite noun that ends a compound
+        named before is that thing again (not any bottle)."""
+        if not head.definite or head.noun is None or head.location or head.filters or head.count is not None \
+                or head.plural or len(head.noun.phrase.split()) != 1:
+            return None
+        word = head.noun.phrase
+        return next((m.ref for m in reversed(self.history) if m.head.noun is not None and m.head.pron is None
+                     and m.head.noun.phrase.endswith(" " + word) and len(m.ref.groups) == 1), None)
 
     def _without(self, ref: Ref, excluded: list[Head]) -> Ref:
         """"all the lights except the desk lamp": the reference less the types left out
