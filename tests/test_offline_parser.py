@@ -47,7 +47,7 @@ def deps(spec: TaskSpec, cond: str) -> set[str]:
     ("switch on the microwave", 1, {"switched_on(Microwave)"}),
     ("turn the toaster off", 1, {"switched_off(Toaster)"}),
     ("warm up the potato", 1, {"hot(Potato)"}),
-    ("fry the egg", 1, {"inside(Egg, Pan)", "cooked(Egg)"}),
+    ("fry the egg", 1, {"inside(Egg, Pan)", "cooked(Egg)", "inside(Pan, StoveBurner)"}),
     ("refrigerate the tomato", 1, {"cold(Tomato)"}),
     ("wash the bowl", 1, {"clean(Bowl)"}),
     ("fill the cup with water", 1, {"filled(Cup, water)"}),

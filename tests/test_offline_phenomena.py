@@ -182,9 +182,11 @@ def test_a_definite_adjective_picks_the_object_it_does_not_ask_for_the_state() -
      {"sliced(Bread)", "cooked(2 of BreadSliced)", "inside(2 of BreadSliced, Plate)"}),
     ("I'd like my toast on a plate please.", 28,
      {"sliced(Bread)", "cooked(Bread)", "inside(BreadSliced, Plate)"}),
-    ("Boil water in the pot.", 12, {"filled(Pot, water)", "hot(Pot)"}),
-    ("Boil some water.", 17, {"filled(Kettle, water)", "hot(Kettle)"}),
-    ("Boil the kettle.", 17, {"filled(Kettle, water)", "hot(Kettle)"}),
+    # boiling and frying happen on a burner, and the pot, kettle or pan stays there (the
+    # ground truth of the round-14 and round-22 blind sets)
+    ("Boil water in the pot.", 12, {"filled(Pot, water)", "hot(Pot)", "inside(Pot, StoveBurner)"}),
+    ("Boil some water.", 17, {"filled(Kettle, water)", "hot(Kettle)", "inside(Kettle, StoveBurner)"}),
+    ("Boil the kettle.", 17, {"filled(Kettle, water)", "hot(Kettle)", "inside(Kettle, StoveBurner)"}),
     ("Bring me a coffee.", 1, {"filled(Mug, coffee)", "hot(Mug)", "held(Mug)"}),
 ])
 def test_dishes_toast_coffee_and_boiled_water(text: str, fp: int, expected: set[str]) -> None:
@@ -359,7 +361,7 @@ def test_switching_the_appliance_off_when_done_is_a_final_state_after_the_cookin
     ("use the stove to fry the egg", 2, {"cooked(Egg)"}),
     # cooking in a pan leaves the food in it (the ground truth of two blind sets): the
     # pan is where the egg goes, not a goal object of its own
-    ("can you cook the egg? Use the pan on the stove.", 6, {"inside(Egg, Pan)", "cooked(Egg)"}),
+    ("can you cook the egg? Use the pan on the stove.", 6, {"inside(Egg, Pan)", "cooked(Egg)", "inside(Pan, StoveBurner)"}),
     ("pop the potato in the microwave for a couple of minutes", 17, {"hot(Potato)"}),
 ])
 def test_tools_are_not_goal_objects(text: str, fp: int, expected: set[str]) -> None:
@@ -431,7 +433,7 @@ def test_framing_that_is_not_a_goal(text: str, fp: int, expected: set[str]) -> N
      {"inside(Egg, Fridge)", "inside(Tomato, Fridge)"}),
     ("Straighten up in here - laptop on the dresser, remote on the sofa.", 205,
      {"inside(Laptop, Dresser)", "inside(RemoteControl, Sofa)"}),
-    ("Fry the egg - use the pan on the stove.", 27, {"inside(Egg, Pan)", "cooked(Egg)"}),
+    ("Fry the egg - use the pan on the stove.", 27, {"inside(Egg, Pan)", "cooked(Egg)", "inside(Pan, StoveBurner)"}),
     ("Leave the fridge closed and the light on.", 10,
      {"closed(Fridge)", "switched_on(LightSwitch)"}),
     ("Could I have a cold glass of water?", 12,

@@ -464,9 +464,12 @@ def segment(items: list[Item]) -> list[Clause]:
                 boundary = AND
                 skip = 0
             elif current.link not in (AND, THEN) and len(current.items) >= 3 \
-                    and current.items[0].pron in ("it", "they", "that") and current.items[1].copula \
+                    and ((current.items[0].pron in ("it", "they", "that") and current.items[1].copula) or (
+                        # "once the mug's full switch the coffee maker off"
+                        _skip_np(current.items, 0) == len(current.items) - 2 and current.items[-2].copula)) \
                     and (current.items[-1].state is not None or current.items[-1].particle is not None) \
-                    and it.verb is not None and it.noun is None and it.verb.form == "base" and verb_here(sentence, j):
+                    and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
+                    and it.verb.form == "base" and verb_here(sentence, j):
                 # "once it's sliced stick a couple of the slices in the fridge": the state, then
                 # the request
                 boundary = AND

@@ -48,6 +48,19 @@ def drop_drafts(drafts: dict[int, list[Draft]], gone_of: Callable[[int, Draft], 
             del drafts[ci]
 
 
+def drop_guessed_water(drafts: dict[int, list[Draft]]) -> None:
+    """"Make a coffee in the mug, and once the mug's full switch the machine off": "full"
+    said no liquid and water was the guess; another draft fills the same thing with
+    something else (coffee), so the guess goes (a mug holds one liquid)."""
+    def guessed(ci: int, d: Draft) -> bool:
+        others = [c for ds in drafts.values() for e in ds if e is not d for c in e.conditions
+                  if c.predicate is Predicate.filled and c.liquid not in (None, "water")]
+        return bool(d.conditions) and all(
+            c.predicate is Predicate.filled and c.liquid == "water"
+            and any(refs_overlap(c.subject, o.subject) for o in others) for c in d.conditions)
+    drop_drafts(drafts, guessed)
+
+
 def drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
     """"I'd love a warm slice of bread - toast some for me": the wish introduces what a
     later clause says how to make; toasting makes it warm (cooking heats), so the wish adds

@@ -445,8 +445,9 @@ def _taken_for_a_place(s: _Tail, head: Head) -> bool:
 
 def _inside_the_one_named(s: _Tail, prep: str) -> None:
     """"open the box, put the remote inside": in the one just named."""
-    if s.frame.act is Act.PLACE and prep in ("in", "on") and s.it.text in (
+    if s.frame.act in (Act.PLACE, Act.SLICE, Act.BREAK) and prep in ("in", "on") and s.it.text in (
             "inside", "in", "into", "on top", "on top of") and any(not t.dest for t in s.pending):
+        # ("crack it in there": into the pan just named, as "crack it into the pan")
         there = Head(text="it", pron="it", role="dest")
         s.mentions.append(there)
         for t in s.pending:

@@ -42,6 +42,7 @@ from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
+    drop_guessed_water,
     drop_holds_before_placing,
     drop_impossible,
     drop_superseded_placements,
@@ -287,6 +288,7 @@ class OfflineFrontend:
             if not any(f.act is not None or f.state is not None for f in parsed.frames):
                 unknown.extend(parsed.unknown)
         drop_fulfilled_wishes(drafts)
+        drop_guessed_water(drafts)
         drop_holds_before_placing(drafts)
         drop_superseded_placements(drafts, semantics.g)
         for what, why in drop_impossible(drafts, scene, state):

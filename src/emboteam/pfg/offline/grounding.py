@@ -265,7 +265,8 @@ class Grounder:
             pool = [o for t in types for o in self.instances(t)]
             chosen = [o for o in pool if self._matches(o, head, places)]
             if chosen and len(chosen) < len(pool):
-                many = head.plural or head.quant in ("all", "every", "each") or (head.count or 1) > 1
+                many = head.plural or head.quant in ("all", "every", "each") or (head.count or 1) > 1 \
+                    or (head.noun is not None and head.noun.concept.kind == "anything")    # "everything on the shelf"
                 picked = chosen if many else chosen[:1]
                 if head.count is not None and many:
                     picked = chosen[: head.count]

@@ -98,7 +98,7 @@ A = Act
 VERBS: dict[str, VerbSense] = {
     # placing
     **{w: _v(A.PLACE) for w in (
-        "put", "place", "move", "store", "carry", "transfer", "stick", "pop", "lay", "drop",
+        "put", "place", "move", "store", "carry", "transfer", "stick", "pop", "lay", "drop", "bung",
         "return", "relocate", "position", "deposit", "stack", "load", "insert", "hang",
         "tuck", "shove", "slide", "shift", "stash", "rest", "deliver", "bring", "fetch",
         "take", "throw", "toss", "send", "set", "arrange", "replace", "restock", "transport",
@@ -135,7 +135,7 @@ VERBS: dict[str, VerbSense] = {
     "toast": _v(A.TOAST),
     **{w: _v(A.COOL) for w in ("chill", "cool", "refrigerate", "freeze", "ice", "refridgerate")},
     **{w: _v(A.CLEAN) for w in (
-        "clean", "wash", "rinse", "scrub", "wipe", "cleanse", "scour", "sanitize",
+        "clean", "wash", "rinse", "scrub", "wipe", "soak", "cleanse", "scour", "sanitize",
         "sanitise", "disinfect")},
     **{w: _v(A.DIRTY) for w in ("dirty", "soil", "stain", "smudge", "muddy")},
     **{w: _v(A.FILL) for w in ("fill", "refill")},

@@ -840,7 +840,7 @@ class Semantics:
             # pan, cooked there
             pan = self.g.types_ref(("Pan",), "pan")
             done.conditions = [*(cond(P.inside, r, n, pan.single()) for r, n in obj.groups),
-                               *done.conditions]
+                               *done.conditions, *self._on_the_stove(pan.single())]
         return [done]
 
     def _fill_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
@@ -935,8 +935,16 @@ class Semantics:
                 kinds = [k for k in ("Kettle", "Pot") if self.g.has_type(k)]
                 vessel = self.g.types_ref(kinds[:1] or ("Kettle",), "kettle")
                 self.history.append(Mention(vessel, Head(text="kettle"), clause, g))
-        return [self._draft([cond(P.filled, r, n, liquid="water"), cond(P.hot, r, n)], vessel)
+        return [self._draft([cond(P.filled, r, n, liquid="water"), cond(P.hot, r, n), *self._on_the_stove(r)], vessel)
                 for r, n in vessel.groups]
+
+    def _on_the_stove(self, vessel: ObjectRef) -> list[Condition]:
+        """A pot, kettle or pan that boils or fries does it on a burner, and stays there
+        (else a planner may heat it elsewhere and leave it in the sink)."""
+        names = _names(vessel)
+        if not self.g.has_type("StoveBurner") or not names or not all(x in ("Pot", "Kettle", "Pan") for x in names):
+            return []
+        return [cond(P.inside, vessel, 1, ObjectRef(types=("StoveBurner",)))]
 
     def _objects(self, ref: ObjectRef) -> list[ObjectState]:
         return self.discourse.objects(ref)

@@ -95,6 +95,13 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\b(?:has |have |is |s )?(?:gone|got|become|turned) (?:all |really |completely |stone |ice |freezing )?"
      r"(cold|warm|hot|dark|dirty)\b", r"is \1"),
     (r"\b(?:stone|ice|freezing|stone-) cold\b", "cold"),
+    # "put the kettle on": boil it, on the stove (British)
+    (r"\b(?:put|pop|stick|get|bung) (the|a) kettle on\b(?!\s+(?:the|a|an|to|top|there|it)\b)",
+     r"put \1 kettle on the stove and boil it"),
+    # "two slices of toast please", "a coffee please": a dish asked for by name
+    (r"(^|[.!?]\s+)((?:a|an|one|two|three|some|\d+) (?:slices? of |pieces? of |cups? of |mugs? of )?"
+     r"(?:toast|coffee|fried egg|boiled egg|baked potato|hot potato|jacket potato))\s*,?\s*(?:please|pls)\b",
+     r"\1i would like \2"),
     # "my tea's gone cold": the mug it is in (AI2-THOR has no tea)
     (r"\b(my|the|this|that) (?:tea|cuppa|cup of tea)(?= (?:is|s|has|was)\b)", r"\1 mug"),
     # ", dear,": a vocative
@@ -228,6 +235,11 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # "the two remaining ones", "the remaining two": the other two
     (r"\bthe (two|three|four|2|3|4) (?:remaining|leftover|other) (?:ones|of them)\b", r"the other \1"),
     (r"\bthe (?:remaining|leftover|rest of the) (two|three|four|2|3|4)(?: ones)?\b", r"the other \1"),
+    # "everything on the shelf except the tissue box goes on the toilet": the exception
+    # after the predicate, where the grammar reads it
+    (r"\b(everything|all the [a-z]+|all|every [a-z]+)( (?:on|in|from|off) [^,.;:!?]+?) (except(?: for)? (?:the|my|a|that) "
+     r"[a-z]+(?: [a-z]+)?) ((?:goes|go|should go|can go|needs to go|need to go|must go|wants to go)\b[^,.;:!?]*)",
+     r"\1\2 \4 \3"),
     # "one on the holder and the other on the toilet": the other one of the kind
     (r"\bthe other(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|and|,|\.|;|!|\?)\b|\s*$)",
      "the other one"),
