@@ -326,10 +326,12 @@ class HybridPlanner:
                     continue
                 actions = polish(problem.decode(result.plan))
                 options = [actions]
-                if self.config.eliminate != "off":
+                if self.config.eliminate != "off" and all(t.final for t in u.subtasks):
                     # u.protect holds every accepted goal on the problem's objects; goals on
                     # others are checked when the unit is replayed below. The shorter plan
-                    # is tried first, the planner's own if it does not pass.
+                    # is tried first, the planner's own if it does not pass. Not with an
+                    # intermediate goal: it need not hold at the end, so nothing would keep
+                    # the steps that reach it.
                     shorter = eliminate(base, actions, [*u.conditions, *u.protect])
                     if len(shorter) < len(actions):
                         options.insert(0, shorter)
