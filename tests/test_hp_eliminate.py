@@ -10,9 +10,10 @@ import pytest
 
 from emboteam.hp.eliminate import eliminate, eliminate_steps
 from emboteam.hp.goalgen import random_conditions
-from emboteam.hp.merge import SeqStep, ground_sequence, nominal_seconds
+from emboteam.hp.merge import SeqStep, assemble, ground_sequence, nominal_seconds, order
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
+from emboteam.pddl.domain import Universe
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.sim.rules import apply_action
 from emboteam.world.actions import Action, Skill
@@ -169,3 +170,21 @@ def test_steps_not_reported_moved_start_from_the_same_state() -> None:
     same = [(before[k], g) for k, g in zip(kept, after, strict=True) if k not in moved]
     assert same
     assert all(b == g for b, g in same)
+
+
+def test_the_whole_sequence_loses_a_second_run_and_keeps_the_other_groundings() -> None:
+    """The planner's pass over the whole accepted sequence: robot2's run of the microwave
+    after robot1's goes; the steps before it keep their grounded objects; the result
+    merges into a plan the simulator runs to the goal."""
+    state = fresh()
+    seq = [*heat_egg("robot1"), act("robot2", S.GoToObject, "Microwave_1"),
+           act("robot2", S.CloseObject, "Microwave_1"), act("robot2", S.SwitchOn, "Microwave_1"),
+           act("robot2", S.SwitchOff, "Microwave_1"), act("robot2", S.OpenObject, "Microwave_1")]
+    accepted, _ = ground_sequence(state, [SeqStep(r, a, "c1", "u1") for r, a in seq])
+    spec = TaskSpec(instruction="heat the egg", subtasks=(Subtask(id="c1", description="x", goal=(C("hot(Egg_1)"),)),))
+    shorter = HybridPlanner._eliminated(accepted, spec, state, Universe(state))
+    assert shorter is not None and len(shorter) == len(heat_egg("robot1"))
+    assert all(g is a for g, a in zip(shorter, accepted, strict=False))
+    plan = assemble(shorter, order(shorter, {}), ["robot1", "robot2"], {})
+    timing = simulate(plan, state, spec.goal())
+    assert timing.ok, timing.failure

@@ -1,10 +1,12 @@
 """Action elimination: drop the steps of a sequential plan that its goal does not need.
 
 lama-first minimises the number of actions only approximately and never seconds, and its
-plans carry detours: FloorPlan1 heats an egg, puts it in the pan, cools the pan with the
-egg in the fridge and heats the egg again; a door is opened, closed and opened again. A
-plan's makespan is made of those seconds, so they are worth removing before the plan is
-merged, and it is cheap to do on the symbolic state, with no planner call.
+plans carry steps the goal does not need: a drive to an object already within reach (the
+domain's conservative ``at`` makes it drive to every object it touches), a door closed
+and opened again, a second microwave run; and plans made apart for two robots each run
+the microwave where one run heats both things. A plan's makespan is made of those
+seconds, so they are worth removing before the plan is merged, and it is cheap to do on
+the symbolic state, with no planner call.
 
 This is Action Elimination (Fink and Yang 1992; Nakhost and Müller, ICAPS 2010): for
 each step in turn, remove it and every later step that can no longer run without it (a
@@ -27,7 +29,8 @@ lowers it too: elimination is measured on makespans, not on that ratio.
 Removing a step replays the rest of the plan, so a pass costs O(n^2) rule checks for a
 plan of n steps; two things keep it to milliseconds: only removals that can pay off are
 tried (:func:`_worth_trying`), and a replay stops as soon as it rejoins the original run
-(:func:`_without`). Plans longer than :data:`MAX_STEPS` are left as they are. The
+(:func:`_without`). Plans longer than :data:`MAX_STEPS` are left as they are unless a
+``window`` bounds each replay (the planner's whole accepted sequence). The
 planner replays the result with every PDDL precondition checked too, as it does any
 plan, and falls back to the original plan if that fails.
 """
@@ -98,10 +101,10 @@ def eliminate(state: WorldState, actions: Sequence[tuple[str, Action]], goals: S
 def eliminate_steps(state: WorldState, actions: Sequence[tuple[str, Action]], goals: Sequence[Condition], *,
                     window: int | None = None) -> tuple[list[int], frozenset[int]]:
     """:func:`eliminate` as the indices (into ``actions``) of the steps kept, and those of
-    the kept steps that may now start from another state than in the original: those between a removed step and
-    the point where the replay rejoined the original run. Every other kept step starts
-    from the very state it started from before (so what was computed for it still
-    holds)."""
+    the kept steps that may now start from another state than in the original: those
+    between a removed step and the point where the replay rejoined the original run.
+    Every other kept step starts from the very state it started from before, so what was
+    computed for it there (its grounding) still holds."""
     plan: Plan = list(actions)
     ids = list(range(len(plan)))  # each step's index in ``actions``
     if not plan or (window is None and len(plan) > MAX_STEPS):
@@ -152,8 +155,8 @@ def _touches(a: Action) -> tuple[str, ...]:
 @dataclass(frozen=True)
 class _Marks:
     """Where removals are tried in a plan: ``repeated[k]``, step k's skill (or, for a
-    toggle, the opposite one) is applied to its object again later; ``cyclic``, the objects of such steps (a replay is compared
-    with the original after touching one of them)."""
+    toggle, the opposite one) is applied to its object again later; ``cyclic``, the
+    objects of such steps (a replay is compared with the original after touching one)."""
 
     repeated: tuple[bool, ...]
     cyclic: frozenset[str]
@@ -273,8 +276,8 @@ def _worth_trying(plan: Plan, i: int, state: WorldState, marks: _Marks) -> bool:
       drive to every object it touches, however close;
     - a step whose effect the plan makes again or undoes later (the same skill on the
       same object: the microwave switched on again, the apple picked up again; a door
-      closed that is opened again), the cycles lama-first leaves in; removing it makes the steps undoing it fail, and
-      those are dropped with it.
+      closed that is opened again), the cycles lama-first leaves in; removing it makes
+      the steps undoing it fail, and those are dropped with it.
 
     Any other step is what the goal needs, or its removal takes the rest of the robot's
     plan with it: the replay would run to the end to find the goal unmet."""
