@@ -49,8 +49,11 @@ from emboteam.world.state import WorldState
 
 #: longer plans are not searched (O(n^2) rule checks per pass)
 MAX_STEPS = 160
-#: most passes over the plan (a removal can make an earlier step removable)
+#: most passes over the plan (a removal can make an earlier step removable: the drive to
+#: a fridge the robot no longer closes)
 MAX_PASSES = 3
+#: the same with a ``window`` (a pass over a long sequence)
+WINDOWED_PASSES = 2
 #: steps that need no reach (the held object goes where the robot stands)
 _HANDS_ONLY = frozenset({Skill.DropHandObject, Skill.ThrowObject})
 
@@ -58,8 +61,10 @@ _HANDS_ONLY = frozenset({Skill.DropHandObject, Skill.ThrowObject})
 _INVERSE = {Skill.OpenObject: Skill.CloseObject, Skill.CloseObject: Skill.OpenObject,
             Skill.SwitchOn: Skill.SwitchOff, Skill.SwitchOff: Skill.SwitchOn}
 
-#: what a windowed elimination tries to remove
+#: what a windowed elimination tries to remove (in its second pass, the drives only: the
+#: first may have removed what the robot drove to)
 _WINDOWED = frozenset({Skill.GoToObject, *_INVERSE})
+_DRIVES = frozenset({Skill.GoToObject})
 
 Plan = list[tuple[str, Action]]
 Seconds = dict[str, float]
@@ -90,7 +95,7 @@ def eliminate(state: WorldState, actions: Sequence[tuple[str, Action]], goals: S
     the plan does not run. ``window``: a removal whose replay has not rejoined the
     original run within this many steps is given up (long plans: the replay of a removal
     that fails would otherwise run to the end), and only drives and toggles (opening,
-    closing, switching) are tried, in one pass; None: replay to the end. The windowed
+    closing, switching) are tried, then the drives once more; None: replay to the end. The windowed
     form is for a sequence of plans eliminated one by one already: the cycles left
     between them are appliances each plan runs (a pickup repeated across plans is a tool
     passed on, which the goal needs)."""
@@ -116,12 +121,13 @@ def eliminate_steps(state: WorldState, actions: Sequence[tuple[str, Action]], go
     wanted = [c for c in goals if check_condition(c, trace.end).holds]
     hands = _holdings(trace.end, robots)
     moved: set[int] = set()
-    for _ in range(MAX_PASSES if window is None else 1):
+    for n in range(MAX_PASSES if window is None else WINDOWED_PASSES):
         removed_any = False
+        allowed = _WINDOWED if n == 0 else _DRIVES  # windowed: the toggles were all tried
         i = 0
         while i < len(plan):
             at = trace.before[i]
-            if (at is None or (window is not None and plan[i][1].skill not in _WINDOWED)
+            if (at is None or (window is not None and plan[i][1].skill not in allowed)
                     or not _worth_trying(plan, i, at, trace.marks)):
                 i += 1
                 continue
@@ -160,6 +166,10 @@ class _Marks:
 
     repeated: tuple[bool, ...]
     cyclic: frozenset[str]
+    #: the last step acting on each object, and each robot's last drive: a replay is
+    #: compared with the original only at such steps
+    last_touch: dict[str, int]
+    last_drive: dict[str, int]
 
     @classmethod
     def of(cls, plan: Plan) -> _Marks:
@@ -170,7 +180,14 @@ class _Marks:
             repeated[k] = (a.skill, a.target) in seen or (_INVERSE.get(a.skill), a.target) in seen
             seen.add((a.skill, a.target))
         cyclic = frozenset(x for k, (_, a) in enumerate(plan) if repeated[k] for x in _touches(a))
-        return cls(tuple(repeated), cyclic)
+        last_touch: dict[str, int] = {}
+        last_drive: dict[str, int] = {}
+        for k, (robot, a) in enumerate(plan):
+            for x in _touches(a):
+                last_touch[x] = k
+            if a.skill is Skill.GoToObject:
+                last_drive[robot] = k
+        return cls(tuple(repeated), cyclic, last_touch, last_drive)
 
     def needed(self, plan: Plan, k: int) -> bool:
         """Is the state before step ``k`` needed: a removal is tried there, or a replay
@@ -224,13 +241,19 @@ def _without(plan: Plan, i: int, trace: _Trace, window: int | None
     keep = list(range(i))
     skipped = {plan[i][0]}
     objects = set(_touches(plan[i][1]))
+    marks = trace.marks
+    # beyond the window the replay must rejoin, and it can only do so at a drive of a
+    # skipped robot or a step on a skipped step's object: past the last of those it fails
+    bounded = window is not None and len(plan) - 1 - i > window
+    horizon = max([marks.last_drive.get(plan[i][0], -1), *(marks.last_touch.get(x, -1) for x in objects)])
     for k in range(i + 1, len(plan)):
-        if window is not None and k - i > window:
+        if (window is not None and k - i > window) or (bounded and k > horizon):
             return None
         robot, a = plan[k]
         if check_action(s, robot, a) is not None:
             skipped.add(robot)
             objects.update(_touches(a))
+            horizon = max([horizon, marks.last_drive.get(robot, -1), *(marks.last_touch.get(x, -1) for x in _touches(a))])
             continue
         seconds[robot] = seconds.get(robot, 0.0) + nominal_seconds(s, robot, a)
         apply_action(s, robot, a)

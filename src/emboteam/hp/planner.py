@@ -420,8 +420,9 @@ class HybridPlanner:
                     notes: list[str], record: _Record) -> MergedPlan:
         """Plan again with the clusters re-allocated from their measured seconds
         (:mod:`emboteam.hp.rebalance`) when that promises the robot that ends last an
-        earlier end; keep the plan with the shorter makespan, and try again from it (at
-        most ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
+        earlier end, or, when nothing does, the robot with the most work less of it;
+        keep the plan with the shorter makespan, and try again from it (at most
+        ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
         if self.config.rebalance == "off" or not self.config.validate:
             return plan
         calls0 = self.fd.calls
@@ -434,9 +435,13 @@ class HybridPlanner:
             # last is the one to relieve
             ends = finish_of(plan, team)
             work = work_of(plan)
-            jobs += [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
+            waits = [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
                      if ends[r] - work.get(r, 0.0) > 1e-9]
-            prefer = rebalance(jobs, team, max(ends.values(), default=0.0), self.config.rebalance)
+            prefer = rebalance([*jobs, *waits], team, max(ends.values(), default=0.0), self.config.rebalance)
+            if prefer is None:
+                # the robot that ends last cannot be relieved (it does one cluster and
+                # waits): relieve the one with the most work, which may be what it waits for
+                prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance)
             if prefer is None:
                 return plan
             again: list[str] = []
