@@ -95,7 +95,11 @@ def test_fridge_handoff_consumer_waits_for_producer_effect(seed: int) -> None:
     sim = team_sim("FloorPlan1", "1,2", seed=seed, faults=FaultConfig.level(0.2))
     res = Executor(sim, plan, goal, replanner=real_replanner()).run()
     assert res.success, res.error
-    assert assert_consumers_wait_for_producers(res) >= 1
+    checked = assert_consumers_wait_for_producers(res)
+    # a replan may leave no cross-robot wait to check: seed 0's robot2 fails before its
+    # put, and the new plan has robot1 do it all (the planner's action elimination drops
+    # robot2 closing the fridge for robot1 to open it again)
+    assert checked >= 1 or len(res.plans) > 1
     assert_no_spot_shared(res)
 
 

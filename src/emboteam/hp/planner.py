@@ -40,6 +40,7 @@ from typing import Literal as TypingLiteral
 from emboteam.hp.allocation import allocate
 from emboteam.hp.contention import bottleneck_first, spot_seconds
 from emboteam.hp.decompose import decompose_goal
+from emboteam.hp.eliminate import eliminate, eliminate_steps
 from emboteam.hp.interleave import interleave, worth_it
 from emboteam.hp.merge import (
     GroundedStep,
@@ -130,6 +131,11 @@ class PlannerConfig:
     #: with ``action_costs``: a plan of at least this cost (half seconds) gets a second,
     #: cost-bounded search (``pddl/runner.py``: REFINE_SEARCH); None: never
     refine_cost: int | None = None
+    #: drop the steps the goals do not need (action elimination, :mod:`emboteam.hp.eliminate`):
+    #: "units" from each unit's plan before it is accepted, "whole" also from the whole
+    #: accepted sequence before the merge (across units and rounds: two robots' plans made
+    #: apart each run the microwave, one run does), "off" never
+    eliminate: TypingLiteral["off", "units", "whole"] = "whole"
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:
@@ -154,6 +160,9 @@ class _Record:
     candidates: dict[str, tuple[str, ...]] = field(default_factory=dict)
 
 
+#: elimination over the whole accepted sequence gives up a removal whose replay has not
+#: rejoined the original within this many steps (docs/planning.md)
+ELIMINATE_WINDOW = 40
 #: at most this many re-allocation passes (each a whole planning pass, kept when shorter;
 #: the robots whose clusters stay get their plans from the cache)
 REBALANCE_PASSES = 4
@@ -316,13 +325,29 @@ class HybridPlanner:
                     self._retry_unsolvable(u, attempts, accepted, start, forward, team)
                     continue
                 actions = polish(problem.decode(result.plan))
-                steps = [SeqStep(r, a, t, u.id)
-                         for (r, a), t in zip(actions, attribute(actions, u, base), strict=True)]
-                trial = forward.copy()
-                grounded, why = self._replay(trial, steps, universe)
+                options = [actions]
+                if self.config.eliminate != "off" and all(t.final for t in u.subtasks):
+                    # u.protect holds every accepted goal on the problem's objects; goals on
+                    # others are checked when the unit is replayed below. The shorter plan
+                    # is tried first, the planner's own if it does not pass. Not with an
+                    # intermediate goal: it need not hold at the end, so nothing would keep
+                    # the steps that reach it.
+                    shorter = eliminate(base, actions, [*u.conditions, *u.protect])
+                    if len(shorter) < len(actions):
+                        options.insert(0, shorter)
+                for actions in options:
+                    steps = [SeqStep(r, a, t, u.id)
+                             for (r, a), t in zip(actions, attribute(actions, u, base), strict=True)]
+                    trial = forward.copy()
+                    grounded, why = self._replay(trial, steps, universe)
+                    missing: list[Condition] = []
+                    broken: list[Condition] = []
+                    if why is None:
+                        missing = [c for c in u.conditions if not check_condition(c, trial).holds]
+                        broken = [c for c, _ in protected.values() if not check_condition(c, trial).holds]
+                    if why is None and not missing and not broken:
+                        break
                 if why is None:
-                    missing = [c for c in u.conditions if not check_condition(c, trial).holds]
-                    broken = [c for c, _ in protected.values() if not check_condition(c, trial).holds]
                     if missing:
                         why = "misses " + ", ".join(str(c) for c in missing)
                     elif broken:
@@ -346,17 +371,58 @@ class HybridPlanner:
         if record is not None:
             record.cluster.update(cluster)
             record.assigned.update(assigned)
+        trimmed = (self._eliminated(accepted, spec, start, universe) if self.config.eliminate == "whole"
+                   else None)
+        if trimmed is not None:
+            tried: list[str] = []
+            try:
+                plan = self._merge_causal(trimmed, spec, unit_of, team, start, tried)
+            except _Invalid:
+                pass  # the whole sequence as accepted, below
+            else:
+                notes.extend(tried)
+                return plan
         try:
             return self._merge_causal(accepted, spec, unit_of, team, start, notes)
         except _Invalid as exc:
             raise _Fallback(f"the merged plan failed in the simulator: {exc}") from None
 
+    @staticmethod
+    def _eliminated(accepted: Sequence[GroundedStep], spec: TaskSpec, start: WorldState, universe: Universe
+                    ) -> list[GroundedStep] | None:
+        """The accepted sequence without the steps the goal does not need across units and
+        rounds (:func:`emboteam.hp.eliminate.eliminate`): two robots heat things in one
+        microwave run where their plans, made apart, each ran it; None when nothing goes,
+        when some subtask's goal is intermediate (the elimination keeps only what holds at
+        the end) or the shorter sequence fails a PDDL precondition."""
+        if any(not t.final for t in spec.subtasks) or len(accepted) < 2:
+            return None
+        kept, moved = eliminate_steps(start, [(g.robot, g.action) for g in accepted], spec.goal().conditions,
+                                      window=ELIMINATE_WINDOW)
+        if len(kept) == len(accepted):
+            return None
+        state = start.copy()
+        steps: list[GroundedStep] = []
+        try:
+            for k in kept:
+                g = accepted[k]
+                if k in moved:  # may start from another state now: grounded again
+                    steps.append(advance(state, SeqStep(g.robot, g.action, g.subtask, g.group), len(steps),
+                                         universe=universe))
+                else:  # starts from the very state it was grounded in
+                    apply_action(state, g.robot, g.action)
+                    steps.append(g)
+        except StepFailure:
+            return None
+        return steps
+
     def _rebalanced(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str],
                     notes: list[str], record: _Record) -> MergedPlan:
         """Plan again with the clusters re-allocated from their measured seconds
         (:mod:`emboteam.hp.rebalance`) when that promises the robot that ends last an
-        earlier end; keep the plan with the shorter makespan, and try again from it (at
-        most ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
+        earlier end, or, when nothing does, the robot with the most work less of it;
+        keep the plan with the shorter makespan, and try again from it (at most
+        ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
         if self.config.rebalance == "off" or not self.config.validate:
             return plan
         calls0 = self.fd.calls
@@ -369,9 +435,13 @@ class HybridPlanner:
             # last is the one to relieve
             ends = finish_of(plan, team)
             work = work_of(plan)
-            jobs += [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
+            waits = [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
                      if ends[r] - work.get(r, 0.0) > 1e-9]
-            prefer = rebalance(jobs, team, max(ends.values(), default=0.0), self.config.rebalance)
+            prefer = rebalance([*jobs, *waits], team, max(ends.values(), default=0.0), self.config.rebalance)
+            if prefer is None:
+                # the robot that ends last cannot be relieved (it does one cluster and
+                # waits): relieve the one with the most work, which may be what it waits for
+                prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance)
             if prefer is None:
                 return plan
             again: list[str] = []
