@@ -460,6 +460,20 @@ def repeat_for_also(parsed: list[ParsedClause]) -> None:
     """"Put the apple in the fridge. Oh, and the tomato too.": the act of the clause
     before, with its place, on the new objects."""
     for k, p in enumerate(parsed):
+        words = [i.text for i in p.clause.items if i.punct is None]
+        trailing_too = bool(words) and (words[-1] in ("too", "also") or words[-2:] == ["as", "well"])
+        before_frames = next((q.frames for q in reversed(parsed[:k]) if q.frames), [])
+        located = any(t.head.location for f in before_frames for t in f.targets)
+        if trailing_too and located and p.frames and all(f.act is lexicon.Act.PLACE and not f.verb for f in p.frames):
+            # "the soap on the bath goes in the sink, and the spray bottle on the toilet too":
+            # said like the subject before, where it is, and the act before ("put the book
+            # on the shelf and the vase on the table too" keeps its own place)
+            heads = []
+            for f in p.frames:
+                for t in f.targets:
+                    t.head.location += [(t.prep or "on", d) for d in t.dest]
+                    heads.append(t.head)
+            parsed[k] = p = replace(p, frames=[], also=heads)
         if not p.also or p.frames or k == 0:
             continue
         before = next((q for q in reversed(parsed[:k]) if q.frames), None)

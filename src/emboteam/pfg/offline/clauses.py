@@ -346,6 +346,10 @@ def _also_item(items: list[Item], j: int) -> bool:
     n = len(items)
     if m == j or m >= n:
         return False
+    if items[m].prep in _SUBJECT_PLACES and m + 1 < n and _skip_np(items, m + 1) > m + 1:
+        m = _skip_np(items, m + 1)      # "and the spray bottle on the toilet too"
+        if m >= n:
+            return False
     if items[m].text in ("too", "also"):
         m += 1
     elif items[m].text == "as" and m + 1 < n and items[m + 1].text == "well":

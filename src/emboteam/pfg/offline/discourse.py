@@ -8,9 +8,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
 from emboteam.pfg.offline.phrases import Head
+from emboteam.pfg.offline.tagger import NounReading
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import ObjectRef
 from emboteam.world.state import ObjectState
@@ -64,6 +66,7 @@ class Discourse:
             named = next((m.head for m in reversed(self.history) if m.ref.groups == ref.groups
                           and m.head.noun is not None), None)
             if named is not None:
+                named = self._as_sized(named, head)
                 try:
                     return self.g.ground(replace(named, location=list(head.location), filters=[]), need)
                 except OfflineParseError:
@@ -77,6 +80,19 @@ class Discourse:
             # "the drawers are all shut, so open one": one of them
             return Ref(head.label(), ((ref.groups[0][0], 1),))
         return ref
+
+    @staticmethod
+    def _as_sized(named: Head, one: Head) -> Head:
+        """"the tall lamp ... the little one": the kind named before ("lamp"), with the size
+        said now ("little lamp") when the lexicon has that compound."""
+        if named.noun is None:
+            return named
+        base = named.noun.phrase.split()[-1]
+        for word in one.text.split()[:-1]:
+            concept = lx.nouns().get(f"{word} {base}")
+            if concept is not None:
+                return replace(named, noun=NounReading(concept, f"{word} {base}", False), text=f"the {word} {base}")
+        return named
 
     def _resolve(self, head: Head, need: str | None, prefer: str = "object") -> Ref:
         if not self.history:
@@ -151,6 +167,8 @@ class Discourse:
                 kind = "place" if m.role == "dest" else m.role
                 if kind == role and self.fits(m.ref, need) and (
                         (m.head.noun is None and m.head.piece)          # "a slice off it ... pop that in"
+                        # "get the spare one out of the drawer and put it on the holder"
+                        or (m.head.noun is None and m.head.pron in ("one", "it") and OTHER_WORDS & set(m.head.text.split()))
                         or (m.head.noun is not None and m.head.noun.concept.kind not in ("room", "anything"))):
                     if role != order[0]:    # not what the verb prefers: maybe a guess
                         self._doubt_unless_alone(m.ref, need)

@@ -514,6 +514,8 @@ def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
     adjacent = at == s.dest_end
     if not waiting and prep in ("under", "near") and adjacent:
         return
+    if not waiting and prep in ("near", "next to", "beside") and s.pending and all(t.dest for t in s.pending):
+        return      # "on the bed, next to the teddy": where on the bed, not another place
     head.role = "dest"
     s.dest_end = s.j
     if waiting:

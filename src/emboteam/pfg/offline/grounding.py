@@ -70,6 +70,11 @@ NEEDS: dict[str, str] = {
 }
 
 
+#: a basin and the fixture it belongs to are one place to people ("the soap on the bath"
+#: stands on the Bathtub, "in the bath" is its BathtubBasin)
+_SAME_PLACE = {"BathtubBasin": "Bathtub", "Bathtub": "BathtubBasin", "SinkBasin": "Sink", "Sink": "SinkBasin"}
+
+
 class Grounder:
     """Grounds noun phrases in one scene and state."""
 
@@ -236,7 +241,8 @@ class Grounder:
         for place in places:
             chain = self.state.ancestors(o.id) if o.id in self.state.objects else []
             held = o.held_by is not None
-            if not held and not any(self.state.objects[c].type in place.type_names() for c in chain):
+            names = {*place.type_names(), *(_SAME_PLACE[t] for t in place.type_names() if t in _SAME_PLACE)}
+            if not held and not any(self.state.objects[c].type in names for c in chain):
                 return False
         return True
 

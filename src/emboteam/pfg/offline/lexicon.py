@@ -98,7 +98,7 @@ A = Act
 VERBS: dict[str, VerbSense] = {
     # placing
     **{w: _v(A.PLACE) for w in (
-        "put", "place", "move", "store", "carry", "transfer", "stick", "pop", "lay", "drop", "bung",
+        "put", "place", "move", "store", "carry", "transfer", "stick", "pop", "lay", "drop", "bung", "stand",
         "return", "relocate", "position", "deposit", "stack", "load", "insert", "hang",
         "tuck", "shove", "slide", "shift", "stash", "rest", "deliver", "bring", "fetch",
         "take", "throw", "toss", "send", "set", "arrange", "replace", "restock", "transport",
@@ -110,7 +110,7 @@ VERBS: dict[str, VerbSense] = {
     **{w: _v(A.TRASH) for w in (
         "trash", "discard", "dispose", "bin", "junk", "chuck", "ditch", "scrap", "garbage")},
     **{w: _v(A.HOLD) for w in (
-        "pick", "grab", "hold", "lift", "collect", "retrieve", "obtain", "snatch", "seize", "pinch", "nick",
+        "pick", "grab", "hold", "lift", "collect", "retrieve", "obtain", "snatch", "seize", "pinch", "nick", "fish",
         "hand", "give", "find", "locate", "acquire")},
     **{w: _v(A.SLICE) for w in (
         "slice", "cut", "chop", "dice", "mince", "carve", "cube", "julienne", "halve",
@@ -165,7 +165,7 @@ PARTICLE_VERBS: dict[tuple[str, str], VerbSense] = {
     ("chuck", "away"): _v(A.TRASH), ("chuck", "out"): _v(A.TRASH),
     ("dump", "out"): _v(A.TRASH), ("bin", "away"): _v(A.TRASH),
     ("pick", "up"): _v(A.HOLD), ("take", "out"): _v(A.HOLD), ("take", "up"): _v(A.HOLD),
-    ("get", "out"): _v(A.HOLD), ("pull", "out"): _v(A.HOLD),
+    ("get", "out"): _v(A.HOLD), ("pull", "out"): _v(A.HOLD), ("fish", "out"): _v(A.HOLD),
     ("shut", "off"): _v(A.SWITCH_OFF), ("shut", "down"): _v(A.SWITCH_OFF),
     ("power", "up"): _v(A.SWITCH_ON), ("power", "down"): _v(A.SWITCH_OFF),
     ("put", "out"): _v(A.SWITCH_OFF), ("blow", "out"): _v(A.SWITCH_OFF),
@@ -578,6 +578,10 @@ _NOUNS: dict[str, Concept] = {
     "wristwatch": _obj("Watch"), "desk light": _obj("DeskLamp"), "table lamp": _obj("DeskLamp"),
     "reading lamp": _obj("DeskLamp", "FloorLamp"), "bedside lamp": _obj("DeskLamp"),
     "standing lamp": _obj("FloorLamp"), "lamp post": _obj("FloorLamp"),
+    # a lamp by its size: a floor lamp is the big one, a desk lamp the little one
+    "big lamp": _obj("FloorLamp", fallback=("DeskLamp",)), "tall lamp": _obj("FloorLamp", fallback=("DeskLamp",)),
+    "standard lamp": _obj("FloorLamp"), "little lamp": _obj("DeskLamp", fallback=("FloorLamp",)),
+    "small lamp": _obj("DeskLamp", fallback=("FloorLamp",)),
     "switch": _obj("LightSwitch"), "light switch": _obj("LightSwitch"),
     "watering can": _obj("WateringCan"),
     "dog bed": _obj("DogBed"), "pet bed": _obj("DogBed"),

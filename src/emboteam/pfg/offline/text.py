@@ -23,6 +23,10 @@ _REPLACE: tuple[tuple[str, str], ...] = (
     # labels it like a colon
     (r"\s+(?:-|--|\u2013|\u2014)\s+(?=(?:the |a |an |my |into the |in the |on the )?[A-Za-z]+(?: [A-Za-z]+)?"
      r"(?: please| pls| plz| thanks| thx)?\s*(?:[.!?]|$))", " : "),
+    # "my book - it's on the desk next to the laptop - can go on the bed": an aside between
+    # dashes that says where it is now
+    (r"\s[-\u2013\u2014]\s*(?:it's|it is|its|they're|they are|which is|that's)\b[^-\u2013\u2014.!?]{1,60}"
+     r"[-\u2013\u2014]\s", " "),
     # bullets: "\u2022 a new roll on the holder \u2022 light off"
     (r"\s*[\u2022\u25cf\u25aa\u2023\u2043]\s*", " ; "),
     (r"\s*[\u2014\u2013]\s*|\s+-\s+|\s*--\s*", " , "),
@@ -129,6 +133,8 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\b(?:could|can|would|will) (it|they|that|those|this|these) (?:please )?be (?:put|placed|hidden|moved|tucked|"
      r"stored|kept|stashed|popped|taken|carried|brought|locked)(?: away| back| up| over)? (in|into|on|onto|inside|to)\b",
      r"put \1 \2"),
+    # "leave the spray bottle, just the soap": what is left alone, then what is meant
+    (r"\b(leave|forget|skip) ((?:the|my|that|those) [^,.;!?]+?),\s*(?:just|only) ", r"\1 \2 . just "),
     # "the desk lamp's glaring right in my eyes": too bright
     (r"\b(is|s|are) (?:glaring|blinding|dazzling|blazing|burning away)\b", r"\1 too bright"),
     (r"\b(?:far|way|much|a bit|a little|rather|really|so) too (bright|dark|hot|cold|warm|loud)\b", r"too \1"),
@@ -145,6 +151,10 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\b(nobody|no one|noone|no-one)(?: is| s)? (?:even )?using\b", r"\1 is watching"),
     # "oh no, ...": an interjection, no negation
     (r"\b(oh|ah|aw|uh) no\b", r"\1"),
+    # "someone threw a perfectly good loo roll in the bin": where it is now
+    (r"\b(?:someone|somebody|the kids|the kid|he|she|they)(?: has| have)? (?:threw|thrown|dumped|chucked|"
+     r"tossed|dropped|shoved) (a|an|the|my|our|his|her|their|this|that) ((?:[a-z]+ ){0,3}?[a-z]+) (?:back )?"
+     r"(in|into|on|onto) (the|a|my) ", r"\1 \2 is \3 \4 "),
     # "who left the wine out on the table?": where someone left it, a complaint, no request
     (r"\bwho(?: has| is| s)? (left|put|dumped|moved|forgot)\b", r"someone \1"),
     # "is to warm for the dinner": too warm; "its heavy": it is heavy
@@ -241,8 +251,8 @@ _POSTURES: tuple[tuple[str, str], ...] = (
      r"[a-z]+(?: [a-z]+)?) ((?:goes|go|should go|can go|needs to go|need to go|must go|wants to go)\b[^,.;:!?]*)",
      r"\1\2 \4 \3"),
     # "one on the holder and the other on the toilet": the other one of the kind
-    (r"\bthe other(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|and|,|\.|;|!|\?)\b|\s*$)",
-     "the other one"),
+    (r"\b(the|a) (other|spare|new|fresh|old)(?= (?:on|in|into|onto|inside|to|goes|go|should|can|needs|must|back|over|"
+     r"out|from|off|and|,|\.|;|!|\?)\b|\s*$)", r"\1 \2 one"),
     # "..., with the door shut properly": and shut it
     (r"\bwith the (?:door|lid) (?:shut|closed)\b", "and shut the door"),
     # "so into the fridge with that": put that into the fridge
