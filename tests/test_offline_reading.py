@@ -1186,3 +1186,10 @@ def test_the_bottle_after_the_spray_bottle_is_that_bottle() -> None:
 ])
 def test_round_14_cooking_and_tidying(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_crack_it_in_there_is_into_the_pan_not_the_stove_it_stands_on() -> None:
+    reading = read("The egg's in the fridge and the pan's already sitting on the stove, so just crack it in there "
+                   "and cook it through.", 26)
+    assert {"sliced(Egg)", "inside(EggCracked, Pan)"} <= goal(reading)
+    assert not any("StoveBurner" in c and "EggCracked" in c for c in goal(reading))

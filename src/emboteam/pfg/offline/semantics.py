@@ -642,6 +642,15 @@ class Semantics:
             act = Act.MICROWAVE     # "pop the potato in the microwave for a couple of minutes"
         if act in (Act.SLICE, Act.BREAK) and t.dest:
             return self._cut_into(frame, act, t, g, clause)
+        if act in (Act.SLICE, Act.BREAK) and (t.head.noun is None or "Egg" in t.head.noun.concept.types) \
+                and (there := self._stranded_place(frame, t.head)) is not None \
+                and "Egg" in (obj := self.ground(t.head, "slice", g, clause)).type_names():
+            # "the pan's on the stove, crack the egg (it) in there": into the pan
+            cut = self._draft([cond(P.sliced, r, n) for r, n in obj.groups], obj)
+            pieces = ObjectRef(types=tuple(p[0] for x in obj.type_names() if (p := self.cat.slice_product(x))))
+            placed = self._draft([cond(P.inside, pieces, 1, there.single())], obj, there)
+            placed.after = [0]
+            return [cut, placed]
         if act is Act.SLICE and t.head.piece and (t.head.noun is not None or t.head.pron is not None):
             return self._cut_pieces(frame, t, g, clause)
         if act is Act.CLOSE and t.dest and t.prep in ("in", "inside", "into"):
@@ -768,10 +777,13 @@ class Semantics:
         if not words or words[-1] not in ("in", "inside", "on", "there", "onto", "into"):
             return None
         types = head.noun.concept.types if head.noun is not None else ()
+        # where a thing named stands is not where "in there" points ("the pan's on the
+        # stove, crack it in there": the pan)
+        landmarks = {id(land) for m in self.history for _, land in m.head.location}
         for m in reversed(self.history):
             places = [r for r in m.ref.type_names()
                       if r in self.cat.types and self.cat.types[r].has("receptacle")]
-            if m.head is head or m.head.noun is None or not places:
+            if m.head is head or m.head.noun is None or not places or (id(m.head) in landmarks and m.role == "place"):
                 continue
             if not types or any(self.cat.can_place(t, r) for t in types for r in places):
                 return m.ref
