@@ -648,9 +648,9 @@ class Semantics:
             # "the pan's on the stove, crack the egg (it) in there": into the pan
             cut = self._draft([cond(P.sliced, r, n) for r, n in obj.groups], obj)
             pieces = ObjectRef(types=tuple(p[0] for x in obj.type_names() if (p := self.cat.slice_product(x))))
-            placed = self._draft([cond(P.inside, pieces, 1, there.single())], obj, there)
-            placed.after = [0]
-            return [cut, placed]
+            into = self._draft([cond(P.inside, pieces, 1, there.single())], obj, there)
+            into.after = [0]
+            return [cut, into]
         if act is Act.SLICE and t.head.piece and (t.head.noun is not None or t.head.pron is not None):
             return self._cut_pieces(frame, t, g, clause)
         if act is Act.CLOSE and t.dest and t.prep in ("in", "inside", "into"):
