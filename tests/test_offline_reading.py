@@ -1193,3 +1193,27 @@ def test_crack_it_in_there_is_into_the_pan_not_the_stove_it_stands_on() -> None:
                    "and cook it through.", 26)
     assert {"sliced(Egg)", "inside(EggCracked, Pan)"} <= goal(reading)
     assert not any("StoveBurner" in c and "EggCracked" in c for c in goal(reading))
+
+
+# round 14, vocabulary (round 25): regional words, nicknames and phrasal verbs
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Crack open the chiller and chuck the loaf in the dustbin.", 11, {"open(Fridge)", "inside(Bread, GarbageCan)"}),
+    ("Stand the beaker in the espresso machine.", 20, {"inside(Mug, CoffeeMachine)"}),
+    ("Turn on the set and chuck the keyring onto the settee.", 202,
+     {"switched_on(Television)", "inside(KeyChain, Sofa)"}),
+    ("Drop the mobile into the cardboard box, then fold the flaps shut.", 211, {"inside(CellPhone, Box)", "closed(Box)"}),
+    ("Lay the newspaper over an armchair.", 212, {"inside(Newspaper, ArmChair)"}),
+    ("Switch off the reading lamp and the floor light.", 225, {"switched_off(DeskLamp)", "switched_off(FloorLamp)"}),
+    ("Stash the house keys in the strongbox.", 204, {"inside(KeyChain, Safe)"}),
+    ("Put the bowl away in the press.", 206, {"inside(Bowl, Cabinet)"}),
+    ("Do me a round of toast, would you?", 25, {"sliced(Bread)", "cooked(Bread)"}),
+    ("Bung both rags in the wash basket.", 307, {"inside(2 of Cloth, LaundryHamper)"}),
+    ("Fold the laptop closed.", 313, {"closed(Laptop)"}),
+    ("Put the biro in the box.", 316, {"inside(Pen, Box)"}),
+    ("Stow the facecloth in a cupboard.", 402, {"inside(Cloth, Cabinet)"}),
+    ("Pull back the shower curtain.", 408, {"open(ShowerCurtain)"}),
+    ("Lift the loo lid.", 420, {"open(Toilet)"}),
+    ("Pop the soap on the basin.", 406, {"inside(SoapBar, SinkBasin)"}),
+])
+def test_round_14_vocabulary(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

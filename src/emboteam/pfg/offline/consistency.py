@@ -76,3 +76,20 @@ def narrow_contrasts(drafts: dict[int, list[Draft]]) -> None:
                 rest = tuple(t for t in b.subject.types if t != kind)
                 if rest and len(rest) < len(b.subject.types):
                     b_draft.conditions[k] = b.model_copy(update={"subject": ObjectRef(types=rest)})
+
+
+def narrow_choices(drafts: dict[int, list[Draft]]) -> None:
+    """"Switch off the reading lamp and the floor light": a choice of kinds (a reading lamp
+    is a desk or a floor lamp) next to a request of the same kind about one of them named
+    alone is the other kinds (else one floor lamp would do for both)."""
+    all_drafts = [d for ds in drafts.values() for d in ds]
+    for a_draft, b_draft in itertools.permutations(all_drafts, 2):
+        for k, b in enumerate(b_draft.conditions):
+            for a in a_draft.conditions:
+                if a.predicate is not b.predicate or a.receptacle != b.receptacle or a.subject.id is not None \
+                        or b.subject.id is not None or len(a.subject.types) != 1 or len(b.subject.types) < 2 \
+                        or b.count != 1:     # "both lamps are on: turn off the desk lamp and ..." stays
+                    continue
+                rest = tuple(t for t in b.subject.types if t not in a.subject.types)
+                if rest and len(rest) < len(b.subject.types):
+                    b_draft.conditions[k] = b.model_copy(update={"subject": ObjectRef(types=rest)})

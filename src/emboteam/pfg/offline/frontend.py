@@ -30,7 +30,7 @@ from emboteam.pfg.offline.clause_passes import (
     whereabouts,
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
-from emboteam.pfg.offline.consistency import check_consistent, narrow_contrasts
+from emboteam.pfg.offline.consistency import check_consistent, narrow_choices, narrow_contrasts
 from emboteam.pfg.offline.constructions import (
     commaless_lists,
     object_first,
@@ -339,6 +339,7 @@ class OfflineFrontend:
         for note in notes:
             log.info("offline parser: %s", note)
         narrow_contrasts(drafts)
+        narrow_choices(drafts)
         check_consistent(clauses, drafts)
         spec = assemble(text, clauses, drafts, team)
         unsure = _unsure(spec, semantics.g.doubts)

@@ -166,6 +166,7 @@ PARTICLE_VERBS: dict[tuple[str, str], VerbSense] = {
     ("dump", "out"): _v(A.TRASH), ("bin", "away"): _v(A.TRASH),
     ("pick", "up"): _v(A.HOLD), ("take", "out"): _v(A.HOLD), ("take", "up"): _v(A.HOLD),
     ("get", "out"): _v(A.HOLD), ("pull", "out"): _v(A.HOLD), ("fish", "out"): _v(A.HOLD),
+    ("pull", "back"): _v(A.OPEN), ("draw", "back"): _v(A.OPEN), ("crack", "open"): _v(A.OPEN),
     ("shut", "off"): _v(A.SWITCH_OFF), ("shut", "down"): _v(A.SWITCH_OFF),
     ("power", "up"): _v(A.SWITCH_ON), ("power", "down"): _v(A.SWITCH_OFF),
     ("put", "out"): _v(A.SWITCH_OFF), ("blow", "out"): _v(A.SWITCH_OFF),
@@ -406,6 +407,17 @@ _ROOM = Concept("room", kind="room")
 _ANY = Concept("everything", kind="anything")
 
 _NOUNS: dict[str, Concept] = {
+    # regional words and nicknames (round 25 of the blind development sets)
+    "chiller": _obj("Fridge"), "vino": _obj("WineBottle"), "plonk": _obj("WineBottle"),
+    "bottle of plonk": _obj("WineBottle"), "bottle of vino": _obj("WineBottle"),
+    "beaker": _obj("Mug", fallback=("Cup",)), "strongbox": _obj("Safe"), "strong box": _obj("Safe"),
+    "press": _obj("Cabinet"), "zapper": _obj("RemoteControl"), "biro": _obj("Pen"),
+    "facecloth": _obj("Cloth"), "face cloth": _obj("Cloth"), "flannel": _obj("Cloth"),
+    "wash basket": _obj("LaundryHamper"), "laundry basket": _obj("LaundryHamper"),
+    "wastepaper basket": _obj("GarbageCan"), "waste paper basket": _obj("GarbageCan"),
+    "wastebasket": _obj("GarbageCan"), "mixer tap": _obj("Faucet"), "floor light": _obj("FloorLamp"),
+    "benchtop": _obj("CounterTop"), "bench top": _obj("CounterTop"), "lounge": _obj("Sofa"),
+    "blade": _obj("Knife", fallback=("ButterKnife",)),
     # --- categories
     **{w: _VEG for w in ("vegetable", "veggie", "veg", "veggy", "greens")},
     **{w: _FRUIT for w in ("fruit",)},
@@ -440,7 +452,7 @@ _NOUNS: dict[str, Concept] = {
     **{w: _HOLDERS for w in ("holder", "hanger", "rack", "rail")},
     # --- lights, rooms, everything
     **{w: _LIGHTS for w in ("light", "lights", "lighting", "overhead light", "ceiling light",
-                            "main light", "room light", "light fixture", "illumination")},
+                            "main light", "room light", "light fixture", "illumination", "big light")},
     **{w: _LAMPS for w in ("lamp",)},
     **{w: _ROOM for w in ("room", "kitchen", "living room", "lounge", "bedroom", "bathroom",
                           "restroom", "house", "home", "area", "space", "place", "apartment",
@@ -462,7 +474,7 @@ _NOUNS: dict[str, Concept] = {
     "range": _obj("StoveBurner"), "gas": _obj("StoveBurner"), "cooker": _obj("StoveBurner"),
     "knob": _obj("StoveKnob"), "stove knob": _obj("StoveKnob"), "dial": _obj("StoveKnob"),
     "faucet": _obj("Faucet"), "tap": _obj("Faucet"), "spigot": _obj("Faucet"),
-    "sink": _obj("SinkBasin", fallback=("Sink",)), "basin": _obj("SinkBasin", "BathtubBasin"),
+    "sink": _obj("SinkBasin", fallback=("Sink",)), "basin": _obj("SinkBasin", fallback=("BathtubBasin",)),
     "kitchen sink": _obj("SinkBasin", fallback=("Sink",)),
     "washbasin": _obj("SinkBasin", fallback=("Sink",)),
     "counter": _obj("CounterTop"), "countertop": _obj("CounterTop"),

@@ -106,6 +106,21 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"(^|[.!?]\s+)((?:a|an|one|two|three|some|\d+) (?:slices? of |pieces? of |cups? of |mugs? of )?"
      r"(?:toast|coffee|fried egg|boiled egg|baked potato|hot potato|jacket potato))\s*,?\s*(?:please|pls)\b",
      r"\1i would like \2"),
+    # "turn on the set": the television (a set of what else?)
+    (r"\b(turn|switch|put|flick|get) (on|off) the set\b", r"\1 \2 the tv"),
+    (r"\b(turn|switch|put|flick|get) the set (on|off)\b", r"\1 the tv \2"),
+    # "fold the flaps shut", "lift the loo lid": close it, open the loo
+    (r"\bfold (?:the )?(?:flaps|lid|top) (?:shut|closed|down|over)\b", "close it"),
+    (r"\bfold (the|my|that) ((?:[a-z]+ )?[a-z]+) (?:shut|closed|down)\b", r"close \1 \2"),
+    (r"\b(?:lift|raise|put up) the (loo|toilet) (?:lid|seat)\b", r"open the \1"),
+    # "lay the newspaper over an armchair": on it
+    (r"\b(lay|drape|throw|hang|sling|spread|put) ((?:the|a|my|that) (?:[a-z]+ ){0,2}?[a-z]+) over (the|an|a|my) ",
+     r"\1 \2 on \3 "),
+    # "do me a round of toast": a slice of toast, made
+    (r"\b(?:a )?rounds? of toast\b", "a slice of toast"),
+    (r"\bdo (me|us) (a|an|some|two|three) ", r"make \1 \2 "),
+    # "crack open the chiller": open it (a tin is cracked open, an egg is cracked)
+    (r"\bcrack open (the|a|my) (?!eggs?\b)", r"open \1 "),
     # "my tea's gone cold": the mug it is in (AI2-THOR has no tea)
     (r"\b(my|the|this|that) (?:tea|cuppa|cup of tea)(?= (?:is|s|has|was)\b)", r"\1 mug"),
     # ", dear,": a vocative
