@@ -413,9 +413,9 @@ _NOUNS: dict[str, Concept] = {
     "beaker": _obj("Mug", fallback=("Cup",)), "strongbox": _obj("Safe"), "strong box": _obj("Safe"),
     "press": _obj("Cabinet"), "zapper": _obj("RemoteControl"), "biro": _obj("Pen"),
     "facecloth": _obj("Cloth"), "face cloth": _obj("Cloth"), "flannel": _obj("Cloth"),
-    "wash basket": _obj("LaundryHamper"), "laundry basket": _obj("LaundryHamper"),
+    "wash basket": _obj("LaundryHamper"),
     "wastepaper basket": _obj("GarbageCan"), "waste paper basket": _obj("GarbageCan"),
-    "wastebasket": _obj("GarbageCan"), "mixer tap": _obj("Faucet"), "floor light": _obj("FloorLamp"),
+    "mixer tap": _obj("Faucet"), "floor light": _obj("FloorLamp"),
     "benchtop": _obj("CounterTop"), "bench top": _obj("CounterTop"), "lounge": _obj("Sofa"),
     "blade": _obj("Knife", fallback=("ButterKnife",)),
     # --- categories
