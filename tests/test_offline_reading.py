@@ -1217,3 +1217,30 @@ def test_crack_it_in_there_is_into_the_pan_not_the_stove_it_stands_on() -> None:
 ])
 def test_round_14_vocabulary(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 14, notes left for the robots (round 24)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # asides in brackets that correct or say where things are
+    ("Put my phone (dining table) and my keys (by the lamp on the side table) in the box on the coffee table.", 218,
+     {"inside(CellPhone, Box)", "inside(KeyChain, Box)"}),
+    ("Cut a slice off the loaf (the big knife is next to it), pop it in the toaster.", 7,
+     {"sliced(Bread)", "inside(BreadSliced, Toaster)"}),
+    # "rather than on the side table": the rejected place; "for tonight's salad": a purpose
+    ("Keep his pen and pencil in the box rather than on the side table.", 212,
+     {"inside(Pen, Box)", "inside(Pencil, Box)"}),
+    ("The tomato and lettuce can go together in the bowl for tonight's salad.", 19,
+     {"inside(Tomato, Bowl)", "inside(Lettuce, Bowl)"}),
+    # "they" skips the places named with a pronoun subject; "lock away"
+    ("Could you lock away my phone and my keys? They're both on the desk next to the laptop. They go in the safe.",
+     302, {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)"}),
+    # "the bar of soap and the soap bottle": two names, no ellipsis
+    ("Put the bar of soap and the soap bottle in the cabinet.", 405, {"inside(SoapBar, Cabinet)", "inside(SoapBottle, Cabinet)"}),
+    # "put it on" what cannot switch: on the holder named before
+    ("The holder by the loo is empty - take a spare toilet roll from the shelf and put it on.", 401,
+     {"inside(ToiletPaper, TowelHolder|HandTowelHolder|ToiletPaperHanger)"}),
+    ("Coffee please, lights off.", 3, {"filled(Mug, coffee)", "hot(Mug)", "switched_off(LightSwitch)"}),
+    ("The paper on the sofa is finished with - straight in the bin.", 228, {"inside(Newspaper, GarbageCan)"}),
+])
+def test_round_14_notes(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -147,8 +147,13 @@ class Discourse:
             # not the place they went to
             # (named objects, not an earlier "they" that a verb's need narrowed: "the fork
             # and spoon ... they're clean ... they can go in a drawer")
-            m = next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None),
-                     next((x for x in reversed(self.history) if x.role == "object"), self.history[-1]))
+            # "they" skips singular things named since ("my phone and my keys ... on the desk
+            # next to the laptop. They go in the safe"): the last plural or coordinated objects
+            m = next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None and (
+                x.ref.plural or sum(1 for y in self.history if y.group == x.group and y.role == "object"
+                                    and y.head.pron is None) > 1)), None) \
+                or next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None),
+                        next((x for x in reversed(self.history) if x.role == "object"), self.history[-1]))
             group = [x for x in self.history if x.group == m.group and x.head.pron is None
                      and x.role == "object" and self.fits(x.ref, need)]
             if len(group) > 1:

@@ -290,8 +290,13 @@ class OfflineFrontend:
                     unread.append(ReadingNote(clause.text, "no act or wished state found in it"))
                 # "keys, watch and the credit card - pop all three in the box": a clause of
                 # noun phrases names every one of them ("watch" is no verb here)
-                for h in known_objects(clause.items) or parsed.mentions or cue_mentions(clause):
-                    semantics.note(h, ci)
+                # ("they're both on the desk next to the laptop": after a pronoun subject the
+                # nouns are where it is, places, as the grammar read them)
+                pronoun_subject = bool(clause.items) and clause.items[0].pron in ("it", "they", "this", "that",
+                                                                                  "these", "those")
+                named = known_objects(clause.items) or parsed.mentions or cue_mentions(clause)
+                for h in named:
+                    semantics.note(h, ci, "place" if pronoun_subject else None)
                 unknown.extend(parsed.unknown)
                 continue
             if _left_alone(parsed, semantics, ci, drafts):
@@ -320,8 +325,11 @@ class OfflineFrontend:
             if out:
                 drafts[ci] = out
                 continue
-            for h in parsed.mentions:      # "the book doesn't belong on the sofa; it ..."
-                semantics.note(h, ci)
+            # "the book doesn't belong on the sofa; it ..."; after a pronoun subject ("they're
+            # on the desk next to the laptop") the nouns are where it is
+            subject_pronoun = bool(clause.items) and clause.items[0].pron in ("it", "they", "these", "those")
+            for h in parsed.mentions:
+                semantics.note(h, ci, "place" if subject_pronoun else None)
             if not any(f.act is not None or f.state is not None for f in parsed.frames):
                 unknown.extend(parsed.unknown)
         drop_fulfilled_wishes(drafts)

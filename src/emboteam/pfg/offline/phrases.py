@@ -523,8 +523,8 @@ def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> in
 
 def fix_ellipsis(prev: Head, nxt: Head) -> None:
     """"the desk and floor lamps": a modifier-only conjunct borrows the next head noun."""
-    if prev.noun is None or nxt.noun is None or " " not in nxt.noun.phrase:
-        return
+    if prev.noun is None or nxt.noun is None or " " not in nxt.noun.phrase or " " in prev.noun.phrase:
+        return      # ("the bar of soap and the soap bottle": a whole name, no modifier)
     head_word = nxt.noun.phrase.split()[-1]
     cand = f"{prev.noun.phrase.split()[-1]} {head_word}"
     table = lx.nouns()

@@ -236,7 +236,13 @@ class Semantics:
         if act is Act.EMPTY:
             raise OfflineParseError("emptying a container cannot be stated as a goal here",
                                     phrase=frame.verb, vague=True)
-        # complaints and negations turn into the opposite state
+        if act is Act.PLACE and state == (Stat.SWITCH, True) and frame.particle == "on" and frame.targets \
+                and all(not t.dest for t in frame.targets) and not any(self._switches(t.head) for t in frame.targets) \
+                and self._stranded_place(frame, frame.targets[0].head) is not None:
+            # "take a spare roll from the shelf and put it on": on the holder named before,
+            # not switched on
+            frame = replace(frame, state=None, targets=[replace(t, state=None, particle=None) for t in frame.targets])
+            state = None
         flip = frame.negated
         if frame.report or frame.too:
             flip = not flip if not (frame.report and frame.too) else True
@@ -657,6 +663,15 @@ class Semantics:
             return self._shut_in(frame, t, g, clause)
         rule = self._act_rules.get(act, self._plain_act)
         return rule(frame, act, t, g, clause)
+
+    def _switches(self, head: Head) -> bool:
+        """Can what the phrase names be switched (by itself or its knobs)?"""
+        try:
+            names = head.noun.concept.types if head.noun is not None else \
+                self.discourse.resolve(head, None).type_names()
+        except OfflineParseError:
+            return True
+        return any(self.g.has_type(x) and (self.g.can(x, "switch") or lx.SWITCHED_BY.get(x)) for x in names)
 
     def _perishable(self, head: Head) -> bool:
         """Is the phrase food or drink (or what holds a drink), whose temperature matters:

@@ -35,6 +35,14 @@ _REPLACE: tuple[tuple[str, str], ...] = (
     (r"(?<=[a-z])/(?=[a-z])", " or "),
     # "(both on the table)": a parenthesis that says where things already are
     (r"\(\s*(?:both|all|each|all three|they are|they're|it is|it's|which (?:is|are))\b[^)]*\)", " "),
+    # "(a slice, not the whole loaf)", "(the big knife is next to it)", "(dining table)": an
+    # aside that corrects, or says where a thing is, is no request (and its nouns are no
+    # antecedents for the "it" after it)
+    (r"\(\s*[^()]*\bnot\b[^()]*\)", " "),
+    (r"\(\s*(?:the|my|a|an|it|they|there|which|that)\b[^()]*\b(?:is|are|s|re|was|were|'s|'re)\b[^()]*\)", " "),
+    (r"\(\s*(?:(?:on|in|by|at|from|next to|under|near|beside)\s+)?(?:the\s+|my\s+|a\s+)?(?:[A-Za-z]+\s+){0,5}"
+     r"(?:table|counter|countertop|sofa|couch|desk|shelf|bed|dresser|drawer|cabinet|cupboard|sink|floor|fridge|"
+     r"armchair|chair|toilet|bath|tub|stand|nightstand|box|basket|bin)\s*\)", " "),
     # "1) lights off 2) ladle in the sink": a number and a bracket open an item of a list
     (r"(?<![\w(])(\d{1,2})\)", r" , \1 , "),
     (r"\(|\)|\[|\]", " , "),
@@ -150,6 +158,22 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
      r"put \1 \2"),
     # "leave the spray bottle, just the soap": what is left alone, then what is meant
     (r"\b(leave|forget|skip) ((?:the|my|that|those) [^,.;!?]+?),\s*(?:just|only) ", r"\1 \2 . just "),
+    # "kept in the box rather than on the side table": the rejected place
+    (r"\b(?:rather than|instead of|not) (?:on|in|at|by|under|inside) (?:the|a|my|an) (?:[a-z]+ ){0,2}[a-z]+"
+     r"(?=\s*(?:[,.;!?]|$|so\b|and\b|but\b))", " "),
+    # "the paper is finished with - straight in the bin": it can go in the bin
+    (r"\b(?:is|are|s|re) (?:all )?(?:finished|done) with\s*,?\s*(?:straight |right )?(?=(?:in|into) the "
+     r"(?:bin|trash|rubbish|garbage|recycling)\b)", "can go "),
+    # "lock away my phone": put it away (in what locks, said next)
+    (r"\block away\b", "put away"),
+    # "straight in the bin": in the bin
+    (r"\bstraight (?=(?:in|into|on|onto|to|back|away|out)\b)", ""),
+    # "for tonight's salad": what it is for, nothing to make now
+    (r"\bfor (?:tonight s |today s |tomorrow s |the |our |my |a )?salad\b", " "),
+    # "the apple lying loose on the counter"
+    (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
+    # "coffee please": a coffee
+    (r"(^|[.!?,;:]\s*)(coffee|toast)\s*,?\s*(please|pls)\b", r"\1i would like a \2"),
     # "the desk lamp's glaring right in my eyes": too bright
     (r"\b(is|s|are) (?:glaring|blinding|dazzling|blazing|burning away)\b", r"\1 too bright"),
     (r"\b(?:far|way|much|a bit|a little|rather|really|so) too (bright|dark|hot|cold|warm|loud)\b", r"too \1"),
