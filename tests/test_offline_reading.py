@@ -1244,3 +1244,15 @@ def test_round_14_vocabulary(text: str, fp: int, expected: set[str]) -> None:
 ])
 def test_round_14_notes(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Toast me one slice of the bread (a slice, not the whole loaf).", 25, {"sliced(Bread)", "cooked(Bread)"}),
+    ("That cloth on the counter is worn out, throw it in the bin.", 409, {"inside(Cloth, GarbageCan)"}),
+    ("There are two toilet rolls, one on the toilet and one on the counter. Store both in a cabinet.", 413,
+     {"inside(2 of ToiletPaper, Cabinet)"}),
+    # a noun of furniture before a noun of a thing says where the thing is
+    ("Switch that side-table lamp on please.", 218, {"switched_on(DeskLamp_1)"}),
+])
+def test_round_14_notes_continued(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

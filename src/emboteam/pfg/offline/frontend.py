@@ -292,8 +292,9 @@ class OfflineFrontend:
                 # noun phrases names every one of them ("watch" is no verb here)
                 # ("they're both on the desk next to the laptop": after a pronoun subject the
                 # nouns are where it is, places, as the grammar read them)
-                pronoun_subject = bool(clause.items) and clause.items[0].pron in ("it", "they", "this", "that",
-                                                                                  "these", "those")
+                pronoun_subject = len(clause.items) > 1 and clause.items[0].pron in ("it", "they", "this", "that",
+                                                                                     "these", "those") \
+                    and clause.items[1].noun is None and not clause.items[1].det     # not "that cloth"
                 named = known_objects(clause.items) or parsed.mentions or cue_mentions(clause)
                 for h in named:
                     semantics.note(h, ci, "place" if pronoun_subject else None)
@@ -327,7 +328,8 @@ class OfflineFrontend:
                 continue
             # "the book doesn't belong on the sofa; it ..."; after a pronoun subject ("they're
             # on the desk next to the laptop") the nouns are where it is
-            subject_pronoun = bool(clause.items) and clause.items[0].pron in ("it", "they", "these", "those")
+            subject_pronoun = len(clause.items) > 1 and clause.items[0].pron in ("it", "they", "these", "those") \
+                and clause.items[1].noun is None and not clause.items[1].det
             for h in parsed.mentions:
                 semantics.note(h, ci, "place" if subject_pronoun else None)
             if not any(f.act is not None or f.state is not None for f in parsed.frames):

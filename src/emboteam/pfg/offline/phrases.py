@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
 from emboteam.pfg.offline.tagger import Item, NounReading
+from emboteam.world.catalogue import load_catalogue
 
 Act = lx.Act
 Stat = lx.Stat
@@ -327,6 +328,14 @@ def _measure_after_noun(s: _NP) -> str | None:
     return None
 
 
+def _furniture(noun: NounReading) -> bool:
+    """Does the noun name only furniture things stand on (a side table, a counter)?"""
+    cat = load_catalogue()
+    types = [t for t in noun.concept.types if t in cat.types]
+    return bool(types) and all(cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
+                               and not cat.type(t).has("openable") for t in types)
+
+
 def _noun(s: _NP) -> str | None:
     """The head noun (a room before it is a modifier: "the kitchen light"), and what a
     container holds: "a glass of water", "a mug of coffee"."""
@@ -337,6 +346,10 @@ def _noun(s: _NP) -> str | None:
         h.noun = None
     if h.noun is not None and it.noun.concept.kind == "room":
         return s.take(it.text)     # "the lights in the room" handled as location
+    if h.noun is not None and _furniture(h.noun) and it.noun.concept.kind in ("object", "lamps", "lights") \
+            and not _furniture(it.noun):
+        # "the side table lamp", "the counter knife": the thing on that furniture
+        h.location.append(("on", Head(text=f"the {h.noun.phrase}", noun=h.noun, definite=True, role="place")))
     h.noun = it.noun
     h.plural = h.plural or it.noun.plural
     if it.recipe is not None:

@@ -169,7 +169,9 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     # "straight in the bin": in the bin
     (r"\bstraight (?=(?:in|into|on|onto|to|back|away|out)\b)", ""),
     # "for tonight's salad": what it is for, nothing to make now
-    (r"\bfor (?:tonight s |today s |tomorrow s |the |our |my |a )?salad\b", " "),
+    (r"\bfor (?:(?:tonight|today|tomorrow)(?: s)? |the |our |my |a )?salad\b", " "),
+    # "toast me a slice", "make us a coffee": for whom is no goal
+    (r"\b(toast|make|cook|fry|heat|boil|warm|pour|prepare|fix) (?:me|us) (?=(?:a|an|one|two|some|the|my)\b)", r"\1 "),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee
@@ -278,6 +280,9 @@ _POSTURES: tuple[tuple[str, str], ...] = (
      r"(?:(?:up|down|over|out) )?(?:on|in|inside) ([^,.;:!?]+?)\s*,", " "),
     # "end state soap bar in the sink": a heading for the list of states that follows
     (r"^\s*(?:the )?(?:end|final|target|goal) states?\b\s*(?:[:,-]\s*)?", "end state : "),
+    # "two toilet rolls, one on the toilet and one on the counter": where each one is
+    (r",\s*(?:one|1) (?:on|in|by|under) (?:the|a|my) (?:[a-z]+ ){0,2}?[a-z]+ and (?:one|the other|another|1) "
+     r"(?:on|in|by|under) (?:the|a|my) (?:[a-z]+ ){0,2}?[a-z]+(?=\s*[.,;!?]|$)", " "),
     # "the side table with the lamp on it": which table, said by what it holds
     # ("the bowl with the apple in it" says what the bowl should hold: kept)
     (r" with (?:the|a|an|my) (?:[a-z]+ ){0,2}[a-z]+ on (?:it|top|them)\b", " "),
