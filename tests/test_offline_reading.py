@@ -1256,3 +1256,21 @@ def test_round_14_notes(text: str, fp: int, expected: set[str]) -> None:
 ])
 def test_round_14_notes_continued(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 14, general mixes (rounds 26 and 27)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("Put the watch on the coffee table. No wait, put it in the box.", 222, {"inside(Watch, Box)"}),
+    ("The laundry lying on the floor goes in the hamper.", 317, {"inside(2 of Cloth, LaundryHamper)"}),
+    ("The spray bottle shouldn't be on the toilet; the side table is better.", 420, {"inside(SprayBottle, SideTable)"}),
+    ("Restock the toilet paper holder.", 427, {"inside(ToiletPaper, ToiletPaperHanger)"}),
+    ("Could the plunger and the scrub brush go in the cabinet, please? They look messy on the floor.", 403,
+     {"inside(Plunger, Cabinet)", "inside(ScrubBrush, Cabinet)"}),
+    ("Put the spray bottle on the side table. Oh wait, the soap bar too, on the side table.", 420,
+     {"inside(SprayBottle, SideTable)", "inside(SoapBar, SideTable)"}),
+    ("The lettuce is sitting in the sink and the tomato's out on a plate. Both of those belong in the fridge.", 5,
+     {"inside(Lettuce, Fridge)", "inside(Tomato, Fridge)"}),
+    ("Grab the mug and get the machine going.", 8, {"held(Mug)", "switched_on(CoffeeMachine)"}),
+])
+def test_round_14_general(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -156,6 +156,16 @@ class Discourse:
                         next((x for x in reversed(self.history) if x.role == "object"), self.history[-1]))
             group = [x for x in self.history if x.group == m.group and x.head.pron is None
                      and x.role == "object" and self.fits(x.ref, need)]
+            if len(group) < 2 and (head.quant == "both" or "both" in head.text.split()):
+                # "the lettuce is in the sink and the tomato's on a plate. Both of those ...":
+                # the last two things named, across clauses
+                pair: list[Mention] = []
+                for x in reversed(self.history):
+                    if x.role == "object" and x.head.pron is None and self.fits(x.ref, need) \
+                            and all(x.ref.groups != y.ref.groups for y in pair):
+                        pair.append(x)
+                    if len(pair) == 2:
+                        return Ref(head.label(), tuple(g for y in reversed(pair) for g in y.ref.groups), True)
             if len(group) > 1:
                 return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
             if m.ref.plural and self.fits(m.ref, need):

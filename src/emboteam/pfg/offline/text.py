@@ -248,6 +248,9 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     (r"\b(?:hanging|standing|sitting|lying|swinging) (open|ajar|on|off)\b"
      r"(?!\s+(?:the|a|an|my|your|his|her|our|their|this|that|top)\b)", r"\1"),
     (r"\b(leave|leaving|left|keep|keeping|kept)((?: [a-z]+){1,3}) going\b", r"\1\2 running"),
+    # "get the machine going": switch it on (not "get some toast going": a dish)
+    (r"\b(get|set)((?: (?!(?:some|the|a|my)?\s*(?:toast|coffee|tea|egg|eggs|potato|breakfast|dinner|lunch)\b)"
+     r"[a-z]+){1,3}) going\b", r"\1\2 running"),
     # "put the lid back down on the hamper": close it (AI2-THOR has no lids apart)
     (r"\b(?:put|pop|stick|drop|get) the lid (?:back )?(?:down )?(?:on|onto) ", "close "),
     (r"\b(close|shut) the lid (?:of|on) ", r"\1 "),
@@ -283,6 +286,25 @@ _POSTURES: tuple[tuple[str, str], ...] = (
     # "two toilet rolls, one on the toilet and one on the counter": where each one is
     (r",\s*(?:one|1) (?:on|in|by|under) (?:the|a|my) (?:[a-z]+ ){0,2}?[a-z]+ and (?:one|the other|another|1) "
      r"(?:on|in|by|under) (?:the|a|my) (?:[a-z]+ ){0,2}?[a-z]+(?=\s*[.,;!?]|$)", " "),
+    # "they look messy on the floor": where they are, said with a judgement
+    (r"\b(look|looks|looked) (?:so |really |a bit |very )?(?:messy|untidy|bad|ugly|odd|wrong|silly|cluttered|"
+     r"out of place)\b", "are"),
+    # "oh wait, the soap bar too, on the side table": the soap bar on the side table too
+    (r"\b(?:oh )?wait\s*,\s*", " "),
+    (r"((?:the|my|a) (?:[a-z]+ ){0,2}?[a-z]+) too\s*,\s*((?:on|in|into|onto) (?:the|a|my) (?:[a-z]+ ){0,2}?[a-z]+)",
+     r"\1 \2 too"),
+    # "put the watch on the coffee table. no wait, put it in the box": the place corrected
+    (r"\b(put|move|place|pop|stick|take) ((?:the|my|a) (?:[a-z]+ ){0,2}?[a-z]+) (?:on|in|into|onto) (?:the|a|my) "
+     r"(?:[a-z]+ ){0,2}?[a-z]+\s*[.,;!]?\s*(?:no wait|no actually|actually no|actually|sorry|no|wait)\s*[,.!]?\s*"
+     r"(?:put |move |place |pop |stick )?it (on|in|into|onto) ", r"\1 \2 \3 "),
+    # "the laundry lying on the floor": the cloths there
+    (r"\bthe laundry (?=(?:lying |sitting |that s |that is |which is )?(?:on|in|from) )", "the cloths "),
+    # "restock the toilet paper holder": a roll on it
+    (r"\b(?:restock|refill|replenish|fill up|top up) the (?:toilet paper|toilet roll|loo roll|loo paper) holder\b",
+     "put a toilet roll on the toilet paper holder"),
+    # "...; the side table is better": it goes there
+    (r"(?:;|,|\.)\s*the ([a-z]+(?: [a-z]+)?) (?:is|would be|s) (?:much |far )?(?:better|best|a better place)\b",
+     r" ; it goes on the \1"),
     # "the side table with the lamp on it": which table, said by what it holds
     # ("the bowl with the apple in it" says what the bowl should hold: kept)
     (r" with (?:the|a|an|my) (?:[a-z]+ ){0,2}[a-z]+ on (?:it|top|them)\b", " "),
