@@ -1274,3 +1274,21 @@ def test_round_14_notes_continued(text: str, fp: int, expected: set[str]) -> Non
 ])
 def test_round_14_general(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# rounds 28 and 29
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # (the microwave is the means: not part of the final goal)
+    ("I fancy a jacket potato, do the one sitting in the sink in the microwave.", 11, {"cooked(Potato)"}),
+    ("Clear the soap bar and the spray bottle off the counter into the drawers.", 410,
+     {"inside(SoapBar, Drawer)", "inside(SprayBottle, Drawer)"}),
+    ("There should be a slice of toast ready when I get back.", 13, {"sliced(Bread)", "cooked(Bread)"}),
+    ("Lock my phone and my keys away somewhere secure.", 302, {"inside(CellPhone, Safe)", "inside(KeyChain, Safe)"}),
+    ("Get the apple into the fridge, and we won't need the light anymore.", 7,
+     {"inside(Apple, Fridge)", "switched_off(LightSwitch)"}),
+    ("Shut the laptop, and the newspaper on the dining table, move that to the coffee table.", 230,
+     {"closed(Laptop)", "inside(Newspaper, CoffeeTable)"}),
+    ("Then put the desk lamp out, please.", 316, {"switched_off(DeskLamp)"}),
+])
+def test_rounds_28_and_29(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

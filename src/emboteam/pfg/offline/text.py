@@ -164,6 +164,30 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     # "the paper is finished with - straight in the bin": it can go in the bin
     (r"\b(?:is|are|s|re) (?:all )?(?:finished|done) with\s*,?\s*(?:straight |right )?(?=(?:in|into) the "
      r"(?:bin|trash|rubbish|garbage|recycling)\b)", "can go "),
+    # "there should be a slice of toast ready": I would like one
+    (r"\bthere (?:should|must|needs to|ought to) be (a|an|some|one|two|three) ", r"i would like \1 "),
+    # "lock my phone and my keys away somewhere secure": in the safe
+    (r"\b(?:lock|put|shut|tuck|stash) ((?:the|my) [^.,;!?]+?) away (?:somewhere |in a place )?(?:secure|safe|safely)\b",
+     r"put \1 in the safe"),
+    # "we won't need the light anymore": it can go off
+    (r"\b(?:we|i) (?:won t|will not|don t|do not|wont|dont) need the (lights?|lamps?|[a-z]+ light|[a-z]+ lamp|tv|"
+     r"telly|television)(?: on)?(?: any ?more| now| again)?\b", r"switch off the \1"),
+    # "clear the soap off the counter into the drawers": put it there
+    (r"\bclear ((?:the|my|a) [^.,;!?]+?) (?:off|from) (?:the|a|my) (?:[a-z]+ ){0,2}?[a-z]+ (into|in|onto|on|to) ",
+     r"put \1 \2 "),
+    # "do the one in the sink in the microwave": cook it there
+    (r"\bdo (it|that|this|the one|one|them)((?: [a-z]+){0,6}) (in the microwave|on the stove|on the hob|in the pan|"
+     r"in the toaster)\b", r"cook \1\2 \3"),
+    # "and the newspaper on the dining table, move that to the coffee table": the object
+    # said first, then its verb with "that"
+    # (only after "and", with "that": "the vases on the shelves - put them in a cabinet" reads
+    # well as it is)
+    (r",\s*and ((?:the|my) [^,.;!?]+?)\s*,\s*(move|put|take|bring|stick|pop|throw|chuck|bin|toss|place|carry) "
+     r"(?:that|those) ", r", and \2 \1 "),
+    # "put the desk lamp out": switch it off
+    (r"\bput (the|that|this|my) ((?:[a-z]+ )?(?:lamp|light|lights|candle|tv|telly)) out\b", r"put out \1 \2"),
+    # "slice the tomato and plate it": put it on a plate
+    (r"\bplate (it|them|that|those)(?: up)?\b(?! (?:on|in)\b)", r"put \1 on a plate"),
     # "lock away my phone": put it away (in what locks, said next)
     (r"\block away\b", "put away"),
     # "straight in the bin": in the bin
