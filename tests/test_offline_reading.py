@@ -1292,3 +1292,23 @@ def test_round_14_general(text: str, fp: int, expected: set[str]) -> None:
 ])
 def test_rounds_28_and_29(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# rounds 30 and 31: probes of a sceptical reader
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("It's the cellphone that has to go in the safe, nothing else.", 308, {"inside(CellPhone, Safe)"}),
+    ("The vase sitting on the dining table is what has to go into the box, and the lid must be closed after it.",
+     203, {"inside(Vase, Box)", "closed(Box)"}),
+    ("Whats needed is the bar of soap put away inside a cabinet.", 403, {"inside(SoapBar, Cabinet)"}),
+    ("Into the box on the desk goes the alarm clock, and after that the box gets closed.", 310,
+     {"inside(AlarmClock, Box)", "closed(Box)"}),
+    ("The teddy bear goes on the desk, no wait, not the desk but the side table.", 313, {"inside(TeddyBear, SideTable)"}),
+    ("If the desk lamp's still on, could you switch it off?", 302, {"switched_off(DeskLamp)"}),
+    ("The empty holder needs a roll of toilet paper.", 407, {"inside(ToiletPaper, ToiletPaperHanger)"}),
+    ("Those two little things, the key chain and the credit card, belong in one of the drawers.", 205,
+     {"inside(KeyChain, Drawer)", "inside(CreditCard, Drawer)"}),
+    ("Anyway, the potato on the table needs to go in the trash, and if it's not too much trouble turn the coffee "
+     "machine on.", 17, {"inside(Potato, GarbageCan)", "switched_on(CoffeeMachine)"}),
+])
+def test_rounds_30_and_31(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -140,7 +140,10 @@ def condition_groups(clauses: list[Clause]) -> list[list[int]]:
         if c.link == "if":
             groups.append([k])
         elif groups and groups[-1][-1] == k - 1 and c.link == AND and c.sentence == clauses[k - 1].sentence \
-                and not (c.items and c.items[0].verb is not None):
+                and not (c.items and c.items[0].verb is not None) \
+                and not (len(c.items) > 1 and c.items[0].text in ("could", "can", "would", "will", "please")
+                         and c.items[1].text in ("you", "someone", "somebody", "one")):
+            # ("if the lamp's still on, could you switch it off": the request the "if" is for)
             groups[-1].append(k)
     return groups
 

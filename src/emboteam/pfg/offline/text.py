@@ -188,6 +188,37 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\bput (the|that|this|my) ((?:[a-z]+ )?(?:lamp|light|lights|candle|tv|telly)) out\b", r"put out \1 \2"),
     # "slice the tomato and plate it": put it on a plate
     (r"\bplate (it|them|that|those)(?: up)?\b(?! (?:on|in)\b)", r"put \1 on a plate"),
+    # clefts and pseudo-clefts: "it's the apple that needs slicing", "the vase is what has to
+    # go into the box", "what's needed is the soap put away"
+    (r"\bit (?:is|s|was) ((?:the|my|a|an) [a-z ]+?) that (needs|has to|have to|must|should|ought to|wants|want)\b",
+     r"\1 \2"),
+    (r"\b(?:is|are) what (needs to|has to|must|should|ought to|wants to) ", r"\1 "),
+    (r"\bwhat(?:s| s| is)? (?:needed|wanted) is\b", "i need"),
+    (r"\bwhat i (?:need|want|would like) is\b", "i need"),
+    # "and the lid must be closed after it": and close it
+    (r"\b(?:and )?the lid (?:must|should|needs to|has to|can) be (?:closed|shut)(?: after(?: it| that)?)?", "and close it"),
+    # "the empty holder needs a roll of toilet paper": put one on it
+    (r"\bthe (?:empty )?((?:[a-z]+ )?(?:holder|hanger|rack|rail)) needs (a|an|one|some|a new) ((?:roll of )?[a-z]+(?: [a-z]+)?)"
+     r"(?=\s*(?:[,.;!?]|$|and\b))", r"put \2 \3 on the \1"),
+    # "into the box on the desk goes the alarm clock": the alarm clock goes into the box
+    (r"\b(into|onto|in|on) ((?:the|a) [^,.;!?]+?) (?:goes|go) ((?:the|a|my) [^,.;!?]+?)(?=\s*(?:[,.;!?]|$|and\b))",
+     r"\3 goes \1 \2"),
+    # "on the desk, no wait, the side table": the place corrected
+    (r"\b(on|in|into|onto) (?:the|a|my) [a-z]+(?: [a-z]+)?\s*,?\s*(?:no wait|no actually|actually no|sorry|i mean|"
+     r"wait|no)\s*,?\s*(?:not (?:the|a|my) [a-z]+(?: [a-z]+)?\s*,?\s*(?:but )?)?(the|a|my) ([a-z]+(?: [a-z]+)?)"
+     r"(?=\s*(?:[.,;!?]|$))", r"\1 \2 \3"),
+    # "one of the slices should end up on the plate": a slice
+    (r"\bone of the (?:slices|pieces|bits|wedges)\b", "a slice"),
+    # "no wait, not the desk but the side table": the side table
+    (r"\bnot (?:the|a|my) [a-z]+(?: [a-z]+)?\s*,?\s*but (the|a|my) ", r"\1 "),
+    # "those two little things, the key chain and the credit card, belong in ...": the list
+    (r"(^|[.!?]\s+)(?:those|these|the|two|three) (?:two |three |four |few |little |small |other )*things?\s*,\s*"
+     r"([^,.;!?]+?)\s*,\s*(?=(?:belong|go|goes|need|should|can|must)\b)", r"\1\2 "),
+    (r"\banyway\b", " "),
+    # "if it's not too much trouble", "if you don't mind", "if possible": politeness, with
+    # or without its comma
+    (r"\bif (?:it is|it s|its) not too much (?:trouble|bother)\b|\bif you (?:do not|don t|dont) mind\b|"
+     r"\bif (?:at all )?possible\b", " , "),
     # "lock away my phone": put it away (in what locks, said next)
     (r"\block away\b", "put away"),
     # "straight in the bin": in the bin
