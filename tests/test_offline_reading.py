@@ -1312,3 +1312,12 @@ def test_rounds_28_and_29(text: str, fp: int, expected: set[str]) -> None:
 ])
 def test_rounds_30_and_31(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    ("I'd kill for a coffee right now.", 10, {"filled(Mug, coffee)", "hot(Mug)"}),
+    ("Cook the potato in the pot that's already on the stove, please.", 4,
+     {"inside(Potato, Pot)", "cooked(Potato)", "inside(Pot, StoveBurner)"}),
+])
+def test_round_30_wishes_and_pots(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

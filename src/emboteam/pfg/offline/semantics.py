@@ -860,12 +860,15 @@ class Semantics:
                                 cond(P.switched_on, mw.single())], obj, mw, intermediate=True)
             done.after = [0]
             return [step, done]
-        in_pan = any(m.noun is not None and "Pan" in m.noun.concept.types for m in means)
-        if act is Act.COOK and t.head.pron is None and (in_pan or (frame.verb in _PAN_VERBS and not means)) \
-                and self.g.has_type("Pan") and "Pan" not in obj.type_names():
-            # "fry me an egg", "cook the potato in the pan": what is fried ends up in the
-            # pan, cooked there
-            pan = self.g.types_ref(("Pan",), "pan")
+        vessel = next((x for m in means if m.noun is not None for x in m.noun.concept.types if x in ("Pan", "Pot")),
+                      None)
+        if vessel is None and frame.verb in _PAN_VERBS and not means:
+            vessel = "Pan"
+        if act is Act.COOK and t.head.pron is None and vessel is not None \
+                and self.g.has_type(vessel) and vessel not in obj.type_names():
+            # "fry me an egg", "cook the potato in the pan (pot)": what is cooked ends up in
+            # the pan or pot, cooked there
+            pan = self.g.types_ref((vessel,), vessel.lower())
             done.conditions = [*(cond(P.inside, r, n, pan.single()) for r, n in obj.groups),
                                *done.conditions, *self._on_the_stove(pan.single())]
         return [done]

@@ -90,6 +90,8 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     # baked", "a baked potato would be lovely"
     (r"\b(i|we) (?:could|can) (?:really |so |just )?(?:use|do with) (a|an|some|the|my)\b", r"\1 would love \2"),
     (r"\b(?:was|am|were|are|m) (?:really )?hoping (?:for|to have|to get)\b", "would like"),
+    (r"\b(?:would|d|could) (?:kill|die) for\b|\b(?:am|m|is|s) (?:dying|desperate|gasping|parched) for\b",
+     "would love"),
     (r"^(\s*)(a|an|some) ([a-z]+(?: [a-z]+)?) would be (?:lovely|nice|great|good|perfect|brilliant|amazing|"
      r"wonderful|ideal|grand)\b", r"\1i would like \2 \3"),
     (r"(?<=[.!?] )(a|an|some) ([a-z]+(?: [a-z]+)?) would be (?:lovely|nice|great|good|perfect|brilliant|amazing|"
