@@ -1321,3 +1321,8 @@ def test_rounds_30_and_31(text: str, fp: int, expected: set[str]) -> None:
 ])
 def test_round_30_wishes_and_pots(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+def test_a_counter_is_not_in_the_bin_but_a_safe_stands_on_a_dresser() -> None:
+    assert goal(read("Toss the toilet paper roll on the counter in the bin.", 411)) == {"inside(ToiletPaper_1, GarbageCan)"}
+    assert {"inside(KeyChain, Safe)"} <= goal(read("Put the keys in the safe on the dresser.", 323))

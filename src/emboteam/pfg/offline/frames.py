@@ -494,6 +494,25 @@ _LOCATED_ACTS = frozenset({Act.SWITCH_ON, Act.SWITCH_OFF, Act.SWITCH, Act.OPEN, 
 _SWITCH_ACTS = frozenset({Act.SWITCH_ON, Act.SWITCH_OFF, Act.SWITCH})
 
 
+def _fixed_then_container(targets: list[Target], head: Head) -> bool:
+    """"toss the roll on the counter in the bin": a counter cannot be in a bin, so the
+    first place is where the roll is and the second where it goes (unlike "in the pan on
+    the stove", where the pan can stand on the stove)."""
+    cat = load_catalogue()
+    first = next((t.dest[0] for t in targets if t.dest), None)
+    if first is None or first.noun is None or head.noun is None:
+        return False
+    firsts = [x for x in first.noun.concept.types if x in cat.types]
+    return bool(firsts) and not any(cat.type(x).has("pickupable") for x in firsts) \
+        and bool(set(head.noun.concept.types) & _DISPOSAL)
+
+
+#: containers no piece of furniture stands in ("on the counter in the bin"; "in the safe
+#: on the dresser" is where the safe is)
+_DISPOSAL = frozenset({"GarbageCan", "LaundryHamper", "Box", "SinkBasin", "Sink", "BathtubBasin", "Fridge",
+                       "Microwave", "Drawer"})
+
+
 def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
     """Where the waiting objects go; right after a destination, a place that says where
     that destination is ("on a plate on the table", "in the cabinet under the sink"); a
@@ -523,7 +542,8 @@ def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
             t.dest = [head, *head.alternatives]
             t.prep = prep
     elif (s.last_np or s.pending) and adjacent and prep in ("in", "on") and \
-            s.items[at].text in ("in", "on", "inside", "at"):
+            s.items[at].text in ("in", "on", "inside", "at") \
+            and not (prep == "in" and _fixed_then_container(s.last_np or s.pending, head)):
         # "(cooked) in the pan on the stove": where the destination is
         for t in s.last_np or s.pending:
             if t.dest:
