@@ -46,7 +46,8 @@ def _time_run(items: list[Item], k: int) -> int:
     end = m
     while end < len(items) and items[end].noun is None and (
             items[end].text in TIME_POINTS
-            or (items[end].text in _VAGUE_POINTS and end > k and items[end - 1].text in ("some", "any"))
+            or (items[end].text in _VAGUE_POINTS and end > k
+                and items[end - 1].text in ("some", "any", "this", "next", "every"))   # "this time"
             or (items[end].text == "end" and end > k and items[end - 1].text == "the"      # "at the end"
                 and not (end + 1 < len(items) and items[end + 1].text == "of"))):
         end += 1

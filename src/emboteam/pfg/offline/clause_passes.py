@@ -115,6 +115,13 @@ def small_talk(clause: Clause) -> bool:
             i.state is not None or (i.verb is not None and i.text not in _NO_WORRIES and i.text != "do")
             for i in items):
         return True     # "don't worry about the pan", "no rush"
+    if any(i.neg for i in items) and "bother" in texts and any(
+            i.verb is not None and i.verb.form == "ing" for i in items[texts.index("bother") + 1:]):
+        return True     # "don't bother rinsing it": the act is called off
+    words = [i for i in items if i.punct is None and i.text not in ("still", "really", "just", "also")]
+    if len(words) == 3 and words[0].text in ("he", "she") and words[1].verb is not None \
+            and words[1].verb.lemma in ("need", "want", "use") and words[2].pron is not None:
+        return True     # "don't pack the laptop, she still needs it": why, no request
     if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
            or i.recipe is not None for i in items):
         return False
@@ -235,6 +242,7 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
                 # "I'd love it if ...": the "it" is what the "if" says, nothing of its own
                 if c.sentence == sentence and j not in group and parsed[j].frames and all(
                         f.act in _NO_REQUEST and all(t.head.pron is not None for t in f.targets)
+                        and (f.targets or f.means is None)     # "(and then) end up in the bowl"
                         for f in parsed[j].frames):
                     parsed[j] = replace(parsed[j], frames=[], mentions=[])
                     silent.add(j)

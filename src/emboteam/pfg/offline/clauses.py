@@ -185,6 +185,14 @@ def _has_predicate(items: list[Item]) -> bool:
         last.state is not None and last.prep is None)
 
 
+#: adverbs between a person and the verb: "I still need", "we really want"
+_SUBJECT_ADVERBS = frozenset({"still", "really", "also", "just", "only", "actually", "already", "definitely",
+                              "probably", "usually", "always", "never", "honestly"})
+
+#: "once it's ready bring it over": words of being done that end a state clause
+_READY = frozenset({"ready", "done", "finished", "over", "through"})
+
+
 def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
                 comma: bool = True) -> bool:
     """A boundary before ``items[j]`` (after ',' or 'and')? ``current``: the clause so
@@ -195,9 +203,23 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
         return True
     if (it.sub is not None and it.sub != "purpose") or it.text == "so":
         return True
-    if it.text in _HUMAN and j + 1 < len(items) and (items[j + 1].verb is not None
-                                                    or items[j + 1].copula):
-        return True
+    if it.text in _HUMAN:
+        v = j + 1
+        while v < len(items) and items[v].text in _SUBJECT_ADVERBS:
+            v += 1      # "..., I still need the pencil"
+        if v < len(items) and (items[v].verb is not None or items[v].copula):
+            return True
+    if it.state is not None and it.prep is None and (it.verb is not None or it.text in ("open", "shut", "clean"))\
+            and (j + 1 == len(items) or items[j + 1].punct is not None) and current \
+            and (current[-1].state is not None or current[-1].particle is not None) \
+            and not (current[-1].text in ("on", "off") and it.text in ("on", "off")):
+        return True     # "should be left switched off and closed": a second state, of the same thing
+    if comma and it.state is not None and it.prep is None and it.verb is not None and it.verb.form == "ed" \
+            and (j + 1 == len(items) or items[j + 1].punct is not None or items[j + 1].conj is not None) \
+            and current and current[-1].noun is not None:
+        return True     # "the laptop goes on the dresser, closed, ...": the state of what was placed
+    if it.text == "there" and j + 1 < len(items) and items[j + 1].text in ("is", "are", "s", "was", "were"):
+        return True     # "I'm not asking for miracles, but there are two rags on the floor"
     k = team_subject(items, j)
     if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
         return True     # ", the other should put ...", "while another turns off ..."
@@ -471,7 +493,8 @@ def segment(items: list[Item]) -> list[Clause]:
                     and ((current.items[0].pron in ("it", "they", "that") and current.items[1].copula) or (
                         # "once the mug's full switch the coffee maker off"
                         _skip_np(current.items, 0) == len(current.items) - 2 and current.items[-2].copula)) \
-                    and (current.items[-1].state is not None or current.items[-1].particle is not None) \
+                    and (current.items[-1].state is not None or current.items[-1].particle is not None
+                         or current.items[-1].text in _READY) \
                     and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
                     and it.verb.form == "base" and verb_here(sentence, j):
                 # "once it's sliced stick a couple of the slices in the fridge": the state, then
@@ -479,6 +502,20 @@ def segment(items: list[Item]) -> list[Clause]:
                 boundary = AND
                 skip = 0
             elif it.robot is not None and current.items and any(x.is_content() for x in current.items):
+                boundary = AND
+                skip = 0
+            elif it.verb is not None and it.noun is None and it.verb.form == "base" and j + 1 < len(sentence) \
+                    and sentence[j + 1].pron in ("it", "them") and current.items and current.items[-1].noun is not None \
+                    and any(x.verb is not None and x.noun is None for x in current.items):
+                # "bring me the book from the desk put it on the bed": a run-on request
+                boundary = AND
+                skip = 0
+            elif it.text in ("can", "could", "would", "will") and j + 1 < len(sentence) \
+                    and sentence[j + 1].text in ("you", "someone", "somebody", "anyone") \
+                    and any(x.is_content() for x in current.items) \
+                    and any(x.copula or x.verb is not None for x in current.items):
+                # "the remote is on the tv stand can you put it on the sofa": a run-on
+                # statement, then the request
                 boundary = AND
                 skip = 0
             elif it.text == "as well as" or ((it.text in (",", "and", "but", "plus")

@@ -28,8 +28,15 @@ def _marker_at(items: list[Item], k: int) -> int:
         after = items[k + len(m)] if k + len(m) < len(items) else None
         if after is None:
             return 0
-        if len(m) == 1 and (before is None or not (after.punct == "," or after.prep is not None)):
+        restart = m == ("no",) and k > 0 and (
+            ((items[k - 1].det or items[k - 1].text == "and") and after.det)
+            # "throw the pencil away. No wait, throw the pen away": the request said again
+            or (items[k - 1].punct in (".", "!", "?") and _starts_clause(after)
+                and after.text not in ("need", "worry", "rush", "hurry", "problem")))
+        if len(m) == 1 and not restart and (before is None or not (after.punct == "," or after.prep is not None)):
             continue     # "no one", "sorry to bother you", "rather the mug than ..."
+        if restart:
+            return len(m)    # "put the spray bottle and the no the soap bar ...": said again
         if before is None and m not in (("i", "mean"), ("or", "rather"), ("no", "wait")):
             continue
         return len(m)

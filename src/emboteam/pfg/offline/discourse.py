@@ -170,6 +170,10 @@ class Discourse:
                 return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
             if m.ref.plural and self.fits(m.ref, need):
                 return m.ref
+        if not plural and head.pron == "it":
+            coordinated = self._coordinated_place(need)
+            if coordinated is not None:
+                return coordinated
         if prefer != "object":
             place = self._place_pronoun(need)
             if place is not None:
@@ -206,6 +210,19 @@ class Discourse:
         if self.unresolved:
             raise self.unresolved[-1]
         raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _coordinated_place(self, need: str | None) -> Ref | None:
+        """"Put the potato and the tomato on it (a plate), leave it on the counter": "it"
+        is not one of two things acted on together (that would be "them"), but where they
+        went."""
+        last = next((x for x in reversed(self.history) if x.role == "object"), None)
+        if last is None:
+            return None
+        together = {x.ref.groups for x in self.history if x.group == last.group and x.role == "object"}
+        if len(together) < 2:
+            return None
+        dest = next((x for x in reversed(self.history) if x.group == last.group and x.role == "dest"), None)
+        return dest.ref if dest is not None and self.fits(dest.ref, need) else None
 
     def _whole_of_pieces(self, need: str | None) -> Ref | None:
         """"Three slices of apple on the plate - cut it first": the whole the last pieces

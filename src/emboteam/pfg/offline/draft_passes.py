@@ -116,6 +116,22 @@ def _used_there(placed: Draft, after: list[Draft]) -> bool:
     return False
 
 
+def drop_self_placements(drafts: dict[int, list[Draft]]) -> None:
+    """"Coffee in the mug that's on the table": the coffee's vessel is the mug, so the
+    placement read from "coffee in the mug" is the mug in itself. A thing is never put in
+    or on itself; the condition goes (the fill it stands for is read already)."""
+    emptied: set[int] = set()
+    for ds in drafts.values():
+        for d in ds:
+            kept = [c for c in d.conditions if not (
+                c.predicate is Predicate.inside and c.subject == c.receptacle)]
+            if len(kept) < len(d.conditions):
+                d.conditions = kept
+                if not kept:
+                    emptied.add(id(d))
+    drop_drafts(drafts, lambda ci, d: id(d) in emptied)
+
+
 def drop_holds_before_placing(drafts: dict[int, list[Draft]]) -> None:
     """"Take the sponge and the towels out of the cupboard and put them on the counter":
     holding is how they get there, not a goal of its own (and two things held "at once"

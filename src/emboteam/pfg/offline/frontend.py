@@ -45,6 +45,7 @@ from emboteam.pfg.offline.draft_passes import (
     drop_guessed_water,
     drop_holds_before_placing,
     drop_impossible,
+    drop_self_placements,
     drop_superseded_placements,
 )
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
@@ -337,6 +338,7 @@ class OfflineFrontend:
         drop_fulfilled_wishes(drafts)
         drop_guessed_water(drafts)
         drop_holds_before_placing(drafts)
+        drop_self_placements(drafts)
         drop_superseded_placements(drafts, semantics.g)
         for what, why in drop_impossible(drafts, scene, state):
             unread.append(ReadingNote(what, f"left out, the scene cannot have it: {why}"))

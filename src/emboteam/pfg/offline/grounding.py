@@ -179,6 +179,9 @@ class Grounder:
             types = (able or present)[:1]
             self._fell_back = bool(types)
         if not types:
+            types = self._compound_of(concept.types, need)
+            self._fell_back = bool(types)
+        if not types:
             names = "/".join(concept.types)
             noun = head.noun.phrase
             raise self.fail(f"{self.scene.floor_plan} has no {noun} ({names})", noun)
@@ -210,6 +213,15 @@ class Grounder:
                                      suggestions=lambda: self.suggestions(noun))
             types = list(dict.fromkeys(able))
         return types
+
+    def _compound_of(self, types: tuple[str, ...], need: str | None) -> list[str]:
+        """"Where are the tissues? Bring the box out": in a scene without a plain box, the
+        one kind of box it has (TissueBox). Only a single such kind counts: two would be a
+        guess."""
+        kinds = sorted({o.type for o in self._live for t in types
+                        if o.type != t and o.type.endswith(t) and o.type[-len(t) - 1].islower()})
+        able = [k for k in kinds if need is None or self.can(k, need)]
+        return able if len(able) == 1 else []
 
     def _things_at(self, head: Head) -> list[str]:
         """"everything on the table": pickupable types found there."""

@@ -13,6 +13,8 @@ import re
 #: spoken and typed variants, applied right after contractions are expanded
 SPOKEN: tuple[tuple[str, str], ...] = (
     (r"(?<=[a-z]) n (?=[a-z])", " and "),     # "cd n pen"
+    # hesitations of speech: "and um put the tomato in the fridge" ("um" hides the verb)
+    (r"\s*\b(?:uh|uhh|um|umm|uhm|erm|er|ehm)\b\s*,?", " "),
     # words heard for others (typed by ear, or by speech recognition): "through the old
     # cloth away", "loo role", "to slices of tomato"
     (r"\bthrough ((?:(?:the|a|an|my|that|this|those|these|it|them)\b ?)?(?:[a-z]+ ){0,3})away\b", r"throw \1away"),
@@ -46,9 +48,9 @@ SPOKEN: tuple[tuple[str, str], ...] = (
     (r"\b(?:has |have |is |s )?(?:gone|got|become|turned) (?:all |really |completely |stone |ice |freezing )?"
      r"(cold|warm|hot|dark|dirty)\b", r"is \1"),
     (r"\b(?:stone|ice|freezing|stone-) cold\b", "cold"),
-    # "put the kettle on": boil it, on the stove (British)
+    # "put the kettle on": boil it (on a burner: boiling says so)
     (r"\b(?:put|pop|stick|get|bung) (the|a) kettle on\b(?!\s+(?:the|a|an|to|top|there|it)\b)",
-     r"put \1 kettle on the stove and boil it"),
+     r"boil \1 kettle"),
     # "two slices of toast please", "a coffee please": a dish asked for by name
     (r"(^|[.!?]\s+)((?:a|an|one|two|three|some|\d+) (?:slices? of |pieces? of |cups? of |mugs? of )?"
      r"(?:toast|coffee|fried egg|boiled egg|baked potato|hot potato|jacket potato))\s*,?\s*(?:please|pls)\b",
@@ -125,8 +127,10 @@ SPOKEN: tuple[tuple[str, str], ...] = (
      r"(?:that|those) ", r", and \2 \1 "),
     # "put the desk lamp out": switch it off
     (r"\bput (the|that|this|my) ((?:[a-z]+ )?(?:lamp|light|lights|candle|tv|telly)) out\b", r"put out \1 \2"),
-    # "slice the tomato and plate it": put it on a plate
-    (r"\bplate (it|them|that|those)(?: up)?\b(?! (?:on|in)\b)", r"put \1 on a plate"),
+    # "slice the tomato and plate it": put it on a plate ("the plate that's on the
+    # counter" is the dish)
+    (r"(?<!\bthe )(?<!\ba )(?<!\bthat )(?<!\bthis )(?<!\bmy )(?<!\bone )(?<!\byour )"
+     r"\bplate (it|them|that|those)(?: up)?\b(?! (?:on|in|is|s|are)\b)", r"put \1 on a plate"),
     # clefts and pseudo-clefts: "it's the apple that needs slicing", "the vase is what has to
     # go into the box", "what's needed is the soap put away"
     (r"\bit (?:is|s|was) ((?:the|my|a|an) [a-z ]+?) that (needs|has to|have to|must|should|ought to|wants|want)\b",
@@ -166,6 +170,81 @@ SPOKEN: tuple[tuple[str, str], ...] = (
     (r"\bfor (?:(?:tonight|today|tomorrow)(?: s)? |the |our |my |a )?salad\b", " "),
     # "toast me a slice", "make us a coffee": for whom is no goal
     (r"\b(toast|make|cook|fry|heat|boil|warm|pour|prepare|fix) (?:me|us) (?=(?:a|an|one|two|some|the|my)\b)", r"\1 "),
+    # "brew me a cup in it", "make a cuppa in the mug": a cup of coffee, made in the vessel
+    (r"\bbrew (?:(?:me|us) )?(?:a|another|one) (?:cup|cuppa|mug)\b(?! of)", "make coffee"),
+    (r"\b(?:make|fix|pour) (?:a|another|one) (?:cup|cuppa)(?= in (?:it|the|that|this|my)\b)", "make coffee"),
+    # "at least two slices on the plate": the count (the checker counts at least as many)
+    (r"\b(?:at least|no fewer than|not less than|a minimum of) (?=(?:one|two|three|four|five|six|\d+)\b)", ""),
+    # "Tomato from the fridge, sliced, two slices on the plate": the state said after a
+    # comma is the noun's, not a clause of its own
+    (r"\b([a-z]+), (sliced|chopped|diced|cut up|toasted|cooked|heated|warmed up|chilled|washed|rinsed)"
+     r"(?=\s*(?:[,.;!?]|$|and\b|then\b))", r"\1 \2"),
+    # "the knife lives in one of the drawers": where it is to be found (a goal would say
+    # which drawer)
+    (r"\b(?:lives|is kept|are kept|is stored|are stored) (in|on|inside) (?=one of\b)", r"is \1 "),
+    # "I'd like to come back to a completely dark living room": the room, dark
+    (r"\b(come back|come home|get home|get back|wake up|walk in|walk back in) to (?:a|an|the) "
+     r"(?:(?:completely|totally|nice|nice and|really|fully|properly|pitch|lovely|nicely) )*"
+     r"(dark|bright|lit up|lit) ((?:living |dining )?room|bedroom|kitchen|bathroom|house|flat|lounge|place)\b",
+     r"\1 to the \3 \2"),
+    # "that newspaper on the sofa gone": thrown away ("the milk's gone off", "the light
+    # is gone" are no wishes)
+    (r"\b((?:the|that|this|those|these|my|your|our|all the) (?:[a-z]+ ){0,5}?[a-z]+)(?<!\bis)(?<!\bs)"
+     r"(?<!\bhas)(?<!\bhave)(?<!\bare)(?<!\bwas)(?<!\bwere)(?<!\bhad)(?<!\bbe)(?<!\bbeen)(?<!\bre) gone\b"
+     r"(?! (?:off|bad|cold|soft|out|missing|mouldy|moldy|stale|for|to|in|into|with|from|through|dark|quiet))",
+     r"\1 thrown away"),
+    # "put the lid back on the box", "close the lid of the hamper": the box closed; "put
+    # the lid back down afterwards": what was opened or filled, closed
+    (r"\b(?:put|pop|stick|snap|press|push|shut|close|drop) (?:the|its|their) lids? (?:back )?(?:down |on |shut |closed )?"
+     r"(?:on|of|over) ((?:the|that|this|my) [a-z]+(?: [a-z]+)?)\b", r"close \1"),
+    (r"\b(?:put|pop|stick|snap|press|push|drop) (?:the|its|their) lids? (?:back )?(?:down|on)\b", "close it"),
+    (r"\b(?:shut|close) (?:the|its|their) lids?\b", "close it"),
+    (r"\b(?:lift|open|raise|take off|pop) (?:the|its|their) lids? (?:of|on) ((?:the|that|this|my) [a-z]+(?: [a-z]+)?)\b",
+     r"open \1"),
+    # "the CD and the pen need boxing up", "box up the keys": put in the box
+    (r"\b(box)ing up\b(?! (?:the|a|an|my|your|our|this|that|these|those|it|them|all)\b)", r"putting in the \1"),
+    (r"\b(box)ed up\b(?! (?:the|a|an|my|your|our|this|that|these|those|it|them|all)\b)", r"put in the \1"),
+    (r"\bbox(?:ing|ed)? up ((?:the|a|an|my|your|our|this|that|these|those|all the|all) (?:[a-z]+ ){0,4}?[a-z]+|it|them)"
+     r"(?=\s*(?:[,.;!?]|$|and\b|then\b|before\b|after\b|once\b))", r"put \1 in the box"),
+    # "while I have a soak", "before we take a nap": what the person does, no object ("a
+    # soak" is no act on anything)
+    (r"\b(i|we|you|he|she) (?:have|take|having|taking|get|enjoy|had|took) a (?:long |quick |nice |hot |little )?"
+     r"(?:soak|bath|shower|nap|rest|snooze|kip|lie down|lie in|wash|break|breather|bite)\b", r"\1 relax"),
+    # "- spray bottle away in a drawer": a list item without a verb, the place says where
+    # away is ("lock it away in the safe" keeps "away": shut in)
+    (r"((?:^|[-*\n;:,]|\d[.)])\s*(?!(?:put|lock|locked|shut|tuck|tucked|stash|stow|pack|place|get|move|throw|toss|"
+     r"clear|tidy|it|them|and|then)\b)(?:(?:the|a|my|your|our) )?(?:[a-z]+ ){0,2}[a-z]+) away "
+     r"(?=(?:in|into|on|onto|inside) (?:the|a|an|one|its|my|your|our|their|that|this)\b)", r"\1 "),
+    # "the tissue box and the spray bottle, both of them, moved onto the toilet": an aside
+    # that counts what was named
+    (r",\s*(?:both|all(?: two| three| four| five)?) of (?:them|those|these)\s*,", " "),
+    # "cut up the lettuce and the tomato and put some of each in the bowl": pieces of each
+    # of the things cut
+    (r"\b(cut|slice|chop|dice|cuts|slices|chops|sliced|chopped)\b([^.!?;]*?)\b(?:some|a few|a bit|a couple|bits|pieces) "
+     r"of (each|both)\b", r"\1\2a slice of \3"),
+    # "that empty bottle on the table": an adjective after a determiner, no act of emptying
+    (r"\ban empty (?=[a-z])", "a "),
+    (r"\b(the|that|this|a|my|those|these|your|our) empty (?=[a-z])", r"\1 "),
+    # "bathroom lights been on all night": the room's lights ("lights" is no verb here)
+    (r"\b(?:(?:the|my|our) )?(?:kitchen|bathroom|bedroom|living room|lounge|hallway|hall|dining room|office|study) "
+     r"lights\b", "the lights"),
+    # "put the pen and the cd in a drawer the ones on the desk i mean": which ones, told by
+    # where they are, not where they go
+    (r"\s*,?\s*\b(?:the ones?|those|that one) (?:that are |that is |which are )?(?:on|in|from|by|next to|under) "
+     r"(?:the|my|a) [a-z]+(?: [a-z]+)?,? i mean\b", " "),
+    # "leave the microwave switched off", "should be left turned on": the state kept
+    (r"\b(leave|left|keep|kept|leaving|keeping)((?: [a-z]+){0,3}?) (?:switched|turned) (on|off)\b", r"\1\2 \3"),
+    # "put them in the box ...: the watch and the keychain, I mean", "put it on the toilet,
+    # the candle from the floor I mean": the pronoun named after it
+    (r"\b(it|them)\b([^.!?:;]*?)\s*[:,]\s*((?:the|my|a|an|that|those) [^.!?:;,]*?"
+     r"(?:(?:,| and) (?:the|my|a|an) [^.!?:;,]*?)*)\s*,? i mean\b", r"\3\2"),
+    # "no need to close the fridge": an act called off, nothing asked (not its opposite)
+    (r"\b(?:there is |there s |theres )?(?:no|not any) need (?:for you )?to [a-z]+\b[^.!?;,]*", " "),
+    # "throw the pen away instead": which act replaces which is the correction's business
+    (r"\s*\binstead\b(?! of)", " "),
+    # "with its door shut afterwards": and then shut
+    (r",?\s*(?:and )?with (?:its|the|their) (?:door|doors|lid) (?:shut|closed)(?: afterwards| after that| after)?\b",
+     " and then close it"),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee
@@ -315,7 +394,8 @@ _RESULT_WORDS = frozenset({"is", "are", "was", "were", "be", "been", "being", "i
                            # "shut and sitting on the armchair": a second predicate
                            "and", "or", "get", "gets", "got"})
 
-_WISH_WORDS = frozenset({"left", "leave", "keep", "kept", "find", "found", "see", "want", "like", "need"})
+_WISH_WORDS = frozenset({"left", "leave", "keep", "kept", "find", "found", "see", "want", "like", "need",
+                         "love", "prefer", "wish"})
 
 
 def _where_things_are(text: str) -> str:
@@ -360,6 +440,33 @@ _DESCRIBED = r"(?:the|that|this|a) (?:thing|thingy|tool|gadget|device|whatsit|do
 _PERSON_USE = r"(?: (?:that |which )?(?:you|we|i|u|people) (?:use|need|want|have)?)?"
 
 
+#: what a thing is known by holding ("the thing we keep valuables in", "where the dirty
+#: clothes go"): what is kept -> the container the lexicon knows
+KEPT_IN: dict[str, str] = {
+    "valuables": "safe", "money": "safe", "cash": "safe", "jewellery": "safe", "jewelry": "safe",
+    "passports": "safe", "documents": "safe", "secrets": "safe",
+    "dirty clothes": "laundry hamper", "dirty laundry": "laundry hamper", "laundry": "laundry hamper",
+    "washing": "laundry hamper", "rubbish": "garbage can", "trash": "garbage can",
+    "garbage": "garbage can", "waste": "garbage can", "food": "fridge", "milk": "fridge",
+}
+_KEPT = "|".join(sorted(KEPT_IN, key=len, reverse=True))
+_HOLDER = r"(?:thing|thingy|box|place|one|spot|container|cupboard|unit)"
+
+
+def _described_by_contents(text: str) -> str:
+    """"in the thing we keep valuables in", "where we keep the dirty laundry": the
+    container what it holds names (:data:`KEPT_IN`)."""
+    def name(m: re.Match[str]) -> str:
+        return f"the {KEPT_IN[m.group(1)]}"
+
+    text = re.sub(r"\b(?:the|that|this) " + _HOLDER + r" (?:that |which |where )?(?:we|i|you|u|they) "
+                  r"(?:keep|store|put|lock|stash|hide)(?: (?:the|our|my|all the|all our|any))? (" + _KEPT
+                  + r")(?: in| into| away in)?\b", name, text)
+    return re.sub(r"\b(?:in |into )?where (?:we|i|you|u|they) (?:keep|store|put|lock|stash|hide)"
+                  r"(?: (?:the|our|my|all the|all our|any))? (" + _KEPT + r")\b",
+                  lambda m: f"in {name(m)}", text)
+
+
 def _described_by_use(text: str) -> str:
     """"the thing for unblocking the loo", "the thing you cut bread with", "the tool to
     flip pancakes": the object the use names (:data:`TOOL_FOR`)."""
@@ -383,8 +490,8 @@ def spoken(text: str) -> str:
 
 
 def rephrase(text: str) -> str:
-    """Where things are, things described by their use, then :data:`PHRASINGS`."""
-    text = _described_by_use(_where_things_are(text))
+    """Where things are, things described by their use or contents, then :data:`PHRASINGS`."""
+    text = _described_by_contents(_described_by_use(_where_things_are(text)))
     for pattern, repl in PHRASINGS:
         text = re.sub(pattern, repl, text)
     return text

@@ -103,7 +103,7 @@ VERBS: dict[str, VerbSense] = {
         "tuck", "shove", "slide", "shift", "stash", "rest", "deliver", "bring", "fetch",
         "take", "throw", "toss", "send", "set", "arrange", "replace", "restock", "transport",
         "haul", "plonk", "plop", "dump", "pack", "stow", "slot", "file", "nestle", "park",
-        "stand", "prop", "perch", "pull", "roll")},
+        "stand", "prop", "perch", "pull", "roll", "abandon")},
     # placing where the verb says: "shelve the book" is on a shelf
     "shelve": _v(A.PLACE),
     # putting it in the garbage

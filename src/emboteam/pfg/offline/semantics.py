@@ -256,6 +256,9 @@ class Semantics:
             st = lx.ACT_STATE.get(act)
             if st is None or st[0] not in lx.INVERTIBLE:
                 return []      # "don't break the vase": a prohibition, no goal
+            # "don't switch the TV on": the particle's state on the object is what is
+            # refused, not wanted
+            frame = replace(frame, targets=[replace(t, state=None) if t.state == st else t for t in frame.targets])
             return self._state(frame, (st[0], not st[1]), False, clause)
         if frame.report:
             return []

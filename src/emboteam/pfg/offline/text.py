@@ -75,6 +75,8 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
     (r"\bdont\b", "do not"), (r"\bdoesnt\b", "does not"), (r"\bdidnt\b", "did not"),
     (r"\bcant\b", "can not"), (r"\bisnt\b", "is not"), (r"\barent\b", "are not"),
     (r"\bshouldnt\b", "should not"), (r"\bwouldnt\b", "would not"), (r"\bim\b", "i am"),
+    (r"\bid (?=(?:like|love|prefer|rather|want|appreciate|need|be)\b)", "i would "),
+    (r"\bive\b", "i have"), (r"\bwont\b", "will not"), (r"\bhavent\b", "have not"),
     (r"\bthats\b", "that is"), (r"\blets\b", "let us"), (r"\bpls\b|\bplz\b", "please"),
 )
 
