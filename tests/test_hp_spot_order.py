@@ -83,8 +83,8 @@ def test_a_block_move_is_kept_only_when_shorter_valid_and_deterministic() -> Non
     # FloorPlan1, 4 robots x 16 conditions: robot1 waits 3.4 s at the fridge for a robot
     # whose use comes first in the sequence but later in time; moved ahead: 25.2 -> 23.2 s
     spec, state = _cell(4, 16)
-    off = HybridPlanner(PlannerConfig()).plan(spec, state)
-    on = [HybridPlanner(PlannerConfig(spot_order=True)).plan(spec, state) for _ in range(2)]
+    off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False)).plan(spec, state)
+    on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False)).plan(spec, state) for _ in range(2)]
     assert on[0].makespan < off.makespan - 1.0
     assert [(s.robot, s.action) for s in on[0].steps] == [(s.robot, s.action) for s in on[1].steps]
     assert on[0].planner_calls == off.planner_calls  # replays and simulations, no planner call
@@ -103,8 +103,8 @@ def test_moves_that_are_not_shorter_leave_the_plan_as_it_was() -> None:
     conds = random_conditions(state, 64, random.Random(0))
     spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
         Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
-    off = HybridPlanner(PlannerConfig()).plan(spec, state)
-    on = HybridPlanner(PlannerConfig(spot_order=True)).plan(spec, state)
+    off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False)).plan(spec, state)
+    on = HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False)).plan(spec, state)
     assert candidates(off)  # there were moves to try
     assert on.makespan == off.makespan
     assert [(s.robot, s.action, s.after) for s in on.steps] == [(s.robot, s.action, s.after) for s in off.steps]

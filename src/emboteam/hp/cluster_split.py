@@ -21,7 +21,7 @@ replays and simulates the whole plan, and keeps it only when its makespan is sho
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 
 from pydantic import BaseModel, ConfigDict
 
@@ -53,39 +53,38 @@ class SplitTarget(BaseModel):
         return sum(self.work)
 
 
-def find_target(plan: MergedPlan, cluster_of: Mapping[str, str], able: Callable[[str, Sequence[str]], bool]
-                ) -> SplitTarget | None:
-    """The longest cluster of the robot with the most work, when it has at least two
-    subtasks and its seconds exceed ``MIN_EXCESS`` x the plan's resource-aware bound.
-    ``cluster_of`` maps a subtask to its cluster's id (members joined by ``+``);
-    ``able(robot, members)``: can that robot do the whole cluster alone. The helper is the
-    able robot that ends earliest."""
+def find_target(plan: MergedPlan, cluster_of: Mapping[str, str], able: Callable[[str, Sequence[str]], bool],
+                skip: Collection[str] = ()) -> SplitTarget | None:
+    """The longest cluster one robot does, when it has at least two subtasks, its
+    seconds exceed ``MIN_EXCESS`` x the plan's resource-aware bound and another robot
+    can do it. ``cluster_of`` maps a subtask to its cluster's id (members joined by
+    ``+``); ``able(robot, members)``: can that robot do the whole cluster alone;
+    clusters in ``skip`` were tried. The helper is the able robot that ends earliest."""
     work: dict[str, float] = {}
     ends: dict[str, float] = {}
+    per: dict[tuple[str, str], dict[str, float]] = {}
     for s in plan.steps:
-        work[s.robot] = work.get(s.robot, 0.0) + s.est_end - s.est_start
+        d = s.est_end - s.est_start
+        work[s.robot] = work.get(s.robot, 0.0) + d
         ends[s.robot] = max(ends.get(s.robot, 0.0), s.est_end)
-    if not work or plan.resource_bound <= 0:
+        cid = cluster_of.get(s.subtask)
+        if cid is not None and "+" in cid and cid not in skip:
+            c = per.setdefault((s.robot, cid), {})
+            c[s.subtask] = c.get(s.subtask, 0.0) + d
+    if plan.resource_bound <= 0:
         return None
-    robot = max(work, key=lambda r: (work[r], r))
-    per: dict[str, dict[str, float]] = {}
-    for s in plan.steps:
-        if s.robot == robot and s.subtask in cluster_of:
-            c = per.setdefault(cluster_of[s.subtask], {})
-            c[s.subtask] = c.get(s.subtask, 0.0) + s.est_end - s.est_start
-    if not per:
-        return None
-    cid = max(per, key=lambda k: (sum(per[k].values()), k))
-    members = tuple(m for m in cid.split("+"))
-    if len(members) < 2 or sum(per[cid].values()) <= MIN_EXCESS * plan.resource_bound:
-        return None
-    first = next(i for i, s in enumerate(plan.steps) if s.robot == robot and s.subtask in members)
-    helpers = [r for r in plan.robots if r != robot and able(r, members)]
-    if not helpers:
-        return None
-    helper = min(helpers, key=lambda r: (ends.get(r, 0.0), work.get(r, 0.0), r))
-    return SplitTarget(robot=robot, helper=helper, members=members,
-                       work=tuple(per[cid].get(m, 0.0) for m in members), first=first)
+    for robot, cid in sorted(per, key=lambda k: (-sum(per[k].values()), k)):
+        if sum(per[(robot, cid)].values()) <= MIN_EXCESS * plan.resource_bound:
+            return None
+        members = tuple(cid.split("+"))
+        helpers = [r for r in plan.robots if r != robot and able(r, members)]
+        if not helpers:
+            continue
+        helper = min(helpers, key=lambda r: (ends.get(r, 0.0), work.get(r, 0.0), r))
+        first = next(i for i, s in enumerate(plan.steps) if s.robot == robot and s.subtask in members)
+        return SplitTarget(robot=robot, helper=helper, members=members,
+                           work=tuple(per[(robot, cid)].get(m, 0.0) for m in members), first=first)
+    return None
 
 
 def blocks(members: Sequence[str], subjects: Mapping[str, frozenset[str]]) -> list[tuple[str, ...]]:

@@ -144,12 +144,12 @@ class PlannerConfig:
     #: again in two parts, the first for a lightly loaded helper, the second for the robot
     #: from the state the first leaves, and keep the plan when the simulated makespan is
     #: shorter (:mod:`emboteam.hp.cluster_split`; at most ``SPLIT_CALLS`` Fast Downward calls)
-    split_clusters: bool = False
+    split_clusters: bool = True
     #: move blocks of steps that waited at a shared spot (the microwave) before the other
     #: robots' steps there that started after their robot was free, and keep the plan
     #: when the simulated makespan is shorter (:mod:`emboteam.hp.spot_order`; replays and
     #: simulations only, no planner call)
-    spot_order: bool = False
+    spot_order: bool = True
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:

@@ -28,10 +28,12 @@ from emboteam.world.actions import Action, Skill
 from emboteam.world.catalogue import INTERLOCKED
 from emboteam.world.state import WorldState
 
-#: a block that waited less than this (seconds) is not worth a replay
-MIN_WAIT = 1.0
-#: blocks tried per plan (each costs a replay, a merge and a simulation; no planner call)
-TRIES = 4
+#: a block that waited less than this (seconds) is not worth a replay (the moves kept in
+#: the latency sweep were of blocks that waited 3.4-22 s)
+MIN_WAIT = 3.0
+#: blocks tried per plan (each costs a replay, a merge and a simulation, no planner call:
+#: 0.02-0.04 s in FloorPlan1 32 x 96; a fourth try and more gained nothing in the sweep)
+TRIES = 3
 
 
 class Block(BaseModel):
