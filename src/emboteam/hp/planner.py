@@ -144,7 +144,7 @@ class PlannerConfig:
     #: again in two parts, the first for a lightly loaded helper, the second for the robot
     #: from the state the first leaves, and keep the plan when the simulated makespan is
     #: shorter (:mod:`emboteam.hp.cluster_split`; at most ``SPLIT_CALLS`` Fast Downward calls)
-    split_clusters: bool = True
+    split_clusters: bool = False
     #: move blocks of steps that waited at a shared spot (the microwave) before the other
     #: robots' steps there that started after their robot was free, and keep the plan
     #: when the simulated makespan is shorter (:mod:`emboteam.hp.spot_order`; replays and
@@ -485,7 +485,7 @@ class HybridPlanner:
 
     def _split(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str],
                record: _Record, needs: Mapping[str, Sequence[Need]]) -> MergedPlan:
-        """Two robots on the longest cluster of the robot with the most work
+        """Two robots on the longest cluster one robot does
         (:mod:`emboteam.hp.cluster_split`): its subtasks in two parts, the first planned
         for a helper from where the cluster started, the second for the robot from where
         the first leaves it; spliced in place of the robot's steps, replayed, merged and
@@ -527,18 +527,20 @@ class HybridPlanner:
             unit = Unit("split", [spec.subtask(m) for m in part], ())
             return [SeqStep(r, a, t, t) for (r, a), t in zip(actions, attribute(actions, unit, state), strict=True)]
 
-        firsts = [self._split_problem(here, conds(a), target.helper, kept) for a, _ in orders]
+        built = [(o, self._split_problem(here, conds(o[0]), target.helper, kept)) for o in orders]
+        firsts = [(o, p) for o, p in built if p is not None]
         staged: list[tuple[list[GroundedStep], WorldState, Sequence[str], Problem]] = []
-        for (a, b), problem, result in zip(orders, firsts, self.fd.solve_problems(firsts, self.config.workers),
-                                           strict=True):
+        results = self.fd.solve_problems([p for _, p in firsts], self.config.workers)
+        for ((a, b), problem), result in zip(firsts, results, strict=True):
             if not isinstance(result, SolveResult) or not result.solved:
                 continue
             after = here.copy()
             grounded, why = self._replay(after, steps_of(problem, result, a, here), universe)
             if why is not None or not all(check_condition(c, after).holds for c in conds(a)):
                 continue
-            staged.append((grounded, after, b, self._split_problem(after, conds(b), target.robot,
-                                                                   [*kept, *conds(a)])))
+            second_problem = self._split_problem(after, conds(b), target.robot, [*kept, *conds(a)])
+            if second_problem is not None:
+                staged.append((grounded, after, b, second_problem))
         seconds = self.fd.solve_problems([p for *_, p in staged], self.config.workers) if staged else []
         best = plan
         for (grounded, after, part, problem), result in zip(staged, seconds, strict=True):
@@ -620,9 +622,18 @@ class HybridPlanner:
 
     @staticmethod
     def _split_problem(state: WorldState, conditions: Sequence[Condition], robot: str,
-                       kept: Sequence[Condition]) -> Problem:
+                       kept: Sequence[Condition]) -> Problem | None:
         """One part of a split cluster for one robot, keeping the goals already reached
-        that its problem's objects take part in."""
+        that its problem's objects take part in (None: the goal compiler finds it out of
+        that robot's reach, and the split is not tried that way)."""
+        try:
+            return HybridPlanner._protected_problem(state, conditions, robot, kept)
+        except PlanningError:
+            return None
+
+    @staticmethod
+    def _protected_problem(state: WorldState, conditions: Sequence[Condition], robot: str,
+                           kept: Sequence[Condition]) -> Problem:
         problem = build_problem(state, conditions, [robot], name="split")
         objects = set(problem.objects)
         overlap = []
