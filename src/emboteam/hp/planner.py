@@ -32,11 +32,13 @@ subtask order, the only waits are the subtask dependencies, and nothing is simul
 from __future__ import annotations
 
 import itertools
+import logging
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal as TypingLiteral
 
+from emboteam.hp import cluster_split, spot_order
 from emboteam.hp.allocation import allocate
 from emboteam.hp.contention import bottleneck_first, spot_seconds
 from emboteam.hp.decompose import decompose_goal
@@ -80,10 +82,12 @@ from emboteam.pddl.problem import Problem, build_problem, planning_state
 from emboteam.pddl.runner import FastDownward, PlanCache, SolveResult
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.sim.rules import apply_action, check_action
-from emboteam.world.actions import Skill
+from emboteam.world.actions import Action, Skill
 from emboteam.world.checker import check_condition
-from emboteam.world.goals import Condition, Goal
+from emboteam.world.goals import Condition, Goal, ObjectRef
 from emboteam.world.state import WorldState
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -136,6 +140,16 @@ class PlannerConfig:
     #: accepted sequence before the merge (across units and rounds: two robots' plans made
     #: apart each run the microwave, one run does), "off" never
     eliminate: TypingLiteral["off", "units", "whole"] = "whole"
+    #: when one robot's cluster is longer than the resource-aware bound allows, plan it
+    #: again in two parts, the first for a lightly loaded helper, the second for the robot
+    #: from the state the first leaves, and keep the plan when the simulated makespan is
+    #: shorter (:mod:`emboteam.hp.cluster_split`; at most ``SPLIT_CALLS`` Fast Downward calls)
+    split_clusters: bool = False
+    #: move blocks of steps that waited at a shared spot (the microwave) before the other
+    #: robots' steps there that started after their robot was free, and keep the plan
+    #: when the simulated makespan is shorter (:mod:`emboteam.hp.spot_order`; replays and
+    #: simulations only, no planner call)
+    spot_order: bool = True
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:
@@ -158,6 +172,8 @@ class _Record:
     cluster: dict[str, str] = field(default_factory=dict)
     assigned: dict[str, tuple[str, ...]] = field(default_factory=dict)
     candidates: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    #: the grounded sequence the plan was merged from (its steps in the plan's order)
+    sequence: list[GroundedStep] = field(default_factory=list)
 
 
 #: elimination over the whole accepted sequence gives up a removal whose replay has not
@@ -169,6 +185,8 @@ REBALANCE_PASSES = 4
 #: no further pass once the passes have made this many Fast Downward calls (a pass of the
 #: 32-robot x 96-condition cell costs 10-20; the robots that keep their clusters hit the cache)
 REBALANCE_CALLS = 16
+#: Fast Downward calls one cluster split may make (two per order of its two parts)
+SPLIT_CALLS = 4
 
 
 class _Fallback(Exception):
@@ -215,6 +233,8 @@ class HybridPlanner:
             try:
                 plan = self._decomposed(spec, start, team, notes, record=(record := _Record()))
                 plan = self._rebalanced(plan, spec, start, team, notes, record)
+                plan = self._split(plan, spec, start, team, notes, record, needs)
+                plan = self._reorder(plan, spec, start, team, notes, record)
             except _Fallback as fb:
                 notes.append(f"decomposition failed ({fb}): planned as one joint problem")
                 plan = self._joint(spec, start, team, notes)
@@ -381,11 +401,16 @@ class HybridPlanner:
                 pass  # the whole sequence as accepted, below
             else:
                 notes.extend(tried)
+                if record is not None:
+                    record.sequence = trimmed
                 return plan
         try:
-            return self._merge_causal(accepted, spec, unit_of, team, start, notes)
+            plan = self._merge_causal(accepted, spec, unit_of, team, start, notes)
         except _Invalid as exc:
             raise _Fallback(f"the merged plan failed in the simulator: {exc}") from None
+        if record is not None:
+            record.sequence = list(accepted)
+        return plan
 
     @staticmethod
     def _eliminated(accepted: Sequence[GroundedStep], spec: TaskSpec, start: WorldState, universe: Universe
@@ -453,8 +478,176 @@ class HybridPlanner:
                 return plan
             notes[:] = [*again, f"re-allocated from the measured plans: makespan {plan.makespan:.1f} -> "
                         f"{other.makespan:.1f} s"]
-            plan, record = other, mine
+            plan = other
+            record.cluster, record.assigned, record.candidates = mine.cluster, mine.assigned, mine.candidates
+            record.sequence = mine.sequence
         return plan
+
+    def _split(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str],
+               record: _Record, needs: Mapping[str, Sequence[Need]]) -> MergedPlan:
+        """Two robots on the longest cluster one robot does
+        (:mod:`emboteam.hp.cluster_split`): its subtasks in two parts, the first planned
+        for a helper from where the cluster started, the second for the robot from where
+        the first leaves it; spliced in place of the robot's steps, replayed, merged and
+        simulated. The plan with the shorter makespan is kept. Only for specs whose
+        subtasks are final and independent (the splice keeps no dependency waits)."""
+        if not self.config.split_clusters or not self.config.validate:
+            return plan
+        if any(t.depends_on or not t.final for t in spec.subtasks):
+            return plan
+        goal_of = {t.id: t.goal for t in spec.subtasks}
+
+        def able(robot: str, members: Sequence[str]) -> bool:
+            profile = start.robots[robot].profile
+            return all(covers([profile], n) for m in members for n in needs.get(m, ()))
+
+        target = cluster_split.find_target(plan, record.cluster, able)
+        if target is None:
+            return plan
+        if len(record.sequence) != len(plan.steps):
+            return plan
+        before, gone, rest = cluster_split.splice(record.sequence, target)
+        log.debug("split %s (makespan %.1f, bound %.1f)", target, plan.makespan, plan.resource_bound)
+        universe = Universe(start.copy())
+        here = start.copy()
+        for g in before:
+            apply_action(here, g.robot, g.action)
+        members = set(target.members)
+        kept = [c for t in spec.subtasks if t.id not in members for c in t.goal if check_condition(c, here).holds]
+        subjects = {t.id: frozenset(_kind(c.subject, start) for c in t.goal) for t in spec.subtasks
+                    if t.id in members}
+        orders = [o for a, b in cluster_split.partitions(target, subjects) for o in ((a, b), (b, a))]
+        orders = orders[:SPLIT_CALLS // 2]
+
+        def conds(part: Sequence[str]) -> list[Condition]:
+            return [c for m in part for c in goal_of[m]]
+
+        def steps_of(problem: Problem, result: SolveResult, part: Sequence[str], state: WorldState) -> list[SeqStep]:
+            actions = polish(problem.decode(result.plan))
+            unit = Unit("split", [spec.subtask(m) for m in part], ())
+            return [SeqStep(r, a, t, t) for (r, a), t in zip(actions, attribute(actions, unit, state), strict=True)]
+
+        built = [(o, self._split_problem(here, conds(o[0]), target.helper, kept)) for o in orders]
+        firsts = [(o, p) for o, p in built if p is not None]
+        staged: list[tuple[list[GroundedStep], WorldState, Sequence[str], Problem]] = []
+        results = self.fd.solve_problems([p for _, p in firsts], self.config.workers)
+        for ((a, b), problem), result in zip(firsts, results, strict=True):
+            if not isinstance(result, SolveResult) or not result.solved:
+                continue
+            after = here.copy()
+            grounded, why = self._replay(after, steps_of(problem, result, a, here), universe)
+            if why is not None or not all(check_condition(c, after).holds for c in conds(a)):
+                continue
+            second_problem = self._split_problem(after, conds(b), target.robot, [*kept, *conds(a)])
+            if second_problem is not None:
+                staged.append((grounded, after, b, second_problem))
+        seconds = self.fd.solve_problems([p for *_, p in staged], self.config.workers) if staged else []
+        best = plan
+        for (grounded, after, part, problem), result in zip(staged, seconds, strict=True):
+            if not isinstance(result, SolveResult) or not result.solved:
+                continue
+            trial = after.copy()
+            second, why = self._replay(trial, steps_of(problem, result, part, after), universe)
+            if why is not None:
+                continue
+            tail, why = self._replay_reusing(trial, rest, set(), universe, [*gone, *grounded, *second])
+            if why is not None or not all(check_condition(c, trial).holds for c in spec.goal().conditions):
+                continue
+            try:
+                other = self._finish([*before, *grounded, *second, *tail], {}, team, start,
+                                     spec.goal(), "formal")
+            except _Invalid as exc:
+                log.debug("split %s fails in the simulator: %s", part, exc)
+                continue
+            log.debug("split, second part %s: makespan %.1f", part, other.makespan)
+            if other.makespan < best.makespan - 1e-6:
+                best, sequence = other, [*before, *grounded, *second, *tail]
+        if best is not plan:
+            record.sequence = sequence
+            notes.append(f"{', '.join(target.members)}: split between {target.helper} and {target.robot}: "
+                         f"makespan {plan.makespan:.1f} -> {best.makespan:.1f} s")
+        return best
+
+    def _reorder(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str],
+                 record: _Record) -> MergedPlan:
+        """Move blocks that waited at a shared spot ahead of the steps that made them wait
+        (:mod:`emboteam.hp.spot_order`), one at a time, each replayed, merged and
+        simulated; a move is kept when the makespan is shorter, and the search goes on
+        from it (at most ``spot_order.TRIES`` moves tried in all). Only for specs whose
+        subtasks are final and independent, as :meth:`_split`."""
+        if not self.config.spot_order or not self.config.validate:
+            return plan
+        if any(t.depends_on or not t.final for t in spec.subtasks):
+            return plan
+        seq = record.sequence
+        if len(seq) != len(plan.steps):
+            return plan
+        universe = Universe(start.copy())
+        goal = spec.goal()
+        tried = 0
+        while tried < spot_order.TRIES:
+            options = spot_order.candidates(plan, spot_order.TRIES - tried)
+            if not options:
+                break
+            for block, new_order in options:
+                tried += 1
+                p = next(i for i, k in enumerate(new_order) if i != k)
+                state = start.copy()
+                for g in seq[:p]:
+                    apply_action(state, g.robot, g.action)
+                grounded, why = self._replay_reusing(state, [seq[k] for k in new_order[p:]],
+                                                     {i for i, k in enumerate(new_order[p:]) if seq[k].robot == block.robot},
+                                                     universe)
+                if why is None and not all(check_condition(c, state).holds for c in goal.conditions):
+                    why = "misses the goal"
+                if why is not None:
+                    log.debug("moving %s fails: %s", block, why)
+                    continue
+                candidate = [*seq[:p], *grounded]
+                try:
+                    other = self._finish(candidate, {}, team, start, goal, "formal")
+                except _Invalid as exc:
+                    log.debug("moving %s fails in the simulator: %s", block, exc)
+                    continue
+                log.debug("moving %s: makespan %.1f -> %.1f", block, plan.makespan, other.makespan)
+                if other.makespan < plan.makespan - 1e-6:
+                    notes.append(f"{block.robot}'s steps at {block.spot} moved ahead ({block.wait:.1f} s of waiting): "
+                                 f"makespan {plan.makespan:.1f} -> {other.makespan:.1f} s")
+                    plan, seq = other, candidate
+                    break
+            else:
+                break
+        record.sequence = seq
+        return plan
+
+    @staticmethod
+    def _split_problem(state: WorldState, conditions: Sequence[Condition], robot: str,
+                       kept: Sequence[Condition]) -> Problem | None:
+        """One part of a split cluster for one robot, keeping the goals already reached
+        that its problem's objects take part in (None: the goal compiler finds it out of
+        that robot's reach, and the split is not tried that way)."""
+        try:
+            return HybridPlanner._protected_problem(state, conditions, robot, kept)
+        except PlanningError:
+            return None
+
+    @staticmethod
+    def _protected_problem(state: WorldState, conditions: Sequence[Condition], robot: str,
+                           kept: Sequence[Condition]) -> Problem:
+        problem = build_problem(state, conditions, [robot], name="split")
+        objects = set(problem.objects)
+        overlap = []
+        for c in kept:
+            result = check_condition(c, state)
+            objs = set(result.witnesses)
+            for w in result.witnesses:
+                if w in state.objects:
+                    objs.update(state.ancestors(w))
+            if objs & objects:
+                overlap.append(c)
+        if not overlap:
+            return problem
+        return build_problem(state, conditions, [robot], name="split", protect=overlap)
 
     def _merge_causal(self, accepted: Sequence[GroundedStep], spec: TaskSpec, unit_of: Mapping[str, str],
                       team: Sequence[str], start: WorldState, notes: list[str]) -> MergedPlan:
@@ -540,9 +733,11 @@ class HybridPlanner:
                 protected[str(c)] = (c, frozenset(objs))
 
     @staticmethod
-    def _replay(trial: WorldState, steps: Sequence[SeqStep], universe: Universe
+    def _replay(trial: WorldState, steps: Sequence[SeqStep], universe: Universe,
+                repair: Callable[[WorldState, SeqStep], list[Action]] | None = None
                 ) -> tuple[list[GroundedStep], str | None]:
-        """Run a unit's steps on ``trial`` (in place): grounded steps, or why they fail."""
+        """Run a unit's steps on ``trial`` (in place): grounded steps, or why they fail.
+        ``repair``: more preparations, after :func:`preparations` (a reordering's)."""
         grounded: list[GroundedStep] = []
         try:
             for i, st in enumerate(steps):
@@ -553,10 +748,47 @@ class HybridPlanner:
                     # object moved, the microwave was left running): a step first puts it right
                     grounded.append(advance(trial, SeqStep(st.robot, prep, st.subtask, st.group), i,
                                             universe=universe))
+                for prep in repair(trial, st) if repair is not None else ():
+                    grounded.append(advance(trial, SeqStep(st.robot, prep, st.subtask, st.group), i,
+                                            universe=universe))
                 grounded.append(advance(trial, st, i, universe=universe))
         except StepFailure as exc:
             return [], f"no longer runs: {exc}"
         return grounded, None
+
+    def _replay_reusing(self, state: WorldState, steps: Sequence[GroundedStep], fresh: set[int],
+                        universe: Universe, changed: Sequence[GroundedStep] = ()
+                        ) -> tuple[list[GroundedStep], str | None]:
+        """Replay grounded steps in a new order on ``state`` (in place). The steps at
+        ``fresh`` positions (those moved) are grounded again, with the repairs of
+        :meth:`_replay` and :func:`emboteam.hp.spot_order.reopen`; so is every step that
+        reads or writes a state variable a step grounded *differently* may have set (or
+        updates one it wrote: two updates of a set commute). The others see the values
+        they saw when they were grounded, so their grounding is kept and only applied;
+        a step grounded again exactly as before sets the same values, so it sets nothing
+        apart. A reordering of a 200-step plan grounds tens of steps, not all. ``changed``:
+        steps taken out or put in before these (their variables are set apart too)."""
+        written = {v for x in changed for v in x.footprint.writes}
+        updated = {v for x in changed for v in x.footprint.updates}
+        out: list[GroundedStep] = []
+        for i, g in enumerate(steps):
+            fp = g.footprint
+            if i not in fresh:
+                seen = fp.reads | fp.writes | {f"loc:{x}" for x in (g.action.target, g.action.receptacle) if x}
+                if not seen & (written | updated) and not fp.updates & written:
+                    apply_action(state, g.robot, g.action)
+                    out.append(g)
+                    continue
+            again, why = self._replay(state, [SeqStep(g.robot, g.action, g.subtask, g.group)], universe,
+                                      spot_order.reopen)
+            if why is not None:
+                return [], why
+            if again != [g]:
+                for x in [g, *again]:
+                    written |= x.footprint.writes
+                    updated |= x.footprint.updates
+            out += again
+        return out, None
 
     @staticmethod
     def _accept(u: Unit, grounded: list[GroundedStep], forward: WorldState, accepted: list[GroundedStep],
@@ -671,6 +903,14 @@ def _group_dependencies(spec: TaskSpec, unit_of: Mapping[str, str]) -> dict[str,
             continue
         out.setdefault(u, set()).update(unit_of[d] for d in ancestors(spec, t.id) if d in unit_of)
     return {u: tuple(sorted(d - {u})) for u, d in out.items()}
+
+
+def _kind(ref: ObjectRef, state: WorldState) -> str:
+    """What an object reference is about, as a type (``Egg_1`` and ``Egg`` alike)."""
+    if ref.id is not None:
+        o = state.objects.get(ref.id)
+        return o.type if o is not None else ref.id
+    return "|".join(sorted(ref.types))
 
 
 def _levels(spec: TaskSpec) -> list[list[Subtask]]:

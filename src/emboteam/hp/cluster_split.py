@@ -1,0 +1,146 @@
+"""Two robots on one long cluster, after the plan is validated.
+
+Conditions on a common object are a cluster, planned by one robot (:mod:`emboteam.hp.rounds`):
+apart, their plans would be made for an object the other changes. When one robot's cluster
+is longer than the whole plan may be (FloorPlan1: ``hot(Egg)``, ``inside(Egg, Pan)``,
+``cold(Pan_1)``, ``inside(Pan_1, CounterTop_3)``, 41.7 s of one robot against a bound of
+24.5 s), no re-allocation helps: moved, the cluster takes as long. Planning the cluster for
+two robots in one problem did not help either (lama-first minimises actions, and one robot
+doing everything is as short as two), nor did allocating its subtasks apart (planned in
+parallel from one state, they kept replanning each other).
+
+Here the cluster is split *sequentially*, so it cannot replan itself: its subtasks are
+parted in two, the first part planned for a lightly loaded helper from the state where the
+cluster started, the second for the cluster's robot from the state the first part leaves
+(the first part's goals protected). The merge's read/write deordering then lets the two
+run side by side wherever they touch different things (the helper cools the pan while the
+robot heats the egg). The planner splices the two plans in place of the robot's steps,
+replays and simulates the whole plan, and keeps it only when its makespan is shorter.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Collection, Mapping, Sequence
+
+from pydantic import BaseModel, ConfigDict
+
+from emboteam.hp.merge import GroundedStep
+from emboteam.hp.plan import MergedPlan
+
+#: split a cluster only when its robot's seconds on it exceed the resource-aware bound by
+#: this factor (the issue's target ratio: below it, the cluster is not what keeps the
+#: plan from the target)
+MIN_EXCESS = 1.15
+#: partitions of a cluster tried (each costs two Fast Downward calls per order)
+PARTITIONS = 1
+
+
+class SplitTarget(BaseModel):
+    """A cluster to split: the robot doing it, its helper, the cluster's subtasks with the
+    robot's seconds on each, and where in the plan's step list its first step stands."""
+
+    model_config = ConfigDict(frozen=True)
+
+    robot: str
+    helper: str
+    members: tuple[str, ...]
+    work: tuple[float, ...]
+    first: int
+
+    @property
+    def seconds(self) -> float:
+        return sum(self.work)
+
+
+def find_target(plan: MergedPlan, cluster_of: Mapping[str, str], able: Callable[[str, Sequence[str]], bool],
+                skip: Collection[str] = ()) -> SplitTarget | None:
+    """The longest cluster one robot does, when it has at least two subtasks, its
+    seconds exceed ``MIN_EXCESS`` x the plan's resource-aware bound and another robot
+    can do it. ``cluster_of`` maps a subtask to its cluster's id (members joined by
+    ``+``); ``able(robot, members)``: can that robot do the whole cluster alone;
+    clusters in ``skip`` were tried. The helper is the able robot that ends earliest."""
+    work: dict[str, float] = {}
+    ends: dict[str, float] = {}
+    per: dict[tuple[str, str], dict[str, float]] = {}
+    for s in plan.steps:
+        d = s.est_end - s.est_start
+        work[s.robot] = work.get(s.robot, 0.0) + d
+        ends[s.robot] = max(ends.get(s.robot, 0.0), s.est_end)
+        cid = cluster_of.get(s.subtask)
+        if cid is not None and "+" in cid and cid not in skip:
+            c = per.setdefault((s.robot, cid), {})
+            c[s.subtask] = c.get(s.subtask, 0.0) + d
+    if plan.resource_bound <= 0:
+        return None
+    for robot, cid in sorted(per, key=lambda k: (-sum(per[k].values()), k)):
+        if sum(per[(robot, cid)].values()) <= MIN_EXCESS * plan.resource_bound:
+            return None
+        members = tuple(cid.split("+"))
+        helpers = [r for r in plan.robots if r != robot and able(r, members)]
+        if not helpers:
+            continue
+        helper = min(helpers, key=lambda r: (ends.get(r, 0.0), work.get(r, 0.0), r))
+        first = next(i for i, s in enumerate(plan.steps) if s.robot == robot and s.subtask in members)
+        return SplitTarget(robot=robot, helper=helper, members=members,
+                           work=tuple(per[(robot, cid)].get(m, 0.0) for m in members), first=first)
+    return None
+
+
+def blocks(members: Sequence[str], subjects: Mapping[str, frozenset[str]]) -> list[tuple[str, ...]]:
+    """The cluster's subtasks grouped by the objects they are about (their conditions'
+    subjects, linked when they share one): ``hot(Egg)`` and ``inside(Egg, Pan)`` stay
+    together, ``cold(Pan_1)`` goes with ``inside(Pan_1, CounterTop_3)``. Where every
+    subtask is about one object, each subtask is a block."""
+    home = {m: m for m in members}
+
+    def root(m: str) -> str:
+        while home[m] != m:
+            m = home[m]
+        return m
+
+    owner: dict[str, str] = {}
+    for m in members:
+        for key in sorted(subjects.get(m, frozenset())):
+            if key in owner:
+                home[root(m)] = root(owner[key])
+            else:
+                owner[key] = m
+    out: dict[str, list[str]] = {}
+    for m in members:
+        out.setdefault(root(m), []).append(m)
+    if len(out) < 2:
+        return [(m,) for m in members]
+    return [tuple(b) for b in out.values()]
+
+
+def partitions(target: SplitTarget, subjects: Mapping[str, frozenset[str]], limit: int = PARTITIONS
+               ) -> list[tuple[tuple[str, ...], tuple[str, ...]]]:
+    """Two-part splits of the cluster along its :func:`blocks`, most even (by the robot's
+    measured seconds) first; each part non-empty."""
+    seconds = dict(zip(target.members, target.work, strict=True))
+    parts = blocks(target.members, subjects)
+    out: list[tuple[float, tuple[str, ...], tuple[str, ...]]] = []
+    rest = parts[1:]
+    for k in range(len(rest) + 1):
+        for chosen in itertools.combinations(rest, k):
+            a = tuple(m for b in (parts[0], *chosen) for m in b)
+            b = tuple(m for m in target.members if m not in a)
+            if not b:
+                continue
+            sa, sb = sum(seconds[m] for m in a), sum(seconds[m] for m in b)
+            out.append((max(sa, sb), a, b))
+    out.sort(key=lambda x: (x[0], x[1]))
+    return [(a, b) for _, a, b in out[:limit]]
+
+
+def splice(sequence: Sequence[GroundedStep], target: SplitTarget
+           ) -> tuple[list[GroundedStep], list[GroundedStep], list[GroundedStep]]:
+    """The plan's sequence (its steps, grounded, in the plan's order) before the cluster's
+    first step, the robot's steps for the cluster from there on (they go), and the other
+    steps after it (the new plans go in between)."""
+    members = set(target.members)
+    tail = sequence[target.first:]
+    gone = [g for g in tail if g.robot == target.robot and g.subtask in members]
+    rest = [g for g in tail if not (g.robot == target.robot and g.subtask in members)]
+    return list(sequence[:target.first]), gone, rest

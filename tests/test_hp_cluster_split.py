@@ -1,0 +1,95 @@
+"""Two robots on one long cluster (hp/cluster_split.py) and the planner's use of it."""
+
+from __future__ import annotations
+
+import random
+
+from emboteam.hp.cluster_split import SplitTarget, blocks, find_target, partitions
+from emboteam.hp.goalgen import random_conditions
+from emboteam.hp.plan import MergedPlan, PlanStep
+from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.validate import simulate
+from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.world.actions import Action, Skill
+from emboteam.world.goals import Goal
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+from emboteam.world.state import WorldState
+
+#: the profiles the latency sweep cycles through (benchmarks/plan_latency.py)
+SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
+
+
+def _step(robot: str, k: int, subtask: str, start: float, end: float) -> PlanStep:
+    return PlanStep(id=f"{robot}.{k}", robot=robot, action=Action(skill=Skill.PickupObject, target="Egg_1"),
+                    subtask=subtask, est_start=start, est_end=end)
+
+
+def test_blocks_follow_the_objects_the_subtasks_are_about() -> None:
+    # hot(Egg), inside(Egg, Pan), cold(Pan_1), inside(Pan_1, CounterTop_3)
+    about = {"c1": frozenset({"Egg"}), "c2": frozenset({"Egg"}), "c3": frozenset({"Pan"}),
+             "c4": frozenset({"Pan"})}
+    assert blocks(["c1", "c3", "c2", "c4"], about) == [("c1", "c2"), ("c3", "c4")]
+    # open(Book_1) and inside(Book_1, Shelf_2): one object, so each subtask is a block
+    assert blocks(["c1", "c2"], {"c1": frozenset({"Book"}), "c2": frozenset({"Book"})}) == [("c1",), ("c2",)]
+
+
+def test_partitions_are_two_non_empty_parts_most_even_first() -> None:
+    target = SplitTarget(robot="r1", helper="r2", members=("a", "b", "c"), work=(10.0, 6.0, 5.0), first=0)
+    about = {m: frozenset({m}) for m in target.members}
+    parts = partitions(target, about, limit=10)
+    assert parts[0] == (("a",), ("b", "c"))  # 10 | 11, the most even
+    assert all(a and b and set(a) | set(b) == {"a", "b", "c"} and not set(a) & set(b) for a, b in parts)
+    assert len(parts) == 3
+
+
+def test_a_cluster_longer_than_the_bound_is_split_with_the_robot_that_ends_first() -> None:
+    steps = (_step("r1", 1, "c1", 0, 12), _step("r1", 2, "c2", 12, 24), _step("r2", 1, "c3", 0, 3),
+             _step("r3", 1, "c4", 0, 1))
+    plan = MergedPlan(robots=("r1", "r2", "r3"), steps=steps, makespan=24.0, resource_bound=12.0)
+    cluster = {"c1": "c1+c2", "c2": "c1+c2", "c3": "c3", "c4": "c4"}
+    target = find_target(plan, cluster, lambda r, _: r != "r3")  # r3 cannot do it
+    assert target is not None
+    assert (target.robot, target.helper, target.members, target.first) == ("r1", "r2", ("c1", "c2"), 0)
+    assert target.seconds == 24.0
+    # within 1.15 of the bound, or a single subtask: nothing to split
+    assert find_target(plan.model_copy(update={"resource_bound": 21.0}), cluster, lambda r, _: True) is None
+    assert find_target(plan, {"c1": "c1", "c2": "c2"}, lambda r, _: True) is None
+    assert find_target(plan, cluster, lambda r, _: False) is None  # nobody to help
+
+
+def _sweep_cell(scene: str, robots: int, conditions: int) -> tuple[TaskSpec, WorldState]:
+    team = parse_team([SWEEP_PROFILES[i % len(SWEEP_PROFILES)] for i in range(robots)])
+    state = WorldState.from_scene(load_scene(scene), team)
+    conds = random_conditions(state, conditions, random.Random(0))
+    spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
+        Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
+    return spec, state
+
+
+def test_the_split_plan_is_kept_only_when_shorter_and_the_goal_holds() -> None:
+    # FloorPlan1, 32 robots x 32 conditions: one robot's cluster of four subtasks (26.9 s)
+    # against a bound of 17.7 s; its pot and lettuce parted between it and a helper: 19.7 s
+    spec, state = _sweep_cell("FloorPlan1", 32, 32)
+    off = HybridPlanner(PlannerConfig(split_clusters=False, spot_order=False)).plan(spec, state)
+    on = HybridPlanner(PlannerConfig(split_clusters=True, spot_order=False)).plan(spec, state)
+    note = next(n for n in on.notes if ": split between " in n)
+    assert on.makespan < 0.8 * off.makespan
+    helper, robot = note.split(": split between ")[1].split(":")[0].split(" and ")
+    members = set(note.split(": split between ")[0].split(", "))
+    assert {s.robot for s in on.steps if s.subtask in members} >= {helper, robot}
+    timing = simulate(on, state, spec.goal())
+    assert timing.ok, timing.failure
+    assert abs(timing.makespan - on.makespan) < 1e-6
+
+
+def test_a_split_that_is_not_shorter_is_not_kept() -> None:
+    # FloorPlan201, 16 robots x 8 conditions: open the book and put it on the shelf; parted
+    # between two robots it takes longer (one must wait for the other), so the plan stays
+    spec, state = _sweep_cell("FloorPlan201", 16, 8)
+    off = HybridPlanner(PlannerConfig(split_clusters=False, spot_order=False)).plan(spec, state)
+    on = HybridPlanner(PlannerConfig(split_clusters=True, spot_order=False)).plan(spec, state)
+    assert on.planner_calls > off.planner_calls  # it was tried
+    assert on.makespan == off.makespan
+    assert [(s.robot, s.action) for s in on.steps] == [(s.robot, s.action) for s in off.steps]
+    assert not any(": split between " in n for n in on.notes)
