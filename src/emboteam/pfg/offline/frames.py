@@ -748,7 +748,10 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
                     head.location.append((str(items[j].prep), land))
                     j = m
             if j < n and (items[j].conj == "and" or items[j].punct == ",") and j + 1 < n \
-                    and np_start(items[j + 1]) and items[j + 1].verb is None:
+                    and np_start(items[j + 1]) and (items[j + 1].verb is None or (
+                        # "lamp and light off": a noun that could be a verb, before its state
+                        items[j + 1].noun is not None and j + 2 < n
+                        and (items[j + 2].state is not None or items[j + 2].particle is not None))):
                 j += 1
                 continue
             break

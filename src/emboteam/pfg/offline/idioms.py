@@ -245,6 +245,11 @@ SPOKEN: tuple[tuple[str, str], ...] = (
     # "with its door shut afterwards": and then shut
     (r",?\s*(?:and )?with (?:its|the|their) (?:door|doors|lid) (?:shut|closed)(?: afterwards| after that| after)?\b",
      " and then close it"),
+    # "I need the egg out of the fridge for baking": what it is for, nothing to cook now
+    (r"\bfor (?:the |some |a bit of )?(?:baking|cooking|a bake|a cake|the cake|a recipe|the recipe)\b", " "),
+    # "the knife should be in one of the drawers": where the tool is to be found
+    (r"\b(the (?:butter |bread |big |sharp |kitchen )?knife|the knives|the plunger) (?:should|must|might|may|will|ought to) "
+     r"be (in|on|inside) (?=one of\b)", r"\1 is \2 "),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee
