@@ -1431,3 +1431,26 @@ def test_lock_away_still_shuts_the_container() -> None:
 ])
 def test_rounds_34_and_35(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 37: non-native and careless English (development set)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # "at" names where an object-first clause puts it, so "and light off" is a new clause
+    ("the egg put at bowl and light off", 1, {"inside(Egg, Bowl)", "switched_off(LightSwitch)"}),
+    # "the light of kitchen", "light of the floor lamp": the room's light, the lamp
+    ("the apple put in the fridge and the light of kitchen turn off please", 1,
+     {"inside(Apple, Fridge)", "switched_off(LightSwitch)"}),
+    ("light of the floor lamp off, and the remote put on the sofa", 201,
+     {"switched_off(FloorLamp)", "inside(RemoteControl, Sofa)"}),
+    ("the tissues box put at the toilet", 402, {"inside(TissueBox, Toilet)"}),
+    # an object-first "take out and put on X" is not given the next clause's object
+    ("apple from fridge take out and put on the counter, close fridge", 1,
+     {"inside(Apple, CounterTop)", "closed(Fridge)"}),
+    ("the mug put in sink and water open", 1, {"inside(Mug, SinkBasin)", "switched_on(Faucet)"}),
+    # "one slice of it" before its verb
+    ("Bread cut to slices and one slice of it put in the toaster", 1, {"sliced(Bread)", "inside(BreadSliced, Toaster)"}),
+    ("Lamp and light off, please.", 302, {"switched_off(DeskLamp)", "switched_off(LightSwitch)"}),
+    ("I need the egg for baking, could you put it in the bowl?", 1, {"inside(Egg, Bowl)"}),
+])
+def test_round_37_non_native_english(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -392,6 +392,8 @@ def share_objects(clauses: list[Clause], parsed: list[ParsedClause]) -> None:
         frame = p.frames[0]
         if frame.targets or frame.act is None or frame.act in _NO_OBJECT_ACTS or frame.report:
             continue
+        if frame.means is not None and frame.act is lexicon.Act.PLACE:
+            continue    # "... take out and put on the toilet, close cabinet": placed, the thing before
         frame.targets = [Target(t.head, [], None) for t in nxt.frames[0].targets]
 
 

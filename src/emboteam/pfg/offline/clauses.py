@@ -251,7 +251,7 @@ def _ends_with_place(items: list[Item]) -> bool:
     """Does the clause so far end with where something goes ("... should end up in the
     fridge")? Then "and the fridge closed" is another subject with its state, not a second
     object of the same verb ("I need the tomato and the lettuce sliced")."""
-    p = max((k for k, x in enumerate(items) if x.prep in ("in", "on", "into", "onto", "inside", "to")), default=-1)
+    p = max((k for k, x in enumerate(items) if x.prep in ("in", "on", "into", "onto", "inside", "to", "at")), default=-1)
     return p > 0 and p + 1 < len(items) and _skip_np(items, p + 1) == len(items)
 
 

@@ -260,7 +260,8 @@ def _object_first_np(items: list[Item], j: int) -> int:
         verb_next = nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
             and nxt.verb.lemma in _OBJECT_FIRST_VERBS
         if (it.noun is not None or it.text in _PIECE_WORDS) and (
-                it.verb is None or verb_next or (nxt is not None and (nxt.noun is not None or nxt.conj == "and"))):
+                it.verb is None or verb_next or (nxt is not None and (
+                    nxt.noun is not None or nxt.conj == "and" or (it.text in _PIECE_WORDS and nxt.prep == "of")))):
             named = True
         elif it.det or it.number is not None or it.quant is not None or it.text in _NP_WORDS:
             pass
@@ -268,6 +269,10 @@ def _object_first_np(items: list[Item], j: int) -> int:
             pass        # "the lettuce from sink put it in fridge": where it is, inside the phrase
         elif named and it.conj == "and" and nxt is not None and (nxt.det or nxt.noun is not None):
             pass        # "my phone and keys put in safe": a list of objects
+        elif named and it.prep == "of" and nxt is not None and (nxt.pron in ("it", "them") or nxt.det):
+            pass        # "one slice of it put on the plate": a part of what was named
+        elif named and it.pron in ("it", "them") and k > j and items[k - 1].prep == "of":
+            pass
         else:
             break
         k += 1

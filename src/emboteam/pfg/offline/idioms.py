@@ -250,6 +250,15 @@ SPOKEN: tuple[tuple[str, str], ...] = (
     # "the knife should be in one of the drawers": where the tool is to be found
     (r"\b(the (?:butter |bread |big |sharp |kitchen )?knife|the knives|the plunger) (?:should|must|might|may|will|ought to) "
      r"be (in|on|inside) (?=one of\b)", r"\1 is \2 "),
+    # "light of the floor lamp off", "the light of kitchen": the lamp; the room's light
+    (r"\b(?:the )?light of (?:the |my )?(floor lamp|desk lamp|lamp|candle|tv|television|telly)\b", r"the \1"),
+    (r"\b(?:the )?(light|lights) of (?:the |this |my )?(?:kitchen|bathroom|bedroom|living room|lounge|room|house|hall)\b",
+     r"the \1"),
+    (r"\btissues box\b", "tissue box"),
+    # "water open", "open the water": the tap on (a literal translation)
+    (r"\b(?:the )?water (?:open|opened)\b", "the tap on"),
+    (r"\bopen (?:the )?water\b", "turn on the tap"),
+    (r"\b(?:close|shut) (?:the )?water\b", "turn off the tap"),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee
