@@ -1454,3 +1454,17 @@ def test_rounds_34_and_35(text: str, fp: int, expected: set[str]) -> None:
 ])
 def test_round_37_non_native_english(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 36: peer-benchmark imperatives and vague variants (development set)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # "clear the X: everything on it ..." is everything on X
+    ("Clear the dining table: everything on it goes in the fridge.", 11,
+     {"inside(Bowl, Fridge)", "inside(Mug, Fridge)", "inside(Pot, Fridge)"}),
+    # candlelight is the candle lit; "instead of the ceiling light" puts that light off
+    ("Let's have candlelight tonight instead of the main light.", 220, {"switched_on(Candle)", "switched_off(LightSwitch)"}),
+    # an empty holder wants a roll
+    ("The loo roll holder is empty.", 401, {"inside(ToiletPaper, ToiletPaperHanger)"}),
+])
+def test_round_36_vague_variants(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -259,6 +259,17 @@ SPOKEN: tuple[tuple[str, str], ...] = (
     (r"\b(?:the )?water (?:open|opened)\b", "the tap on"),
     (r"\bopen (?:the )?water\b", "turn on the tap"),
     (r"\b(?:close|shut) (?:the )?water\b", "turn off the tap"),
+    # "clear the dining table: everything on it goes in the sink": on the table named
+    (r"\b(?:clear|clear off|empty|tidy|tidy up|sort out) (the [a-z]+(?: table| top| stand| shelf)?)\s*[:,;-]\s*"
+     r"(everything|all|all the stuff|all the things|whatever is) (on|in) it\b", r"\2 \3 \1"),
+    # "candlelight instead of the ceiling light": the light off
+    (r"\binstead of (?:the |that |this )?(ceiling light|main light|big light|overhead light|lights?|lamp|floor lamp|desk lamp|"
+     r"tv|telly|television)\b", r", and turn off the \1"),
+    # "some candlelight would be nice": the candle lit
+    (r"\b(?:some |a bit of )?candle ?light\b", "the candle lit"),
+    # "the toilet paper holder is empty": it wants a roll
+    (r"\b(?:the )?(?:toilet paper |toilet roll |loo roll |loo paper )?(?:holder|hanger) (?:is|s) (?:empty|bare)\b",
+     "put a roll of toilet paper on the holder"),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee
