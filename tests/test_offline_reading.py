@@ -1468,3 +1468,19 @@ def test_round_37_non_native_english(text: str, fp: int, expected: set[str]) -> 
 ])
 def test_round_36_vague_variants(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 39: benchmark style and natural requests (development set)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # replacing the loo roll is a roll on the holder
+    ("Restock the loo roll and turn off the light", 406, {"inside(ToiletPaper, ToiletPaperHanger)", "switched_off(LightSwitch)"}),
+    # "no wait, don't" calls the act before off
+    ("Turn on the faucet - no wait, don't, just switch off the light.", 407, {"switched_off(LightSwitch)"}),
+    # the writing things are pens and pencils
+    ("Put the writing things in the drawer.", 212, {"inside(Pen, Drawer)", "inside(Pencil, Drawer)"}),
+    # "need it for noodles" is a purpose
+    ("boil some water in the pot. need it for noodles", 1,
+     {"filled(Pot, water)", "hot(Pot)", "inside(Pot, StoveBurner)"}),
+])
+def test_round_39_requests(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

@@ -32,7 +32,10 @@ def _marker_at(items: list[Item], k: int) -> int:
             ((items[k - 1].det or items[k - 1].text == "and") and after.det)
             # "throw the pencil away. No wait, throw the pen away": the request said again
             or (items[k - 1].punct in (".", "!", "?") and _starts_clause(after)
-                and after.text not in ("need", "worry", "rush", "hurry", "problem")))
+                and after.text not in ("need", "worry", "rush", "hurry", "problem"))
+            # "turn on the faucet - no wait, don't, just ...": the act called off
+            or (after.text == "do" and k + 2 < len(items) and items[k + 2].neg
+                and (k + 3 == len(items) or items[k + 3].punct is not None or items[k + 3].text in ("just", "only"))))
         if len(m) == 1 and not restart and (before is None or not (after.punct == "," or after.prep is not None)):
             continue     # "no one", "sorry to bother you", "rather the mug than ..."
         if restart:
@@ -74,6 +77,17 @@ def apply_corrections(items: list[Item]) -> list[Item]:
             continue
         head = fix[0]
         cut: int | None = None
+        if len(fix) > 1 and head.text in ("do", "dont") and fix[1].neg \
+                and (len(fix) == 2 or fix[2].punct is not None or fix[2].text in ("just", "only", "instead")):
+            # "turn on the faucet - no wait, don't, just switch off the light": the act
+            # before is called off, what follows stands
+            cut = max((i + 1 for i, x in enumerate(before) if x.punct in _BREAK), default=0)
+            tail = fix[2:]
+            while tail and tail[0].punct is not None:
+                tail = tail[1:]
+            out = [*before[:cut], *tail, *rest]
+            k = cut
+            continue
         if len(fix) > 2 and head.det and fix[1].text == "one" and fix[2].prep is not None:
             # "that ladle on the counter, sorry, the one next to the bowl": the same object,
             # told apart by another place

@@ -270,6 +270,14 @@ SPOKEN: tuple[tuple[str, str], ...] = (
     # "the toilet paper holder is empty": it wants a roll
     (r"\b(?:the )?(?:toilet paper |toilet roll |loo roll |loo paper )?(?:holder|hanger) (?:is|s) (?:empty|bare)\b",
      "put a roll of toilet paper on the holder"),
+    # "boil some water in the pot. need it for noodles": what it is for, no act
+    (r"(^|[.!?;,]\s*)(?:i |we )?(?:need|want) (?:it|them|that|those) for (?:the |some |my |our |a )?[a-z]+"
+     r"(?: [a-z]+)?\s*(?=[.!?;]|$)", r"\1 "),
+    # "replace the toilet paper roll", "restock the loo roll": a roll on the holder
+    (r"\b(?:replace|restock|refill|change|swap|renew)(?: out)? (?:the |a )?(?:toilet paper roll|toilet paper|toilet roll|"
+     r"loo roll|loo paper|bog roll)\b(?! (?:on|in|onto|into|from|with)\b)", "put a roll of toilet paper on the holder"),
+    # "the writing things": pens and pencils
+    (r"\b(?:the )?writing (?:things|stuff|utensils|tools|implements|materials|gear)\b", "the pen and the pencil"),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee
