@@ -1484,3 +1484,22 @@ def test_round_36_vague_variants(text: str, fp: int, expected: set[str]) -> None
 ])
 def test_round_39_requests(text: str, fp: int, expected: set[str]) -> None:
     assert goal(read(text, fp)) == expected
+
+
+# round 38: forty imagined people (development set)
+@pytest.mark.parametrize(("text", "fp", "expected"), [
+    # a run-on request after a complete one
+    ("turn off the light put the apple in the fridge and the egg in the bowl", 1,
+     {"switched_off(LightSwitch)", "inside(Apple, Fridge)", "inside(Egg, Bowl)"}),
+    # chat: "em", "outta"
+    ("can u take the fork n spoon outta the sink and put em in a drawer", 1, {"inside(Fork, Drawer)", "inside(Spoon, Drawer)"}),
+    # "in there" is where the thing named before stands, when nothing else can take it
+    ("The tomato's already in the fridge. Put the egg in there with it.", 1, {"inside(Egg, Fridge)"}),
+    # a request broken off by "no wait" and said again
+    ("Put the apple on the - no wait, leave the apple where it is. Put the egg in the bowl.", 1, {"inside(Egg, Bowl)"}),
+    ("I would like a cup of coffee from the machine, in my mug.", 1, {"filled(Mug, coffee)", "hot(Mug)"}),
+    # "no heat" is no correction
+    ("the kettle goes on the stove (just put it there, no heat)", 1, {"inside(Kettle, StoveBurner)"}),
+])
+def test_round_38_forty_people(text: str, fp: int, expected: set[str]) -> None:
+    assert goal(read(text, fp)) == expected

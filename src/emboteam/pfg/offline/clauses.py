@@ -189,6 +189,11 @@ def _has_predicate(items: list[Item]) -> bool:
 _SUBJECT_ADVERBS = frozenset({"still", "really", "also", "just", "only", "actually", "already", "definitely",
                               "probably", "usually", "always", "never", "honestly"})
 
+#: verbs that start a run-on request after a complete one ("turn off the light put the
+#: book on the table")
+_RUN_ON_VERBS = frozenset({"put", "turn", "switch", "close", "open", "take", "bring", "throw", "slice", "place",
+                           "move", "shut", "grab", "get", "make", "cut", "wash", "fill"})
+
 #: "once it's ready bring it over": words of being done that end a state clause
 _READY = frozenset({"ready", "done", "finished", "over", "through"})
 
@@ -505,7 +510,10 @@ def segment(items: list[Item]) -> list[Clause]:
                 boundary = AND
                 skip = 0
             elif it.verb is not None and it.noun is None and it.verb.form == "base" and j + 1 < len(sentence) \
-                    and sentence[j + 1].pron in ("it", "them") and current.items and current.items[-1].noun is not None \
+                    and (sentence[j + 1].pron in ("it", "them") or (
+                        sentence[j + 1].det and current.items and current.items[0].verb is not None
+                        and current.items[0].noun is None and it.text in _RUN_ON_VERBS)) \
+                    and current.items and current.items[-1].noun is not None \
                     and any(x.verb is not None and x.noun is None for x in current.items):
                 # "bring me the book from the desk put it on the bed": a run-on request
                 boundary = AND

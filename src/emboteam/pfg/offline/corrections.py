@@ -31,8 +31,10 @@ def _marker_at(items: list[Item], k: int) -> int:
         restart = m == ("no",) and k > 0 and (
             ((items[k - 1].det or items[k - 1].text == "and") and after.det)
             # "throw the pencil away. No wait, throw the pen away": the request said again
-            or (items[k - 1].punct in (".", "!", "?") and _starts_clause(after)
-                and after.text not in ("need", "worry", "rush", "hurry", "problem"))
+            or (items[k - 1].punct in (".", "!", "?", ",") and _starts_clause(after)
+                and after.text not in ("need", "worry", "rush", "hurry", "problem")
+                # a request with its object ("no heat" is a noun phrase)
+                and k + 2 < len(items) and (items[k + 2].det or items[k + 2].pron is not None))
             # "turn on the faucet - no wait, don't, just ...": the act called off
             or (after.text == "do" and k + 2 < len(items) and items[k + 2].neg
                 and (k + 3 == len(items) or items[k + 3].punct is not None or items[k + 3].text in ("just", "only"))))

@@ -278,6 +278,10 @@ SPOKEN: tuple[tuple[str, str], ...] = (
      r"loo roll|loo paper|bog roll)\b(?! (?:on|in|onto|into|from|with)\b)", "put a roll of toilet paper on the holder"),
     # "the writing things": pens and pencils
     (r"\b(?:the )?writing (?:things|stuff|utensils|tools|implements|materials|gear)\b", "the pen and the pencil"),
+    # "put them in there with it": in there (with what is there already)
+    (r"\b(in|into) there with (?:it|them|the others?)\b", r"\1 there"),
+    # "a cup of coffee ... in my mug": a coffee
+    (r"\ba (?:cup|mug) of coffee\b", "a coffee"),
     # "the apple lying loose on the counter"
     (r"\b(lying|sitting|left|rolling) (?:loose|around|about) ", r"\1 "),
     # "coffee please": a coffee

@@ -798,13 +798,17 @@ class Semantics:
         # where a thing named stands is not where "in there" points ("the pan's on the
         # stove, crack it in there": the pan)
         landmarks = {id(land) for m in self.history for _, land in m.head.location}
-        for m in reversed(self.history):
-            places = [r for r in m.ref.type_names()
-                      if r in self.cat.types and self.cat.types[r].has("receptacle")]
-            if m.head is head or m.head.noun is None or not places or (id(m.head) in landmarks and m.role == "place"):
-                continue
-            if not types or any(self.cat.can_place(t, r) for t in types for r in places):
-                return m.ref
+        # ... unless nothing else can take it ("the tomato's in the fridge, put the egg in
+        # there with it": the fridge)
+        for skip_landmarks in (True, False):
+            for m in reversed(self.history):
+                places = [r for r in m.ref.type_names()
+                          if r in self.cat.types and self.cat.types[r].has("receptacle")]
+                if m.head is head or m.head.noun is None or not places or (
+                        skip_landmarks and id(m.head) in landmarks and m.role == "place"):
+                    continue
+                if not types or any(self.cat.can_place(t, r) for t in types for r in places):
+                    return m.ref
         return None
 
     # ---- one rule per act (the verb -> condition table of docs/offline_parser.md) ---------

@@ -82,7 +82,7 @@ _CONTRACTIONS: tuple[tuple[str, str], ...] = (
 
 #: chat spellings, after the spoken variants of :mod:`~emboteam.pfg.offline.idioms`
 _CHAT: tuple[tuple[str, str], ...] = (
-    (r"\bu\b", "you"), (r"\bur\b", "your"), (r"\bthx\b|\bthnx\b|\bty\b", "thanks"),
+    (r"\bu\b", "you"), (r"\bur\b", "your"), (r"\bem\b", "them"), (r"\boutta\b", "out of"), (r"\bthx\b|\bthnx\b|\bty\b", "thanks"),
 )
 
 
