@@ -42,6 +42,10 @@ MAX_COMBINATIONS = 20
 #: at most this many candidates for "any instance" (nearest and easiest first): more only
 #: grows the problem, rarely the plan's quality
 MAX_CANDIDATES = 6
+#: at most this many places for "in any drawer" when narrowing (open and near first): a
+#: kitchen with 27 closed drawers made Fast Downward run out of time on one phone; the
+#: caller's retry without narrowing keeps every place
+MAX_PLACES = 6
 
 #: the instance property a subject needs for the predicate to be achievable
 _NEEDS: dict[Predicate, str] = {
@@ -290,6 +294,9 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
     if len(subjects) < cond.count:
         raise ImpossibleGoalError(f"{cond}: {state.floor_plan} has only {len(subjects)} {cond.subject}")
     places = _places(cond, view) if pred is Predicate.inside else []
+    if narrow and len(places) > MAX_PLACES and cond.receptacle is not None and cond.receptacle.id is None:
+        there = {p for p in places if any(o.id in state.objects and state.is_within(o.id, p) for o in raw)}
+        places = sorted(places, key=lambda p: (p not in there, _rank(view, robots, p)))[:MAX_PLACES]
     if places:
         # those that can get there (directly, in a vessel) first; if none seems to, let
         # the planner have the last word
