@@ -4,15 +4,10 @@ from __future__ import annotations
 
 import random
 
-from emboteam.hp.goalgen import random_conditions
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.rebalance import MAX_MOVES, Job, best_move, cp_sat, loads, lpt, rebalance
 from emboteam.hp.validate import simulate
-from emboteam.pfg.taskspec import Subtask, TaskSpec
-from emboteam.world.goals import Goal
-from emboteam.world.robots import parse_team
-from emboteam.world.scene import load_scene
-from emboteam.world.state import WorldState
+from sweep_cells import random_cell
 
 TEAM = ("robot1", "robot2")
 
@@ -72,21 +67,12 @@ def test_no_second_pass_for_small_gains_or_few_clusters() -> None:
     assert rebalance(_jobs(9, 1), TEAM, busiest=10.0) is None  # two clusters: not worth a pass
 
 
-def _cell(robots: int, conditions: int) -> tuple[TaskSpec, WorldState]:
-    team = parse_team(["1", "2", "3", "4"][:robots])
-    state = WorldState.from_scene(load_scene("FloorPlan1"), team)
-    conds = random_conditions(state, conditions, random.Random(0))
-    spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
-        Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
-    return spec, state
-
-
 def test_the_rebalanced_plan_is_valid_deterministic_and_not_longer() -> None:
     # FloorPlan1, 4 robots x 16 random conditions: 28.3 s as allocated from the estimates;
     # moving clusters by their measured seconds, two more passes make it 26.5, then 23.5 s
     # (without action elimination, which makes the first plan 25.2 s and leaves nothing
     # for the re-allocation to gain in this cell)
-    spec, state = _cell(4, 16)
+    spec, state = random_cell(4, 16)
     off = HybridPlanner(PlannerConfig(rebalance="off", eliminate="off")).plan(spec, state)
     on = [HybridPlanner(PlannerConfig(rebalance="cp-sat", eliminate="off")).plan(spec, state) for _ in range(2)]
     assert on[0].makespan == on[1].makespan and [s.id for s in on[0].steps] == [s.id for s in on[1].steps]

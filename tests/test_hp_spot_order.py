@@ -16,6 +16,7 @@ from emboteam.world.goals import Goal
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from sweep_cells import random_cell
 
 
 def _step(robot: str, k: int, skill: Skill, target: str, start: float, end: float, at: str | None) -> PlanStep:
@@ -70,19 +71,10 @@ def test_reopen_opens_the_shut_receptacle_around_a_steps_object() -> None:
     assert reopen(state, take) == []
 
 
-def _cell(robots: int, conditions: int) -> tuple[TaskSpec, WorldState]:
-    team = parse_team(["1", "2", "3", "4"][:robots])
-    state = WorldState.from_scene(load_scene("FloorPlan1"), team)
-    conds = random_conditions(state, conditions, random.Random(0))
-    spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
-        Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
-    return spec, state
-
-
 def test_a_block_move_is_kept_only_when_shorter_valid_and_deterministic() -> None:
     # FloorPlan1, 4 robots x 16 conditions: robot1 waits 3.4 s at the fridge for a robot
     # whose use comes first in the sequence but later in time; moved ahead: 25.2 -> 23.2 s
-    spec, state = _cell(4, 16)
+    spec, state = random_cell(4, 16)
     off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False)).plan(spec, state)
     on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False)).plan(spec, state) for _ in range(2)]
     assert on[0].makespan < off.makespan - 1.0
