@@ -46,14 +46,16 @@ def test_partitions_are_two_non_empty_parts_most_even_first() -> None:
 def test_a_cluster_longer_than_the_bound_is_split_with_the_robot_that_ends_first() -> None:
     steps = (_step("r1", 1, "c1", 0, 12), _step("r1", 2, "c2", 12, 24), _step("r2", 1, "c3", 0, 3),
              _step("r3", 1, "c4", 0, 1))
-    plan = MergedPlan(robots=("r1", "r2", "r3"), steps=steps, makespan=24.0, resource_bound=12.0)
+    plan = MergedPlan(robots=("r1", "r2", "r3"), steps=steps, makespan=24.0)
     cluster = {"c1": "c1+c2", "c2": "c1+c2", "c3": "c3", "c4": "c4"}
     target = find_target(plan, cluster, lambda r, _: r != "r3")  # r3 cannot do it
     assert target is not None
     assert (target.robot, target.helper, target.members, target.first) == ("r1", "r2", ("c1", "c2"), 0)
     assert target.seconds == 24.0
-    # within 1.15 of the bound, or a single subtask: nothing to split
-    assert find_target(plan.model_copy(update={"resource_bound": 21.0}), cluster, lambda r, _: True) is None
+    # within 1.15 of what the steps need however spread (here r2's own 21 s subtask), or a
+    # single subtask: nothing to split
+    long_c3 = plan.model_copy(update={"steps": (*steps[:2], _step("r2", 1, "c3", 0, 21), steps[3])})
+    assert find_target(long_c3, cluster, lambda r, _: True) is None
     assert find_target(plan, {"c1": "c1", "c2": "c2"}, lambda r, _: True) is None
     assert find_target(plan, cluster, lambda r, _: False) is None  # nobody to help
 

@@ -19,7 +19,8 @@ def _step(i: int, robot: str, subtask: str, skill: Skill = Skill.OpenObject, tar
 
 
 def test_the_bound_is_the_largest_of_work_share_subtask_and_busiest_spot() -> None:
-    steps = (_step(1, "r1", "a"), _step(2, "r1", "a"), _step(1, "r2", "b"), _step(2, "r2", "c"))
+    steps = (_step(1, "r1", "a"), _step(2, "r1", "a", target="Cabinet_1"), _step(1, "r2", "b", target="Drawer_1"),
+             _step(2, "r2", "c", target="Drawer_2"))
     plan = MergedPlan(robots=("r1", "r2", "r3", "r4"), steps=steps)
     durations = {"r1.1": 4.0, "r1.2": 3.0, "r2.1": 2.0, "r2.2": 1.0}
     # every step at one spot: the fridge serves one robot at a time
@@ -27,7 +28,41 @@ def test_the_bound_is_the_largest_of_work_share_subtask_and_busiest_spot() -> No
     assert (b.work, b.subtask, b.spot, b.spot_name) == (2.5, 7.0, 10.0, "Fridge_1") and b.value == 10.0
     # no shared spot: subtask a's 7 s by one robot bound it
     b = resource_bound(plan, durations, {})
-    assert b.value == 7.0 and b.spot == 0.0
+    assert b.value == 7.0 and b.spot == 0.0 and b.object == 4.0
+
+
+def test_a_spot_cannot_be_reached_before_the_steps_that_lead_to_it() -> None:
+    """Two robots each drive 3 s to the microwave, use it 4 s and carry the result away
+    for 2 s: the microwave's 8 s of use cannot start before 3 s nor end later than 2 s
+    before the end, so no schedule takes less than 13 s (the serial time alone says 8)."""
+    def job(robot: str) -> tuple[PlanStep, ...]:
+        return (_step(1, robot, robot, Skill.GoToObject, "Microwave_1"), _step(2, robot, robot, target="Microwave_1"),
+                _step(3, robot, robot, Skill.GoToObject, "CounterTop_1"))
+    plan = MergedPlan(robots=("r1", "r2"), steps=(*job("r1"), *job("r2")))
+    durations = {f"{r}.{i}": d for r in ("r1", "r2") for i, d in ((1, 3.0), (2, 4.0), (3, 2.0))}
+    b = resource_bound(plan, durations, {"r1.2": "Microwave_1", "r2.2": "Microwave_1"})
+    assert (b.spot, b.spot_window, b.window_name) == (8.0, 13.0, "Microwave_1")
+    assert b.value == 13.0
+    # the second robot needs no head: the least head counts (0 + 8 + 2)
+    durations["r2.1"] = 0.0
+    assert resource_bound(plan, durations, {"r1.2": "Microwave_1", "r2.2": "Microwave_1"}).spot_window == 10.0
+
+
+def test_an_object_is_worked_on_by_one_robot_at_a_time() -> None:
+    """Open a book, pick it up, carry it, put it on a shelf: four subtasks, two robots,
+    no shared spot, but every step is on the book, so they run one after another."""
+    steps = (_step(1, "r1", "open", Skill.OpenObject, "Book_1"), _step(2, "r1", "pick", Skill.PickupObject, "Book_1"),
+             _step(3, "r1", "carry", Skill.GoToObject, "Shelf_1"),
+             PlanStep(id="r1.4", robot="r1", subtask="put",
+                      action=Action(skill=Skill.PutObject, target="Book_1", receptacle="Shelf_1")),
+             _step(1, "r2", "other", Skill.OpenObject, "Drawer_1"))
+    plan = MergedPlan(robots=("r1", "r2"), steps=steps)
+    durations = {"r1.1": 1.5, "r1.2": 1.0, "r1.3": 5.2, "r1.4": 1.0, "r2.1": 1.5}
+    b = resource_bound(plan, durations, {})
+    assert (b.object, b.object_name) == (8.7, "Book_1")
+    assert b.value == 8.7 and b.subtask == 5.2
+    # what the robot held, when the simulator says so, decides: nothing held, no carry
+    assert resource_bound(plan, durations, {}, holding={}).object == 3.5
 
 
 def test_simulated_makespan_is_at_least_the_resource_bound() -> None:
@@ -113,3 +148,23 @@ def test_interleaving_is_tried_only_where_the_unit_by_unit_order_makes_a_robot_w
         ("robot2", Skill.CloseObject, "Fridge_1"), ("robot2", Skill.GoToObject, "Toaster_1"),
         ("robot2", Skill.SwitchOn, "Toaster_1")))
     assert worth_it(chained)
+
+
+def test_no_mace_thor_plan_beats_its_resource_bound() -> None:
+    """The bound claims every schedule of a plan's actions takes at least that long; the
+    simulated schedule of each MACE-THOR plan is one of them."""
+    from emboteam.bench.suites import load_suite
+    from emboteam.pfg.oracle import OracleFrontend
+
+    planner = HybridPlanner(PlannerConfig())
+    tighter = 0
+    for task in load_suite("mace-thor").tasks:
+        state = task.initial_state()
+        spec = OracleFrontend(task.goal).decompose(task.instruction, load_scene(task.floor_plan), state, task.team())
+        plan = planner.plan(spec, state)
+        timing = simulate(plan, planning_state(state), task.goal)
+        b = timing.resources
+        assert timing.ok and b.value <= timing.makespan + 1e-6, task.id
+        assert b.spot_window >= b.spot and b.object_window >= b.object
+        tighter += b.value > max(b.work, b.subtask, b.spot) + 1e-6
+    assert tighter > 0  # heads, tails and objects tighten some of them

@@ -27,10 +27,12 @@ from pydantic import BaseModel, ConfigDict
 
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
+from emboteam.hp.validate import resource_bound
 
-#: split a cluster only when its robot's seconds on it exceed the resource-aware bound by
-#: this factor (the issue's target ratio: below it, the cluster is not what keeps the
-#: plan from the target)
+#: split a cluster only when its robot's seconds on it exceed by this factor what the
+#: plan's steps need however they are spread (the largest of work / robots, the longest
+#: subtask and the busiest spot's serial time: :func:`spread_floor`). The objects' serial
+#: times are left out of it, since a split changes who carries what.
 MIN_EXCESS = 1.15
 #: partitions of a cluster tried (each costs two Fast Downward calls per order)
 PARTITIONS = 1
@@ -56,7 +58,7 @@ class SplitTarget(BaseModel):
 def find_target(plan: MergedPlan, cluster_of: Mapping[str, str], able: Callable[[str, Sequence[str]], bool],
                 skip: Collection[str] = ()) -> SplitTarget | None:
     """The longest cluster one robot does, when it has at least two subtasks, its
-    seconds exceed ``MIN_EXCESS`` x the plan's resource-aware bound and another robot
+    seconds exceed ``MIN_EXCESS`` x :func:`spread_floor` and another robot
     can do it. ``cluster_of`` maps a subtask to its cluster's id (members joined by
     ``+``); ``able(robot, members)``: can that robot do the whole cluster alone;
     clusters in ``skip`` were tried. The helper is the able robot that ends earliest."""
@@ -71,10 +73,11 @@ def find_target(plan: MergedPlan, cluster_of: Mapping[str, str], able: Callable[
         if cid is not None and "+" in cid and cid not in skip:
             c = per.setdefault((s.robot, cid), {})
             c[s.subtask] = c.get(s.subtask, 0.0) + d
-    if plan.resource_bound <= 0:
+    floor = spread_floor(plan)
+    if floor <= 0:
         return None
     for robot, cid in sorted(per, key=lambda k: (-sum(per[k].values()), k)):
-        if sum(per[(robot, cid)].values()) <= MIN_EXCESS * plan.resource_bound:
+        if sum(per[(robot, cid)].values()) <= MIN_EXCESS * floor:
             return None
         members = tuple(cid.split("+"))
         helpers = [r for r in plan.robots if r != robot and able(r, members)]
@@ -85,6 +88,14 @@ def find_target(plan: MergedPlan, cluster_of: Mapping[str, str], able: Callable[
         return SplitTarget(robot=robot, helper=helper, members=members,
                            work=tuple(per[(robot, cid)].get(m, 0.0) for m in members), first=first)
     return None
+
+
+def spread_floor(plan: MergedPlan) -> float:
+    """max(work / robots, longest subtask of one robot, serial time at the busiest spot)
+    over the plan's simulated step times."""
+    b = resource_bound(plan, {s.id: s.est_end - s.est_start for s in plan.steps},
+                       {s.id: s.resources[0] for s in plan.steps if s.resources})
+    return max(b.work, b.subtask, b.spot)
 
 
 def blocks(members: Sequence[str], subjects: Mapping[str, frozenset[str]]) -> list[tuple[str, ...]]:

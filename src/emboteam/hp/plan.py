@@ -54,7 +54,8 @@ class MergedPlan(BaseModel):
     makespan: float = Field(0.0, description="simulated seconds, from the validating simulation")
     lower_bound: float = Field(0.0, description="max(critical path, busiest robot's work)")
     resource_bound: float = Field(0.0, description="max(total work / robots, longest subtask of one robot, "
-                                  "serial time at the busiest spot): bounds any schedule of these actions")
+                                  "busiest spot's serial time with the least time before and after it, "
+                                  "serial time on the busiest object): bounds any schedule of these actions")
     joint: bool = Field(False, description="solved as one joint multi-robot problem (fallback)")
     planner_calls: int = 0
     plan_seconds: float = 0.0

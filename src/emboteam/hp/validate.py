@@ -9,7 +9,8 @@ end (``est_start``/``est_end``), the makespan, the lower bound
 plan's own allocation and waits as given: a ratio near 1 says little about them), and the
 *resource-aware* bound :func:`resource_bound`, which takes neither: any schedule of these
 actions, by any robots, needs at least max(total work / robots, the longest subtask one
-robot does, the serial time at the busiest interaction spot).
+robot does, the busiest interaction spot's serial time with the least time before its
+first use and after its last, the serial time on the busiest object).
 """
 
 from __future__ import annotations
@@ -28,9 +29,22 @@ from emboteam.world.state import WorldState
 @dataclass(frozen=True)
 class ResourceBound:
     """A lower bound on the makespan of any schedule of a plan's actions (their measured
-    durations), whoever does them and in whatever order: every robot's work must be
-    done by the team, a subtask's steps by one robot run one after another, and a spot
-    (the fridge, the microwave) serves one robot at a time."""
+    durations), whoever does them and in whatever order. A *job* is one robot's steps for
+    one subtask, done in their order. The components:
+
+    - ``work``: every robot's work must be done by the team;
+    - ``subtask``: a job's steps run one after another;
+    - ``spot_window``: a spot (the fridge, the microwave) serves one robot at a time, and
+      no job reaches it before the steps it does first or leaves after it the steps it
+      does last: for any set of jobs using the spot, least head + their time at the spot
+      + least tail (the one-machine relaxation of job-shop scheduling, which holds with
+      interruptions too);
+    - ``object``: an object is acted on by one robot at a time: the steps aimed at it and
+      the steps of a robot holding it (carrying it, putting it, slicing with it) cannot
+      overlap, since the simulator refuses acting on an object another robot holds and
+      an object not held is reached from its spot, which one robot holds at a time; with
+      heads and tails as for a spot (``object_window``).
+    """
 
     value: float = 0.0
     #: total work / robots
@@ -40,24 +54,94 @@ class ResourceBound:
     #: serial time at the busiest spot, and that spot
     spot: float = 0.0
     spot_name: str = ""
+    #: the largest one-machine bound over the spots (>= ``spot``), and its spot
+    spot_window: float = 0.0
+    window_name: str = ""
+    #: serial time on the busiest object, and that object
+    object: float = 0.0
+    object_name: str = ""
+    #: the largest one-machine bound over the objects (>= ``object``), and its object
+    object_window: float = 0.0
+    object_window_name: str = ""
 
 
-def resource_bound(plan: MergedPlan, durations: dict[str, float], spots: dict[str, str]) -> ResourceBound:
+def resource_bound(plan: MergedPlan, durations: dict[str, float], spots: dict[str, str],
+                   holding: dict[str, str] | None = None) -> ResourceBound:
     """:class:`ResourceBound` of ``plan``; ``spots`` maps the id of each step that holds an
-    interaction spot (every step but GoToObject) to the spot it held."""
-    total = sum(durations.get(s.id, 0.0) for s in plan.steps)
-    jobs: dict[tuple[str, str], float] = {}
+    interaction spot (every step but GoToObject) to the spot it held; ``holding`` the id
+    of each step to the object its robot held when it began (when not given: followed
+    through the plan's pickups and puts, robots starting empty-handed)."""
+    if holding is None:
+        holding = _holding(plan)
+    total = 0.0
+    jobs: dict[tuple[str, str], list[str]] = {}
     at: dict[str, float] = {}
+    on: dict[str, float] = {}
+    objects: dict[str, set[str]] = {}
     for s in plan.steps:
         d = durations.get(s.id, 0.0)
-        jobs[(s.subtask, s.robot)] = jobs.get((s.subtask, s.robot), 0.0) + d
+        total += d
+        jobs.setdefault((s.subtask, s.robot), []).append(s.id)
         if s.id in spots:
             at[spots[s.id]] = at.get(spots[s.id], 0.0) + d
+        mine = {s.action.target} if s.action.skill is not Skill.GoToObject else set()
+        if s.id in holding:
+            mine.add(holding[s.id])
+        objects[s.id] = mine
+        for o in mine:
+            on[o] = on.get(o, 0.0) + d
     busiest = max(at, key=lambda k: (at[k], k), default="")
     work = total / max(len(plan.robots), 1)
-    subtask = max(jobs.values(), default=0.0)
+    subtask = max((sum(durations.get(i, 0.0) for i in ids) for ids in jobs.values()), default=0.0)
     spot = at.get(busiest, 0.0)
-    return ResourceBound(max(work, subtask, spot), work, subtask, spot, busiest)
+    window, window_name = _window(jobs, durations, {i: {sp} for i, sp in spots.items()})
+    obj = max(on, key=lambda k: (on[k], k), default="")
+    obj_window, obj_window_name = _window(jobs, durations, objects)
+    value = max(work, subtask, spot, window, on.get(obj, 0.0), obj_window)
+    return ResourceBound(value, work, subtask, spot, busiest, window, window_name, on.get(obj, 0.0), obj,
+                         obj_window, obj_window_name)
+
+
+def _holding(plan: MergedPlan) -> dict[str, str]:
+    out: dict[str, str] = {}
+    hand: dict[str, str] = {}
+    for s in plan.steps:
+        if s.robot in hand:
+            out[s.id] = hand[s.robot]
+        if s.action.skill is Skill.PickupObject:
+            hand[s.robot] = s.action.target
+        elif s.action.skill in (Skill.PutObject, Skill.ThrowObject, Skill.DropHandObject):
+            hand.pop(s.robot, None)
+    return out
+
+
+def _window(jobs: dict[tuple[str, str], list[str]], durations: dict[str, float],
+            uses: dict[str, set[str]]) -> tuple[float, str]:
+    """The one-machine bound over the machines of ``uses`` (step id -> the spots, or the
+    objects, it occupies): for every machine, max over sets S of the jobs using it of
+    min head + the time S spends on it + min tail, where a job's head (tail) is its
+    steps before its first (after its last) step on the machine. The sets worth trying
+    are "every job with head >= a and tail >= b" for a, b among the jobs' heads and
+    tails: O(n^2 log n) per machine."""
+    per: dict[str, list[tuple[float, float, float]]] = {}
+    for ids in jobs.values():
+        d = [durations.get(i, 0.0) for i in ids]
+        mine: dict[str, list[int]] = {}
+        for k, i in enumerate(ids):
+            for m in uses.get(i, ()):
+                mine.setdefault(m, []).append(k)
+        for m, ks in mine.items():
+            per.setdefault(m, []).append((sum(d[:ks[0]]), sum(d[k] for k in ks), sum(d[ks[-1] + 1:])))
+    best, name = 0.0, ""
+    for m in sorted(per):
+        js = per[m]
+        for b in sorted({q for _, _, q in js}):
+            run = 0.0
+            for r, p, _ in sorted((j for j in js if j[2] >= b), key=lambda j: -j[0]):
+                run += p
+                if r + run + b > best + 1e-9:
+                    best, name = r + run + b, m
+    return best, name
 
 
 @dataclass
@@ -98,6 +182,7 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
     running: dict[str, PlanStep] = {}
     starts: dict[str, float] = {}
     held: dict[str, str] = {}
+    holding: dict[str, str] = {}
     times: dict[str, tuple[float, float]] = {}
     while True:
         for robot in sorted(queues):
@@ -119,6 +204,9 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
             where = step.action.receptacle or step.action.target
             if step.action.skill is not Skill.GoToObject and where in sim.state.objects:
                 held[step.id] = sim.state.spot_of(where)
+            hand = sim.state.robots[robot].holding
+            if hand is not None:
+                holding[step.id] = hand
             sim.start(robot, step.action)
         if not running:
             break
@@ -140,7 +228,7 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> T
     makespan = max((e for _, e in times.values()), default=0.0)
     durations = {k: e - s for k, (s, e) in times.items()}
     timing = Timing(ok=True, times=times, makespan=makespan, lower_bound=lower_bound(plan, durations),
-                    resources=resource_bound(plan, durations, held), final=sim.state)
+                    resources=resource_bound(plan, durations, held, holding), final=sim.state)
     if goal is not None:
         report = check_goal(goal, sim.state)
         if not report.success:
