@@ -76,6 +76,7 @@ from emboteam.hp.subtask_order import (
     subtask_dependencies,
 )
 from emboteam.hp.validate import estimate, simulate, with_times
+from emboteam.hp.visits import merge_visits
 from emboteam.pddl.domain import Universe
 from emboteam.pddl.errors import PlannerLimitError, PlanningError, PlanValidationError, UnsolvableSubtaskError
 from emboteam.pddl.problem import Problem, build_problem, planning_state
@@ -150,6 +151,9 @@ class PlannerConfig:
     #: when the simulated makespan is shorter (:mod:`emboteam.hp.spot_order`; replays and
     #: simulations only, no planner call)
     spot_order: bool = True
+    #: move a step the robot drove to do to its other visit to the same object, when that
+    #: saves seconds (:mod:`emboteam.hp.visits`; replays only, no planner call)
+    merge_visits: bool = True
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:
@@ -355,6 +359,11 @@ class HybridPlanner:
                     shorter = eliminate(base, actions, [*u.conditions, *u.protect])
                     if len(shorter) < len(actions):
                         options.insert(0, shorter)
+                    if self.config.merge_visits:
+                        # the steps of the plan tried first, moved to other visits
+                        fewer = merge_visits(base, options[0], [*u.conditions, *u.protect])
+                        if fewer != options[0]:
+                            options.insert(0, fewer)
                 for actions in options:
                     steps = [SeqStep(r, a, t, u.id)
                              for (r, a), t in zip(actions, attribute(actions, u, base), strict=True)]
