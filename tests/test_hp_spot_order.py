@@ -74,9 +74,11 @@ def test_reopen_opens_the_shut_receptacle_around_a_steps_object() -> None:
 def test_a_block_move_is_kept_only_when_shorter_valid_and_deterministic() -> None:
     # FloorPlan1, 4 robots x 16 conditions: robot1 waits 3.4 s at the fridge for a robot
     # whose use comes first in the sequence but later in time; moved ahead: 25.2 -> 23.2 s
+    # (without re-allocation, which moves clusters until no robot waits there: 18.8 s)
     spec, state = random_cell(4, 16)
-    off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False)).plan(spec, state)
-    on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False)).plan(spec, state) for _ in range(2)]
+    off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False, rebalance="off")).plan(spec, state)
+    on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False, rebalance="off")).plan(spec, state)
+          for _ in range(2)]
     assert on[0].makespan < off.makespan - 1.0
     assert [(s.robot, s.action) for s in on[0].steps] == [(s.robot, s.action) for s in on[1].steps]
     assert on[0].planner_calls == off.planner_calls  # replays and simulations, no planner call

@@ -55,7 +55,7 @@ from emboteam.hp.merge import (
     order,
 )
 from emboteam.hp.plan import MergedPlan
-from emboteam.hp.rebalance import Job, finish_of, measured_jobs, rebalance, work_of
+from emboteam.hp.rebalance import Job, finish_of, loads, measured_jobs, rebalance, work_of
 from emboteam.hp.requirements import Need, check_team, covers, need_of
 from emboteam.hp.rounds import (
     Attempt,
@@ -184,13 +184,23 @@ class _Record:
 #: rejoined the original within this many steps (docs/planning.md)
 ELIMINATE_WINDOW = 40
 #: at most this many re-allocation passes (each a whole planning pass, kept when shorter;
-#: the robots whose clusters stay get their plans from the cache)
-REBALANCE_PASSES = 4
+#: the robots whose clusters stay get their plans from the cache), counting the proposals
+#: that did not pay off
+REBALANCE_PASSES = 8
 #: no further pass once the passes have made this many Fast Downward calls (a pass of the
-#: 32-robot x 96-condition cell costs 10-20; the robots that keep their clusters hit the cache)
-REBALANCE_CALLS = 16
+#: 32-robot x 96-condition cell costs 10-20, of a 2-4 robot cell 3-5: the robots that keep
+#: their clusters hit the cache, so the budget buys more passes where the team is small)
+REBALANCE_CALLS = 32
+#: a proposal that does not shorten the plan is not the end: the next best one without its
+#: moves is tried from the same plan (measured seconds transfer only roughly: a robot's
+#: other clusters change with its order of clusters; docs/planning.md)
+REBALANCE_RETRY = True
 #: Fast Downward calls one cluster split may make (two per order of its two parts)
 SPLIT_CALLS = 4
+
+
+def _rounded(xs: Mapping[str, float]) -> dict[str, float]:
+    return {k: round(v, 1) for k, v in xs.items()}
 
 
 class _Fallback(Exception):
@@ -455,13 +465,17 @@ class HybridPlanner:
         """Plan again with the clusters re-allocated from their measured seconds
         (:mod:`emboteam.hp.rebalance`) when that promises the robot that ends last an
         earlier end, or, when nothing does, the robot with the most work less of it;
-        keep the plan with the shorter makespan, and try again from it (at most
-        ``REBALANCE_PASSES`` passes and ``REBALANCE_CALLS`` Fast Downward calls)."""
+        keep the plan with the shorter makespan, and try again from it. A proposal that
+        does not make the plan shorter is not the end: its moves are excluded and the next
+        best proposal for the same plan is tried (at most ``REBALANCE_PASSES`` passes and
+        ``REBALANCE_CALLS`` Fast Downward calls)."""
         if self.config.rebalance == "off" or not self.config.validate:
             return plan
         calls0 = self.fd.calls
+        tabu: set[tuple[str, str]] = set()  # moves that did not pay off from this plan
         for _ in range(REBALANCE_PASSES):
             if self.fd.calls - calls0 >= REBALANCE_CALLS:
+                log.debug("rebalance: call budget spent (%d calls)", self.fd.calls - calls0)
                 return plan  # the passes so far cost enough Fast Downward calls
             jobs = measured_jobs(plan, record.cluster, record.assigned, record.candidates)
             # a robot's time is its work and its waits (for a spot, a tool, another robot):
@@ -471,23 +485,37 @@ class HybridPlanner:
             work = work_of(plan)
             waits = [Job(f"wait:{r}", (r,), ends[r] - work.get(r, 0.0), ()) for r in team
                      if ends[r] - work.get(r, 0.0) > 1e-9]
-            prefer = rebalance([*jobs, *waits], team, max(ends.values(), default=0.0), self.config.rebalance)
+            prefer = rebalance([*jobs, *waits], team, max(ends.values(), default=0.0), self.config.rebalance,
+                               exclude=tabu)
             if prefer is None:
                 # the robot that ends last cannot be relieved (it does one cluster and
                 # waits): relieve the one with the most work, which may be what it waits for
-                prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance)
+                prefer = rebalance(jobs, team, max(work.values(), default=0.0), self.config.rebalance,
+                                   exclude=tabu)
             if prefer is None:
+                log.debug("rebalance: no proposal (ends %s, work %s)", _rounded(ends), _rounded(work))
                 return plan
+            moves = {(j.id, prefer[j.id]) for j in jobs if j.id in prefer and prefer[j.id] != j.robots[0]}
+            if moves <= tabu:
+                return plan  # nothing new to try ("lpt" proposes all again, ignoring the exclusions)
             again: list[str] = []
             try:
                 other = self._decomposed(spec, start, team, again, prefer=prefer, record=(mine := _Record()))
             except (_Fallback, PlanningError):
                 return plan
+            if log.isEnabledFor(logging.DEBUG):
+                log.debug("rebalance: moves %s, promised %s, makespan %.1f -> %.1f (work %s -> %s, %d calls)",
+                          sorted(moves), _rounded(loads(jobs, team, prefer)), plan.makespan, other.makespan,
+                          _rounded(work), _rounded(work_of(other)), self.fd.calls - calls0)
             if other.makespan >= plan.makespan:
-                return plan
+                if not REBALANCE_RETRY:
+                    return plan
+                tabu |= moves
+                continue
             notes[:] = [*again, f"re-allocated from the measured plans: makespan {plan.makespan:.1f} -> "
                         f"{other.makespan:.1f} s"]
             plan = other
+            tabu = set()
             record.cluster, record.assigned, record.candidates = mine.cluster, mine.assigned, mine.candidates
             record.sequence = mine.sequence
         return plan

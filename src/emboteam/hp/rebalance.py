@@ -10,7 +10,8 @@ Two ways (``PlannerConfig.rebalance``):
 - ``"cp-sat"`` (default): move at most ``MAX_MOVES`` clusters, as few as the best balance
   needs, chosen by OR-Tools CP-SAT (the best single move, found greedily, is its hint and
   its fallback, so it is never worse than greedy); the planner repeats this up to
-  ``REBALANCE_PASSES`` times while the plans get shorter. Few moves keep the other
+  ``REBALANCE_PASSES`` times, and a proposal that does not shorten the plan is followed
+  by the next best one without its moves (``exclude``). Few moves keep the other
   robots' plans (and their cache entries): measured seconds transfer to another robot only
   roughly (a cluster's first drive depends on where its robot comes from, and a robot's
   order of clusters changes), and a whole new assignment from them was longer than the
@@ -21,13 +22,15 @@ Two ways (``PlannerConfig.rebalance``):
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 
 from emboteam.hp.plan import MergedPlan
 
 #: re-plan only when the proposal promises the busiest robot at most this share of its work
-GAIN = 0.95
+#: (0.95 when a proposal that did not pay off ended the re-allocation; with the next one
+#: tried, smaller promises are worth a pass)
+GAIN = 0.98
 #: fewer clusters a robot could swap than this: no second pass (a task of two or three
 #: conditions, as most of MACE-THOR's, rarely gains and would pay a second planning pass)
 MIN_JOBS = 4
@@ -92,7 +95,8 @@ def loads(jobs: Sequence[Job], team: Sequence[str], assignment: Mapping[str, str
     return out
 
 
-def best_move(jobs: Sequence[Job], team: Sequence[str]) -> tuple[dict[str, str], float]:
+def best_move(jobs: Sequence[Job], team: Sequence[str], exclude: Collection[tuple[str, str]] = ()
+              ) -> tuple[dict[str, str], float]:
     """The greedy proposal: the one move of a cluster off the busiest robot that leaves
     the busiest robot least work (none if no move helps). Returns the assignment of the
     movable jobs and the busiest robot's work under it."""
@@ -104,7 +108,7 @@ def best_move(jobs: Sequence[Job], team: Sequence[str]) -> tuple[dict[str, str],
         if not j.candidates or current[j.id] != top:
             continue
         for r in j.candidates:
-            if r == top:
+            if r == top or (j.id, r) in exclude:
                 continue
             trial = {**current, j.id: r}
             m = max(loads(jobs, team, trial).values())
@@ -132,12 +136,13 @@ def lpt(jobs: Sequence[Job], team: Sequence[str]) -> tuple[dict[str, str], float
 
 
 def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
-           deterministic_seconds: float = CP_SAT_BUDGET, max_moves: int | None = None
-           ) -> tuple[dict[str, str], float] | None:
+           deterministic_seconds: float = CP_SAT_BUDGET, max_moves: int | None = None,
+           exclude: Collection[tuple[str, str]] = ()) -> tuple[dict[str, str], float] | None:
     """The assignment minimising the busiest robot's work (jobs without candidates stay), by OR-Tools CP-SAT: one worker, a fixed seed and a *deterministic* time
     limit, so the answer does not depend on the machine's load; ``hint`` is its starting
     solution. ``max_moves``: at most that many jobs leave their first robot, and among the
-    best balances the one with the fewest moves. None when it finds nothing (no solution
+    best balances the one with the fewest moves; ``exclude``: (job, robot) pairs not to
+    propose (a job's own robot stays allowed). None when it finds nothing (no solution
     in the limit, or OR-Tools missing)."""
     try:
         from ortools.sat.python import cp_model
@@ -154,9 +159,11 @@ def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
     x: dict[tuple[str, str], cp_model.IntVar] = {}
     for j in movable:
         for r in j.candidates:
+            if (j.id, r) in exclude and r != j.robots[0]:
+                continue
             x[(j.id, r)] = model.new_bool_var(f"{j.id}@{r}")
             model.add_hint(x[(j.id, r)], hint.get(j.id) == r)
-        model.add_exactly_one(x[(j.id, r)] for r in j.candidates)
+        model.add_exactly_one(x[(j.id, r)] for r in j.candidates if (j.id, r) in x)
     horizon = sum(fixed.values()) + sum(round(scale * j.seconds) for j in movable)
     busiest = model.new_int_var(0, horizon, "busiest")
     for r in sorted(fixed):
@@ -177,17 +184,18 @@ def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
     status = solver.solve(model)
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         return None
-    out = {j.id: next(r for r in j.candidates if solver.value(x[(j.id, r)])) for j in movable}
+    out = {j.id: next(r for r in j.candidates if (j.id, r) in x and solver.value(x[(j.id, r)])) for j in movable}
     return out, solver.value(busiest) / scale
 
 
 def rebalance(jobs: Sequence[Job], team: Sequence[str], busiest: float,
-              solver: str = "cp-sat") -> dict[str, str] | None:
+              solver: str = "cp-sat", exclude: Collection[tuple[str, str]] = ()) -> dict[str, str] | None:
     """A robot for each movable cluster when that promises a busiest robot of at most
     ``GAIN`` x ``busiest`` seconds (else None: not worth another planning pass).
     ``solver``: "cp-sat" (at most ``MAX_MOVES`` moves, :func:`cp_sat`, with
     :func:`best_move` as hint and fallback: never worse than the greedy move) or "lpt"
-    (:func:`lpt`, everything again)."""
+    (:func:`lpt`, everything again). ``exclude``: (cluster, robot) moves not to propose
+    (they were tried from this plan and did not pay off; "cp-sat" only)."""
     if len([j for j in jobs if j.candidates]) < MIN_JOBS:
         return None
     current = {j.id: j.robots[0] for j in jobs if j.candidates}
@@ -200,8 +208,8 @@ def rebalance(jobs: Sequence[Job], team: Sequence[str], busiest: float,
     if solver == "lpt":
         assignment, best = lpt(jobs, team)
     else:
-        assignment, best = best_move(jobs, team)
-        exact = cp_sat(jobs, team, assignment, max_moves=MAX_MOVES)
+        assignment, best = best_move(jobs, team, exclude)
+        exact = cp_sat(jobs, team, assignment, max_moves=MAX_MOVES, exclude=exclude)
         if exact is not None and exact[1] < best - 1e-9:
             assignment, best = exact
     if best > GAIN * busiest:
