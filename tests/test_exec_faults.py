@@ -67,8 +67,10 @@ def test_no_faults_everything_succeeds() -> None:
     sr = success_rates(0.0, range(1), hand_written() + planner_made())
     assert sr["bt"] == sr["bt+replan"] == 1.0
     # the linear ablation has no spot protocol: three robots rushing to one counter top
-    # collide (spot busy) unless the plan serialises them itself; the others succeed
-    others = [c for c in hand_written() if c[0] != "counter_rush"] + planner_made()
+    # collide (spot busy) unless the plan serialises them itself; the others succeed. (The
+    # planner's plans are not in this list: two robots putting things in one fridge may
+    # meet there, which only the spot protocol sorts out.)
+    others = [c for c in hand_written() if c[0] != "counter_rush"]
     assert success_rates(0.0, range(1), others)["linear"] == 1.0
     assert success_rates(0.0, range(1), hand_written(["counter_rush"]))["linear"] == 0.0
 
