@@ -16,7 +16,10 @@ plan's start, must reach every goal the original reaches, leave every robot's ha
 the original does, cost no robot more nominal seconds and cost the team fewer; the first
 move that does is kept and the search starts again (at most :data:`MAX_MOVES`). The
 planner then replays the unit with every PDDL precondition, as any plan, and falls back
-to the plan before this pass if that fails.
+to the plan before this pass if that fails. Units that wait for another subtask are left
+alone: what their robot does before the wait costs nothing (it opens the fridge while
+another robot cuts the slice it will put there), and a move that saves work there can
+make the plan end later.
 
 Written here rather than taken from a library: it is a neighbourhood of plan
 *reordering* (Bäckström 1998 studies its complexity; plan-space optimisers such as
