@@ -16,6 +16,12 @@ cluster started, the second for the cluster's robot from the state the first par
 run side by side wherever they touch different things (the helper cools the pan while the
 robot heats the egg). The planner splices the two plans in place of the robot's steps,
 replays and simulates the whole plan, and keeps it only when its makespan is shorter.
+
+A cluster of three or more blocks is parted among several robots (:func:`container_parts`,
+``PlannerConfig.split_containers``): a pencil, a book and a statue put in a box and the
+box put on a side table (FloorPlan201) is one robot's 24.2 s; the robot carries the box
+while three helpers fetch the things, which they put in the box where it goes: 16.8 s.
+The parts are planned one after the other, the container's first (:func:`container_first`).
 """
 
 from __future__ import annotations

@@ -541,7 +541,9 @@ class HybridPlanner:
         for a helper from where the cluster started, the second for the robot from where
         the first leaves it; spliced in place of the robot's steps, replayed, merged and
         simulated. The plan with the shorter makespan is kept. Only for specs whose
-        subtasks are final and independent (the splice keeps no dependency waits)."""
+        subtasks are final and independent (the splice keeps no dependency waits).
+        ``containers``: one part per block, among several robots instead
+        (:meth:`_split_parts`, ``PlannerConfig.split_containers``)."""
         if not (self.config.split_containers if containers else self.config.split_clusters) or not self.config.validate:
             return plan
         if any(t.depends_on or not t.final for t in spec.subtasks):
