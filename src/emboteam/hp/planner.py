@@ -146,6 +146,14 @@ class PlannerConfig:
     #: from the state the first leaves, and keep the plan when the simulated makespan is
     #: shorter (:mod:`emboteam.hp.cluster_split`; at most ``SPLIT_CALLS`` Fast Downward calls)
     split_clusters: bool = False
+    #: when one robot's cluster is longer than the resource-aware bound allows and has at
+    #: least three blocks (``cluster_split.blocks``: a pencil, a book and a statue put in a
+    #: box, the box put on a table), plan it again in one part per block (at most
+    #: ``cluster_split.MAX_PARTS``), the helpers' parts for the able robots that end
+    #: earliest, the part that moves the container last for the robot, each from the
+    #: state the previous one leaves; kept when the simulated makespan is shorter (one
+    #: Fast Downward call a part). Tried before ``split_clusters``
+    split_containers: bool = True
     #: move blocks of steps that waited at a shared spot (the microwave) before the other
     #: robots' steps there that started after their robot was free, and keep the plan
     #: when the simulated makespan is shorter (:mod:`emboteam.hp.spot_order`; replays and
@@ -249,6 +257,9 @@ class HybridPlanner:
                 plan = self._rebalanced(plan, spec, start, team, notes, record)
                 plan = self._split(plan, spec, start, team, notes, record, needs)
                 plan = self._reorder(plan, spec, start, team, notes, record)
+                split = self._split(plan, spec, start, team, notes, record, needs, containers=True)
+                if split is not plan:
+                    plan = self._reorder(split, spec, start, team, notes, record)
             except _Fallback as fb:
                 notes.append(f"decomposition failed ({fb}): planned as one joint problem")
                 plan = self._joint(spec, start, team, notes)
@@ -524,14 +535,16 @@ class HybridPlanner:
         return plan
 
     def _split(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str],
-               record: _Record, needs: Mapping[str, Sequence[Need]]) -> MergedPlan:
+               record: _Record, needs: Mapping[str, Sequence[Need]], containers: bool = False) -> MergedPlan:
         """Two robots on the longest cluster one robot does
         (:mod:`emboteam.hp.cluster_split`): its subtasks in two parts, the first planned
         for a helper from where the cluster started, the second for the robot from where
         the first leaves it; spliced in place of the robot's steps, replayed, merged and
         simulated. The plan with the shorter makespan is kept. Only for specs whose
-        subtasks are final and independent (the splice keeps no dependency waits)."""
-        if not self.config.split_clusters or not self.config.validate:
+        subtasks are final and independent (the splice keeps no dependency waits).
+        ``containers``: one part per block, among several robots instead
+        (:meth:`_split_parts`, ``PlannerConfig.split_containers``)."""
+        if not (self.config.split_containers if containers else self.config.split_clusters) or not self.config.validate:
             return plan
         if any(t.depends_on or not t.final for t in spec.subtasks):
             return plan
@@ -556,8 +569,6 @@ class HybridPlanner:
         kept = [c for t in spec.subtasks if t.id not in members for c in t.goal if check_condition(c, here).holds]
         subjects = {t.id: frozenset(_kind(c.subject, start) for c in t.goal) for t in spec.subtasks
                     if t.id in members}
-        orders = [o for a, b in cluster_split.partitions(target, subjects) for o in ((a, b), (b, a))]
-        orders = orders[:SPLIT_CALLS // 2]
 
         def conds(part: Sequence[str]) -> list[Condition]:
             return [c for m in part for c in goal_of[m]]
@@ -566,6 +577,34 @@ class HybridPlanner:
             actions = polish(problem.decode(result.plan))
             unit = Unit("split", [spec.subtask(m) for m in part], ())
             return [SeqStep(r, a, t, t) for (r, a), t in zip(actions, attribute(actions, unit, state), strict=True)]
+
+        if containers:
+            receptacles = {t.id: frozenset(_kind(c.receptacle, start) for c in t.goal if c.receptacle is not None)
+                           for t in spec.subtasks if t.id in members}
+            parts = cluster_split.container_parts(target, subjects, receptacles,
+                                                  min(cluster_split.MAX_PARTS, len(target.helpers) + 1))
+            if parts:
+                helpers = list(target.helpers[:len(parts) - 1])
+                found: tuple[MergedPlan, list[GroundedStep]] | None = None
+                for order in cluster_split.CONTAINER_ORDERS:
+                    if order == "last":
+                        robots, ordered = [*helpers, target.robot], list(parts)
+                    else:
+                        robots = [target.robot, *helpers]
+                        ordered = cluster_split.container_first(parts, target.members, subjects, receptacles)
+                    tried = self._split_parts(found[0] if found else plan, spec, start, team, robots, ordered,
+                                              (before, gone, rest), here, kept, universe, conds, steps_of)
+                    if tried is not None:
+                        found = tried
+                if found is not None:
+                    best, sequence = found
+                    record.sequence = sequence
+                    notes.append(f"{', '.join(target.members)}: parted among {', '.join(helpers)} and "
+                                 f"{target.robot}: makespan {plan.makespan:.1f} -> {best.makespan:.1f} s")
+                    return best
+            return plan
+        orders = [o for a, b in cluster_split.partitions(target, subjects) for o in ((a, b), (b, a))]
+        orders = orders[:SPLIT_CALLS // 2]
 
         built = [(o, self._split_problem(here, conds(o[0]), target.helper, kept)) for o in orders]
         firsts = [(o, p) for o, p in built if p is not None]
@@ -607,6 +646,52 @@ class HybridPlanner:
             notes.append(f"{', '.join(target.members)}: split between {target.helper} and {target.robot}: "
                          f"makespan {plan.makespan:.1f} -> {best.makespan:.1f} s")
         return best
+
+    def _split_parts(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str],
+                     robots: Sequence[str], parts: Sequence[Sequence[str]],
+                     cut: tuple[list[GroundedStep], list[GroundedStep], list[GroundedStep]], here: WorldState,
+                     kept: Sequence[Condition], universe: Universe,
+                     conds: Callable[[Sequence[str]], list[Condition]],
+                     steps_of: Callable[[Problem, SolveResult, Sequence[str], WorldState], list[SeqStep]],
+                     ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+        """The cluster in ``parts`` (:func:`cluster_split.container_parts`), one robot each:
+        the helpers' parts for the able robots that end earliest, the last for the
+        cluster's robot, each planned from the state the previous one leaves with the
+        goals reached so far protected (one Fast Downward call a part, one after the
+        other); spliced in place of the robot's steps, replayed, merged and simulated. The
+        plan and its sequence when its makespan is shorter, else None."""
+        before, gone, rest = cut
+        state, reached = here, list(kept)
+        new: list[GroundedStep] = []
+        for robot, part in zip(robots, parts, strict=True):
+            problem = self._split_problem(state, conds(part), robot, reached)
+            if problem is None:
+                return None
+            result = self.fd.solve_problems([problem], 1)[0]
+            if not isinstance(result, SolveResult) or not result.solved:
+                return None
+            after = state.copy()
+            grounded, why = self._replay(after, steps_of(problem, result, part, state), universe)
+            if why is not None or not all(check_condition(c, after).holds for c in conds(part)):
+                log.debug("part %s of %s fails: %s", part, robot, why or "misses its goal")
+                return None
+            new.extend(grounded)
+            reached.extend(conds(part))
+            state = after
+        trial = state.copy()
+        tail, why = self._replay_reusing(trial, rest, set(), universe, [*gone, *new])
+        if why is not None or not all(check_condition(c, trial).holds for c in spec.goal().conditions):
+            return None
+        sequence = [*before, *new, *tail]
+        try:
+            other = self._finish(sequence, {}, team, start, spec.goal(), "formal")
+        except _Invalid as exc:
+            log.debug("split into %s fails in the simulator: %s", parts, exc)
+            return None
+        log.debug("split into %s: makespan %.1f -> %.1f", parts, plan.makespan, other.makespan)
+        if other.makespan < plan.makespan - 1e-6:
+            return other, sequence
+        return None
 
     def _reorder(self, plan: MergedPlan, spec: TaskSpec, start: WorldState, team: list[str], notes: list[str],
                  record: _Record) -> MergedPlan:
