@@ -149,10 +149,10 @@ class PlannerConfig:
     #: when one robot's cluster is longer than the resource-aware bound allows and has at
     #: least three blocks (``cluster_split.blocks``: a pencil, a book and a statue put in a
     #: box, the box put on a table), plan it again in one part per block (at most
-    #: ``cluster_split.MAX_PARTS``), the helpers' parts for the able robots that end
-    #: earliest, the part that moves the container last for the robot, each from the
+    #: ``cluster_split.MAX_PARTS``): the part that moves the container first, for the
+    #: robot, then the helpers' parts for the able robots that end earliest, each from the
     #: state the previous one leaves; kept when the simulated makespan is shorter (one
-    #: Fast Downward call a part). Tried before ``split_clusters``
+    #: Fast Downward call a part). Tried after ``split_clusters`` and ``spot_order``
     split_containers: bool = True
     #: move blocks of steps that waited at a shared spot (the microwave) before the other
     #: robots' steps there that started after their robot was free, and keep the plan

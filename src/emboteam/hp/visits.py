@@ -120,6 +120,9 @@ def _moves(plan: Plan) -> list[Plan]:
 
 
 def _run(state: WorldState, plan: Plan) -> tuple[WorldState, dict[str, float]] | None:
+    """The end state and each robot's nominal seconds (None: a step cannot run). Not
+    ``eliminate._run``: that one keeps copies of the states where removals are tried,
+    which a reordered plan has no use for."""
     s = state.copy()
     spent: dict[str, float] = {}
     for robot, a in plan:
