@@ -28,6 +28,7 @@ from emboteam.errors import (
     EmboTeamError,
     exit_code_of,
 )
+from emboteam.terminal import error_object, one_line, printable, user_message
 from emboteam.world.actions import Skill
 from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
@@ -61,12 +62,18 @@ def _version(value: bool) -> None:
 def _options(
     _show_version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
                                        help="print the version and exit"),
+    verbose: int = typer.Option(0, "--verbose", "-v", count=True,
+                                help="log details on stderr: retries, import problems, progress (-vv: debug)"),
 ) -> None:
     """EmboTeam: household instructions -> PDDL -> multi-robot plan -> reactive behavior trees.
 
     Exit codes: 0 goal reached (run) / job done; 1 the episode ran and did not reach its
     goal; 2 bad input or configuration; 3 a service (the LLM endpoint) could not be used;
     70 internal error; 130 interrupted."""
+    if verbose:
+        from emboteam.logs import configure
+
+        configure(verbose)
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -76,9 +83,9 @@ def fail(message: str, code: int, *, as_json: bool = False, label: str = "error"
     JSON object on stdout) and return the exit to raise. The message is escaped: it
     often holds brackets ('emboteam[ray]', the '[pfg]' stage tag) that Rich would eat as
     markup."""
-    line = " ".join(message.split())  # one line, whatever the message holds
+    line = one_line(message)  # one line, control characters escaped, whatever the message holds
     if as_json:
-        print_json({"success": False, "error": line, "exit_code": code})
+        print_json(error_object(message, code))
     err.print(f"[red]{label}:[/red] {escape(line)}", highlight=False, soft_wrap=True)
     return typer.Exit(code)
 
@@ -167,16 +174,37 @@ def scene(
             ],
         })
         return
-    table = Table(title=f"{s.floor_plan} ({s.room}, {len(s.objects)} objects)")
-    for col in ("id", "in/on", "properties", "mass", "state"):
-        table.add_column(col)
+    rows = []
     for o in s.objects:
         state = ", ".join(f"{k}={v}" for k, v in o.state.model_dump(exclude_defaults=True).items())
         if o.controls:
             state = (state + ", " if state else "") + "controls " + " ".join(o.controls)
-        table.add_row(o.id, o.parent or "", " ".join(sorted(o.properties)),
-                      f"{o.mass:g}" if o.mass else "", state)
-    out.print(table)
+        rows.append((o.id, o.parent or "", " ".join(sorted(o.properties)), f"{o.mass:g}" if o.mass else "", state))
+    out.print(scene_table(f"{s.floor_plan} ({s.room}, {len(s.objects)} objects)", rows, out.width))
+
+
+#: below this terminal width ``scene`` folds properties, mass and state into one column
+SCENE_WIDE = 140
+
+
+def scene_table(title: str, rows: list[tuple[str, str, str, str, str]], width: int) -> Table:
+    """The objects of a floor plan: five columns on a wide terminal; on a narrow one the
+    ids and parents whole and one wrapped column of details, so nothing is cut."""
+    if width >= SCENE_WIDE:
+        table = Table(title=title)
+        for col in ("id", "in/on", "properties", "mass", "state"):
+            table.add_column(col, no_wrap=col in ("id", "in/on", "mass"), overflow="fold")
+        for row in rows:
+            table.add_row(*(Text(x) for x in row))
+        return table
+    table = Table(title=title, show_lines=False)
+    table.add_column("id", no_wrap=True)
+    table.add_column("in/on", no_wrap=True)
+    table.add_column("properties · mass · state", overflow="fold")
+    for oid, parent, props, mass, state in rows:
+        details = " · ".join(x for x in (props, f"{mass} kg" if mass else "", state) if x)
+        table.add_row(Text(oid), Text(parent), Text(details))
+    return table
 
 
 @app.command()
@@ -209,11 +237,7 @@ def tasks(
     """List a suite's tasks: id, floor plan, category, instruction."""
     from rich.padding import Padding
 
-    from emboteam.bench.suites import load_suite
-
-    loaded = load_suite(suite)
-    for problem in loaded.problems:
-        err.print(f"[yellow]import:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
+    loaded = _load_suite_quietly(suite)
     if as_json:
         print_json({"tasks": [
             {"id": t.key, "scene": t.floor_plan, "category": t.category, "instruction": t.instruction,
@@ -226,7 +250,8 @@ def tasks(
     # instruction (the title says how to name a task). A table while the short columns fit
     # whole with 30 columns left for the instruction; on a narrower terminal one entry per
     # task, the instruction on its own lines: nothing is cut either way.
-    rows = [(t.id, t.floor_plan, t.category, ",".join(t.robots), t.instruction) for t in loaded.tasks]
+    rows = [(printable(t.id), t.floor_plan, t.category, ",".join(t.robots), printable(t.instruction))
+            for t in loaded.tasks]
     heads = ("id", "scene", "category", "robots")
     fixed = sum(max([len(h), *(len(r[i]) for r in rows)]) + 3 for i, h in enumerate(heads)) + 1
     title = Text(f"{loaded.name}: {len(loaded.tasks)} tasks ({counts}); a task is named {loaded.name}/ID")
@@ -252,13 +277,18 @@ def report(directory: Path = typer.Argument(..., help="a run's or a benchmark's 
     from emboteam.bench.runner import store_path, write_reports
     from emboteam.report import write_report
 
+    if not directory.exists():
+        raise EmboTeamError(f"{printable(str(directory))} does not exist: give the --out DIR of a run or a benchmark")
+    if not directory.is_dir():
+        raise EmboTeamError(f"{printable(str(directory))} is a file, not a folder: give the --out DIR of a run or a "
+                            "benchmark")
     if store_path(directory).exists():  # a benchmark: tables and plots from its results store
         for path in write_reports(directory):
             out.print(f"wrote {path}", markup=False, highlight=False)
     skipped: list[str] = []
     pages = write_report(directory, problems=skipped)
     for problem in skipped:  # what was broken is listed, the rest is built
-        err.print(f"[yellow]skipped:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
+        err.print(f"[yellow]skipped:[/yellow] {escape(one_line(problem))}", highlight=False, soft_wrap=True)
     out.print(f"wrote {pages[-1]}" + (f" and {len(pages) - 1} episode report(s)" if len(pages) > 1 else ""),
               markup=False, highlight=False)
 
@@ -294,9 +324,11 @@ def _resolve_task(target: str, scene_fp: str | None, robots_list: str | None) ->
     if scene_fp is not None or robots_list is not None:
         if scene_fp is None or robots_list is None:
             raise EmboTeamError("an instruction needs both --scene FLOORPLAN and --robots LIST")
+        if printable(target) != target:  # a terminal escape pasted in says nothing to the parser
+            raise EmboTeamError(f"the instruction '{printable(target)}' holds control characters: remove them")
         return Instruction.typed(target, scene_fp, robots_list)
     if len(target.split()) > 1:  # task ids have no spaces: this is an instruction
-        raise EmboTeamError(f"the instruction {target!r} needs --scene FLOORPLAN and --robots LIST "
+        raise EmboTeamError(f"the instruction '{printable(target)}' needs --scene FLOORPLAN and --robots LIST "
                             "(or give a task SUITE/ID, e.g. mace-thor/fp1-toast)")
     return get_task(target)
 
@@ -337,6 +369,35 @@ def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConf
     return RunConfig(mode=mode, frontend=frontend, llm=llm, **kw)
 
 
+def _load_suite_quietly(suite: str) -> Any:
+    """A suite, its import problems summed up in one line on stderr (each is logged:
+    ``emboteam -v`` lists them); a suite left with no task is bad input, one line too."""
+    import logging
+
+    from emboteam.bench.suites import load_suite
+
+    loaded = load_suite(suite)
+    log = logging.getLogger("emboteam.bench.import")
+    for problem in loaded.problems:
+        log.warning("%s", printable(problem))
+    if loaded.problems:
+        first = one_line(loaded.problems[0])
+        count = len(loaded.problems)
+        if not loaded.tasks:
+            raise EmboTeamError(f"{printable(suite)}: no usable task; {count} problem(s) in its files, the first: "
+                                f"{first} (emboteam -v lists them all)")
+        err.print(f"[yellow]import:[/yellow] {escape(f'{count} problem(s) in the suite files left entries out, the first: {first} (emboteam -v lists them all)')}",
+                  highlight=False, soft_wrap=True)
+    return loaded
+
+
+def _echo_task(task: EpisodeTask) -> None:
+    """The header of ``plan`` and ``run``: the task and its instruction, as typed (control
+    characters escaped, brackets kept)."""
+    out.print(f"[bold]{escape(printable(task.key))}[/bold] {escape(task.floor_plan)}: "
+              f"{escape(printable(task.instruction))}", highlight=False)
+
+
 @app.command()
 @cli_errors
 def plan(
@@ -370,11 +431,10 @@ def plan(
                     "subtasks": spec_json(spec), **plan_json(merged), "plan_seconds": round(seconds, 4),
                     "llm_calls": client.usage.calls if client else 0, "notes": notes})
         return
-    out.print(f"[bold]{escape(task.key)}[/bold] {escape(task.floor_plan)}: {escape(task.instruction)}",
-              highlight=False)
+    _echo_task(task)
     out.print(spec_table(spec))
     for note in notes:
-        out.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
+        out.print(f"[yellow]note:[/yellow] {escape(one_line(note))}", highlight=False)
     out.print(plan_table(merged))
     out.print(f"planned in {seconds:.2f} s")
 
@@ -430,13 +490,17 @@ def run(
         except OSError as exc:
             raise write_error(out_dir, exc) from None
     code = episode_exit_code(episode.success, episode.error)
-    if code not in (EXIT_OK, EXIT_FAILED) and episode.error:  # bad input or a service: say it on stderr too
-        err.print(f"[red]error:[/red] {escape(' '.join(episode.error.split()))}", highlight=False, soft_wrap=True)
+    message = user_message(episode.error) if episode.error else None
+    if code not in (EXIT_OK, EXIT_FAILED) and message:  # bad input or a service: say it on stderr too
+        err.print(f"[red]error:[/red] {escape(one_line(message))}", highlight=False, soft_wrap=True)
     if as_json:
-        print_json(episode.summary())
+        summary = episode.summary()
+        if code != EXIT_OK:  # the error object every command prints (error, exit_code)
+            failure = message or "the episode ran and did not reach its goal"
+            summary.update({k: v for k, v in error_object(failure, code).items() if k != "success"})
+        print_json(summary)
         raise typer.Exit(code)
-    out.print(f"[bold]{escape(task.key)}[/bold] {escape(task.floor_plan)}: {escape(task.instruction)}",
-              highlight=False)
+    _echo_task(task)
     if episode.taskspec is not None:
         out.print(spec_table(episode.taskspec))
     if episode.plan is not None:
@@ -459,13 +523,14 @@ def bench(
     seeds: int = typer.Option(1, "--seeds", min=1, help="seeds 0..N-1 per task"),
     breakdown: list[str] = typer.Option([], "--breakdown", help="WHO@WHEN: a robot stops for good, e.g. "
                                         "random@0.3 (drawn by the seed, at 30% of the nominal makespan), "
-                                        "robot2@12s (repeatable)"),
+                                        "robot25@12s (that team member; a task whose team lacks it is "
+                                        "not applicable) (repeatable)"),
     join: list[str] = typer.Option([], "--join", help="PROFILE@WHEN: a robot joins mid-run, e.g. 5@30 (at 30 s, "
                                    "as run has it), random@30% (a second unit of a team member's profile, at "
                                    "30% of the nominal makespan) (repeatable)"),
     moves: list[str] = typer.Option([], "--moves", help="WHAT@WHEN: someone moves an object the plan uses "
                                     "to a random valid place (closed receptacles too), e.g. random@0.5, "
-                                    "Apple_1@20s (repeatable)"),
+                                    "Apple_1@20s (a floor plan without it: not applicable) (repeatable)"),
     msg_loss: float = typer.Option(0.0, "--msg-loss", help="probability that a blackboard lock release is "
                                    "lost (the lock's lease then times out)"),
     msg_delay: float = typer.Option(0.0, "--msg-delay", help="up to this many simulated seconds late a robot "
@@ -481,15 +546,13 @@ def bench(
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
+    from emboteam.bench.disturbance_scope import split_applicable
     from emboteam.bench.jobs import BenchConfig, expand_jobs, modes_from_options, parse_fault_levels
     from emboteam.bench.runner import BenchInterrupted, run_bench
-    from emboteam.bench.suites import load_suite
     from emboteam.bench.tables import bench_summary
     from emboteam.sim.disturbances import Disturbances
 
-    loaded = load_suite(suite)
-    for problem in loaded.problems:
-        err.print(f"[yellow]import:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
+    loaded = _load_suite_quietly(suite)
     frontends = frontend or [_frontend_default(None, llm)]
     cfg = BenchConfig.build(
         suite=suite, modes=modes_from_options(ablation, baseline), frontends=frontends, llm=llm,
@@ -507,11 +570,12 @@ def bench(
     for f in cfg.frontends:
         check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout, llm_when=cfg.llm_when))
     cfg = _with_planner_input(cfg, planner_input)
+    tasks_run, not_applicable = split_applicable(cfg.disturbance, loaded.tasks)  # exit 2 if it fits none
     cfg = _bench_out(cfg, out_dir)
     out_dir = cfg.out_dir
-    jobs = expand_jobs(cfg, loaded.tasks)
+    jobs = expand_jobs(cfg, tasks_run)
     try:
-        episodes = run_bench(cfg, jobs)
+        episodes = run_bench(cfg, jobs, not_applicable=not_applicable)
     except BenchInterrupted as exc:
         raise fail(f"{exc}; continue with: {resume_command(exc.out_dir)}", exc.exit_code,
                    as_json=as_json) from None
@@ -520,8 +584,8 @@ def bench(
     skipped: list[str] = []
     write_report(out_dir, refresh=False, problems=skipped)
     for problem in skipped:
-        err.print(f"[yellow]skipped:[/yellow] {escape(problem)}", highlight=False, soft_wrap=True)
-    summary = bench_summary(episodes, suite=suite)
+        err.print(f"[yellow]skipped:[/yellow] {escape(one_line(problem))}", highlight=False, soft_wrap=True)
+    summary = bench_summary(episodes, suite=suite, not_applicable=not_applicable)
     if as_json:
         print_json(summary.to_json())
         return
@@ -544,7 +608,7 @@ def _bench_out(cfg: Any, out_dir: Path | None) -> Any:
     """The run's folder: ``--out DIR`` as given (strict: it must not hold another run's
     results unless ``--resume``), or a new folder under bench-out/ named by suite,
     configuration and time."""
-    from emboteam.bench.runner import default_out_dir
+    from emboteam.bench.runner import default_out_dir, store_path
     from emboteam.outputs import ensure_out_dir
 
     if out_dir is None:
@@ -554,6 +618,10 @@ def _bench_out(cfg: Any, out_dir: Path | None) -> Any:
             raise EmboTeamError(f"{BENCH_ROOT} is a file: pass --out DIR")
         BENCH_ROOT.mkdir(exist_ok=True)
         cfg = cfg.model_copy(update={"out_dir": default_out_dir(cfg, root=BENCH_ROOT)})
+    elif cfg.resume and not store_path(out_dir).exists():
+        where = "does not exist" if not out_dir.exists() else f"holds no {store_path(out_dir).name}"
+        raise EmboTeamError(f"nothing to resume: {printable(str(out_dir))} {where} (drop --resume to start a new run "
+                            "there)")
     ensure_out_dir(cfg.out_dir)
     return cfg
 
@@ -662,6 +730,9 @@ def main(argv: list[str] | None = None) -> None:
     on stderr, exit 2, and with ``--json`` one JSON object on stdout, instead of the
     multi-line box typer draws."""
     global _invocation
+    from emboteam.logs import configure
+
+    configure(0)  # log records stay off stderr unless -v (one line per failure)
     args = sys.argv[1:] if argv is None else list(argv)
     _invocation = args
     as_json = "--json" in args

@@ -152,6 +152,8 @@ class BenchSummary(BaseModel):
                           "no episode was disturbed by options)")
     disturbance_by_mode: dict[str, DisturbanceSummary] = Field(
         default_factory=dict, description="the same per mode")
+    not_applicable: tuple[str, ...] = Field(
+        (), description="'TASK: why' of the tasks a named disturbance cannot happen in: not run, in no SR")
 
     def to_json(self) -> dict[str, object]:
         """The bench ``--json`` object (the disturbance fields only when a run was disturbed,
@@ -159,6 +161,8 @@ class BenchSummary(BaseModel):
         data = self.model_dump(mode="json")
         if self.disturbance is None:
             del data["disturbance"], data["disturbance_by_mode"]
+        if not self.not_applicable:
+            del data["not_applicable"]
         return data
 
 

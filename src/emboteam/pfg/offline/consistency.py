@@ -62,6 +62,26 @@ def check_consistent(clauses: Sequence[Clause], drafts: dict[int, list[Draft]]) 
                     raise ContradictoryInstruction(first, second, a, b)
 
 
+def check_placements(clauses: Sequence[Clause],
+                     superseded: Sequence[tuple[int, Draft, int, Draft]]) -> list[tuple[str, str]]:
+    """One object placed in two places (draft_passes.drop_superseded_placements kept the
+    later one): an error naming both when they are asked at once ("put the apple in the
+    fridge and put the apple in the sink"), else the later one wins and this returns a
+    note (span, reason) saying so ("put it in the sink, then in the fridge")."""
+    order = {ci: k for k, group in enumerate(steps(clauses)) for ci in group}
+    notes = []
+    for ci, first, cj, second in superseded:
+        if ci == cj:
+            continue  # one clause's list read twice ("pillow and paper up - pillow on the sofa, ..."): a reading
+        if order.get(ci) == order.get(cj) and clauses[ci].sentence == clauses[cj].sentence:
+            a = next(c for c in first.conditions if c.predicate is P.inside)
+            b = next(c for c in second.conditions if c.predicate is P.inside)
+            raise ContradictoryInstruction(first, second, a, b)
+        notes.append((first.description, f"a later step places it elsewhere ({second.description!r}): "
+                                         "the later place is kept"))
+    return notes
+
+
 def narrow_contrasts(drafts: dict[int, list[Draft]]) -> None:
     """"Switch on the tall lamp and turn off the little one on the desk": when one of two
     opposed requests names an instance and the other a choice of kinds that includes it, the

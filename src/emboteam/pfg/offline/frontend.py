@@ -30,7 +30,12 @@ from emboteam.pfg.offline.clause_passes import (
     whereabouts,
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
-from emboteam.pfg.offline.consistency import check_consistent, narrow_choices, narrow_contrasts
+from emboteam.pfg.offline.consistency import (
+    check_consistent,
+    check_placements,
+    narrow_choices,
+    narrow_contrasts,
+)
 from emboteam.pfg.offline.constructions import (
     commaless_lists,
     object_first,
@@ -339,7 +344,9 @@ class OfflineFrontend:
         drop_guessed_water(drafts)
         drop_holds_before_placing(drafts)
         drop_self_placements(drafts)
-        drop_superseded_placements(drafts, semantics.g)
+        superseded = drop_superseded_placements(drafts, semantics.g)
+        # one object in two places: an error when asked at once, else the later one wins
+        unread += [ReadingNote(span, why, "assumed") for span, why in check_placements(clauses, superseded)]
         for what, why in drop_impossible(drafts, scene, state):
             unread.append(ReadingNote(what, f"left out, the scene cannot have it: {why}"))
         if not drafts:

@@ -15,6 +15,7 @@ import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
+from emboteam.pfg.inflection import past_participle
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.discourse import OTHER_WORDS, Discourse, Mention
 from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
@@ -507,7 +508,7 @@ class Semantics:
                 return self._each(P.switched_off, ref)
             # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
-                                    f"{frame.verb}ed?", phrase=frame.text, vague=True)
+                                    f"{past_participle(frame.verb)}?", phrase=frame.text, vague=True)
         if act is Act.GO:
             act = Act.PLACE if any(t.dest for t in targets) else act
             if act is Act.GO:
@@ -784,6 +785,8 @@ class Semantics:
             return Act.TRASH
         if frame.verb in _VERBS_TO_HAND or frame.recipient:
             return Act.HOLD
+        if head.pron is None and head.noun is not None:
+            self.g.candidate_types(head, "hold")  # a thing the room lacks: say that, not "where"
         raise OfflineParseError(f"where should {head.label()!r} go? "
                                 f"('{frame.verb or 'put'} {head.label()} in/on ...')",
                                 phrase=frame.text, vague=True)
