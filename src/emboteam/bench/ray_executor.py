@@ -64,9 +64,8 @@ def probe_address(address: str | None, timeout: float = PROBE_TIMEOUT) -> None:
         with socket.create_connection((host, port), timeout=timeout):
             pass
     except OSError as exc:
-        why = "no answer" if isinstance(exc, TimeoutError) else (exc.strerror or str(exc))
-        raise ServiceUnavailableError(f"cannot reach the Ray cluster at {address}: {why} "
-                                      f"(tried for {timeout:g} s)") from None
+        why = f"no answer within {timeout:g} s" if isinstance(exc, TimeoutError) else (exc.strerror or str(exc))
+        raise ServiceUnavailableError(f"cannot reach the Ray cluster at {address}: {why}") from None
 
 
 class RayExecutor:

@@ -351,12 +351,44 @@
     return ": " + (reason.length > 28 ? reason.slice(0, 27) + "…" : reason);
   }
 
+  // The first of ``texts`` that fits ``room`` pixels, else no label (false): a label never
+  // runs out of its bar into the next one; the bar's tooltip has the whole text.
+  function fitLabel(node, texts, room) {
+    for (var i = 0; i < texts.length; i++) {
+      node.textContent = texts[i];
+      var len = node.getComputedTextLength ? node.getComputedTextLength() : 0;
+      if (!len) len = texts[i].length * 6;  // not laid out (a hidden panel): estimate
+      if (len <= room) return true;
+    }
+    node.remove();
+    return false;
+  }
+
+  // Labels that would overlap one drawn before them are hidden (their marker's tooltip
+  // says it all): bar labels first, then replans, then disturbances.
+  function declutter(labels) {
+    var kept = [];
+    labels.forEach(function (t) {
+      if (!t.isConnected) return;
+      var b = t.getBBox();
+      if (!b.width) return;
+      var hit = kept.some(function (k) {
+        return b.x < k.x + k.width + 3 && k.x < b.x + b.width + 3 && b.y < k.y + k.height && k.y < b.y + b.height;
+      });
+      if (hit) t.setAttribute("display", "none");
+      else kept.push(b);
+    });
+  }
+
   function buildGantt() {
     var box = document.getElementById("gantt");
     var robots = TL.robots;
     var edges = syncEdges();
-    var rowH = 32, top = 24, left = 84, right = 14, bottom = 6;
     var markers = TL.events.filter(function (e) { return e.category === "replan" || e.category === "sim" || e.category === "recovery"; });
+    // replan labels get a band of their own between the time axis and the rows, so they
+    // never sit on a robot's bars
+    var band = markers.some(function (e) { return e.category === "replan"; }) ? 14 : 0;
+    var rowH = 32, top = 24 + band, left = 84, right = 14, bottom = 6;
     var state = { svg: null, cursor: null, head: null, x: null, bars: [], active: {}, dragging: false, seek: null };
 
     function render() {
@@ -382,7 +414,7 @@
       var step = ET.niceStep(END, Math.max(3, Math.floor(plotW / 80)));
       for (var tt = 0; tt <= END + 1e-9; tt += step) {
         svg("line", { x1: x(tt), x2: x(tt), y1: top - 4, y2: height - bottom }, axis);
-        svg("text", { x: x(tt), y: top - 9 }, axis, (step < 1 ? tt.toFixed(1) : Math.round(tt)) + " s");
+        svg("text", { x: x(tt), y: 15 }, axis, (step < 1 ? tt.toFixed(1) : Math.round(tt)) + " s");
       }
       var rows = svg("g", {}, root);
       robots.forEach(function (r, i) {
@@ -396,6 +428,7 @@
       var rowOf = {};
       robots.forEach(function (r, i) { rowOf[r] = i; });
       state.bars = [];
+      var labels = [];  // every text drawn on the plot, in priority order (see declutter)
       TL.actions.forEach(function (a, idx) {
         var y = top + rowOf[a.robot] * rowH + 5;
         var x0 = x(a.start), w = Math.max(1.5, x(a.end) - x0);
@@ -405,13 +438,9 @@
         state.bars.push(rect);
         if (a.recovery) svg("rect", { x: x0, y: y, width: w, height: rowH - 10, rx: 3, fill: "url(#hatch)", "pointer-events": "none" }, barLayer);
         var label = shortSkill(a.skill) + (a.args.length ? " " + a.args[0] : "");
-        if (w > label.length * 6 + 8) {
-          svg("text", { class: "bar-label" + (a.outcome === "unfinished" || a.reason === "spot_busy" ? " dark" : ""),
-                        x: x0 + 4, y: y + (rowH - 10) / 2 }, barLayer, label);
-        } else if (w > shortSkill(a.skill).length * 6 + 6) {
-          svg("text", { class: "bar-label" + (a.outcome === "unfinished" || a.reason === "spot_busy" ? " dark" : ""),
-                        x: x0 + 3, y: y + (rowH - 10) / 2 }, barLayer, shortSkill(a.skill));
-        }
+        var text = svg("text", { class: "bar-label" + (a.outcome === "unfinished" || a.reason === "spot_busy" ? " dark" : ""),
+                                 x: x0 + 4, y: y + (rowH - 10) / 2 }, barLayer, label);
+        if (fitLabel(text, [label, shortSkill(a.skill)], w - 7)) labels.push(text);
       });
       var syncLayer = svg("g", {}, root);
       edges.forEach(function (e) {
@@ -433,7 +462,9 @@
           var g = svg("g", { class: "replan" }, markLayer);
           svg("line", { x1: x(ev.t), x2: x(ev.t), y1: top, y2: height - bottom }, g);
           // name what caused the replan: a breakdown, a joiner, a lost object, the plan ending
-          svg("text", { x: x(ev.t) + 3, y: top + 9 }, g, "replan" + replanCause(ev.key));
+          var rtext = svg("text", { x: x(ev.t) + 3, y: top - 4 }, g, "replan" + replanCause(ev.key));
+          fitLabel(rtext, [rtext.textContent, "replan"], width - right - x(ev.t) - 3);
+          labels.push(rtext);
           svg("title", {}, g, "replan at " + ev.t.toFixed(2) + " s: " + ev.key + " " + ev.value);
         } else if (ev.category === "recovery" && ev.robot in rowOf) {
           var ry = top + rowOf[ev.robot] * rowH + rowH - 3, rx = x(ev.t);
@@ -447,9 +478,10 @@
           // the disturbances a benchmark injects are labelled on the chart, not only in the tooltip
           var label = ev.key === "breakdown" ? "✕ " + ev.value + " down" : ev.key === "join" ? "+ " + ev.value + " joins"
             : ev.key === "moved" ? "moved " + ev.value.split(" ")[0] : null;
-          if (label) svg("text", { class: "simlabel", x: x(ev.t) + 7, y: cy + 4 }, markLayer, label);
+          if (label) labels.push(svg("text", { class: "simlabel", x: x(ev.t) + 7, y: cy + 4 }, markLayer, label));
         }
       });
+      declutter(labels);
       state.cursor = svg("line", { class: "cursor", x1: x(clock.t), x2: x(clock.t), y1: top - 4, y2: height - bottom }, root);
       state.head = svg("path", { class: "cursor-head", d: "M-5,0 L5,0 L0,6 z", transform: "translate(" + x(clock.t) + "," + (top - 4) + ")" }, root);
       state.active = {};
@@ -704,7 +736,7 @@
     // The list is virtual: only the rows in view exist in the DOM (a long episode logs
     // thousands of events, and re-styling thousands of rows per frame is what makes a
     // page stutter). Rows have a fixed height; a spacer gives the scrollbar its length.
-    var ROW_H = 22;
+    var ROW_H = 32;  // two lines: a long key wraps (episode.css)
     var list = document.getElementById("event-list");
     var times = events.map(function (e) { return e.t; });
     var filtered = events.map(function (_, i) { return i; });
