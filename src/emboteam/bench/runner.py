@@ -361,7 +361,7 @@ class _Progress:
         """What a resumed run continues, or None for a fresh one."""
         if not self._resumed:
             return None
-        return f"resuming {self.total - self._resumed} of {self.total} episodes ({self._resumed} are stored)"
+        return f"resuming {self.total - self._resumed} of {self.total} episodes ({self._resumed} already stored)"
 
     def __enter__(self) -> _Progress:
         line = self.resuming()
