@@ -291,3 +291,75 @@ def test_user_message_drops_the_class_name_of_typed_errors_only() -> None:
     assert user_message("ZeroDivisionError: division by zero") == "ZeroDivisionError: division by zero"
     assert user_message("note: a colon") == "note: a colon"
     assert error_object("a\nb", 3) == {"success": False, "error": "a b", "exit_code": 3}
+
+
+# ---- the HTML report, rendered --------------------------------------------------------------
+
+OVERLAPS_JS = """() => {
+  const shown = t => t.getAttribute('display') !== 'none' && !t.closest('.axis');
+  const texts = [...document.querySelectorAll('#gantt svg text')].filter(shown);
+  const box = t => { const b = t.getBoundingClientRect(); return [b.left, b.top, b.right, b.bottom, t.textContent]; };
+  const boxes = texts.map(box);
+  const overlaps = [];
+  for (let i = 0; i < boxes.length; i++) for (let j = i + 1; j < boxes.length; j++) {
+    const [a, b] = [boxes[i], boxes[j]];
+    if (a[0] < b[2] - 0.5 && b[0] < a[2] - 0.5 && a[1] < b[3] - 0.5 && b[1] < a[3] - 0.5) overlaps.push([a[4], b[4]]);
+  }
+  const outside = [];
+  document.querySelectorAll('#gantt text.bar-label').forEach(t => {
+    let r = t.previousElementSibling;
+    while (r && !r.classList.contains('bar')) r = r.previousElementSibling;
+    if (r && t.getBoundingClientRect().right > r.getBoundingClientRect().right + 0.5) outside.push(t.textContent);
+  });
+  // blackboard keys (sync flags, locks, other keys); a replan's reason may run longer
+  // than two lines: the row's tooltip has it
+  const board = ['sync', 'lock', 'other'];
+  const keys = [...document.querySelectorAll('#event-list .ev-window .ev-row:not([hidden])')]
+    .filter(r => board.includes(r.querySelector('.cat').textContent)).map(r => r.children[3]);
+  const cut = keys.filter(k => k.scrollHeight > k.clientHeight + 1 || k.scrollWidth > k.clientWidth + 1)
+                  .map(k => k.textContent);
+  return {labels: texts.length, overlaps, outside, keys: keys.length, cut};
+}"""
+
+
+@pytest.fixture(scope="module")
+def reports(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
+    """Two episode reports made by the CLI: a run with faults, and a benchmark episode whose
+    robot breaks down (a replan and a breakdown marker among short bars: where labels
+    used to run into each other)."""
+    base = tmp_path_factory.mktemp("reports")
+    run = base / "run"
+    proc = cli("run", "mace-thor/fp303-clear-floor", "--faults", "0.2", "--seed", "3", "--out", str(run))
+    assert proc.returncode in (0, 1), proc.stderr
+    suite = base / "suite"
+    suite.mkdir()
+    record = {"task": "Put a plate, a bowl and a fork on the dining table", "robot list": [17, 25],
+              "object_states": [{"name": "DiningTable", "contains": ["Plate", "Bowl", "Fork"], "state": None}]}
+    (suite / "FloorPlan15_set.json").write_text(json.dumps(record) + "\n")
+    bench = base / "bench"
+    proc = cli("bench", "--suite", f"smart-llm:{suite}", "--breakdown", "robot25@0.3", "--out", str(bench))
+    assert proc.returncode == 0, proc.stderr
+    return [run / "report.html", *sorted(bench.glob("episodes/*/report.html"))]
+
+
+@pytest.mark.parametrize("width", [1400, 900])
+def test_report_labels_do_not_overlap_and_keys_are_whole(reports: list[Path], width: int) -> None:
+    playwright = pytest.importorskip("playwright.sync_api")
+    chromium = Path("/usr/bin/chromium")
+    if not chromium.exists():
+        pytest.skip("Debian's chromium package is not installed")
+    assert len(reports) == 2
+    with playwright.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=str(chromium), args=["--headless", "--no-sandbox", "--disable-gpu"])
+        try:
+            page = browser.new_page(viewport={"width": width, "height": 900})
+            found = []
+            for report in reports:
+                page.goto(report.resolve().as_uri())
+                page.wait_for_load_state("load")
+                found.append(page.evaluate(OVERLAPS_JS))
+        finally:
+            browser.close()
+    for one in found:
+        assert one["labels"] >= 5 and one["keys"] >= 3, one
+        assert one["overlaps"] == [] and one["outside"] == [] and one["cut"] == [], one

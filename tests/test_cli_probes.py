@@ -45,7 +45,7 @@ class Probe:
         return RAW_CONTROL.sub("^", text)[:70]
 
 
-def P(*args: str, code: int = 2, needle: str = "", absent: str = "") -> Probe:  # noqa: N802
+def P(*args: str, code: int = 2, needle: str = "", absent: str = "") -> Probe:
     return Probe(tuple(args), code, needle, absent)
 
 

@@ -28,8 +28,8 @@ def configure(verbosity: int | None = None) -> None:
             verbosity = 0
     os.environ[ENV] = str(verbosity)
     logger = logging.getLogger("emboteam")
-    for handler in [h for h in logger.handlers if h.get_name() == _HANDLER_NAME]:
-        logger.removeHandler(handler)
+    for old in [h for h in logger.handlers if h.get_name() == _HANDLER_NAME]:
+        logger.removeHandler(old)
     handler: logging.Handler
     if verbosity <= 0:
         handler = logging.NullHandler()
