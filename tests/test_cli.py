@@ -124,4 +124,6 @@ def test_a_task_that_cannot_be_understood_is_bad_input_with_success_false() -> N
     data = one_json(proc, 2)
     assert data["success"] is False and "piano" in str(data["error"])
     (line,) = proc.stderr.splitlines()
-    assert line.startswith("error: GroundingError:") and "piano" in line
+    # the message as plan prints it, without the class name (docs/cli.md, issue 24)
+    assert line == f"error: {data['error']}" and not line.startswith("error: GroundingError") and "piano" in line
+    assert data["exit_code"] == 2

@@ -15,7 +15,7 @@ from rich.text import Text
 from emboteam.exec.episode import Episode
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.terminal import one_line, printable
+from emboteam.terminal import one_line, printable, user_message
 
 
 def spec_json(spec: TaskSpec) -> list[dict[str, object]]:
@@ -88,7 +88,7 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
     if episode.notes:      # what the front end could not read, or read with doubt
         body += [Text("")] + [Text(f"note: {one_line(n)}", style="yellow") for n in episode.notes]
     if episode.error:
-        body += [Text(""), Text(f"error: {one_line(episode.error)}", style="red")]
+        body += [Text(""), Text(f"error: {one_line(user_message(episode.error))}", style="red")]
     if out_dir:
         body += [Text(""), Text(f"report: {out_dir}/report.html", style="cyan")]
     return Panel(Group(*body), title=f"{escape(printable(episode.task))} {verdict}",  # type: ignore[arg-type]
