@@ -132,7 +132,7 @@ def test_run_and_plan_report_a_failure_with_the_same_error_object() -> None:
     ran, planned = cli("run", *args), cli("plan", *args)
     assert ran.returncode == planned.returncode == 2
     r, p = one_object(ran), one_object(planned)
-    assert r["exit_code"] == p["exit_code"] == 2
+    assert r["exit_code"] == p["exit_code"] == 2 and r["error_type"] == p["error_type"] == "GroundingError"
     assert r["error"] == p["error"] and not str(r["error"]).startswith("OfflineParseError")
     assert one_line_err(ran) == one_line_err(planned) == f"error: {r['error']}"
 
@@ -290,7 +290,8 @@ def test_user_message_drops_the_class_name_of_typed_errors_only() -> None:
     assert user_message("LLMUnreachable: [pfg] x is unreachable") == "[pfg] x is unreachable"
     assert user_message("ZeroDivisionError: division by zero") == "ZeroDivisionError: division by zero"
     assert user_message("note: a colon") == "note: a colon"
-    assert error_object("a\nb", 3) == {"success": False, "error": "a b", "exit_code": 3}
+    assert error_object("a\nb", 3, "LLMTimeout") == {"success": False, "error": "a b", "error_type": "LLMTimeout",
+                                                     "exit_code": 3}
 
 
 # ---- the HTML report, rendered --------------------------------------------------------------

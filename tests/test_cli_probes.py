@@ -204,7 +204,7 @@ def test_probe_keeps_the_contract(probe: Probe, results: dict[str, subprocess.Co
         objects = [json.loads(x) for x in proc.stdout.splitlines() if x.strip()]
         assert len(objects) == 1, proc.stdout             # exactly one JSON object
         data = objects[0]
-        assert data["success"] is False and data["exit_code"] == probe.code
+        assert data["success"] is False and data["exit_code"] == probe.code and "error_type" in data
         assert isinstance(data["error"], str) and data["error"]
         assert data["error"] == lines[0][len("error: "):]   # the same message as on stderr
     else:

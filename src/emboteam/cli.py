@@ -28,7 +28,7 @@ from emboteam.errors import (
     EmboTeamError,
     exit_code_of,
 )
-from emboteam.terminal import error_object, one_line, printable, user_message
+from emboteam.terminal import error_object, one_line, printable, split_error
 from emboteam.world.actions import Skill
 from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
@@ -78,14 +78,15 @@ def _options(
 F = TypeVar("F", bound=Callable[..., Any])
 
 
-def fail(message: str, code: int, *, as_json: bool = False, label: str = "error") -> typer.Exit:
+def fail(message: str, code: int, *, as_json: bool = False, label: str = "error",
+         error_type: str | None = None) -> typer.Exit:
     """Report a failure as the contract says (one line on stderr; with ``--json`` also one
     JSON object on stdout) and return the exit to raise. The message is escaped: it
     often holds brackets ('emboteam[ray]', the '[pfg]' stage tag) that Rich would eat as
     markup."""
     line = one_line(message)  # one line, control characters escaped, whatever the message holds
     if as_json:
-        print_json(error_object(message, code))
+        print_json(error_object(message, code, error_type))
     err.print(f"[red]{label}:[/red] {escape(line)}", highlight=False, soft_wrap=True)
     return typer.Exit(code)
 
@@ -100,21 +101,23 @@ def cli_errors(fn: F) -> F:
         try:
             return fn(*args, **kwargs)
         except EmboTeamError as exc:
-            raise fail(str(exc), exc.exit_code, as_json=as_json) from None
+            raise fail(str(exc), exc.exit_code, as_json=as_json, error_type=type(exc).__name__) from None
         except (typer.Exit, typer.Abort):
             raise
         except KeyboardInterrupt:
-            raise fail("interrupted", EXIT_INTERRUPTED, as_json=as_json) from None
+            raise fail("interrupted", EXIT_INTERRUPTED, as_json=as_json, error_type="KeyboardInterrupt") from None
         except OSError as exc:  # the machine, not EmboTeam: a full disk, a file that vanished
             if os.environ.get("EMBOTEAM_DEBUG"):
                 raise
             where = f" ({exc.filename})" if exc.filename else ""
-            raise fail(f"{exc.strerror or exc}{where}", EXIT_BAD_INPUT, as_json=as_json) from None
+            raise fail(f"{exc.strerror or exc}{where}", EXIT_BAD_INPUT, as_json=as_json,
+                       error_type=type(exc).__name__) from None
         except Exception as exc:  # a bug: one line for the user, the traceback on request
             if os.environ.get("EMBOTEAM_DEBUG"):
                 raise
             raise fail(f"{type(exc).__name__}: {exc} (set EMBOTEAM_DEBUG=1 for the traceback; please "
-                       "report it)", EXIT_INTERNAL, as_json=as_json, label="internal error") from None
+                       "report it)", EXIT_INTERNAL, as_json=as_json, label="internal error",
+                       error_type=type(exc).__name__) from None
 
     return wrapper  # type: ignore[return-value]
 
@@ -490,14 +493,14 @@ def run(
         except OSError as exc:
             raise write_error(out_dir, exc) from None
     code = episode_exit_code(episode.success, episode.error)
-    message = user_message(episode.error) if episode.error else None
+    error_type, message = split_error(episode.error) if episode.error else (None, None)
     if code not in (EXIT_OK, EXIT_FAILED) and message:  # bad input or a service: say it on stderr too
         err.print(f"[red]error:[/red] {escape(one_line(message))}", highlight=False, soft_wrap=True)
     if as_json:
         summary = episode.summary()
         if code != EXIT_OK:  # the error object every command prints (error, exit_code)
             failure = message or "the episode ran and did not reach its goal"
-            summary.update({k: v for k, v in error_object(failure, code).items() if k != "success"})
+            summary.update({k: v for k, v in error_object(failure, code, error_type).items() if k != "success"})
         print_json(summary)
         raise typer.Exit(code)
     _echo_task(task)
@@ -578,7 +581,7 @@ def bench(
         episodes = run_bench(cfg, jobs, not_applicable=not_applicable)
     except BenchInterrupted as exc:
         raise fail(f"{exc}; continue with: {resume_command(exc.out_dir)}", exc.exit_code,
-                   as_json=as_json) from None
+                   as_json=as_json, error_type=type(exc).__name__) from None
     from emboteam.report import write_report
 
     skipped: list[str] = []
@@ -744,11 +747,12 @@ def main(argv: list[str] | None = None) -> None:
             exc.show()
             code = EXIT_BAD_INPUT
         else:
-            code = fail(_usage_message(exc), EXIT_BAD_INPUT, as_json=as_json).exit_code
+            code = fail(_usage_message(exc), EXIT_BAD_INPUT, as_json=as_json, error_type="UsageError").exit_code
     except ce.ClickException as exc:
-        code = fail(exc.format_message(), exc.exit_code or EXIT_BAD_INPUT, as_json=as_json).exit_code
+        code = fail(exc.format_message(), exc.exit_code or EXIT_BAD_INPUT, as_json=as_json,
+                    error_type=type(exc).__name__).exit_code
     except (_abort_class(ce), KeyboardInterrupt):
-        code = fail("interrupted", EXIT_INTERRUPTED, as_json=as_json).exit_code
+        code = fail("interrupted", EXIT_INTERRUPTED, as_json=as_json, error_type="KeyboardInterrupt").exit_code
     sys.exit(code if isinstance(code, int) else EXIT_OK)
 
 

@@ -35,17 +35,24 @@ def one_line(text: str) -> str:
     return printable(" ".join(text.split()))
 
 
-def user_message(error: str) -> str:
-    """The message of an episode's recorded error (``"ClassName: message"``) as commands
-    show it: without the class name of a typed error, as ``plan`` raises it. An error
-    that is not one of ours (a bug) keeps its class name: it is what a report needs."""
+def split_error(error: str) -> tuple[str | None, str]:
+    """An episode's recorded error (``"ClassName: message"``) as (class name, message as
+    commands show it): the message without the class name of a typed error, as ``plan``
+    raises it. An error that is not one of ours keeps its text whole, with no type."""
     name, sep, rest = error.partition(":")
     if sep and name.strip().isidentifier() and exit_code_of(name.strip()) is not None:
-        return rest.strip()
-    return error
+        return name.strip(), rest.strip()
+    return None, error
 
 
-def error_object(message: str, code: int) -> dict[str, object]:
+def user_message(error: str) -> str:
+    """The message of an episode's recorded error as commands show it (:func:`split_error`)."""
+    return split_error(error)[1]
+
+
+def error_object(message: str, code: int, error_type: str | None = None) -> dict[str, object]:
     """The JSON object of a failed command: ``success`` false, ``error`` (one line,
-    control characters escaped) and ``exit_code``."""
-    return {"success": False, "error": one_line(message), "exit_code": code}
+    control characters escaped, no class name), ``error_type`` (the class of a typed
+    error, e.g. ``GroundingError``, ``LLMTimeout``; ``UsageError`` for a bad option;
+    None when there is none) and ``exit_code``."""
+    return {"success": False, "error": one_line(message), "error_type": error_type, "exit_code": code}
