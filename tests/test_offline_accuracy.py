@@ -18,8 +18,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-import shared_data
 
+import shared_data
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.evaluate import Outcome, evaluate, goal_keys, initial_state, load_records
