@@ -136,3 +136,52 @@ def validate(name: str, raw: Any, schema: type[M]) -> M:
 def fail(name: str, entry: str, problem: str) -> KnowledgeDataError:
     """A problem found after the schema (a type the catalogue lacks): the same error."""
     return KnowledgeDataError(name, entry, problem)
+
+
+class WordsFile(Strict):
+    """``data/words.json``: the word lists each module of the parser compares tokens with,
+    by module and table (a set of words, an ordered list, or phrases of several words)."""
+
+    about: str = ""
+    tables: dict[str, dict[str, tuple[str, ...]]]
+
+    @model_validator(mode="after")
+    def _words(self) -> WordsFile:
+        for module, tables in self.tables.items():
+            for table, words in tables.items():
+                bad = [w for w in words if not w or w != w.lower().strip() or "  " in w]
+                if bad:
+                    raise ValueError(f"tables -> {module!r} -> {table!r}: {bad[0]!r} is not a "
+                                     "lower-case word or phrase (the parser's tokens are lower-case)")
+        return self
+
+
+class WordTables:
+    """The word tables of one module; a table the module asks for and the file lacks is a
+    :class:`KnowledgeDataError` at import."""
+
+    FILE = "words.json"
+
+    def __init__(self, module: str) -> None:
+        self.module = module
+        self.tables = load(self.FILE, WordsFile).tables.get(module, {})
+
+    def _get(self, name: str) -> tuple[str, ...]:
+        if name not in self.tables:
+            raise KnowledgeDataError(self.FILE, f"tables -> {self.module!r} -> {name!r}",
+                                     f"missing: the module {self.module} needs it")
+        return self.tables[name]
+
+    def set(self, name: str) -> frozenset[str]:
+        return frozenset(self._get(name))
+
+    def seq(self, name: str) -> tuple[str, ...]:
+        return self._get(name)
+
+    def phrases(self, name: str) -> tuple[tuple[str, ...], ...]:
+        """Phrases of several words, each as its words: ``"one of you"`` -> ``("one", "of", "you")``."""
+        return tuple(tuple(p.split()) for p in self._get(name))
+
+
+def word_tables(module: str) -> WordTables:
+    return WordTables(module)
