@@ -34,6 +34,7 @@ from emboteam.pfg.offline.constructions import (
     places_to_locations,
     with_as_and,
 )
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import (
     MODIFIER_PREPS,
     Frame,
@@ -112,10 +113,9 @@ _TRAILING = re.compile(r"\s*\b(?:please|for me|for us|thanks|thank you|if you ca
                        r"(?:great|nice|lovely|perfect|ideal|wonderful|awesome|appreciated|good|"
                        r"brilliant|amazing|fantastic|super|helpful)|"
                        r"if you (?:could|would|can|do not mind|please))$")
+_W = word_tables("frames")
 #: words dropped anywhere outside noun phrases
-_MID_FILLERS = frozenset({"please", "also", "just", "quickly", "carefully", "gently", "kindly",
-                          "immediately", "really", "actually", "again", "back", "right",
-                          "away", "as", "well", "then", "way", "first"})
+_MID_FILLERS = _W.set("mid_fillers")
 
 
 #: preambles that turn what follows into a wish ("make sure the fridge is closed")
@@ -128,10 +128,7 @@ _ASK_FOR = re.compile(r"^(?:can|could|may|might) (?:i|we) (?:please )?(?:have|ge
 
 #: sentence adverbs and hesitations that may come before the verb ("maybe throw the CD
 #: away", "um, like, wash the mug", "honestly just close it")
-_LEADING_ADVERBS = frozenset({"maybe", "perhaps", "possibly", "probably", "actually",
-                              "basically", "honestly", "seriously", "like", "um", "uh", "erm",
-                              "so", "well", "just", "anyway", "anyways", "really", "simply",
-                              "also", "please", "kindly", "quickly", "carefully", "now"})
+_LEADING_ADVERBS = _W.set("leading_adverbs")
 
 
 def _drop_leading_adverbs(items: list[Item], flags: dict[str, bool]) -> list[Item]:
@@ -195,21 +192,17 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
 
 
 # --- clause parsing ---------------------------------------------------------------------
-_HUMAN_SUBJECTS = frozenset({"i", "we", "you", "someone", "somebody", "nobody", "anyone",
-                             "anybody", "everyone", "everybody", "they", "he", "she",
-                             "no one", "no"})
-_WANT = frozenset({"want", "need", "like", "love", "prefer", "wish", "require", "fancy",
-                   "crave"})
-_REFLEXIVE = frozenset({"itself", "themselves", "himself", "herself"})
+_HUMAN_SUBJECTS = _W.set("human_subjects")
+_WANT = _W.set("want")
+_REFLEXIVE = _W.set("reflexive")
 
 
 #: irregular past participles after "have" ("I've left it", "it has gone")
-_IRREGULAR_PARTICIPLES = frozenset({"left", "put", "gone", "got", "gotten", "taken", "done", "made",
-                                    "broken", "forgotten", "lost", "set", "thrown", "kept", "brought"})
+_IRREGULAR_PARTICIPLES = _W.set("irregular_participles")
 
 
 #: "would look nicer on": a wished place
-_LOOKS = frozenset({"nicer", "better", "good", "great", "lovely", "best", "nice"})
+_LOOKS = _W.set("looks")
 
 
 def _participle(it: Item) -> bool:
@@ -704,7 +697,7 @@ def _state_word_at(items: list[Item], k: int) -> bool:
 
 
 #: what may follow "goes" for "in the one just named": "goes in", "goes back in there"
-_BARE_IN = frozenset({"in", "inside", "back", "there", "too", "as", "well", "then", "next"})
+_BARE_IN = _W.set("bare_in")
 
 
 def _bare_in(items: list[Item], k: int) -> bool:
@@ -950,8 +943,7 @@ def parse_clause(clause: Clause, directive: bool = False) -> ParsedClause:
 
 
 #: verbs that stand for the verb before: "so does the tomato", "the egg should too"
-_PRO_VERBS = frozenset({"does", "do", "did", "is", "are", "should", "can", "will", "must",
-                        "has", "have"})
+_PRO_VERBS = _W.set("pro_verbs")
 
 
 def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],

@@ -15,6 +15,7 @@ import re
 from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import (
     correct,
     is_english_word,
@@ -121,8 +122,9 @@ def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
     return None
 
 
+_W = word_tables("tagger")
 #: words after which a clause's verb comes
-_CLAUSE_OPENERS = frozenset({"and", "then", "please", "pls", "plz", "also", "just", "now"})
+_CLAUSE_OPENERS = _W.set("clause_openers")
 
 
 def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
