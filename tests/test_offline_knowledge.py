@@ -12,7 +12,7 @@ import pytest
 
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline.idioms import IdiomsFile
-from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, read
+from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, WordsFile, WordTables, read
 from emboteam.pfg.offline.lexicon import LexiconFile
 from emboteam.pfg.offline.text import TextFile
 
@@ -27,7 +27,7 @@ def _broken(tmp_path: Path, name: str, change: Any) -> Path:
 
 
 @pytest.mark.parametrize(("name", "schema"), [("lexicon.json", LexiconFile), ("idioms.json", IdiomsFile),
-                                              ("text.json", TextFile)])
+                                              ("text.json", TextFile), ("words.json", WordsFile)])
 def test_every_shipped_knowledge_file_passes_its_schema(name: str, schema: Any) -> None:
     read(DATA_DIR / name, schema)
 
@@ -86,3 +86,15 @@ def test_a_file_that_is_no_json_names_the_line(tmp_path: Path) -> None:
     path.write_text('{"spoken": [\n  {"pattern": "x" "replace": "y"}\n]}')
     with pytest.raises(KnowledgeDataError, match=r"^idioms\.json: line 2 column \d+: not JSON"):
         read(path, IdiomsFile)
+
+
+def test_a_word_table_in_capitals_names_the_module_and_the_table(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        data["tables"]["cues"]["excluding"].append("Except")
+    with pytest.raises(KnowledgeDataError, match=r"^words\.json: .*'cues' -> 'excluding': 'Except' is not a lower-case"):
+        read(_broken(tmp_path, "words.json", change), WordsFile)
+
+
+def test_a_table_a_module_needs_and_the_file_lacks_is_named() -> None:
+    with pytest.raises(KnowledgeDataError, match=r"^words\.json: tables -> 'cues' -> 'no_such_table': missing"):
+        WordTables("cues").set("no_such_table")
