@@ -130,6 +130,9 @@ def validate(name: str, raw: Any, schema: type[M]) -> M:
         first = exc.errors()[0]
         loc = tuple(k for k in first["loc"] if not (isinstance(k, str) and k.startswith("function-")))
         message = str(first["msg"]).removeprefix("Value error, ")
+        if not loc and ": " in message:     # a check across tables says where itself
+            entry, message = message.split(": ", 1)
+            raise KnowledgeDataError(name, entry, message) from None
         raise KnowledgeDataError(name, _entry(raw, loc) or "(top level)", message) from None
 
 
