@@ -11,6 +11,7 @@ from typing import Any
 import pytest
 
 from emboteam.errors import EmboTeamError
+from emboteam.pfg.offline.frames import PreambleFile
 from emboteam.pfg.offline.idioms import IdiomsFile
 from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, WordsFile, WordTables, read
 from emboteam.pfg.offline.lexicon import LexiconFile
@@ -27,7 +28,8 @@ def _broken(tmp_path: Path, name: str, change: Any) -> Path:
 
 
 @pytest.mark.parametrize(("name", "schema"), [("lexicon.json", LexiconFile), ("idioms.json", IdiomsFile),
-                                              ("text.json", TextFile), ("words.json", WordsFile)])
+                                              ("text.json", TextFile), ("words.json", WordsFile),
+                                              ("preamble.json", PreambleFile)])
 def test_every_shipped_knowledge_file_passes_its_schema(name: str, schema: Any) -> None:
     read(DATA_DIR / name, schema)
 
@@ -98,3 +100,10 @@ def test_a_word_table_in_capitals_names_the_module_and_the_table(tmp_path: Path)
 def test_a_table_a_module_needs_and_the_file_lacks_is_named() -> None:
     with pytest.raises(KnowledgeDataError, match=r"^words\.json: tables -> 'cues' -> 'no_such_table': missing"):
         WordTables("cues").set("no_such_table")
+
+
+def test_a_preamble_pattern_that_does_not_compile_is_named_by_its_index(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        data["preamble"][2]["pattern"] = "(?:be )?(?:able|willing to"
+    with pytest.raises(KnowledgeDataError, match=r"^preamble\.json: preamble\[2\]: .*no regular expression"):
+        read(_broken(tmp_path, "preamble.json", change), PreambleFile)
