@@ -50,6 +50,11 @@ def places_to_locations(frame: Frame) -> None:
 _W = word_tables("constructions")
 #: what a noun phrase can be said to be when it is only the means: "the microwave is fine"
 _INSTRUMENT_OK = _W.set("instrument_ok")
+#: "the pan could really do with a good scrub", "the mug badly needs a wash": the words
+#: between the thing and the verbal noun of a light-verb construction
+_BEFORE_VERBAL_NOUN = _W.set("before_verbal_noun")
+#: what may stand between the means and its approval ("the microwave is totally fine")
+_BEFORE_INSTRUMENT_OK = _W.set("before_instrument_ok")
 #: acts a noun can name in "give X a rinse", "the pan could do with a scrub"
 _LIGHT_ACTS = frozenset({Act.CLEAN, Act.HEAT, Act.MICROWAVE, Act.COOK, Act.TOAST, Act.COOL,
                          Act.SLICE, Act.WATER})
@@ -70,8 +75,7 @@ def instrument_clause(items: list[Item], mentions: list[Head]) -> Head | None:
     if head is None or head.noun is None or k >= n:
         return None
     m = k
-    while m < n and items[m].text in ("is", "are", "will", "would", "should", "be", "totally",
-                                      "perfectly", "just", "really", "also", "probably"):
+    while m < n and items[m].text in _BEFORE_INSTRUMENT_OK:
         m += 1
     rest = {x.text for x in items[m:]}
     if m > k and m < n and (items[m].text in _INSTRUMENT_OK or items[m].text == "do") \
@@ -118,10 +122,7 @@ def light_verb(items: list[Item]) -> list[Item]:
         return items
     k = skip_locative(items, k)       # "the pan on the stove needs a good scrub"
     m = k
-    while m < len(items) and items[m].text in ("could", "would", "really", "definitely",
-                                               "badly", "do", "with", "use", "needs", "need",
-                                               "wants", "deserves", "is", "in", "of", "has",
-                                               "got", "want", "needed", "urgently"):
+    while m < len(items) and items[m].text in _BEFORE_VERBAL_NOUN:
         m += 1
     if m == k:
         return items

@@ -67,6 +67,8 @@ def _embedded_be(items: list[Item], k: int) -> bool:
 
 #: past participles of "have gone off" kind (the regular ones end in -ed)
 _PARTICIPLES = _W.set("participles")
+#: "the fork sitting in the sink": verbs of posture, which say where something is
+_POSTURE_VERBS = _W.set("posture_verbs")
 
 
 def _perfect(items: list[Item], k: int) -> bool:
@@ -95,7 +97,7 @@ def _posture(items: list[Item], k: int) -> bool:
     """"the fork and spoon sitting in the sink": where something is, as a participle."""
     verb = items[k].verb
     return k > 0 and items[k - 1].noun is not None and verb is not None and verb.form == "ing" \
-        and verb.lemma in ("sit", "lie", "stand", "rest", "wait", "hang")
+        and verb.lemma in _POSTURE_VERBS
 
 
 def is_statement(items: list[Item]) -> bool:

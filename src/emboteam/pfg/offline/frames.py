@@ -178,6 +178,10 @@ _IRREGULAR_PARTICIPLES = _W.set("irregular_participles")
 
 #: "would look nicer on": a wished place
 _LOOKS = _W.set("looks")
+#: adverbs, hedges and auxiliaries between a subject and its state ("is still nicely warm")
+_BEFORE_STATE = _W.set("before_state")
+#: "should end up sliced", "winds up on the plate": as "be"
+_END_UP = _W.set("end_up")
 
 
 def _participle(it: Item) -> bool:
@@ -211,20 +215,13 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
             frame_flags["modal"] = True
         elif t == "to" and not (nxt_item is not None and (nxt_item.text == "be" or nxt_item.verb)):
             break      # "towel to towel holder": a place, not an infinitive
-        elif it.copula or t in ("still", "already", "always", "now", "currently", "way", "so",
-                                "somewhere", "probably", "usually", "normally", "definitely",
-                                "very", "really", "again", "kept", "be", "been", "being",
-                                "all", "nice", "and", "both", "completely", "fully",
-                                "properly", "totally", "pretty", "bit", "a", "little",
-                                "somewhat", "quite", "rather", "extremely", "super", "well",
-                                "nicely", "brightly", "wide", "slightly", "partly", "partially",
-                                "entirely", "absolutely", "literally", "even", "just", "back"):
+        elif it.copula or t in _BEFORE_STATE:
             pass
         elif t in ("look", "looks") and j + 2 < len(items) and items[j + 1].text in _LOOKS \
                 and items[j + 2].prep in ("on", "in"):
             frame_flags["modal"] = True
             j += 1      # "the vase would look nicer on the side table": where it should be
-        elif t in ("end", "ends", "wind", "winds") and j + 2 < len(items) and items[j + 1].text == "up" \
+        elif t in _END_UP and j + 2 < len(items) and items[j + 1].text == "up" \
                 and items[j + 2].state is not None and items[j + 2].prep is None:
             j += 1      # "should end up sliced (and on a plate)": as "be"
         else:
