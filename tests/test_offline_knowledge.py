@@ -11,6 +11,7 @@ from typing import Any
 import pytest
 
 from emboteam.errors import EmboTeamError
+from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.frames import PreambleFile
 from emboteam.pfg.offline.idioms import IdiomsFile
 from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, WordsFile, WordTables, read
@@ -107,3 +108,13 @@ def test_a_preamble_pattern_that_does_not_compile_is_named_by_its_index(tmp_path
         data["preamble"][2]["pattern"] = "(?:be )?(?:able|willing to"
     with pytest.raises(KnowledgeDataError, match=r"^preamble\.json: preamble\[2\]: .*no regular expression"):
         read(_broken(tmp_path, "preamble.json", change), PreambleFile)
+
+
+def test_a_noun_of_a_type_the_catalogue_lacks_is_named(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(lx._NOUNS, "settee", lx._obj("Sofaa"))
+    lx.nouns.cache_clear()
+    try:
+        with pytest.raises(KnowledgeDataError, match=r"^lexicon\.json: nouns -> 'settee': no object type 'Sofaa'"):
+            lx.nouns()
+    finally:
+        lx.nouns.cache_clear()

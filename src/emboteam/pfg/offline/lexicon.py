@@ -323,10 +323,11 @@ def nouns() -> dict[str, Concept]:
     by its own name, split and run together."""
     out = dict(_NOUNS)
     cat = load_catalogue()
-    for phrase, concept in [*_NOUNS.items(), *PLURAL_NOUNS.items()]:
-        unknown = [t for t in (*concept.types, *concept.fallback) if t not in cat.types]
-        if unknown and concept.kind == "object":
-            raise fail(_FILE, f"nouns -> {phrase!r}", f"no object type {unknown[0]!r} in the catalogue")
+    for table, entries in (("nouns", _NOUNS), ("plural_nouns", PLURAL_NOUNS)):
+        for phrase, concept in entries.items():
+            unknown = [t for t in (*concept.types, *concept.fallback) if t not in cat.types]
+            if unknown:
+                raise fail(_FILE, f"{table} -> {phrase!r}", f"no object type {unknown[0]!r} in the catalogue")
     source = {piece for piece, _ in cat.slice_products.values()}
     for name in cat.types:
         if name in source:
