@@ -37,9 +37,9 @@ from emboteam.world.poses import REACH, Pose
 INF = math.inf
 EPS = 1e-6
 #: A* expansions before a drive counts as blocked (a few thousand suffice on iTHOR grids)
-MAX_EXPANSIONS = 20_000
+MAX_EXPANSIONS = 4_000
 #: steps a drive may spend waiting beyond its static length before it counts as blocked
-MAX_EXTRA_STEPS = 160
+MAX_EXTRA_STEPS = 60
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,6 +98,10 @@ class Reservations:
                     iv.t1 = t
                 keep.append(iv)
             self._cells[cell] = keep
+
+    def parks(self, cell: Cell, robot: str) -> bool:
+        """Whether another robot holds ``cell`` for good, now or from some time on."""
+        return any(iv.t1 == INF and iv.robot != robot for iv in self._cells.get(cell, ()))
 
     def parked_at(self, cell: Cell, t: float) -> str | None:
         """The robot holding ``cell`` from before ``t`` for good, if any."""
@@ -198,7 +202,9 @@ def search(res: Reservations | None, nav: Navigator, robot: str, start: Cell, t0
 
 
 def _open_way(res: Reservations, grid: NavGrid, robot: str, start: Cell, t: float, goals: set[Cell]) -> bool:
-    """Whether some goal cell can be reached at all past the robots parked for good."""
+    """Whether some goal cell can be reached past the cells other robots hold for good (now
+    or once they arrive): when not, the drive waits for them to leave or yield rather than
+    search in time for a way that mostly is not there."""
     seen = {start}
     stack = [start]
     while stack:
@@ -206,7 +212,7 @@ def _open_way(res: Reservations, grid: NavGrid, robot: str, start: Cell, t: floa
         if cell in goals:
             return True
         for n in grid.neighbours(cell):
-            if n not in seen and res.parked_at(n, t) in (None, robot):
+            if n not in seen and not res.parks(n, robot):
                 seen.add(n)
                 stack.append(n)
     return False
@@ -307,7 +313,8 @@ class Traffic:
         began = time.perf_counter()
         if self.avoid:
             self.res.release_after(robot, t0)
-            path = search(self.res, self.nav, robot, here.cell, t0, dt, self._usable(goals, t0, robot))
+            usable = self._usable(goals, t0, robot)
+            path = search(self.res, self.nav, robot, here.cell, t0, dt, usable) if usable else None
         else:
             path = search(None, self.nav, robot, here.cell, t0, dt, goals[:POSE_CHOICES])
         self.search_seconds += time.perf_counter() - began
@@ -319,9 +326,10 @@ class Traffic:
         return path
 
     def _usable(self, goals: Sequence[Pose], t: float, robot: str) -> list[Pose]:
-        """Goal poses not taken for good by a robot parked there (then the next best)."""
-        usable = [g for g in goals if self.res.parked_at(g.cell, t) in (None, robot)]
-        return usable[:POSE_CHOICES] or list(goals[:1])
+        """Goal poses a robot can end at and stay: no other robot holds the cell from ``t``
+        on (parked there, or passing through later). None usable: the drive is blocked for
+        now (searching in time towards a cell it could never keep would only burn time)."""
+        return [g for g in goals if self.res.free(g.cell, t, INF, robot)][:POSE_CHOICES]
 
     def _commit(self, robot: str, t0: float, path: list[Step]) -> None:
         """Make ``path`` (starting at ``t0``) the robot's plan from ``t0`` on."""
