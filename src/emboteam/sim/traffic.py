@@ -218,12 +218,9 @@ def _open_way(res: Reservations, grid: NavGrid, robot: str, start: Cell, t: floa
     return False
 
 
-def _static_if_free(res: Reservations, nav: Navigator, robot: str, start: Cell, t0: float, dt: float,
-                    goals: Sequence[Pose], heading: int | None) -> list[Step] | None:
-    """The static shortest path to the first goal, timed from ``t0``, when no reservation
-    is in its way (the common case: most drives meet nobody, and this costs no search)."""
-    if heading is not None or not goals:
-        return None
+def _static(nav: Navigator, start: Cell, t0: float, dt: float, goals: Sequence[Pose]) -> list[Step] | None:
+    """The shortest path (cached) to the nearest of ``goals``, timed from ``t0``, ignoring
+    every other robot."""
     best = min(((n, k) for k, g in enumerate(goals) if (n := nav.actions_to(start, g)) is not None),
                default=None)
     if best is None:
@@ -231,7 +228,18 @@ def _static_if_free(res: Reservations, nav: Navigator, robot: str, start: Cell, 
     states = nav.path(start, goals[best[1]])
     if states is None:
         return None
-    path = [Step(t0 + k * dt, c, h) for k, (c, h) in enumerate(states)]
+    return [Step(t0 + k * dt, c, h) for k, (c, h) in enumerate(states)]
+
+
+def _static_if_free(res: Reservations, nav: Navigator, robot: str, start: Cell, t0: float, dt: float,
+                    goals: Sequence[Pose], heading: int | None) -> list[Step] | None:
+    """The static shortest path to the nearest goal, timed from ``t0``, when no reservation
+    is in its way (the common case: most drives meet nobody, and this costs no search)."""
+    if heading is not None or not goals:
+        return None
+    path = _static(nav, start, t0, dt, goals)
+    if path is None:
+        return None
     for a, b in itertools.pairwise(path):
         if not (res.free(a.cell, a.t, b.t, robot) and res.free(b.cell, a.t, b.t, robot)):
             return None
@@ -316,7 +324,7 @@ class Traffic:
             usable = self._usable(goals, t0, robot)
             path = search(self.res, self.nav, robot, here.cell, t0, dt, usable) if usable else None
         else:
-            path = search(None, self.nav, robot, here.cell, t0, dt, goals[:POSE_CHOICES])
+            path = _static(self.nav, here.cell, t0, dt, goals[:POSE_CHOICES])
         self.search_seconds += time.perf_counter() - began
         if path is None:
             if self.avoid:
