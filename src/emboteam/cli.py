@@ -29,6 +29,7 @@ from emboteam.errors import (
     exit_code_of,
 )
 from emboteam.world.actions import Skill
+from emboteam.world.navfit import nav_fit
 from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
 
@@ -156,9 +157,10 @@ def scene(
 ) -> None:
     """List the objects of one floor plan."""
     s = load_scene(floor_plan)
+    fit = nav_fit(s.floor_plan)
     if as_json:
         print_json({
-            "id": s.floor_plan, "room": s.room,
+            "id": s.floor_plan, "room": s.room, "navigation": fit.as_dict(),
             "objects": [
                 {"id": o.id, "type": o.type, "thor_id": o.thor_id, "parent": o.parent,
                  "properties": sorted(o.properties), "mass": o.mass, "position": o.position,
@@ -177,6 +179,7 @@ def scene(
         table.add_row(o.id, o.parent or "", " ".join(sorted(o.properties)),
                       f"{o.mass:g}" if o.mass else "", state)
     out.print(table)
+    out.print(fit.summary(), highlight=False, soft_wrap=True)
 
 
 @app.command()
@@ -386,7 +389,7 @@ def run(
     scene_fp: str | None = typer.Option(None, "--scene", help="floor plan of an instruction"),
     robots_list: str | None = typer.Option(None, "--robots", help="team of an instruction: 1,2,3"),
     frontend: str | None = typer.Option(None, "--frontend", help=FRONTEND_HELP),
-    mode: str = typer.Option("full", "--mode", help="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p"),
+    mode: str = typer.Option("full", "--mode", help="full | no-pfg-hp | no-hp | no-btc | no-avoidance | smart-llm | lamma-p"),
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     llm_record: str | None = typer.Option(None, "--llm-record", help="record LLM calls into this cassette dir"),
@@ -453,7 +456,7 @@ def bench(
     llm: str | None = typer.Option(None, "--llm", help=LLM_HELP),
     llm_when: str = typer.Option("doubt", "--llm-when", help=LLM_WHEN_HELP),
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
-    ablation: list[str] = typer.Option([], "--ablation", help="full | no-pfg-hp | no-hp | no-btc (repeatable)"),
+    ablation: list[str] = typer.Option([], "--ablation", help="full | no-pfg-hp | no-hp | no-btc | no-avoidance (repeatable)"),
     baseline: list[str] = typer.Option([], "--baseline", help="smart-llm | lamma-p (repeatable)"),
     faults: list[str] = typer.Option(["0"], "--faults", help="fault level(s): 0.2 or 0,0.1,0.2 (repeatable)"),
     seeds: int = typer.Option(1, "--seeds", min=1, help="seeds 0..N-1 per task"),
