@@ -245,8 +245,8 @@ def render(summary: dict[str, Any], *, markdown: bool) -> str:
         lines += ["| " + " | ".join(c) + " |" for c in rows]
     else:
         widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(head)]
-        lines.append("  ".join(h.ljust(w) for h, w in zip(head, widths)))
-        lines += ["  ".join(c.ljust(w) for c, w in zip(r, widths)) for r in rows]
+        lines.append("  ".join(h.ljust(w) for h, w in zip(head, widths, strict=True)))
+        lines += ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)) for r in rows]
     held = [n for n, e in summary.items() if n != "ALL" and not e["fitted"]]
     if held:
         agg = {d: [sum(summary[n][d][k] for n in held) for k in ("wrong_flagged", "wrong", "right_flagged", "right")]

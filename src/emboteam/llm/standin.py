@@ -161,9 +161,9 @@ def _decision_field(schema: dict[str, Any]) -> str | None:
         if not isinstance(prop, dict):
             continue
         if name == "ok" and prop.get("type") == "boolean":
-            return name
+            return str(name)
         if prop.get("type") == "string" and "ok" in (prop.get("enum") or ()):
-            return name
+            return str(name)
     return None
 
 
@@ -179,8 +179,9 @@ def _empty(schema: dict[str, Any]) -> Any:
     kind = schema.get("type")
     if isinstance(kind, list):
         return None if "null" in kind else _empty({**schema, "type": kind[0]})
-    return {"array": [], "boolean": False, "integer": schema.get("minimum", 0), "number": 0,
-            "string": "", "null": None}.get(kind, {} if kind == "object" else None)
+    defaults: dict[str, Any] = {"array": [], "boolean": False, "integer": schema.get("minimum", 0), "number": 0,
+                                "string": "", "null": None, "object": {}}
+    return defaults.get(str(kind))
 
 
 def fit(value: Any, schema: Any) -> Any:
@@ -334,13 +335,13 @@ class StandInServer:
                 self.end_headers()
                 self.wfile.write(data)
 
-            def do_GET(self) -> None:  # noqa: N802 (http.server's naming)
+            def do_GET(self) -> None:
                 if self.path.rstrip("/").endswith("/models"):
                     self._send(200, {"object": "list", "data": [{"id": MODEL_NAME, "object": "model"}]})
                 else:
                     self._send(404, {"error": {"message": f"no route {self.path}"}})
 
-            def do_POST(self) -> None:  # noqa: N802
+            def do_POST(self) -> None:
                 if not self.path.rstrip("/").endswith("/chat/completions"):
                     self._send(404, {"error": {"message": f"no route {self.path}"}})
                     return

@@ -30,20 +30,25 @@ from emboteam.pfg.reading import Reading
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.state import WorldState
 
+
+def _words(text: str) -> frozenset[str]:
+    return frozenset(text.split())
+
+
 #: words that carry no request on their own (what "content words" leaves out)
-STOPWORDS = frozenset("""
+STOPWORDS = _words("""
 a an the and or but then so to of in on at into onto from for with by it its it's this that these those
 is are was were be been being am do does did can could would should will shall may might must please
 i me my we our you your he she they them their there here up out off over under
 just also too very really some any all each every both either one two three after before when while
 if as than now first next finally once again let lets let's get got make sure thanks thank hey hi ok okay
-""".split())
+""")
 
 #: words that turn a request around: what the parser most often reads past
-TURNS = frozenset("""
+TURNS = _words("""
 not no don't dont never without except instead unless but actually rather leave keep stay already
 nothing none neither nor anymore cancel forget scratch wait
-""".split())
+""")
 
 _WORD = re.compile(r"[a-z][a-z']*")
 
