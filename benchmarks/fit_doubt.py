@@ -82,7 +82,7 @@ def fit(data: Sequence[tuple[str, dict[str, float], bool]], max_right: float) ->
     for combo in itertools.product(*(GRID[k] for k in SIGNALS)):
         weights = dict(zip(SIGNALS, combo, strict=True))
         for threshold in THRESHOLDS:
-            wf, wn, rf, rn = shares(data, weights, threshold)
+            wf, _, rf, rn = shares(data, weights, threshold)
             if rn and rf / rn > max_right:
                 continue
             key = (wf, -rf, -sum(1 for w in combo if w))

@@ -281,11 +281,10 @@ FRONTENDS_CLI = ("oracle", "offline", "hybrid", "llm")
 def _front_end(frontend: str | None, llm: str | None, llm_when: str | None) -> tuple[str, str]:
     """(front end, --llm-when). No --frontend: offline without --llm; with --llm,
     ``--llm-when W`` picks hybrid, and --llm alone :data:`LLM_DEFAULT_FRONTEND`."""
-    if frontend is None:
-        if llm is None:
-            frontend = "offline"
-        else:
-            frontend = "hybrid" if llm_when is not None else LLM_DEFAULT_FRONTEND
+    if frontend is None and llm is None:
+        frontend = "offline"
+    elif frontend is None:
+        frontend = "hybrid" if llm_when is not None else LLM_DEFAULT_FRONTEND
     return frontend, llm_when if llm_when is not None else HYBRID_DEFAULT_WHEN
 LLM_HELP = "PROVIDER:MODEL[@BASE_URL]: openai, anthropic, llamacpp (MODEL = .gguf path), replay (MODEL = cassette dir)"
 
