@@ -31,22 +31,15 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-SIGNALS = ("unread", "vague", "assumed", "unsure_note", "unsure", "unexplained", "words_per_condition", "turns")
+from emboteam.pfg.doubt import signals
+
+SIGNALS = ("notes", "note_count", "unexplained", "words_per_condition", "turns", "ambiguous", "quantity")
 GRID: dict[str, tuple[float, ...]] = {
-    "unread": (0.0, 1.0), "vague": (0.0, 1.0), "assumed": (0.0, 1.0), "unsure_note": (0.0, 1.0),
-    "unsure": (0.0, 1.0), "unexplained": (0.0, 0.5, 1.0), "words_per_condition": (0.0, 0.1, 0.2),
-    "turns": (0.0, 0.5, 1.0),
+    "notes": (0.0, 1.0), "note_count": (0.0, 0.5), "unexplained": (0.0, 0.5, 1.0),
+    "words_per_condition": (0.0, 0.05, 0.1, 0.2), "turns": (0.0, 0.5, 1.0), "ambiguous": (0.0, 0.5, 1.0),
+    "quantity": (0.0, 1.0),
 }
 THRESHOLDS = (0.5, 1.0, 1.5, 2.0)
-
-
-def signals(features: dict[str, Any]) -> dict[str, float]:
-    notes = features.get("notes") or {}
-    return {"unread": notes.get("unread", 0), "vague": notes.get("vague", 0), "assumed": notes.get("assumed", 0),
-            "unsure_note": notes.get("unsure", 0), "unsure": features["unsure"],
-            "unexplained": len(features["unexplained"]),
-            "words_per_condition": features["content_words"] / max(1, features["conditions"]),
-            "turns": features["turns"]}
 
 
 def is_fitting_round(name: str, fit_until: int) -> bool:
@@ -107,9 +100,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     print("WEIGHTS =", json.dumps(weights))
     print("THRESHOLD =", threshold)
     print("FITTED_ON =", sorted({d[0] for d in fitting}))
+    notes_only = {k: float(k == "notes") for k in SIGNALS}
     for name, part in (("fitted rounds", fitting), ("other rounds", other)):
         wf, wn, rf, rn = shares(part, weights, threshold)
-        print(f"{name}: wrong flagged {wf}/{wn}, right flagged {rf}/{rn}")
+        nwf, _, nrf, _ = shares(part, notes_only, 1.0)
+        print(f"{name}: wrong flagged {wf}/{wn}, right flagged {rf}/{rn} "
+              f"(the parser's notes alone: {nwf}/{wn}, {nrf}/{rn})")
     return 0
 
 

@@ -135,16 +135,28 @@ class Row:
         return self.reachable and not self.offline_success
 
 
-def run_task(rnd: str, task: BenchTask, server: StandInServer) -> Row:
+def reading_features(task: BenchTask) -> dict[str, Any]:
+    """The doubt detector's features of the offline reading of ``task``."""
     from emboteam.pfg.parser import offline_frontend
 
     scene = load_scene(task.floor_plan)
     state, team = task.initial_state(), task.team()
     try:
         reading = offline_frontend().parse(task.instruction, scene, state, team)
-        features = doubt_features(reading, task.instruction, state)
     except EmboTeamError as exc:  # no reading: every mode asks the model
-        features = doubt_features(None, task.instruction, state, error=f"{type(exc).__name__}: {exc}")
+        return doubt_features(None, task.instruction, state, error=f"{type(exc).__name__}: {exc}")
+    return doubt_features(reading, task.instruction, state)
+
+
+def refeature(rows: Sequence[Row], rounds: Sequence[Round]) -> list[Row]:
+    """``rows`` with their features computed again (the episodes' outcomes kept): for a
+    changed detector, seconds instead of a new run."""
+    tasks = {(r.name, t.id): t for r in rounds for t in r.tasks}
+    return [Row(**{**r.__dict__, "features": reading_features(tasks[(r.round, r.id)])}) for r in rows]
+
+
+def run_task(rnd: str, task: BenchTask, server: StandInServer) -> Row:
+    features = reading_features(task)
     offline = run_episode(task, RunConfig(mode="full", frontend=OFFLINE))
     if offline.success and offline.taskspec is not None:
         # a reading that reaches the ground truth is right, however it is worded: the
@@ -182,6 +194,20 @@ def run_rounds(rounds: Iterable[Round], out: Path | None, *, progress: bool = Tr
         sink.close()
         (out / "standin_counts.json").write_text(json.dumps(counts, indent=1))  # type: ignore[operator]
     return rows
+
+
+def derive_doubt(rows: Sequence[Row]) -> list[Row]:
+    """``hybrid-doubt`` from the recorded runs and the current detector: a flagged reading
+    goes to the same review as ``hybrid-always`` (the same request, the same answer), an
+    unflagged one is the offline reading with no call (``HybridFrontend.read``). Exact by
+    construction; a new run checks it (``--round``)."""
+    out = []
+    for r in rows:
+        flagged = flags(r.features)["detector"]
+        doubt = dict(r.modes["hybrid-always"]) if flagged else {"success": r.offline_success, "calls": 0,
+                                                                  "error": r.offline_error}
+        out.append(Row(**{**r.__dict__, "modes": {**r.modes, "hybrid-doubt": doubt}}))
+    return out
 
 
 def load_rows(path: Path) -> list[Row]:
@@ -265,19 +291,29 @@ def main(argv: Sequence[str] | None = None) -> int:
                     help="an extra development round in the SMART-LLM format (repeatable)")
     ap.add_argument("--limit", type=int, default=None, help="at most N tasks per round (a quick look)")
     ap.add_argument("--out", type=Path, default=None, help="write rows.jsonl and summary.json here")
-    ap.add_argument("--from", dest="source", type=Path, default=None, help="tables from a recorded rows.jsonl")
+    ap.add_argument("--from", dest="source", type=Path, action="append", default=None,
+                    help="tables from a recorded rows.jsonl (repeatable)")
+    ap.add_argument("--refeature", action="store_true",
+                    help="with --from: compute the readings' features again (a changed detector)")
+    ap.add_argument("--derive-doubt", action="store_true",
+                    help="with --from: hybrid-doubt from the recorded offline and hybrid-always outcomes and "
+                         "the current detector (derive_doubt)")
     ap.add_argument("--markdown", action="store_true", help="the table in Markdown (for docs/llm.md)")
     ap.add_argument("--json", action="store_true", help="one JSON object on stdout")
     args = ap.parse_args(argv)
     # a rejected correction is a measured outcome here, not a warning to print per task
     logging.getLogger("emboteam.pfg.hybrid").setLevel(logging.ERROR)
     try:
+        extra = [(s.partition("=")[0], Path(s.partition("=")[2])) for s in args.round_dir]
         if args.source is not None:
-            rows = load_rows(args.source)
+            rows = [r for src in args.source for r in load_rows(src)]
             if args.round:
                 rows = [r for r in rows if r.round in args.round]
+            if args.refeature:
+                rows = refeature(rows, development_rounds(DATA, extra))
+            if args.derive_doubt:
+                rows = derive_doubt(rows)
         else:
-            extra = [(s.partition("=")[0], Path(s.partition("=")[2])) for s in args.round_dir]
             rounds = development_rounds(DATA, extra)
             if args.round:
                 rounds = [r for r in rounds if r.name in args.round]
