@@ -7,17 +7,19 @@ measures more of what a reading leaves unexplained, from the reading's public fi
 the instruction only (the parser's rules are not touched):
 
 - the notes by kind, and the unsure conditions;
-- scene nouns the reading does not explain: types the instruction's nouns name (the
-  offline lexicon's look-up, :func:`emboteam.pfg.focus.instruction_types`) that are in the
-  scene but not in the reading's goal, nor related to it (a slice's source, a burner's
-  knob, where an object now is);
+- scene nouns the reading does not explain: nouns of the instruction (the offline
+  lexicon's look-up, as :mod:`emboteam.pfg.focus` does) naming something in the scene of
+  which the goal names, needs (a slice's source, a burner's knob, where an object now is)
+  and uses (a knife to slice, a sink to wash) nothing;
 - how much text stands behind each goal condition (content words per condition: a long
   request read as one condition lost something);
-- words that turn a request around (negation, exceptions, changes of mind).
+- nouns naming two or more types in the scene ("soap"), and a number word ("both") read
+  as one object; words that turn a request around (negation, exceptions) are recorded too.
 
 :func:`doubt_score` combines them with weights fitted on development rounds only
-(:data:`FITTED_ON`; ``benchmarks/frontend_routing.py`` reports the detector on the other
-rounds too); :func:`needs_review` is what ``--llm-when doubt`` asks on.
+(:data:`FITTED_ON`, ``benchmarks/fit_doubt.py``; ``benchmarks/frontend_routing.py``
+reports the detector on the other rounds too, docs/llm.md "The doubt detector");
+:func:`needs_review` is what ``--llm-when doubt`` asks on.
 """
 
 from __future__ import annotations
