@@ -193,10 +193,12 @@ def doubt_score(features: dict[str, Any]) -> float:
 
 def flags(features: dict[str, Any]) -> dict[str, bool]:
     """``notes``: the parser's own doubt; ``detector``: the fitted detector. A reading
-    that failed (no TaskSpec) is always flagged."""
+    that failed (no TaskSpec) or holds an unsure condition is always flagged."""
     failed = features.get("error") is not None
+    # a condition the parser marked unsure is always shown: those are the conditions a
+    # review may change (HybridFrontend's sure-condition rule)
     return {"notes": failed or bool(features["doubtful"]),
-            "detector": failed or doubt_score(features) >= THRESHOLD}
+            "detector": failed or features["unsure"] > 0 or doubt_score(features) >= THRESHOLD}
 
 
 def needs_review(reading: Reading, instruction: str, state: WorldState) -> bool:
