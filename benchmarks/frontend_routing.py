@@ -1,6 +1,6 @@
 """Routing ceilings of the LLM front-end modes, with a perfect-model stand-in (issue 29).
 
-The model is :mod:`emboteam.llm.standin`: a loopback OpenAI-compatible server that knows
+The model is :mod:`emboteam.bench.standin`: a loopback OpenAI-compatible server that knows
 every task's ground-truth goal. **It measures routing, never model quality**: with it, a
 mode's SR is its ceiling, what it reaches when the model never errs, given where the mode
 asks the model and what it lets the model change.
@@ -44,8 +44,8 @@ from typing import Any
 
 from emboteam.bench.importers.smart_llm import import_smart_llm
 from emboteam.bench.mace_thor import load_mace_thor
+from emboteam.bench.standin import DISCLAIMER, StandInServer, known_tasks
 from emboteam.errors import EmboTeamError
-from emboteam.llm.standin import DISCLAIMER, StandInServer, known_tasks
 from emboteam.pfg.doubt import FITTED_ON, doubt_features, flags
 from emboteam.pipeline import RunConfig, run_episode
 from emboteam.task import BenchTask

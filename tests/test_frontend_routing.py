@@ -1,4 +1,4 @@
-"""What --llm selects, measured with the perfect-model stand-in (emboteam.llm.standin), and
+"""What --llm selects, measured with the perfect-model stand-in (emboteam.bench.standin), and
 the routing benchmark's own bookkeeping on a small round."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import pytest
 from typer.testing import CliRunner
 
 from emboteam.bench.mace_thor import load_mace_thor
+from emboteam.bench.standin import DISCLAIMER, StandInServer, known_tasks
 from emboteam.cli import HYBRID_DEFAULT_WHEN, LLM_DEFAULT_FRONTEND, app
-from emboteam.llm.standin import DISCLAIMER, StandInServer, known_tasks
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))

@@ -26,7 +26,7 @@ holding ``"ok"`` beside it, a review), and the answer is fitted to the request's
 null, false, empty or first-enum value), so prompt and schema changes do not break it.
 
 Only a loopback address is accepted. Hand-written on :mod:`http.server` (no new
-dependency): two routes, JSON in, JSON out. ``python -m emboteam.llm.standin --suite
+dependency): two routes, JSON in, JSON out. ``python -m emboteam.bench.standin --suite
 mace-thor`` serves a suite for your own routing measurements.
 """
 
@@ -406,7 +406,7 @@ def known_tasks(tasks: Iterable[Any]) -> list[KnownTask]:
 def main(argv: Sequence[str] | None = None) -> int:
     from emboteam.bench.suites import load_suite
 
-    ap = argparse.ArgumentParser(prog="python -m emboteam.llm.standin", description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m emboteam.bench.standin", description=__doc__.split("\n\n")[0])
     ap.add_argument("--suite", action="append", required=True, help="mace-thor | smart-llm:PATH (repeatable)")
     ap.add_argument("--host", default="127.0.0.1", help="a loopback address (default 127.0.0.1)")
     ap.add_argument("--port", type=int, default=0, help="0: any free port (printed)")

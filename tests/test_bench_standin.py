@@ -1,4 +1,4 @@
-"""The perfect-model stand-in (emboteam.llm.standin): real HTTP on 127.0.0.1, the project's
+"""The perfect-model stand-in (emboteam.bench.standin): real HTTP on 127.0.0.1, the project's
 own clients and front ends against it. It must answer decompositions with the ground
 truth, "ok" to a right draft, the ground truth to a wrong one, in whatever schema the
 request carries, and refuse what it cannot know."""
@@ -11,10 +11,7 @@ from collections.abc import Sequence
 
 import pytest
 
-from emboteam.hp.llm_stages import review_spec
-from emboteam.llm import make_client
-from emboteam.llm.errors import LLMServerError
-from emboteam.llm.standin import (
+from emboteam.bench.standin import (
     DISCLAIMER,
     KnownTask,
     PerfectModel,
@@ -23,6 +20,9 @@ from emboteam.llm.standin import (
     fit,
     known_tasks,
 )
+from emboteam.hp.llm_stages import review_spec
+from emboteam.llm import make_client
+from emboteam.llm.errors import LLMServerError
 from emboteam.pfg.hybrid import HybridFrontend
 from emboteam.pfg.llm_frontend import LLMFrontend
 from emboteam.pfg.reading import Reading
