@@ -119,11 +119,16 @@ def _implies(got: tuple[object, ...], want: tuple[object, ...]) -> bool:
         return True
     pred, subject, count, place, liquid = got
     wpred, wsubject, wcount, wplace, wliquid = want
-    if (pred, place, liquid) != (wpred, wplace, wliquid) or count < wcount:   # type: ignore[operator]
+    # a ground truth "FILLED" names no liquid (stored as water): any liquid meets it
+    if (pred, place) != (wpred, wplace) or (liquid != wliquid and wliquid != "water"):
         return False
     names = {str(x).split("_")[0] for x in subject}   # type: ignore[attr-defined]
     wanted = {str(x).split("_")[0] for x in wsubject}  # type: ignore[attr-defined]
-    return bool(names) and names <= wanted and (subject == wsubject or not any("_" in str(x) for x in wsubject))
+    if any("_" in str(x) for x in wsubject) and subject != wsubject:
+        return False
+    if len(names) > 1 and count >= len(names) and wanted <= names:   # type: ignore[operator]
+        return True     # "both lamps": switched_off(DeskLamp|FloorLamp, 2) is each of them
+    return bool(names) and names <= wanted and count >= wcount   # type: ignore[operator]
 
 
 def satisfies(keys: frozenset[tuple[object, ...]], truth: frozenset[tuple[object, ...]]) -> bool:
