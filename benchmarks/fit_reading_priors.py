@@ -97,7 +97,7 @@ def dev_cases(extra: Sequence[Path]) -> list[Case]:
 
 def read_all(cases: list[Case]) -> None:
     """The reading as read and its doubts, once per case (priors that never move it)."""
-    frontend = OfflineFrontend(priors=Priors(default_prior=1e-6, priors={}))
+    frontend = OfflineFrontend(priors=load_priors().model_copy(update={"priors": {}, "default_prior": 1e-6}))
     for case in cases:
         try:
             reading = frontend.parse(case.instruction, case.scene, case.state, case.team)
