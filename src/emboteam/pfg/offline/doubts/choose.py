@@ -10,14 +10,13 @@ from dataclasses import dataclass
 from emboteam.pfg.candidates import Candidate, Doubt
 from emboteam.pfg.offline.discourse import Mention
 from emboteam.pfg.offline.doubts import find_doubts
-from emboteam.pfg.offline.doubts.check import feasible
+from emboteam.pfg.offline.doubts.check import FeasibilityCheck
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 from emboteam.pfg.offline.doubts.unexplained import unexplained_spans
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.ranker import rank
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.world.goals import Condition
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -38,13 +37,9 @@ def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldSta
                        history=history)
     priors = priors or load_priors()
     doubts = find_doubts(ctx, priors)
-    cache: dict[frozenset[Condition], bool] = {}
-
-    def check(goals: tuple[Condition, ...]) -> bool:
-        key = frozenset(goals)
-        if key not in cache:
-            cache[key] = feasible(goals, scene, state, team)
-        return cache[key]
-
+    check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
     ranked = rank(spec, doubts, priors, check)
+    # the team check for the candidates that may run or be offered (the best and the close ones)
+    best = ranked[0].score
+    ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))
     return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(ctx)), tuple(doubts))

@@ -62,9 +62,13 @@ class DoubtContext:
         concept = item.noun.concept
         return tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in self.scene_types)
 
+    @cached_property
+    def _mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
+        return [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+
     def mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
         """(position, word, scene types) of every word that names a thing of the scene."""
-        return [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+        return self._mentions
 
     def clause_bounds(self, k: int) -> tuple[int, int]:
         """The positions [start, end) of the stretch of words around ``k`` between
@@ -82,5 +86,9 @@ class DoubtContext:
         subject = ref_types(c.subject)
         return next((k for k, _, types in self.mentions() if subject & set(types)), None)
 
-    def goal_types(self) -> frozenset[str]:
+    @cached_property
+    def _goal_types(self) -> frozenset[str]:
         return frozenset(t for c in self.goals for t in condition_types(c))
+
+    def goal_types(self) -> frozenset[str]:
+        return self._goal_types

@@ -18,7 +18,6 @@ from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.goals import Condition, Predicate
 
 
-
 def exclusion_doubts(ctx: DoubtContext) -> list[Doubt]:
     out = []
     for k, item, types in ctx.mentions():

@@ -11,7 +11,7 @@ from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.sentences import clause
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.goals import Condition, ObjectRef, Predicate
+from emboteam.world.goals import ObjectRef, Predicate
 
 KIND = "slices"
 
