@@ -44,9 +44,7 @@ def test_an_unreadable_part_is_a_note_and_the_rest_is_acted_on(
         text: str, fp: int, expected: set[str], span: str) -> None:
     reading = read(text, fp)
     assert goal(reading) == expected
-    # (a thing named whose goal was lost with the unreadable part, "the apple" of "the apple in
-    # the frobnicator", is also listed as an unexplained mention: issue 25, item 1)
-    assert [n.span for n in reading.notes if n.kind != "unexplained"] == [span]
+    assert [n.span for n in reading.notes] == [span]
     assert reading.notes[0].reason and reading.doubtful
 
 

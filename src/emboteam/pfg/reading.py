@@ -62,4 +62,4 @@ class Reading:
     @property
     def doubtful(self) -> bool:
         """Whether an LLM should look at this reading (``--llm-when doubt``)."""
-        return bool(self.notes or self.unsure)
+        return bool(self.notes or self.unsure or self.unexplained)

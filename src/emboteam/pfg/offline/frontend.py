@@ -177,19 +177,20 @@ def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dic
 def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
                      team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None) -> Reading:
     """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
-    ``unexplained`` note per mention nothing explains, and the conditions a close
+    list of the mentions nothing explains, and the conditions a close
     alternative would change marked unsure."""
     found = choices(reading.spec, items, scene, state, team, semantics.history, priors)
     best = found.candidates[0]
-    notes = reading.notes + tuple(ReadingNote(w, "names a thing of the scene, but ends in no goal and nothing "
-                                              "explains it", "unexplained") for w in found.unexplained)
+    notes = reading.notes
     unsure = reading.unsure
     if not best.as_read:
         notes += (ReadingNote(", ".join(r.span for r in best.resolves), "read as: " + "; ".join(
             r.how for r in best.resolves), "assumed"),)
         unsure += tuple(str(c) for c in best.goals if str(c) not in unsure and c not in reading.spec.goal().conditions)
+    noted = " ".join(n.span for n in notes if n.kind == "vague")    # "make the bed": the bed is the chore's
+    unexplained = tuple(w for w in found.unexplained if w not in noted)
     return replace(reading, spec=best.spec, notes=notes, unsure=unsure, candidates=found.candidates,
-                   unexplained=found.unexplained, doubts=found.doubts)
+                   unexplained=unexplained, doubts=found.doubts)
 
 
 class OfflineFrontend:

@@ -75,6 +75,11 @@
       notes.hidden = false;
       m.notes.forEach(function (n) { el("li", {}, notes, n); });
     }
+    if (m.unexplained && m.unexplained.length) {   // named things that ended in no goal, unexplained
+      var un = document.getElementById("reading-notes");
+      un.hidden = false;
+      el("li", {}, un, "unexplained: " + m.unexplained.join(", ") + " (named, but in no goal)");
+    }
     if (m.candidates && m.candidates.length > 1) {   // the readings considered, best first, with scores
       var cands = document.getElementById("reading-candidates");
       cands.hidden = false;

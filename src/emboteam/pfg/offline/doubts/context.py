@@ -57,7 +57,7 @@ class DoubtContext:
     def named_types(self, item: Item) -> tuple[str, ...]:
         """The scene's types a word names, in the lexicon's order of preference (its
         fallbacks after), none when it names no thing or nothing of this scene."""
-        if item.noun is None or item.noun.concept.kind not in _THING_KINDS:
+        if item.noun is None or item.verb is not None or item.noun.concept.kind not in _THING_KINDS:
             return ()
         concept = item.noun.concept
         return tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in self.scene_types)
