@@ -14,12 +14,26 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | device | :mod:`.device` |
 | exclusion, correction | :mod:`.scope` |
 | of_compound | :mod:`.of_compound` |
+| means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |
+| instance | :mod:`.instances` (one object, or any of its type) |
+| stays | :mod:`.stays` (a thing kept as it is: its present place or switch state as a goal) |
 """
 
 from __future__ import annotations
 
 from emboteam.pfg.candidates import Doubt
-from emboteam.pfg.offline.doubts import device, of_compound, scene_type, scope, slices, state, unexplained
+from emboteam.pfg.offline.doubts import (
+    device,
+    instances,
+    means,
+    of_compound,
+    scene_type,
+    scope,
+    slices,
+    state,
+    stays,
+    unexplained,
+)
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
@@ -28,7 +42,8 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     """Every point of doubt of a reading, rule by rule."""
     priors = priors or load_priors()
     found = [*unexplained.doubts(ctx), *scope.doubts(ctx), *of_compound.doubts(ctx), *scene_type.doubts(ctx),
-             *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps)]
+             *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
+             *instances.doubts(ctx), *stays.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 
