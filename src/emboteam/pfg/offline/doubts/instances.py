@@ -21,8 +21,24 @@ def _any(ref: ObjectRef | None) -> ObjectRef | None:
     return ObjectRef(types=(ref.id.split("_")[0],))
 
 
-def doubts(ctx: DoubtContext) -> list[Doubt]:
+def _counted(ctx: DoubtContext) -> list[Doubt]:
+    """"The two CDs ... on the shelf": one goal per instance, or two of the type."""
+    groups: dict[tuple[object, ...], list[Condition]] = {}
+    for c in ctx.goals:
+        if c.subject.id is not None and "_Slice_" not in c.subject.id:
+            key = (c.predicate, c.subject.id.split("_")[0], str(c.receptacle), c.liquid)
+            groups.setdefault(key, []).append(c)
     out = []
+    for (_, type_, _, _), same in groups.items():
+        if len(same) > 1:
+            alt = same[0].model_copy(update={"subject": ObjectRef(types=(str(type_),)), "count": len(same)})
+            out.append(Doubt(KIND, str(type_), (Choice(AS_READ, "those ones"),
+                                                 Choice("any_instances", clause(alt), drop=tuple(same), add=(alt,)))))
+    return out
+
+
+def doubts(ctx: DoubtContext) -> list[Doubt]:
+    out = _counted(ctx)
     for c in ctx.goals:
         alt: Condition = c.model_copy(update={"subject": _any(c.subject), "receptacle": _any(c.receptacle)})
         if alt != c and alt not in ctx.goals:

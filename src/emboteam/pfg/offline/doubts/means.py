@@ -52,10 +52,50 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
                                                   _choice("left_in_device", hot, add[:1]),
                                                   _choice("left_running", hot, add))))
         elif c.predicate is P.cooked and thing == "Bread" and "Toaster" in ctx.scene_types:
-            add = [a for a in (placed("BreadSliced", "Toaster"), one_object(P.switched_on, "Toaster"))
-                   if a not in have]
+            slices = placed("BreadSliced", "Toaster").model_copy(update={"count": c.count})
+            add = [a for a in (slices, one_object(P.switched_on, "Toaster")) if a not in have]
             if add:
                 out.append(Doubt(KIND, "toast", (Choice(AS_READ, clause(c)),
                                                  _choice("left_in_device", (), add[:1]),
                                                  _choice("left_running", (), add))))
+    return out + results(ctx)
+
+
+#: a device switched on -> the state it gives what is in or on it (the stove's knob heats
+#: what stands on a burner, and cooks what is in a pan there; the toaster toasts its
+#: slice; the coffee machine fills its mug)
+_DEVICES: dict[str, tuple[str, Predicate, str | None]] = {
+    "StoveKnob": ("StoveBurner", P.hot, None), "Toaster": ("Toaster", P.cooked, None),
+    "CoffeeMachine": ("CoffeeMachine", P.filled, "coffee"), "Microwave": ("Microwave", P.hot, None),
+}
+
+
+def _within(ctx: DoubtContext, place: str) -> list[str]:
+    """The types the reading puts in or on ``place`` (and in what stands there: a pan on
+    the burner)."""
+    direct = [t for c in ctx.goals if c.predicate is P.inside and c.receptacle is not None
+              and place in ref_types(c.receptacle) for t in ref_types(c.subject)]
+    nested = [t for c in ctx.goals if c.predicate is P.inside and c.receptacle is not None
+              and ref_types(c.receptacle) & set(direct) for t in ref_types(c.subject)]
+    return [*direct, *nested]
+
+
+def results(ctx: DoubtContext) -> list[Doubt]:
+    """Point of doubt: the reading asks for the means (the pot on a burner, the knob on)
+    but maybe also for what they give (the pot's water hot)."""
+    out: list[Doubt] = []
+    for c in ctx.goals:
+        if c.predicate is not P.switched_on or c.subject.types[:1] == () or c.subject.types[0] not in _DEVICES:
+            continue
+        place, pred, liquid = _DEVICES[c.subject.types[0]]
+        for thing in _within(ctx, place):
+            if thing in ("Pan", "Pot") and pred is P.cooked:
+                continue
+            want = pred if not (thing in ("Pan", "Pot", "Kettle") or pred is P.hot) else P.hot
+            if place == "StoveBurner" and thing not in ("Pan", "Pot", "Kettle"):
+                want = P.cooked
+            made = one_object(want, thing).model_copy(update={"liquid": liquid if want is P.filled else None})
+            if made not in ctx.goals:
+                out.append(Doubt(KIND, str(c), (Choice(AS_READ, clause(c)),
+                                                Choice("and_its_result", clause(made), add=(made,)))))
     return out

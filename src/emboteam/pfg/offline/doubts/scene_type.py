@@ -23,8 +23,28 @@ def _swap(c: Condition, old: str, new: str) -> Condition:
     return c.model_copy(update={"subject": ref(c.subject), "receptacle": ref(c.receptacle)})
 
 
-def doubts(ctx: DoubtContext) -> list[Doubt]:
+def narrowing(ctx: DoubtContext) -> list[Doubt]:
+    """A goal on "any of several types" ("the computer": Desktop|Laptop; "the lamp":
+    DeskLamp|FloorLamp) may mean one of them."""
     out: list[Doubt] = []
+    for c in ctx.goals:
+        for role in ("subject", "receptacle"):
+            ref = getattr(c, role)
+            if ref is None or ref.id is not None or len(ref.types) < 2:
+                continue
+            choices = [Choice(AS_READ, f"any {' or '.join(type_name(t) for t in ref.types)}")]
+            for t in ref.types:
+                alt = c.model_copy(update={role: ObjectRef(types=(t,)), "count": 1 if role == "subject" else c.count})
+                choices.append(Choice("one_type", f"the {type_name(t)}", drop=(c,), add=(alt,)))
+            if role == "subject" and c.count >= len(ref.types):
+                each = tuple(c.model_copy(update={"subject": ObjectRef(types=(t,)), "count": 1}) for t in ref.types)
+                choices.append(Choice("each_type", "one of each", drop=(c,), add=each))
+            out.append(Doubt(KIND, str(c), tuple(choices)))
+    return out
+
+
+def doubts(ctx: DoubtContext) -> list[Doubt]:
+    out: list[Doubt] = narrowing(ctx)
     done: set[tuple[str, ...]] = set()
     for _, item, types in ctx.mentions():
         if len(types) < 2 or types in done:
