@@ -31,6 +31,9 @@ class FeasibilityCheck:
         self.robots = list(state.robots)
         self.base = tuple(checked)
         self.known: dict[Condition, bool] = dict.fromkeys(checked, True)
+        # the wholes the reading cuts (slicing_targets is a union over conditions: the
+        # reading's part is computed once)
+        self._base_slices: set[str] | None = None
 
     def condition(self, c: Condition) -> bool:
         if c not in self.known:
@@ -40,7 +43,9 @@ class FeasibilityCheck:
     def _check(self, c: Condition) -> bool:
         try:
             validate_goal(Goal(conditions=(c,)), self.scene)
-            slices = slicing_targets([*self.base, c], self.state, self.robots)
+            if self._base_slices is None:
+                self._base_slices = slicing_targets(list(self.base), self.state, self.robots)
+            slices = self._base_slices | slicing_targets([c], self.state, self.robots)
             compile_condition(c, self.state, self.robots, slices=slices, narrow=False)
         except (GoalValidationError, ImpossibleGoalError):
             return False
