@@ -86,10 +86,20 @@ class Candidate:
 
 @dataclass(frozen=True)
 class Clarification:
-    """A question for the person and the readings to choose from (best first).
+    """A question for the person and the readings it chooses between, best first.
 
-    Compatible with the LLM front end's "I cannot tell" (issue 26): a question and
-    candidate readings."""
+    The same fields as issue 26's ``pfg.clarification.Clarification`` (question, readings
+    as plain-English sentences, source), so the two merge into one type; the offline
+    reader's also keeps the candidates behind the sentences."""
 
     question: str
+    readings: tuple[str, ...]
+    source: str = "offline"
     candidates: tuple[Candidate, ...] = field(default_factory=tuple)
+
+    def to_json(self) -> dict[str, object]:
+        return {"question": self.question, "readings": list(self.readings), "source": self.source}
+
+    def render(self) -> str:
+        """The question and the numbered readings, as a terminal shows them."""
+        return "\n".join([self.question, *(f"  {i}. {r}" for i, r in enumerate(self.readings, start=1))])

@@ -17,22 +17,23 @@ from emboteam.pfg.candidates import Candidate, Clarification
 from emboteam.pfg.ranker import close_calls
 from emboteam.pfg.reading import Reading, ReadingNote
 
+#: at most this many readings are offered (as issue 26's clarification answer)
+MAX_READINGS = 4
+
 QUESTION = "The instruction can be read more than one way. Which end state did you mean?"
 
 
 def clarification(reading: Reading, margin: float) -> Clarification | None:
     """The question to ask, or None when one reading stands out (or there is one)."""
-    close = close_calls(reading.candidates, margin)
+    close = close_calls(reading.candidates, margin)[:MAX_READINGS]
     if len(close) < 2:
         return None
-    return Clarification(QUESTION, close)
+    return Clarification(QUESTION, tuple(c.sentence for c in close), candidates=close)
 
 
 def _ask(question: Clarification, stdin: TextIO, stdout: TextIO) -> Candidate:
     options: Sequence[Candidate] = question.candidates
-    stdout.write(question.question + "\n")
-    for k, c in enumerate(options, start=1):
-        stdout.write(f"  {k}. {c.sentence}\n")
+    stdout.write(question.render() + "\n")
     while True:
         stdout.write(f"Your choice [1-{len(options)}, Enter for 1]: ")
         stdout.flush()
