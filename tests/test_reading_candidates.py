@@ -191,3 +191,23 @@ def test_clarify_on_a_terminal_asks_and_uses_the_choice() -> None:
     assert "2. The teddy bear is on the desk." in text
     assert "chosen by the person: The teddy bear is on the desk." in text
     assert proc.returncode == 0
+
+
+@pytest.mark.parametrize(("text", "floor_plan", "kind", "alternative"), [
+    ("heat the potato in the microwave", "FloorPlan1", "means", {"hot(Potato)", "inside(Potato, Microwave)"}),
+    ("make me a coffee", "FloorPlan1", "means", {"filled(Mug, coffee)", "inside(Mug, CoffeeMachine)"}),
+    ("leave the tomato where it is and put the apple in the fridge", "FloorPlan1", "stays",
+     {"inside(Apple, Fridge)", "inside(Tomato, CounterTop)"}),
+    ("turn off the lamp", "FloorPlan201", "scene_type", {"switched_off(FloorLamp)"}),
+    ("put the apple in the fridge, no, on the counter", "FloorPlan1", "correction", {"inside(Apple, Fridge)"}),
+    ("warm the bread", "FloorPlan1", "state", {"cooked(Bread)"}),
+    ("Put the apple in the fridge. Thanks, and the tomato!", "FloorPlan1", "unexplained_mention",
+     {"inside(Apple, Fridge)", "inside(Tomato, Fridge)"}),
+])
+def test_each_kind_of_doubt_offers_its_alternative(frontend: OfflineFrontend, text: str, floor_plan: str,
+                                                   kind: str, alternative: set[str]) -> None:
+    reading = _read(frontend, text, floor_plan)
+    offered = [c for c in reading.candidates if {str(g) for g in c.goals} == alternative]
+    assert offered, [c.sentence for c in reading.candidates]
+    assert kind in {r.kind for r in offered[0].resolves}
+    assert reading.candidates[0].spec == reading.spec
