@@ -8,6 +8,11 @@ reading may have dropped a requested end state.
 from __future__ import annotations
 
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.world.catalogue import load_catalogue
+
+
+def _props(type_: str) -> frozenset[str]:
+    return frozenset(load_catalogue().type(type_).properties)
 
 #: words that put what follows out of the request: negation, exclusion, calling off
 EXCLUDERS = frozenset({"not", "no", "never", "except", "without", "but", "instead", "rather", "leave",
@@ -19,6 +24,10 @@ CONDITIONS = frozenset({"if", "when", "whenever", "unless", "once", "until", "wh
 #: words that start a self-correction ("in the fridge, no, on the counter")
 CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scratch", "oops", "rather",
                          "instead", "no", "nope", "nah"})
+#: words around a place that make it the scene of a chore, not a thing to act on ("tidy
+#: the counter: ...", "the floor is covered in stuff")
+CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
+                         "clutter", "cluttered", "cluttering", "clean", "empty"})
 #: how far back (in words) an excluder or a place preposition reaches
 _REACH = 4
 
@@ -36,6 +45,9 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...]) -> str | None
     before = ctx.items[max(start, k - _REACH):k]
     if any(i.prep is not None for i in before if i.noun is None):
         return "a place or landmark"
+    if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
+            ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):
+        return "the place of a chore"
     if any(i.neg or i.text in EXCLUDERS for i in before):
         return "negated or excluded"
     if any(i.text in CONDITIONS or i.sub is not None for i in ctx.items[start:k]):
