@@ -16,10 +16,9 @@ from emboteam.pfg.taskspec import TaskSpec
 
 #: unread: words the reader could not use (unknown, unparsable, not groundable in the scene);
 #: vague: a chore with no single household reading ("tidy up"); assumed: a reading the
-#: reader chose among several plausible ones; unsure: a condition kept with low confidence;
-#: unexplained: a thing of the scene the words name that ends in no goal and that nothing
-#: (a place, a negation, an exclusion, a condition) explains
-NoteKind = Literal["unread", "vague", "assumed", "unsure", "unexplained"]
+#: reader chose among several plausible ones; unsure: a condition kept with low confidence
+#: (a mention that ends in no goal and that nothing explains is ``Reading.unexplained``)
+NoteKind = Literal["unread", "vague", "assumed", "unsure"]
 
 
 @dataclass(frozen=True)
