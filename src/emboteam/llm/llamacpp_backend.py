@@ -32,6 +32,7 @@ from typing import Any
 from emboteam.llm.backend import PermanentFailure
 from emboteam.llm.errors import LLMConfigError
 from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.llm.spec import LLMSpec
 
 #: one loaded model per (file, context size): loading costs time and memory
@@ -99,6 +100,12 @@ class LlamaCppBackend:
         self._timeout = timeout
         self._llama, self._lock = _load(str(path.resolve()), n_ctx, n_threads)
         self._grammars: dict[str, Any] = {}
+
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        """PMI scores of the candidates (:mod:`emboteam.llm.llamacpp_scoring`)."""
+        from emboteam.llm.llamacpp_scoring import LlamaCppScorer
+
+        return LlamaCppScorer(self._llama, self._lock, timeout=self._timeout, model=self.model).score(request)
 
     def _grammar(self, schema: dict[str, Any]) -> Any:
         from llama_cpp.llama_grammar import LlamaGrammar
