@@ -62,7 +62,11 @@ def _load(path: str, n_ctx: int, n_threads: int | None) -> tuple[Any, threading.
         key = (path, n_ctx)
         if key not in _MODELS:
             try:
-                model = Llama(model_path=path, n_ctx=n_ctx, n_threads=n_threads, seed=0, verbose=False)
+                # the batch (prompt) threads too: llama-cpp-python defaults them to every core,
+                # and on a shared machine a second thread that is not scheduled stalls the first
+                # at llama.cpp's spinning barrier (prompt and scoring ran ~10x slower)
+                model = Llama(model_path=path, n_ctx=n_ctx, n_threads=n_threads, n_threads_batch=n_threads,
+                              seed=0, verbose=False)
             except (ValueError, RuntimeError, OSError) as exc:
                 raise LLMConfigError(f"cannot load GGUF model {path}: {exc}") from None
             _MODELS[key] = (model, threading.Lock())
