@@ -23,6 +23,11 @@ from emboteam.llm.client import LLMClient
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.world.scene import Scene
 
+#: defaults until fitted on development rounds (issue 25): candidates within 1 nat of the
+#: first prior are close; a PMI nat counts half a prior nat
+DEFAULT_MARGIN = 1.0
+DEFAULT_WEIGHT = 0.5
+
 #: how many candidates the model scores at most (the prompt is shared; each candidate
 #: costs its sentence twice)
 MAX_SCORED = 5
@@ -122,3 +127,12 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
     rest = [Ranked(c, p, None, p) for c, p in zip(candidates[n:], priors[n:], strict=True)]
     return Reranking((*scored, *rest), scored=True, overturned=scored[0].candidate is not candidates[0],
                      response=response)
+
+
+def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene, instruction: str,
+                    margin: float = DEFAULT_MARGIN, weight: float = DEFAULT_WEIGHT) -> Reranking[C]:
+    """:func:`rerank` with the objects summary of ``scene`` for the instruction and the
+    candidates' sentences: the one call a front end makes."""
+    objects = objects_summary(scene, (instruction, *(c.sentence for c in candidates)))
+    return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
+                  weight=weight)
