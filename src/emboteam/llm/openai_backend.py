@@ -152,24 +152,32 @@ class OpenAIBackend:
 
     def _sentence_logprob(self, prefix: str, sentence: str) -> tuple[float, int, int]:
         """log P(sentence | prefix), the sentence's tokens and the prompt's tokens, from the
-        echoed prompt: the tokens whose character offset falls inside the sentence (the
-        text ends with it; the one generated token comes after)."""
+        echoed prompt's tokens whose character offset falls inside the sentence.
+
+        Offsets count from the end of the prompt: llama.cpp's server leaves the special
+        tokens' text out of its offsets (while ``text`` has it), so the prompt ends at the
+        offset of the one generated token, and the sentence is the last ``len(sentence)``
+        characters before it."""
         completion = self._echo(prefix + sentence)
         choices = getattr(completion, "choices", None)
         logprobs = getattr(choices[0], "logprobs", None) if choices else None
+        tokens = getattr(logprobs, "tokens", None)
         offsets = getattr(logprobs, "text_offset", None)
         values = getattr(logprobs, "token_logprobs", None)
-        if not choices or not offsets or not values:
+        if not tokens or not offsets or not values or not len(tokens) == len(offsets) == len(values):
             raise ScoringUnsupported("the completions endpoint returned no prompt log-probabilities for echo=True")
-        text = str(choices[0].text or "")
-        begin = text.rfind(sentence)
-        if begin < 0:
-            raise TransientFailure("server", "the echoed prompt does not hold the candidate sentence")
-        end = begin + len(sentence)
-        picked = [v for o, v in zip(offsets, values, strict=False) if begin <= o < end]
+        usage = getattr(completion, "usage", None)
+        generated = int(getattr(usage, "completion_tokens", 0) or 0) if usage else 0
+        if 0 < generated < len(offsets):
+            end = int(offsets[len(offsets) - generated])
+            prompt_part = range(len(offsets) - generated)
+        else:  # nothing generated (an end-of-text at once): the prompt is all there is
+            end = int(offsets[-1]) + len(str(tokens[-1]))
+            prompt_part = range(len(offsets))
+        begin = end - len(sentence)
+        picked = [values[i] for i in prompt_part if begin <= offsets[i] < end]
         if not picked or any(v is None for v in picked):
             raise TransientFailure("server", "the echoed prompt has no log-probabilities for the sentence")
-        usage = getattr(completion, "usage", None)
         prompt_tokens = int(getattr(usage, "prompt_tokens", 0) or 0) if usage else 0
         return float(sum(picked)), len(picked), prompt_tokens
 
