@@ -76,10 +76,12 @@ def test_in_process_scores_are_independent_of_the_cache_and_the_cache_saves_work
         replay.score(REQUEST.model_copy(update={"candidates": ("The apple is on the counter.",)}))
 
 
-def test_scoring_is_cut_at_the_timeout() -> None:
-    client = make_client(f"llamacpp:{_gguf()}", timeout=1e-6)
+def test_scoring_is_cut_at_the_timeout_and_the_replay_fails_the_same_way(tmp_path: Path) -> None:
+    client = make_client(f"llamacpp:{_gguf()}", timeout=1e-6, record_dir=tmp_path)
     with pytest.raises(LLMTimeout, match="time-out"):
         client.score(REQUEST)
+    with pytest.raises(LLMTimeout, match="recorded"):
+        make_client(f"replay:{tmp_path}").score(REQUEST)
 
 
 # ---- llama.cpp's OpenAI-compatible server on loopback ----------------------------------
