@@ -80,6 +80,11 @@ def test_a_sure_prior_costs_no_call(tmp_path: Path) -> None:
     assert client.usage.calls == 0
     one = rerank([MICROWAVE], client=client, objects=OBJECTS, instruction=INSTRUCTION, margin=9.0, weight=1.0)
     assert not one.scored and client.usage.calls == 0
+    # close, but said the same way: the model cannot tell them apart
+    same = Reading(MICROWAVE.sentence, -0.3)
+    twins = rerank([MICROWAVE, same], client=client, objects=OBJECTS, instruction=INSTRUCTION, margin=1.0,
+                   weight=1.0)
+    assert not twins.scored and twins.candidates == (MICROWAVE, same) and client.usage.calls == 0
 
 
 def test_close_count_is_measured_from_the_first() -> None:

@@ -109,12 +109,12 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
 
     The leading candidates within ``margin`` of the first (at most ``max_scored``) are
     scored in one :meth:`LLMClient.score` call and ordered by ``prior + weight * pmi``;
-    the others follow in their order. With fewer than two close candidates nothing is
-    asked. Errors of the call (:class:`~emboteam.llm.errors.LLMError`, e.g.
+    the others follow in their order. With fewer than two close candidates, or close
+    candidates that all say the same sentence, nothing is asked. Errors of the call (:class:`~emboteam.llm.errors.LLMError`, e.g.
     ``LLMScoringUnsupported``) propagate: the caller decides what stands instead."""
     priors = [float(c.score) for c in candidates]
     n = min(close_count(priors, margin), max_scored)
-    if n < 2:
+    if n < 2 or len({c.sentence for c in candidates[:n]}) < 2:  # one sentence: nothing to tell apart
         ranked = tuple(Ranked(c, p, None, p) for c, p in zip(candidates, priors, strict=True))
         return Reranking(ranked, scored=False, overturned=False)
     close = list(candidates[:n])
