@@ -17,7 +17,9 @@ from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, 
 from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
 from emboteam.exec.episode import Episode, episode_header, score
 from emboteam.exec.executor import ExecutorSettings
+from emboteam.exec.nav_check import check_motion
 from emboteam.exec.result import ExecutionResult
+from emboteam.exec.trace import TraceEvent
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner
 from emboteam.llm.client import LLMClient, make_client
@@ -34,6 +36,7 @@ from emboteam.sim.simulator import Simulator
 from emboteam.task import EpisodeTask
 from emboteam.world.actions import Action
 from emboteam.world.goals import Goal
+from emboteam.world.navfit import check_reachable
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene, load_scene
 from emboteam.world.state import WorldState
@@ -132,6 +135,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
         from emboteam.hp.llm_stages import review_spec
 
         spec = review_spec(llm, spec, ctx.task.instruction, *args).spec
+    check_reachable(spec.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
     try:
         plan = planner.plan(spec, ctx.state)
     except PlanningError as exc:
@@ -249,6 +253,7 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     success, gcr, conditions = score(truth, sim.state)
     fields = result.episode_fields()
     fields.update(success=success, gcr=gcr, conditions=conditions)
+    fields.update(_motion_fields(sim, fields))
     error = result.error
     if prepared is not None:
         assert isinstance(sim, Simulator)  # disturbances are the simulator's (check_thor_config)
@@ -262,6 +267,23 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
         "plan_seconds": round(plan_seconds, 4), "taskspec": spec, "notes": tuple(notes), "error": error,
         **fields,
     })
+
+
+def _motion_fields(env: object, fields: dict[str, object]) -> dict[str, object]:
+    """The robots' recorded motion, checked by the independent trace checker, and the
+    trace with its ``nav`` event (environments without a grid record nothing)."""
+    if not isinstance(env, Simulator):
+        return {}
+    record = env.nav_record()
+    check = check_motion(record)
+    old = fields.get("trace", ())
+    trace: tuple[TraceEvent, ...] = tuple(old) if isinstance(old, tuple) else ()
+    end = max([ev.t for ev in trace], default=0.0)
+    event = TraceEvent(t=end, kind="nav", data={**record, "vertex_conflicts": len(check.vertex),
+                                                "edge_conflicts": len(check.edge)})
+    tr = env.traffic
+    return {"collisions": check.collisions, "nav_waits": tr.waits, "nav_replans": tr.replans,
+            "path_seconds": round(tr.search_seconds, 4), "trace": (*trace, event)}
 
 
 __all__ = ["EpisodeContext", "ModeConfigError", "action_lists", "execute", "make_llm",

@@ -29,7 +29,7 @@ from emboteam.exec.episode import Episode
 
 METHOD_LABELS = {"smart-llm": "SMART-LLM", "lamma-p": "LaMMA-P", "full": "EmboTeam"}
 ABLATION_LABELS = {"full": "EmboTeam (full)", "no-pfg-hp": "w/o PFG & HP", "no-hp": "w/o HP",
-                   "no-btc": "w/o BTC"}
+                   "no-btc": "w/o BTC", "no-avoidance": "w/o avoidance"}
 MODE_LABELS: dict[str, str] = {**{m: m for m in MODES}, **METHOD_LABELS}
 TABLE1_MODES = ("smart-llm", "lamma-p", "full")
 

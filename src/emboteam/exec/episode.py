@@ -61,7 +61,7 @@ class Episode(BaseModel):
     floor_plan: str
     robots: tuple[str, ...] = Field(description="team member names, e.g. robot1")
     category: str = ""
-    mode: str = Field("full", description="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p")
+    mode: str = Field("full", description="full | no-pfg-hp | no-hp | no-btc | no-avoidance | smart-llm | lamma-p")
     frontend: str = "offline"
     llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL] of the LLM front end, if any")
     seed: int = 0
@@ -77,6 +77,11 @@ class Episode(BaseModel):
     failed_actions: int = 0
     recoveries: int = 0
     replans: int = 0
+    collisions: int = Field(0, description="vertex and edge conflicts of the robots' motion "
+                                           "(exec/nav_check.py replaying the trace's nav event)")
+    nav_waits: int = Field(0, description="times a robot waited on the grid for another robot")
+    nav_replans: int = Field(0, description="drives re-planned around other robots")
+    path_seconds: float = Field(0.0, description="wall-clock seconds spent planning paths on the grid")
     llm_calls: int = 0
     tokens: int = 0
     plan_seconds: float = Field(0.0, description="wall-clock seconds in PFG + HP")

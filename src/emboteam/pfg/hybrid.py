@@ -1,8 +1,9 @@
 """The hybrid front end: the offline parser reads, the LLM reviews only what is in doubt.
 
 1. The offline parser reads the instruction (milliseconds, no call).
-2. ``when="doubt"`` (the default): a reading with no notes and no unsure condition is
-   used as it is; ``when="always"`` asks the LLM every time.
+2. ``when="doubt"``: a reading the doubt detector does not flag
+   (:func:`emboteam.pfg.doubt.needs_review`) is used as it is; ``when="always"`` asks
+   the LLM every time.
 3. Review: the LLM sees the draft (in the answer form of :mod:`emboteam.pfg.schema`), the
    parser's notes and the conditions it was unsure of, and answers ``ok`` or the whole
    corrected decomposition, validated like the LLM front end's answers (schema, scene,
@@ -32,6 +33,7 @@ from emboteam.llm.errors import LLMMalformedOutput
 from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
 from emboteam.pfg.answer_checks import repetition_problems, sure_condition_problems
+from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
@@ -114,7 +116,7 @@ class HybridFrontend:
             spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint)
             return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
                                              f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
-        if self.when == "doubt" and not draft.doubtful:
+        if self.when == "doubt" and not needs_review(draft, instruction, state):
             return draft
         return self.review(draft, instruction, scene, state, team, validate=validate)
 

@@ -124,6 +124,10 @@
     var grid = svg("g", {}, root);
     for (var gx = Math.ceil(M.min_x); gx <= M.max_x; gx++) svg("line", { class: "grid", x1: X(gx), x2: X(gx), y1: 3, y2: H - 3 }, grid);
     for (var gz = Math.ceil(M.min_z); gz <= M.max_z; gz++) svg("line", { class: "grid", y1: Y(gz), y2: Y(gz), x1: 3, x2: W - 3 }, grid);
+    // the navigation grid: the 0.25 m cells robots can stand on
+    (M.cells || []).forEach(function (c) {
+      svg("rect", { class: "nav-cell", x: X(c[0]) - S * 0.11, y: Y(c[1]) - S * 0.11, width: S * 0.22, height: S * 0.22, rx: 2 }, grid);
+    });
 
     var byId = {};
     var objs = svg("g", {}, root);
@@ -231,6 +235,26 @@
       return [((h % 17) - 8) * 1.6, (((h >> 5) % 17) - 8) * 1.6];
     }
 
+    // where robots waited for each other, re-planned their drive or stepped aside: shown
+    // from the moment it happened
+    var NAV_MARKS = { "nav-wait": "waited", "nav-replan": "re-planned", "nav-yield": "stepped aside" };
+    var navLayer = svg("g", {}, root);
+    var navMarks = [];
+    var byName = {};
+    robots.forEach(function (rs) { byName[rs.name] = rs; });
+    TL.events.forEach(function (e) {
+      if (e.category !== "sim" || !(e.key in NAV_MARKS)) return;
+      var who = String(e.value || "").split(" ")[0];
+      var rs = byName[who];
+      var p = rs ? poseAt(rs, e.t) : null;
+      if (!p) return;
+      var mark = svg("circle", { class: "nav-mark " + e.key, cx: p.x, cy: p.y, r: 6, visibility: "hidden" }, navLayer);
+      var label = who + " " + NAV_MARKS[e.key] + " at " + ET.secs(e.t) + " (" + e.value + ")";
+      mark.addEventListener("mousemove", function (ev) { ET.showTip([label], ev.clientX, ev.clientY); });
+      mark.addEventListener("mouseleave", ET.hideTip);
+      navMarks.push({ t: e.t, node: mark });
+    });
+
     // a robot that broke down is drawn greyed out from then on
     var downAt = {};
     TL.events.forEach(function (e) {
@@ -239,6 +263,7 @@
       if (!(who in downAt)) downAt[who] = e.t;
     });
     function update(t) {
+      navMarks.forEach(function (m) { m.node.setAttribute("visibility", t >= m.t ? "visible" : "hidden"); });
       robots.forEach(function (rs) {
         var p = poseAt(rs, t);
         if (!p) { rs.g.setAttribute("visibility", "hidden"); return; }
