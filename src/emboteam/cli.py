@@ -417,6 +417,8 @@ def run(
     out_dir: Path | None = typer.Option(None, "--out", help="write episode.json, trace.jsonl, report.html here"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
+    clarify: bool = typer.Option(False, "--clarify", help="when the offline reading is close, ask which "
+                                 "end state was meant (numbered sentences; without a terminal the best one)"),
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join
@@ -432,7 +434,8 @@ def run(
     fe, when = _front_end(frontend, llm, llm_when)
     cfg = _run_config(mode, fe, llm, llm_timeout=llm_timeout, llm_record=llm_record,
                       llm_merge=llm_merge, llm_when=when,
-                      fault_level=faults, seed=seed, joins=tuple(join), env=_env(env))
+                      fault_level=faults, seed=seed, joins=tuple(join), env=_env(env),
+                      clarify=clarify and not as_json)    # with --json the candidates are in the output
     cfg = _with_planner_input(cfg, planner_input)
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run

@@ -70,9 +70,11 @@ def make_llm(cfg: RunConfig) -> LLMClient | None:
     return make_client(cfg.llm, timeout=cfg.llm_timeout, record_dir=cfg.llm_record, seed=cfg.seed)
 
 
-def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
+def understand(ctx: EpisodeContext, notes: list[str] | None = None,
+               readings: list[Reading] | None = None) -> TaskSpec:
     """The PFG: the instruction as a TaskSpec, by the configured front end. ``notes``, if
-    given, receives what the front end could not read or read with doubt (for the user)."""
+    given, receives what the front end could not read or read with doubt (for the user);
+    ``readings`` the offline reading itself (its candidates and unexplained mentions)."""
     task, cfg, llm = ctx.task, ctx.cfg, ctx.llm
     args = (task.instruction, ctx.scene, ctx.state, ctx.team)
     if cfg.frontend == "oracle":
@@ -100,6 +102,15 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
                                 llm=LLMFrontend(llm, repair_rounds=1), review_rounds=1)
         return hybrid.decompose(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
     reading = offline_frontend().parse(*args)
+    if cfg.clarify:
+        import sys
+
+        from emboteam.pfg.clarify import settle
+        from emboteam.pfg.offline.doubts.priors import load_priors
+
+        reading = settle(reading, load_priors().close_margin, sys.stdin, sys.stdout)
+    if readings is not None:
+        readings.append(reading)
     if notes is not None:
         notes.extend(reading_notes(reading))
     return reading.spec
@@ -109,6 +120,14 @@ def reading_notes(reading: Reading) -> list[str]:
     """A reading's notes and unsure conditions, one line each, as the user sees them."""
     return [*(str(n) for n in reading.notes),
             *(f"unsure {c}: chosen with doubt" for c in reading.unsure)]
+
+
+def reading_fields(reading: Reading | None) -> dict[str, object]:
+    """What an episode records of the offline reading: the mentions nothing explained and
+    the candidates considered, with their scores and the doubts each settles."""
+    if reading is None:
+        return {}
+    return {"unexplained": reading.unexplained, "candidates": tuple(c.to_json() for c in reading.candidates)}
 
 
 def _plans(planner: HybridPlanner, spec: TaskSpec, state: WorldState) -> None:
@@ -156,9 +175,10 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
     return spec, plan
 
 
-def plan_task(ctx: EpisodeContext, notes: list[str] | None = None) -> tuple[TaskSpec, MergedPlan]:
+def plan_task(ctx: EpisodeContext, notes: list[str] | None = None,
+              readings: list[Reading] | None = None) -> tuple[TaskSpec, MergedPlan]:
     """PFG then HP: what ``emboteam plan`` shows and a planning mode executes."""
-    return plan_spec(ctx, understand(ctx, notes))
+    return plan_spec(ctx, understand(ctx, notes, readings))
 
 
 def action_lists(ctx: EpisodeContext) -> dict[str, list[Action]]:
@@ -241,12 +261,13 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     t0 = time.perf_counter()
     spec: TaskSpec | None = None
     notes: list[str] = []
+    readings: list[Reading] = []
     if wiring(cfg.mode).planner is None:
         lists = action_lists(ctx)
         plan_seconds = time.perf_counter() - t0
         result, sim = _run_lists(ctx, lists, task.ground_truth or Goal(conditions=()))
     else:
-        spec, plan = plan_task(ctx, notes)
+        spec, plan = plan_task(ctx, notes, readings)
         plan_seconds = time.perf_counter() - t0
         result, sim = execute(ctx, plan, spec.goal(), finish_plan=any(not s.final for s in spec.subtasks))
     truth = task.ground_truth or (spec.goal() if spec else Goal(conditions=()))
@@ -265,7 +286,7 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     return Episode.model_validate({
         **header, "llm_calls": llm.usage.calls if llm else 0, "tokens": llm.usage.tokens if llm else 0,
         "plan_seconds": round(plan_seconds, 4), "taskspec": spec, "notes": tuple(notes), "error": error,
-        **fields,
+        **reading_fields(readings[-1] if readings else None), **fields,
     })
 
 

@@ -86,6 +86,15 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
     body: list[object] = [metrics, Text(""), conds]
     if episode.notes:      # what the front end could not read, or read with doubt
         body += [Text("")] + [Text(f"note: {n}", style="yellow") for n in episode.notes]
+    if episode.unexplained:     # things named that ended in no goal, with nothing to explain them
+        body += [Text(f"unexplained: {', '.join(repr(w) for w in episode.unexplained)} (named, but in no goal)",
+                      style="yellow")]
+    if len(episode.candidates) > 1:     # the readings considered, best first
+        body += [Text(""), Text("readings considered (score = log prior):")]
+        body += [Text(f"{'→' if k == 0 else ' '} {c['score']:6.2f}  {c['sentence']}"
+                      + (f"  [{'; '.join(r['how'] for r in c['resolves'])}]" if c["resolves"] else ""),
+                      style="bold" if k == 0 else "dim")
+                 for k, c in enumerate(episode.candidates)]
     if episode.error:
         body += [Text(""), Text(f"error: {episode.error}", style="red")]
     if out_dir:

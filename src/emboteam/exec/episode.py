@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -89,6 +90,10 @@ class Episode(BaseModel):
     error: str | None = Field(None, description="the typed error that ended the episode early")
     notes: tuple[str, ...] = Field((), description="what the front end could not read, or read "
                                    "with doubt, one line each (span and why)")
+    unexplained: tuple[str, ...] = Field((), description="words naming a thing of the scene that ended in no "
+                                         "goal and that nothing explains (offline front end)")
+    candidates: tuple[dict[str, Any], ...] = Field((), description="the readings considered, best first: "
+                                                   "sentence, goals, score, the doubts each settles")
 
     disturbance: DisturbanceOutcome | None = Field(None, description="what a benchmark disturbance did "
                                                    "(bench --breakdown/--join/--moves/--msg-*)")
@@ -104,7 +109,8 @@ class Episode(BaseModel):
             "exec": round(self.exec, 4), "makespan": round(self.makespan, 2),
             "actions": self.actions, "llm_calls": self.llm_calls, "tokens": self.tokens,
             "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
-            "notes": list(self.notes),
+            "notes": list(self.notes), "unexplained": list(self.unexplained),
+            "candidates": list(self.candidates),
         }
 
     def save(self, directory: Path) -> None:

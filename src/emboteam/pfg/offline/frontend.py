@@ -40,6 +40,8 @@ from emboteam.pfg.offline.constructions import (
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
+from emboteam.pfg.offline.doubts.choose import choices
+from emboteam.pfg.offline.doubts.priors import Priors
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
     drop_guessed_water,
@@ -55,7 +57,7 @@ from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
-from emboteam.pfg.offline.tagger import tag
+from emboteam.pfg.offline.tagger import Item, tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.taskspec import TaskSpec
@@ -174,6 +176,25 @@ def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dic
     return bool(taken_back)
 
 
+def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
+                     team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None) -> Reading:
+    """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
+    list of the mentions nothing explains, and the conditions a close
+    alternative would change marked unsure."""
+    found = choices(reading.spec, items, scene, state, team, semantics.history, priors)
+    best = found.candidates[0]
+    notes = reading.notes
+    unsure = reading.unsure
+    if not best.as_read:
+        notes += (ReadingNote(", ".join(r.span for r in best.resolves), "read as: " + "; ".join(
+            r.how for r in best.resolves), "assumed"),)
+        unsure += tuple(str(c) for c in best.goals if str(c) not in unsure and c not in reading.spec.goal().conditions)
+    noted = " ".join(n.span for n in notes if n.kind == "vague")    # "make the bed": the bed is the chore's
+    unexplained = tuple(w for w in found.unexplained if w not in noted)
+    return replace(reading, spec=best.spec, notes=notes, unsure=unsure, candidates=found.candidates,
+                   unexplained=unexplained, doubts=found.doubts)
+
+
 class OfflineFrontend:
     """Rule-based semantic parser: instruction -> TaskSpec, deterministic and offline.
 
@@ -194,7 +215,9 @@ class OfflineFrontend:
 
     name = "offline"
 
-    def __init__(self) -> None:
+    def __init__(self, priors: Priors | None = None) -> None:
+        #: the ranker's priors (None: the shipped ``doubts/priors.json``)
+        self.priors = priors
         # build the lexicon and the spelling index now (about 0.1 s, once per process), so
         # that every instruction parses in milliseconds
         lexicon.nouns()
@@ -215,7 +238,8 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tag(text))))))
+        tagged = tag(text)     # as said, self-corrections and all: what the points of doubt read
+        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tagged)))))
         clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
@@ -359,7 +383,8 @@ class OfflineFrontend:
         unsure = _unsure(spec, semantics.g.doubts)
         unsure += tuple(dict.fromkeys(str(c) for ci in sorted(guessed) for d in drafts.get(ci, [])
                                       for c in d.conditions if str(c) not in unsure))
-        return Reading(spec, notes, unsure)
+        return _with_candidates(Reading(spec, notes, unsure), tagged, scene, state, team, semantics,
+                                self.priors)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,

@@ -75,6 +75,20 @@
       notes.hidden = false;
       m.notes.forEach(function (n) { el("li", {}, notes, n); });
     }
+    if (m.unexplained && m.unexplained.length) {   // named things that ended in no goal, unexplained
+      var un = document.getElementById("reading-notes");
+      un.hidden = false;
+      el("li", {}, un, "unexplained: " + m.unexplained.join(", ") + " (named, but in no goal)");
+    }
+    if (m.candidates && m.candidates.length > 1) {   // the readings considered, best first, with scores
+      var cands = document.getElementById("reading-candidates");
+      cands.hidden = false;
+      m.candidates.forEach(function (c, k) {
+        var how = c.resolves.map(function (r) { return r.how; }).join("; ");
+        el("li", { class: k === 0 ? "chosen" : null, title: c.goals.join(" & ") }, cands,
+           c.score.toFixed(2) + "  " + c.sentence + (how ? "  [" + how + "]" : ""));
+      });
+    }
     var box = document.getElementById("metrics");
     function card(label, value, cls, title) {
       var c = el("div", { class: "metric", title: title || null }, box);
