@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -109,3 +110,61 @@ def test_the_objects_summary_names_the_scene_types_the_texts_mention() -> None:
     everything = objects_summary(scene)
     assert "coffee machine" in everything and "floor" not in everything.split(", ")
     assert objects_summary(scene, ("do the thing",)) == everything  # nothing named: all of them
+
+
+# ---- wired into the hybrid front end ----------------------------------------------------
+
+def _dev_task(round_: str, start: str) -> Any:
+    from emboteam.bench.importers.smart_llm import import_smart_llm
+
+    root = Path(__file__).resolve().parents[1]
+    return next(t for t in import_smart_llm(root / "tests" / "data" / round_ / "dev").tasks
+                if t.instruction.startswith(start))
+
+
+def _satisfies() -> Any:
+    import importlib.util
+    import sys
+
+    root = Path(__file__).resolve().parents[1]
+    spec = importlib.util.spec_from_file_location("fit_reading_priors", root / "benchmarks" / "fit_reading_priors.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["fit_reading_priors"] = module
+    spec.loader.exec_module(module)
+    return module.satisfies
+
+
+def test_hybrid_lets_the_model_settle_close_readings() -> None:
+    """A development task whose reading as read is wrong and a close candidate right: with
+    the recorded Qwen 0.5B scores (benchmarks/pmi_dev) the hybrid front end takes the right
+    one, in one scoring call and no review; with the model's weight at 0, or a backend
+    without log-probabilities, the reading as read stands."""
+    from emboteam.pfg.hybrid import HybridFrontend
+    from emboteam.pfg.offline import OfflineFrontend
+    from emboteam.pfg.offline.evaluate import goal_keys
+
+    task = _dev_task("blind_r6", "Heat the egg: crack it into the pan")
+    scene, state, team = load_scene(task.floor_plan), task.initial_state(), task.team()
+    truth = goal_keys(task.ground_truth.conditions, scene)
+    satisfies = _satisfies()
+    reader = OfflineFrontend()
+    draft = reader.parse(task.instruction, scene, state, team)
+    assert not satisfies(goal_keys(draft.spec.goal().conditions, scene), truth)
+
+    root = Path(__file__).resolve().parents[1]
+    client = make_client(f"replay:{root / 'benchmarks' / 'pmi_dev' / 'cassette'}")
+    hybrid = HybridFrontend(client, reader.parse)
+    reading = hybrid.read(task.instruction, scene, state, team)
+    assert satisfies(goal_keys(reading.spec.goal().conditions, scene), truth)
+    assert hybrid.last_ranking is not None and hybrid.last_ranking.overturned
+    assert reading.candidates[0].spec == reading.spec
+    assert any(n.span == "(model ranking)" for n in reading.notes)
+    assert client.usage.calls == 1 and "pfg.score" in client.usage.by_stage()
+
+    off = HybridFrontend(client, reader.parse, rank_weight=0.0)
+    assert off.read(task.instruction, scene, state, team).spec == draft.spec
+    with ScriptedServer("anthropic") as server:
+        anthropic = HybridFrontend(make_client(server.spec("claude-test"), timeout=5), reader.parse)
+        assert anthropic.read(task.instruction, scene, state, team).spec == draft.spec
+        assert server.requests == []
