@@ -67,6 +67,7 @@ def review_schema(task_schema: dict[str, Any]) -> dict[str, Any]:
     complete corrected subtasks ("ok" first, so a grammar makes the model decide first)."""
     subtasks = deepcopy(task_schema["properties"]["subtasks"])
     subtasks["minItems"] = 0
+    subtasks["description"] = "empty when ok; otherwise the complete corrected subtasks"
     return {"type": "object", "additionalProperties": False, "required": ["ok", "subtasks"],
             "properties": {"ok": {"type": "boolean", "description": "true if the draft is right as it is"},
                            "subtasks": subtasks}}
@@ -123,12 +124,14 @@ class HybridFrontend:
                 team: Sequence[RobotProfile]) -> LLMRequest:
         from emboteam.pfg.focus import focus_types
 
-        system = load_prompt("pfg_system").strip() + "\n\n" + load_prompt("pfg_review_system").strip()
+        detail = focus_types(instruction, state, draft.spec)
+        system = self.llm.system_text() + "\n\n" + load_prompt("pfg_review_system").strip()
         answer = json.dumps(taskspec_to_answer(draft.spec), separators=(",", ":"), ensure_ascii=False)
         user = render("pfg_review_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
-                      scene=render_scene(state, detail=focus_types(instruction, state, draft.spec)),
+                      scene=render_scene(state, detail=detail),
                       team=render_team(team, GOAL_SKILLS), draft=answer, notes=render_notes(draft))
-        schema = review_schema(self.llm.schema(scene, state, team, extra_ids=[s.id for s in draft.spec.subtasks]))
+        schema = review_schema(self.llm.schema(scene, state, team, extra_ids=[s.id for s in draft.spec.subtasks],
+                                               listed=detail))
         return LLMRequest(stage=self.stage, messages=(Message(role="system", content=system),
                                                       Message(role="user", content=user)),
                           json_schema=schema, schema_name="review", max_tokens=self.max_tokens,
@@ -136,8 +139,14 @@ class HybridFrontend:
 
     def converter(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile], validate: Validator | None) -> Callable[[dict[str, Any]], TaskSpec]:
-        mentioned = mentioned_types(instruction, scene, state, team, draft.spec)
-        free = any(n.kind == "vague" for n in draft.notes)
+        from emboteam.pfg.focus import focus_types
+
+        # the same rule as the LLM front end's "copied" check, stated in the review prompt:
+        # an added condition must be about a type the instruction names or implies, or the
+        # listing shows in detail (the whole scene, when it is listed whole)
+        listed = focus_types(instruction, state, draft.spec)
+        mentioned = None if listed is None else mentioned_types(instruction, scene, state, team, draft.spec) | listed
+        free = any(n.kind == "vague" for n in draft.notes) or mentioned is None
         known = {str(c) for c in draft.spec.goal().conditions}
 
         def convert(answer: dict[str, Any]) -> TaskSpec:
@@ -150,9 +159,10 @@ class HybridFrontend:
             if not free:
                 for s in spec.subtasks:
                     for c in s.goal:
-                        if str(c) not in known and not condition_types(c, state) & mentioned:
-                            problems.append(f"{s.id}: {c} is about something the instruction does not "
-                                            "mention: remove it")
+                        if str(c) not in known and mentioned is not None \
+                                and not condition_types(c, state) & mentioned:
+                            problems.append(f"{s.id}: {c} is about something the instruction neither names "
+                                            "nor implies and the listing does not show: remove it")
             if problems:
                 raise Rejected("; ".join(problems))
             if spec == draft.spec:
