@@ -24,8 +24,13 @@ import jsonschema
 from emboteam.bench.dev_corpus import development_tasks
 from emboteam.llm.structured import Rejected
 from emboteam.pfg.oracle import OracleFrontend
-from emboteam.pfg.schema import DESCRIPTION_MAX, SceneVocabulary, taskspec_from_answer, taskspec_schema, \
-    taskspec_to_answer
+from emboteam.pfg.schema import (
+    DESCRIPTION_MAX,
+    SceneVocabulary,
+    taskspec_from_answer,
+    taskspec_schema,
+    taskspec_to_answer,
+)
 from emboteam.world.goals import Condition, Predicate
 from emboteam.world.scene import load_scene
 

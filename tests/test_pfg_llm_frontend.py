@@ -12,7 +12,6 @@ import pytest
 from emboteam.errors import EmboTeamError
 from emboteam.llm import LLMClient, LLMMalformedOutput, RetryPolicy, make_client
 from emboteam.pfg.llm_frontend import MAX_INSTRUCTION_CHARS, InstructionError, LLMFrontend
-from emboteam.pfg.prompts import load_prompt
 from emboteam.pfg.schema import SceneVocabulary
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.goals import Predicate

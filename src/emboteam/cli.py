@@ -28,6 +28,7 @@ from emboteam.errors import (
     EmboTeamError,
     exit_code_of,
 )
+from emboteam.pfg.clarification import ClarificationNeeded
 from emboteam.world.actions import Skill
 from emboteam.world.robots import robot_profiles
 from emboteam.world.scene import load_scene, scene_ids
@@ -71,14 +72,15 @@ def _options(
 F = TypeVar("F", bound=Callable[..., Any])
 
 
-def fail(message: str, code: int, *, as_json: bool = False, label: str = "error") -> typer.Exit:
+def fail(message: str, code: int, *, as_json: bool = False, label: str = "error",
+         extra: dict[str, Any] | None = None) -> typer.Exit:
     """Report a failure as the contract says (one line on stderr; with ``--json`` also one
     JSON object on stdout) and return the exit to raise. The message is escaped: it
     often holds brackets ('emboteam[ray]', the '[pfg]' stage tag) that Rich would eat as
     markup."""
     line = " ".join(message.split())  # one line, whatever the message holds
     if as_json:
-        print_json({"success": False, "error": line, "exit_code": code})
+        print_json({"success": False, "error": line, "exit_code": code, **(extra or {})})
     err.print(f"[red]{label}:[/red] {escape(line)}", highlight=False, soft_wrap=True)
     return typer.Exit(code)
 
@@ -92,6 +94,9 @@ def cli_errors(fn: F) -> F:
         as_json = bool(kwargs.get("as_json"))
         try:
             return fn(*args, **kwargs)
+        except ClarificationNeeded as exc:  # the front end asked instead of guessing
+            raise fail(str(exc), exc.exit_code, as_json=as_json,
+                       extra={"clarification": exc.clarification.to_json()}) from None
         except EmboTeamError as exc:
             raise fail(str(exc), exc.exit_code, as_json=as_json) from None
         except (typer.Exit, typer.Abort):

@@ -25,6 +25,7 @@ from emboteam.mode_table import ModeConfigError, planner_for, wiring
 from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
+from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
@@ -49,6 +50,8 @@ class EpisodeContext:
     state: WorldState
     team: tuple[RobotProfile, ...]
     llm: LLMClient | None
+    #: settles an LLM front end's clarification (``--clarify``); None: it ends the episode
+    clarify: ClarifyHook | None = None
 
     @classmethod
     def open(cls, task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) -> EpisodeContext:
@@ -82,7 +85,7 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
         from emboteam.pfg.llm_frontend import LLMFrontend
 
         assert llm is not None
-        return LLMFrontend(llm).decompose(*args)
+        return LLMFrontend(llm, avoid_set=example_set(task)).decompose(*args, clarify=ctx.clarify)
     if cfg.frontend == "hybrid":
         from emboteam.pfg.hybrid import HybridFrontend
         from emboteam.pfg.llm_frontend import LLMFrontend
@@ -94,12 +97,24 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
         # or corrected spec must plan: the planner's error is fed back (its plan is cached
         # for plan_spec)
         hybrid = HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when,
-                                llm=LLMFrontend(llm, repair_rounds=1), review_rounds=1)
+                                llm=LLMFrontend(llm, repair_rounds=1, avoid_set=example_set(task)), review_rounds=1,
+                                clarify=ctx.clarify)
         return hybrid.decompose(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
     reading = offline_frontend().parse(*args)
     if notes is not None:
         notes.extend(reading_notes(reading))
     return reading.spec
+
+
+def example_set(task: EpisodeTask) -> str:
+    """The set a task comes from, as the worked-example pool names it (``blind_r20``,
+    ``mace-thor``): the LLM front ends never show an example of the task's own set."""
+    suite = str(getattr(task, "suite", ""))
+    if suite.startswith("smart-llm:"):
+        parts = [p for p in suite.removeprefix("smart-llm:").replace("\\", "/").split("/") if p]
+        named = [p for p in parts if p.startswith("blind_r")]
+        return named[-1] if named else (parts[-1] if parts else "")
+    return suite
 
 
 def reading_notes(reading: Reading) -> list[str]:
@@ -131,7 +146,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
     if llm is not None and cfg.frontend == "llm" and wiring(cfg.mode).llm_review:
         from emboteam.hp.llm_stages import review_spec
 
-        spec = review_spec(llm, spec, ctx.task.instruction, *args).spec
+        spec = review_spec(llm, spec, ctx.task.instruction, *args, avoid_set=example_set(ctx.task)).spec
     try:
         plan = planner.plan(spec, ctx.state)
     except PlanningError as exc:
@@ -139,7 +154,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
             raise
         from emboteam.pfg.llm_frontend import LLMFrontend
 
-        spec = LLMFrontend(llm).repair(spec, str(exc), *args)
+        spec = LLMFrontend(llm, avoid_set=example_set(ctx.task)).repair(spec, str(exc), *args)
         plan = planner.plan(spec, ctx.state)
     if llm is not None and cfg.llm_merge:
         # the paper's LLM merge: orderings it proposes become dependencies if they keep the

@@ -18,6 +18,7 @@ from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceOutcome
 from emboteam.exec.trace import TraceEvent, write_jsonl
 from emboteam.hp.plan import MergedPlan
+from emboteam.pfg.clarification import Clarification
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
 from emboteam.task import EpisodeTask
@@ -84,6 +85,8 @@ class Episode(BaseModel):
     error: str | None = Field(None, description="the typed error that ended the episode early")
     notes: tuple[str, ...] = Field((), description="what the front end could not read, or read "
                                    "with doubt, one line each (span and why)")
+    clarification: Clarification | None = Field(None, description="the question the front end asked instead "
+                                                "of guessing (the episode then ends with ClarificationNeeded)")
 
     disturbance: DisturbanceOutcome | None = Field(None, description="what a benchmark disturbance did "
                                                    "(bench --breakdown/--join/--moves/--msg-*)")
@@ -100,6 +103,7 @@ class Episode(BaseModel):
             "actions": self.actions, "llm_calls": self.llm_calls, "tokens": self.tokens,
             "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
             "notes": list(self.notes),
+            "clarification": self.clarification.to_json() if self.clarification is not None else None,
         }
 
     def save(self, directory: Path) -> None:

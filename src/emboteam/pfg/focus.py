@@ -27,6 +27,7 @@ instruction names or implies: a condition about a type the listing shows is neve
 from __future__ import annotations
 
 import difflib
+import itertools
 import re
 from collections.abc import Iterable
 
@@ -112,7 +113,7 @@ def sound_alike_types(instruction: str, present: Iterable[str]) -> set[str]:
     the similarity; the offline tagger's spelling index covers the lexicon's words, this
     covers the scene's own type names, which an instruction may garble differently."""
     words = _WORD.findall(instruction.lower())
-    grams = set(words) | {a + b for a, b in zip(words, words[1:], strict=False)}
+    grams = set(words) | {a + b for a, b in itertools.pairwise(words)}
     grams = {g for g in grams if len(g) >= 4}
     found: set[str] = set()
     for t in present:

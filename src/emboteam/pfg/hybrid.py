@@ -32,6 +32,7 @@ from emboteam.llm.errors import LLMMalformedOutput
 from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
 from emboteam.pfg.answer_checks import repetition_problems, sure_condition_problems
+from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
@@ -86,7 +87,8 @@ class HybridFrontend:
     stage = "pfg.review"
 
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
-                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768) -> None:
+                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
+                 clarify: ClarifyHook | None = None) -> None:
         self.client = client
         self.parse = parse
         self.when = when
@@ -98,6 +100,8 @@ class HybridFrontend:
         #: answer by tokens, not by a time-out, keeps a slow local model's runs reproducible
         #: (a cut-off answer is recorded and fed back; a timed-out call is not recorded)
         self.max_tokens = max_tokens
+        #: settles a clarification the LLM asks for when it writes a spec the parser could not
+        self.clarify = clarify
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
                   validate: Validator | None = None) -> TaskSpec:
@@ -112,7 +116,8 @@ class HybridFrontend:
         except OfflineParseError as exc:
             hint = (f"An offline parser could not read this instruction: {exc}. "
                     "Decompose what the user asks for.")
-            spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint)
+            spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint,
+                                      clarify=self.clarify)
             return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
                                              f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
         if self.when == "doubt" and not draft.doubtful:

@@ -41,6 +41,7 @@ from emboteam.pfg.schema import (
     taskspec_to_answer,
 )
 from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.catalogue import load_catalogue
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -285,4 +286,6 @@ def checked_types(frontend: LLMFrontend, instruction: str, scene: Scene, state: 
     if listed is None and frontend.focus:
         return None
     draft = draft if draft is not None else frontend.draft(instruction, scene, state, team)
-    return named_types(instruction, state, draft) | (listed or set())
+    allowed = named_types(instruction, state, draft) | (listed or set())
+    cat = load_catalogue()  # what slicing an allowed type makes is allowed too (TomatoSliced)
+    return allowed | {p[0] for t in allowed if (p := cat.slice_product(t)) is not None}
