@@ -185,10 +185,10 @@ def spec_types(spec: TaskSpec, state: WorldState) -> set[str]:
     return {t for s in spec.subtasks for c in s.goal for t in condition_types(c, state)}
 
 
-def related_types(types: Iterable[str], state: WorldState) -> set[str]:
+def related_types(types: Iterable[str], state: WorldState, *, holders: bool = True) -> set[str]:
     """``types`` closed under what a goal on them needs to know about: slices and what
-    they are cut from, the knob that switches a burner (and back), and what holds the
-    objects now (to take an apple out of the fridge the model must know the fridge)."""
+    they are cut from, the knob that switches a burner (and back), and (``holders``) what
+    holds the objects now in detail (each object's own line already says where it is)."""
     cat = load_catalogue()
     out = set(types)
     for t in list(out):
@@ -204,9 +204,10 @@ def related_types(types: Iterable[str], state: WorldState) -> set[str]:
             out |= controlled
         elif controlled & out:
             out.add(o.type)
-    for o in live:
-        if o.type in out and o.parent in by_id:
-            out.add(by_id[o.parent].type)
+    if holders:
+        for o in live:
+            if o.type in out and o.parent in by_id:
+                out.add(by_id[o.parent].type)
     return out
 
 
@@ -238,4 +239,4 @@ def focus_types(instruction: str, state: WorldState, draft: TaskSpec | None = No
     if not touched:
         return None
     present = {o.type for o in live}
-    return related_types(touched, state) & present
+    return related_types(touched, state, holders=False) & present

@@ -31,6 +31,7 @@ from emboteam.pfg.clarification import (
     READING_MAX,
     Clarification,
 )
+from emboteam.pfg.prompts import GOAL_PROPERTIES
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.catalogue import SAME_PLACE, load_catalogue
 from emboteam.world.checker import GoalValidationError, validate_goal
@@ -40,6 +41,7 @@ from emboteam.world.scene import Scene, is_object_id
 from emboteam.world.state import WorldState
 
 LIQUIDS = ("water", "coffee", "wine")
+
 #: a description is one short sentence; a weak model copies the whole instruction into it,
 #: and every character costs generation time on a local model
 DESCRIPTION_MAX = 80
@@ -70,7 +72,10 @@ class SceneVocabulary:
         present = {o.type for o in live}
         # a goal may speak of what slicing produces (AppleSliced) before it exists
         products = {p[0] for t in present if (p := cat.slice_product(t)) is not None}
-        types = tuple(sorted(present | products))
+        # a subject type is one some goal can be about: a type with none of the goal
+        # properties (Floor, Window, CounterTop) is only ever a receptacle
+        subjects = {t for t in present | products if cat.type(t).properties & GOAL_PROPERTIES}
+        types = tuple(sorted(subjects))
         rec_ids = sorted(o.id for o in live if o.has("receptacle") and (listed is None or o.type in listed))
         rec_types = {o.type for o in live if o.has("receptacle")}
         # "in the sink" may name the Sink or its basin (catalogue.SAME_PLACE)
@@ -96,16 +101,12 @@ def condition_schema(vocab: SceneVocabulary) -> dict[str, Any]:
             "predicate": {"type": "string", "enum": [p.value for p in Predicate]},
             "subject": {
                 "type": "array", "minItems": 1, "maxItems": SUBJECT_TYPES_MAX,
-                "description": f"one object id, or 1-{SUBJECT_TYPES_MAX} object types (any instance matches); "
-                               "never an id and a type together",
+                "description": f"one id, or 1-{SUBJECT_TYPES_MAX} types",
                 "items": {"type": "string", "enum": [*vocab.object_ids, *vocab.types]},
             },
-            "receptacle": {**_nullable_enum(vocab.receptacles),
-                           "description": "for inside: the receptacle id or type; otherwise null"},
-            "count": {"type": "integer", "minimum": 1, "maximum": COUNT_MAX,
-                      "description": f"how many distinct objects of the subject types, 1-{COUNT_MAX}; "
-                                     "1 for an id"},
-            "liquid": {**_nullable_enum(LIQUIDS), "description": "for filled: which liquid, or null"},
+            "receptacle": _nullable_enum(vocab.receptacles),
+            "count": {"type": "integer", "minimum": 1, "maximum": COUNT_MAX, "description": f"1-{COUNT_MAX}"},
+            "liquid": _nullable_enum(LIQUIDS),
         },
     }
 
@@ -118,15 +119,13 @@ def clarification_schema() -> dict[str, Any]:
         "required": ["question", "readings"],
         "properties": {
             "question": {"type": "string", "maxLength": QUESTION_MAX,
-                         "description": f"one question for the user, at most {QUESTION_MAX} characters"},
+                         "description": f"at most {QUESTION_MAX} characters"},
             "readings": {"type": "array", "minItems": MIN_READINGS, "maxItems": MAX_READINGS,
-                         "description": f"{MIN_READINGS}-{MAX_READINGS} readings with different end states, "
-                                        f"each a plain sentence of at most {READING_MAX} characters",
+                         "description": f"{MIN_READINGS}-{MAX_READINGS} end states, each at most {READING_MAX} "
+                                        "characters",
                          "items": {"type": "string", "maxLength": READING_MAX}},
         },
-    }, {"type": "null"}],
-        "description": "null, unless the instruction has readings with different end states that the "
-                       "scene does not settle: then the question, and subtasks empty"}
+    }, {"type": "null"}]}
 
 
 def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_conditions: int = 6,
@@ -135,7 +134,7 @@ def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_condi
     ids = list(dict.fromkeys([*subtask_ids(max_subtasks), *extra_ids]))
     return {
         "type": "array", "minItems": min_items, "maxItems": max_subtasks,
-        "description": f"1-{max_subtasks} subtasks" if min_items else f"at most {max_subtasks} subtasks",
+        "description": f"1-{max_subtasks}" if min_items else f"at most {max_subtasks}",
         "items": {
             "type": "object",
             "additionalProperties": False,
@@ -143,19 +142,13 @@ def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_condi
             "properties": {
                 "id": {"type": "string", "enum": ids},
                 "description": {"type": "string", "maxLength": DESCRIPTION_MAX,
-                                "description": f"one short sentence, at most {DESCRIPTION_MAX} characters"},
-                "robot": {**_nullable_enum(vocab.robots),
-                          "description": "the member who does all of it alone, or null: the planner "
-                                         "chooses and may combine members (one opens, another carries)"},
+                                "description": f"at most {DESCRIPTION_MAX} characters"},
+                "robot": _nullable_enum(vocab.robots),
                 "goal": {"type": "array", "minItems": 1, "maxItems": max_conditions,
-                         "description": f"1-{max_conditions} conditions that hold when the subtask is done",
-                         "items": condition_schema(vocab)},
+                         "description": f"1-{max_conditions} conditions", "items": condition_schema(vocab)},
                 "depends_on": {"type": "array", "maxItems": max_subtasks,
-                               "description": f"ids of subtasks that must finish first, at most {max_subtasks} "
-                                              "(no cycles)",
-                               "items": {"type": "string", "enum": ids}},
-                "final": {"type": "boolean",
-                          "description": "false for an intermediate step a later subtask undoes"},
+                               "description": f"at most {max_subtasks}", "items": {"type": "string", "enum": ids}},
+                "final": {"type": "boolean"},
             },
         },
     }
@@ -170,7 +163,7 @@ def taskspec_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_condi
                                extra_ids=extra_ids, min_items=0 if clarify else 1)
     properties: dict[str, Any] = {"subtasks": subtasks}
     if clarify:
-        subtasks["description"] = f"at most {max_subtasks} subtasks; empty only with a clarification"
+        subtasks["description"] = f"at most {max_subtasks}"
         properties["clarification"] = clarification_schema()
     return {"type": "object", "additionalProperties": False, "required": list(properties),
             "properties": properties}
