@@ -74,7 +74,8 @@ def review_schema(vocab: SceneVocabulary, spec: TaskSpec, *, max_subtasks: int =
             "reason": {"type": "string", "maxLength": REASON_MAX,
                        "description": f"what was changed and why, at most {REASON_MAX} characters"},
             "subtasks": {**subtasks, "minItems": 0,
-                         "description": "the complete corrected subtasks; empty when the verdict is ok"},
+                         "description": f"the complete corrected subtasks, at most {max_subtasks}; empty when "
+                                        "the verdict is ok"},
         },
     }
 

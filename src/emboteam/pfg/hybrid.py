@@ -68,7 +68,7 @@ def review_schema(task_schema: dict[str, Any]) -> dict[str, Any]:
     complete corrected subtasks ("ok" first, so a grammar makes the model decide first)."""
     subtasks = deepcopy(task_schema["properties"]["subtasks"])
     subtasks["minItems"] = 0
-    subtasks["description"] = "empty when ok; otherwise the complete corrected subtasks"
+    subtasks["description"] = f"empty when ok; else all corrected subtasks, at most {subtasks['maxItems']}"
     return {"type": "object", "additionalProperties": False, "required": ["ok", "subtasks"],
             "properties": {"ok": {"type": "boolean", "description": "true if the draft is right as it is"},
                            "subtasks": subtasks}}

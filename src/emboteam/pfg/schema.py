@@ -47,8 +47,8 @@ LIQUIDS = ("water", "coffee", "wine")
 DESCRIPTION_MAX = 80
 #: types one subject may list ("any of these": "the fruit" over Apple, Orange, ...)
 SUBJECT_TYPES_MAX = 6
-#: how many distinct objects one condition may ask for
-COUNT_MAX = 10
+#: how many distinct objects one condition may ask for ("close all the cabinets": FloorPlan9 has 28)
+COUNT_MAX = 30
 
 
 @dataclass(frozen=True)
