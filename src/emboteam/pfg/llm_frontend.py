@@ -1,10 +1,13 @@
 """The PFG with an LLM: instruction -> TaskSpec in ONE call, decomposition and
 allocation together (the paper's PFG).
 
-The prompt holds the instruction (delimited, as data), the scene summary (in full, with
-ids and relevant state, only the types the instruction touches; the rest by name), the
-team (skills, mass capacity) and one worked example from another floor plan; the answer is constrained by a schema built from the
-scene and team (:mod:`emboteam.pfg.schema`), then converted and validated. Problems are
+The prompt holds the rules it is held to (every limit and check, :meth:`system_text`),
+the instruction (delimited, as data), the scene summary (in full, with ids and relevant
+state, the types the instruction names or implies, :mod:`emboteam.pfg.focus`; the rest by
+name), the team (skills, mass capacity) and the most similar worked example from the
+development corpus (never of the task's floor plan or set); the answer is constrained by a
+schema built from the scene and team (:mod:`emboteam.pfg.schema`), then converted and
+validated, or is a clarification (:mod:`emboteam.pfg.clarification`). Problems are
 rendered later by the planner from the state and these goals: the LLM never writes the
 initial state or object lists.
 
