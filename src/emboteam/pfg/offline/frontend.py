@@ -51,6 +51,7 @@ from emboteam.pfg.offline.draft_passes import (
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
@@ -72,9 +73,10 @@ log = logging.getLogger(__name__)
 ParseResult = Reading
 
 
+_W = word_tables("frontend")
 #: a prefix of only these is the person's own words ("(when) you have got the egg out"),
 #: nothing left unread
-_PERSON_WORDS = frozenset({"you", "i", "we", "have", "has", "had", "ve", "will", "ll", "would", "d"})
+_PERSON_WORDS = _W.set("person_words")
 
 
 def _note(exc: OfflineParseError) -> ReadingNote:
@@ -138,7 +140,7 @@ def _vague_phrase(clause: Clause) -> str | None:
 
 
 #: "leave the spray bottle", "forget the vase", "skip the candle": no change to it
-_LEAVE_VERBS = frozenset({"leave", "forget", "skip"})
+_LEAVE_VERBS = _W.set("leave_verbs")
 
 
 def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dict[int, list[Draft]]) -> bool:

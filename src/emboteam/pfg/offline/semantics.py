@@ -19,6 +19,7 @@ from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.discourse import OTHER_WORDS, Discourse, Mention
 from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
 from emboteam.pfg.offline.tagger import NounReading
 from emboteam.world.catalogue import BREWERS, load_catalogue
@@ -53,8 +54,9 @@ class Draft:
     carried: bool = False
 
 
+_W = word_tables("semantics")
 #: verbs of carrying: with a pronoun and no place, who carries what is placed elsewhere
-_CARRYING = frozenset({"carry", "move", "lift", "take", "handle", "shift", "haul", "lug"})
+_CARRYING = _W.set("carrying")
 
 #: which capability a role needs, for grounding and for choosing a pronoun's antecedent
 ACT_NEEDS: dict[Act, str | None] = {
@@ -72,9 +74,8 @@ STAT_NEEDS: dict[Stat, str | None] = {
     Stat.FILLED: "fill", Stat.HELD: "hold", Stat.BRIGHT: None, Stat.TOASTED: None,
 }
 
-_VERBS_TO_HAND = frozenset({"bring", "fetch", "take", "get", "give", "hand", "carry", "grab",
-                            "deliver", "collect", "retrieve", "find", "send"})
-_VERBS_TO_BIN = frozenset({"throw", "toss", "dump", "chuck"})
+_VERBS_TO_HAND = _W.set("verbs_to_hand")
+_VERBS_TO_BIN = _W.set("verbs_to_bin")
 
 #: acts that are one state of their object
 _PLAIN_ACTS: dict[Act, Predicate] = {
@@ -113,14 +114,14 @@ def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef 
 
 
 #: verbs that discard alone ("chuck it") but move to a place when one is said
-_THROWING = frozenset({"chuck", "throw", "toss", "dump", "fling", "lob"})
+_THROWING = _W.set("throwing")
 
 
 #: things whose temperature is a tool's, not food's ("the pan's hot" is a warning)
 _COOKWARE = frozenset({"Pan", "Pot", "Kettle", "Toaster", "CoffeeMachine", "Microwave"})
 
 #: cooking verbs that happen in a pan: the food ends up in it
-_PAN_VERBS = frozenset({"fry", "saute", "sear"})
+_PAN_VERBS = _W.set("pan_verbs")
 
 
 class Semantics:
