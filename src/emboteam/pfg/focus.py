@@ -49,7 +49,8 @@ NOISE_TYPES = frozenset({"Television", "Laptop", "Desktop", "CellPhone", "AlarmC
 
 _WORD = re.compile(r"[a-z]+")
 #: words of an intent about light or darkness
-_LIGHT_WORDS = frozenset({"light", "lights", "lit", "lamp", "lamps", "dark", "darker", "darkness", "bright",
+_LIGHT_WORDS = frozenset({"candlelight", "candlelit", "romantic", "moody", "cosy", "cozy",
+                          "light", "lights", "lit", "lamp", "lamps", "dark", "darker", "darkness", "bright",
                           "brighter", "brightness", "dim", "dimmer", "glare", "sun", "sunlight", "sunshine",
                           "blind", "blinds", "shade", "shades", "curtain", "curtains", "glow", "glowing", "pitch",
                           "candle", "candles", "illuminate", "illuminated", "see", "reading", "screen", "screens"})
@@ -101,32 +102,74 @@ def instruction_types(instruction: str) -> set[str]:
     return found
 
 
-def _type_words(type_name: str) -> str:
-    """``CoffeeMachine`` -> ``coffeemachine`` (the form a sound-alike is compared in)."""
-    return type_name.lower()
+#: spellings that sound alike, folded before comparing ("sync" / "sink", "hold her" / "holder")
+_SOUND_FOLDS = (("ph", "f"), ("ck", "k"), ("dh", "d"), ("y", "i"), ("c", "k"), ("z", "s"))
+_DOUBLE = re.compile(r"(.)\1+")
+_VOWELS = re.compile(r"[aeiou]")
+_CAMEL = re.compile(r"[A-Z][a-z]*")
+
+
+def sounds(text: str) -> str:
+    """A rough sound key: alike-sounding spellings folded, doubled letters single
+    (``tomotto`` and ``tomato`` -> ``tomoto``/``tomato``; ``sync`` -> ``sink``)."""
+    for a, b in _SOUND_FOLDS:
+        text = text.replace(a, b)
+    return _DOUBLE.sub(r"\1", text)
+
+
+def word_grams(instruction: str) -> set[str]:
+    """Words, two and three adjacent words run together (split words: "to motto", "micro
+    wave"), and "X of the Y" read as "YX" (a non-native "curtain of the shower")."""
+    words = _WORD.findall(instruction.lower())
+    grams = set(words) | {a + b for a, b in itertools.pairwise(words)}
+    grams |= {a + b + c for a, b, c in zip(words, words[1:], words[2:], strict=False)}
+    for i in range(len(words) - 3):
+        if words[i + 1] == "of" and words[i + 2] in ("the", "a", "an", "my"):
+            grams.add(words[i + 3] + words[i])
+    for i in range(len(words) - 2):
+        if words[i + 1] == "of":
+            grams.add(words[i + 2] + words[i])
+    return grams
 
 
 def sound_alike_types(instruction: str, present: Iterable[str]) -> set[str]:
-    """Scene types whose name one or two adjacent words of the instruction sound or look
-    like (a speech transcript's "tomatoe", "micro wave", "ladel", "frig"): a close
-    character match, for names of 4 letters and more. ``difflib`` (standard library) is
-    the similarity; the offline tagger's spelling index covers the lexicon's words, this
-    covers the scene's own type names, which an instruction may garble differently."""
-    words = _WORD.findall(instruction.lower())
-    grams = set(words) | {a + b for a, b in itertools.pairwise(words)}
-    grams = {g for g in grams if len(g) >= 4}
+    """Scene types whose name the instruction's words sound or look like (a transcript's
+    "tomatoe", "sync", "to motto", a text's "brd", "curtain of the shower"): a close match
+    of sound keys (``difflib``, standard library; names of 4 letters and more) or the same
+    consonants (3 or more: "brd" is bread). The offline tagger's spelling index covers the
+    lexicon's words; this covers the scene's own type names, which an instruction may
+    garble differently."""
+    grams = word_grams(instruction)
+    keys = {sounds(g) for g in grams if len(g) >= 4}
+    skeletons = {_VOWELS.sub("", g) for g in grams if len(g) >= 3}
+    skeletons = {s for s in skeletons if len(s) >= 3}
+    words = set(_WORD.findall(instruction.lower()))
     found: set[str] = set()
     for t in present:
-        name = _type_words(t)
+        name = t.lower()
+        head = _CAMEL.findall(t)[-1].lower() if _CAMEL.findall(t) else name
+        if len(head) >= 4 and (head in words or head + "s" in words):  # "the curtain": ShowerCurtain
+            found.add(t)
+            continue
         if len(name) < 4:
             continue
-        for g in grams:
-            if abs(len(g) - len(name)) > 2 or g[0] != name[0]:
-                continue
-            if difflib.SequenceMatcher(None, g, name).ratio() >= 0.8:
+        key = sounds(name)
+        if _VOWELS.sub("", name) in skeletons:
+            found.add(t)
+            continue
+        for g in keys:
+            if abs(len(g) - len(key)) <= 2 and g[0] == key[0] and difflib.SequenceMatcher(None, g, key).ratio() >= 0.8:
                 found.add(t)
                 break
     return found
+
+
+def run_together_types(instruction: str) -> set[str]:
+    """Types the lexicon finds in split or sound-alike words run together ("hold her":
+    holder, a towel or paper holder), through the offline tagger."""
+    words = _WORD.findall(instruction.lower())
+    joined = [sounds(a + b) for a, b in itertools.pairwise(words)]
+    return instruction_types(" ".join(joined)) if joined else set()
 
 
 def intent_types(instruction: str, state: WorldState) -> set[str]:
@@ -217,7 +260,8 @@ def named_types(instruction: str, state: WorldState, draft: TaskSpec | None = No
     cat = load_catalogue()
     present = {o.type for o in state.objects.values() if not o.gone}
     products = {p[0] for t in present if (p := cat.slice_product(t)) is not None}
-    named = (instruction_types(instruction) | sound_alike_types(instruction, present)) & (present | products)
+    named = (instruction_types(instruction) | sound_alike_types(instruction, present)
+             | run_together_types(instruction)) & (present | products)
     touched = set(named)
     if draft is not None:
         touched |= spec_types(draft, state) & (present | products)
