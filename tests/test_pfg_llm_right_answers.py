@@ -6,8 +6,8 @@ server on loopback. The LLM front end must accept each first answer (one call, n
 repair round), and the HP review must accept the same subtasks given back as a
 correction: the checks and the review agree, and none fires on a right answer.
 
-``EMBOTEAM_RIGHT_ANSWERS=all`` runs every development task (1,901; about 20 minutes on
-the shared machine) instead of the 158 chosen ones.
+``EMBOTEAM_RIGHT_ANSWERS=all`` runs every development task (about 2,000; 20 minutes on
+the shared machine) instead of the 162 chosen ones.
 """
 
 from __future__ import annotations
