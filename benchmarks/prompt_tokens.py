@@ -12,13 +12,30 @@ front end would send:
   ``--llm-when doubt`` only doubtful readings send it; this counts it for every task
   (what ``--llm-when always`` sends).
 
-Tokens are counted with the tokenizer of the GGUF model (llama.cpp, vocab only) over the
-prompt as its chat template renders it, which is what ``prompt_tokens`` of a llama.cpp
-call reports. Without llama-cpp-python or a model, ``--approx`` counts characters / 4
-(say so when quoting it).
+Input tokens are counted three ways, one per API (``--api``), each over what that API
+counts as input:
+
+- ``llamacpp`` (exact): the tokenizer of the GGUF model (llama.cpp, vocab only) over the
+  prompt as its chat template renders it, which is what ``prompt_tokens`` of a llama.cpp
+  call reports (the schema is a grammar there, not prompt text);
+- ``openai`` (APPROXIMATE): the messages plus OpenAI's per-message framing (4 tokens a
+  message, 3 for the reply's start) plus the strict wire schema
+  (``openai_backend.strict_subset``) as compact JSON, which OpenAI also counts as input.
+  Counted with tiktoken's ``o200k_base`` when tiktoken and its encoding file are
+  available, else with the GGUF model's tokenizer (Qwen2.5's 151k BPE, close to
+  o200k_base on English and JSON), and labelled as such; OpenAI renders the schema in its
+  own form, so even o200k_base over the JSON is an estimate;
+- ``anthropic`` (APPROXIMATE): the system prompt and messages plus the tool definition
+  (name and ``input_schema``) as compact JSON, with the same tokenizer; Anthropic's fixed
+  tool-use system prompt (a few hundred tokens, per its documentation) is not included.
+
+Without llama-cpp-python or a model, ``--approx`` counts characters / 4 (say so when
+quoting it). The script uses only what the LLM front ends had before the prompts were
+cut (``LLMFrontend.request``, ``HybridFrontend.request``), so it measures an older
+checkout too (``PYTHONPATH=OLD/src``).
 
     .venv/bin/python benchmarks/prompt_tokens.py                 # fetches the model if needed
-    .venv/bin/python benchmarks/prompt_tokens.py --model X.gguf --json
+    .venv/bin/python benchmarks/prompt_tokens.py --model X.gguf --json --api openai
 """
 
 from __future__ import annotations
@@ -41,15 +58,27 @@ from emboteam.pfg.offline import OfflineFrontend
 from emboteam.world.scene import load_scene
 
 Counter = Callable[[LLMRequest], int]
+TextCounter = Callable[[str], int]
 NO_CLIENT = cast(LLMClient, None)  # requests are only built here, never sent
+#: OpenAI's chat framing: tokens per message and for the start of the reply
+OPENAI_PER_MESSAGE, OPENAI_REPLY = 4, 3
 
 
-def llama_counter(model_path: Path) -> Counter:
-    """Tokens of a request's messages as the model's chat template renders them."""
+def _compact(obj: Any) -> str:
+    return json.dumps(obj, separators=(",", ":"), ensure_ascii=False)
+
+
+def llama_tokenizer(model_path: Path) -> tuple[Any, TextCounter]:
     from llama_cpp import Llama
-    from llama_cpp.llama_chat_format import Jinja2ChatFormatter
 
     llama = Llama(model_path=str(model_path), vocab_only=True, verbose=False)
+    return llama, lambda text: len(llama.tokenize(text.encode("utf-8"), add_bos=False, special=False))
+
+
+def llama_counter(llama: Any) -> Counter:
+    """Tokens of a request's messages as the model's chat template renders them."""
+    from llama_cpp.llama_chat_format import Jinja2ChatFormatter
+
     template = llama.metadata["tokenizer.chat_template"]
     eos = llama.detokenize([llama.token_eos()]).decode("utf-8", "replace")
     bos = llama.detokenize([llama.token_bos()]).decode("utf-8", "replace") if llama.token_bos() >= 0 else ""
@@ -61,8 +90,43 @@ def llama_counter(model_path: Path) -> Counter:
     return count
 
 
+def o200k_counter() -> TextCounter | None:
+    """tiktoken's o200k_base (GPT-4o's encoding), if tiktoken and its encoding file load."""
+    try:
+        import tiktoken
+
+        enc = tiktoken.get_encoding("o200k_base")
+    except Exception:  # not installed, or its encoding file cannot be fetched offline
+        return None
+    return lambda text: len(enc.encode(text))
+
+
+def openai_counter(text_tokens: TextCounter) -> Counter:
+    """Messages with OpenAI's framing, plus the strict wire schema (approximate)."""
+    from emboteam.llm.openai_backend import strict_subset
+
+    def count(request: LLMRequest) -> int:
+        n = sum(OPENAI_PER_MESSAGE + text_tokens(m.content) for m in request.messages) + OPENAI_REPLY
+        if request.json_schema is not None:
+            n += text_tokens(_compact({"name": request.schema_name, "schema": strict_subset(request.json_schema),
+                                       "strict": True}))
+        return n
+    return count
+
+
+def anthropic_counter(text_tokens: TextCounter) -> Counter:
+    """System prompt, messages and the forced tool's definition (approximate)."""
+    def count(request: LLMRequest) -> int:
+        n = sum(text_tokens(m.content) for m in request.messages)
+        if request.json_schema is not None:
+            n += text_tokens(_compact({"name": request.schema_name, "input_schema": request.json_schema}))
+        return n
+    return count
+
+
 def approx_counter(request: LLMRequest) -> int:
-    return sum(len(m.content) for m in request.messages) // 4
+    schema = len(_compact(request.json_schema)) if request.json_schema is not None else 0
+    return (sum(len(m.content) for m in request.messages) + schema) // 4
 
 
 def requests_of_task(task: Any, parser: OfflineFrontend) -> dict[str, LLMRequest]:
@@ -93,29 +157,42 @@ def measure(count: Counter) -> dict[str, dict[str, Any]]:
                    "min": min(v), "max": max(v)} for name, v in per.items()}
 
 
+def choose_counter(api: str, model: Path | None, approx: bool) -> tuple[Counter, str]:
+    if approx:
+        return approx_counter, "characters / 4, schema included (APPROXIMATE)"
+    from emboteam.llm.local_model import fetch_model
+
+    path = model or fetch_model()
+    llama, qwen = llama_tokenizer(path)
+    if api == "llamacpp":
+        return llama_counter(llama), f"llama.cpp tokenizer of {path.name} over the chat template (exact)"
+    o200k = o200k_counter()
+    text, name = (o200k, "tiktoken o200k_base") if o200k is not None else (qwen, f"the tokenizer of {path.name}")
+    if api == "openai":
+        return openai_counter(text), (f"{name}: messages + OpenAI framing + strict wire schema "
+                                      "(APPROXIMATE: OpenAI's own count is not available offline)")
+    return anthropic_counter(text), (f"{name}: system + messages + tool input_schema (APPROXIMATE; "
+                                     "without Anthropic's fixed tool-use system prompt)")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--model", type=Path, help="GGUF file whose tokenizer counts (default: fetch the local model)")
+    ap.add_argument("--api", choices=("llamacpp", "openai", "anthropic"), default="llamacpp",
+                    help="count input as this API does (openai and anthropic: approximate, schema included)")
     ap.add_argument("--approx", action="store_true", help="count characters / 4 instead of tokens")
     ap.add_argument("--json", action="store_true", help="one JSON object on stdout")
     args = ap.parse_args(argv)
-    count: Counter
-    if args.approx:
-        count, how = approx_counter, "characters / 4"
-    else:
-        from emboteam.llm.local_model import fetch_model
-
-        try:
-            model = args.model or fetch_model()
-        except EmboTeamError as exc:
-            print(f"error: {exc}", file=sys.stderr)
-            return 2
-        count, how = llama_counter(model), f"llama.cpp tokenizer of {model.name}"
+    try:
+        count, how = choose_counter(args.api, args.model, args.approx)
+    except EmboTeamError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
     stats = measure(count)
     if args.json:
-        print(json.dumps({"counted_with": how, "suite": "mace-thor", "prompts": stats}))
+        print(json.dumps({"api": args.api, "counted_with": how, "suite": "mace-thor", "prompts": stats}))
         return 0
-    print(f"PFG input tokens per call on MACE-THOR ({how}):")
+    print(f"PFG input tokens per call on MACE-THOR, as {args.api} counts them ({how}):")
     print(f"{'prompt':<12} {'calls':>5} {'median':>7} {'mean':>7} {'min':>5} {'max':>5}")
     for name, s in stats.items():
         print(f"{name:<12} {s['calls']:>5} {s['median']:>7g} {s['mean']:>7g} {s['min']:>5} {s['max']:>5}")

@@ -19,7 +19,7 @@ from llm_servers import Reply, ScriptedServer, cond, subtask, taskspec_answer
 FAST = RetryPolicy(max_attempts=2, base_delay=0.01, max_delay=0.02)
 ANSWER = taskspec_answer(
     subtask("s1", cond("sliced", "Tomato_1"), robot="robot1"),
-    subtask("s2", cond("inside", "TomatoSliced", receptacle="Plate_1"), robot="robot2", depends_on=("s1",)),
+    subtask("s2", cond("inside", "TomatoSliced", receptacle="Plate"), robot="robot2", depends_on=("s1",)),
 )
 OPENAI_SECRET = "sk-proj-SECRET-0123456789"
 ANTHROPIC_SECRET = "sk-ant-SECRET-9876543210"

@@ -80,7 +80,7 @@ def test_invalid_correction_is_dropped_with_the_reason_recorded(scene1: Scene, s
     empty = {"verdict": "corrected", "reason": "?", "subtasks": []}
     cyclic = {"verdict": "corrected", "reason": "?", "subtasks": [
         subtask("s1", cond("sliced", "Tomato_1"), depends_on=("s2",)),
-        subtask("s2", cond("sliced", "Apple_1"), depends_on=("s1",))]}
+        subtask("s2", cond("sliced", "Apple"), depends_on=("s1",))]}
     with ScriptedServer("openai", [Reply.answer(empty), Reply.answer(cyclic)]) as srv:
         review = review_spec(make_client(srv.spec(), retry=FAST), spec3(), INSTRUCTION, scene1, state1, team12)
     assert review.spec == spec3() and not review.changed

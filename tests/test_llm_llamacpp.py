@@ -47,8 +47,11 @@ def test_smollm2_answers_schema_valid_json_through_the_pfg(tmp_path: Path) -> No
     team = parse_team("2,25")
     state = WorldState.from_scene(scene, team)
     client = make_client(f"llamacpp:{gguf}", timeout=120, record_dir=tmp_path)
-    # small bounds keep generation short; the grammar enforces them
-    frontend = LLMFrontend(client, fewshot=0, repair_rounds=0, max_subtasks=2, max_conditions=2, max_tokens=400)
+    # small bounds keep generation short; the grammar enforces them. The cap is above the
+    # longest answer the grammar allows at these bounds (2 subtasks of 2 conditions of 6
+    # subject types, 80-character descriptions, and a clarification of a 200-character
+    # question and four 160-character readings: about 800 tokens), so the answer ends
+    frontend = LLMFrontend(client, fewshot=0, repair_rounds=0, max_subtasks=2, max_conditions=2, max_tokens=900)
     instruction = "Put the soap bar on the side table."
     try:
         spec = frontend.decompose(instruction, scene, state, team)

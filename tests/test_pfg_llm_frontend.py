@@ -5,14 +5,13 @@ answer, repair after a planner error, and prompt-injection attempts."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, cast
 
 import pytest
 
 from emboteam.errors import EmboTeamError
 from emboteam.llm import LLMClient, LLMMalformedOutput, RetryPolicy, make_client
 from emboteam.pfg.llm_frontend import MAX_INSTRUCTION_CHARS, InstructionError, LLMFrontend
-from emboteam.pfg.prompts import load_prompt
 from emboteam.pfg.schema import SceneVocabulary
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.goals import Predicate
@@ -63,7 +62,7 @@ def test_prompt_holds_instruction_scene_team_and_foreign_examples(scene1: Scene,
     with ScriptedServer("openai", [Reply.answer(APPLE_TO_FRIDGE)]) as srv:
         LLMFrontend(llm(srv), fewshot=3).decompose("Put the apple in the fridge, light off.", scene1, state1, team12)
     messages = srv.requests[0]["messages"]
-    assert messages[0] == {"role": "system", "content": load_prompt("pfg_system").strip()}
+    assert messages[0] == {"role": "system", "content": LLMFrontend(cast(LLMClient, None)).system_text()}
     assert [m["role"] for m in messages[1:]] == ["user", "assistant"] * 3 + ["user"]
     task = messages[-1]["content"]
     assert "<<<INSTRUCTION\nPut the apple in the fridge, light off.\nINSTRUCTION>>>" in task
@@ -72,7 +71,8 @@ def test_prompt_holds_instruction_scene_team_and_foreign_examples(scene1: Scene,
     assert "robot2: lifts up to 100 kg; skills: PickupObject" in task
     examples = [m["content"] for m in messages[1:-1:2]]
     assert all("(excerpt)" in e and "FloorPlan1 " not in e for e in examples)
-    assert "FloorPlan3 (excerpt)" in examples[0]  # same room type (kitchen) first
+    # the development example most similar in wording comes first
+    assert "Turn off the light and put the apple in the fridge." in examples[0]
 
 
 def _objects(schema: Any) -> list[dict[str, Any]]:
@@ -121,14 +121,15 @@ def test_unknown_object_is_fed_back_and_fixed(scene1: Scene, state1: WorldState,
 
 def test_impossible_goal_and_cycle_are_fed_back(scene1: Scene, state1: WorldState,
                                                 team12: Sequence[RobotProfile]) -> None:
-    impossible = taskspec_answer(subtask("s1", cond("sliced", "Fridge_1")))
+    # by type: ids are enumerated only for the objects the prompt lists in detail
+    impossible = taskspec_answer(subtask("s1", cond("sliced", "Fridge")))
     cyclic = taskspec_answer(subtask("s1", cond("sliced", "Apple_1"), depends_on=("s2",)),
                              subtask("s2", cond("inside", "AppleSliced", receptacle="Plate"), depends_on=("s1",)))
-    mixed = taskspec_answer(subtask("s1", cond("inside", "Apple_1", "Tomato", receptacle="Fridge_1")))
+    mixed = taskspec_answer(subtask("s1", cond("inside", "Apple_1", "Tomato", receptacle="Fridge")))
     with (ScriptedServer("openai", [Reply.answer(impossible), Reply.answer(cyclic), Reply.answer(mixed)]) as srv,
           pytest.raises(LLMMalformedOutput) as info):
         LLMFrontend(llm(srv), repair_rounds=2).decompose("Slice the apple.", scene1, state1, team12)
-    assert "no Fridge_1 here is sliceable" in srv.requests[1]["messages"][-1]["content"]
+    assert "no Fridge here is sliceable" in srv.requests[1]["messages"][-1]["content"]
     assert "cycle" in srv.requests[2]["messages"][-1]["content"]
     assert "not a mix" in str(info.value)
 
@@ -176,7 +177,7 @@ def test_injection_cannot_leave_the_schema(scene1: Scene, state1: WorldState,
     with ScriptedServer("openai", hijacked) as srv, pytest.raises(LLMMalformedOutput):
         LLMFrontend(llm(srv), repair_rounds=2).decompose(attack, scene1, state1, team12)
     first = srv.requests[0]["messages"]
-    assert first[0]["content"] == load_prompt("pfg_system").strip()  # the rules are untouched
+    assert first[0]["content"] == LLMFrontend(cast(LLMClient, None)).system_text()  # the rules are untouched
     task = first[-1]["content"]
     # the attack stays inside the data markers: it cannot close them early
     assert task.count("INSTRUCTION>>>") == 1 and task.index("rm -rf") < task.index("INSTRUCTION>>>")

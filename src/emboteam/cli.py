@@ -28,6 +28,7 @@ from emboteam.errors import (
     EmboTeamError,
     exit_code_of,
 )
+from emboteam.pfg.clarification import ClarificationNeeded
 from emboteam.terminal import error_object, one_line, printable, split_error
 from emboteam.world.actions import Skill
 from emboteam.world.navfit import nav_fit
@@ -80,14 +81,14 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 def fail(message: str, code: int, *, as_json: bool = False, label: str = "error",
-         error_type: str | None = None) -> typer.Exit:
+         error_type: str | None = None, extra: dict[str, Any] | None = None) -> typer.Exit:
     """Report a failure as the contract says (one line on stderr; with ``--json`` also one
     JSON object on stdout) and return the exit to raise. The message is escaped: it
     often holds brackets ('emboteam[ray]', the '[pfg]' stage tag) that Rich would eat as
     markup."""
     line = one_line(message)  # one line, control characters escaped, whatever the message holds
     if as_json:
-        print_json(error_object(message, code, error_type))
+        print_json({**error_object(message, code, error_type), **(extra or {})})
     err.print(f"[red]{label}:[/red] {escape(line)}", highlight=False, soft_wrap=True)
     return typer.Exit(code)
 
@@ -101,6 +102,9 @@ def cli_errors(fn: F) -> F:
         as_json = bool(kwargs.get("as_json"))
         try:
             return fn(*args, **kwargs)
+        except ClarificationNeeded as exc:  # the front end asked instead of guessing
+            raise fail(str(exc), exc.exit_code, as_json=as_json,
+                       error_type=type(exc).__name__, extra={"clarification": exc.clarification.to_json()}) from None
         except EmboTeamError as exc:
             raise fail(str(exc), exc.exit_code, as_json=as_json, error_type=type(exc).__name__) from None
         except (typer.Exit, typer.Abort):
@@ -480,8 +484,9 @@ def run(
     out_dir: Path | None = typer.Option(None, "--out", help="write episode.json, trace.jsonl, report.html here"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
-    clarify: bool = typer.Option(False, "--clarify", help="when the offline reading is close, ask which "
-                                 "end state was meant (numbered sentences; without a terminal the best one)"),
+    clarify: bool = typer.Option(False, "--clarify", help="when the offline reading is close, or the LLM "
+                                 "cannot tell, ask which end state was meant (numbered sentences; without a "
+                                 "terminal the best reading)"),
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join

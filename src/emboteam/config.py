@@ -41,8 +41,9 @@ class RunConfig(BaseModel):
     llm_timeout: float = 60.0
     llm_record: str | None = Field(None, description="cassette folder to record LLM calls into")
     llm_merge: bool = Field(False, description="the paper's LLM merge stage: the LLM proposes orderings")
-    clarify: bool = Field(False, description="offline front end: ask the person on the terminal to "
-                          "choose among close readings (no terminal: the best one, with a note)")
+    clarify: bool = Field(False, description="ask the person on the terminal to choose among the "
+                          "offline reader's close readings, or to answer an LLM front end's clarification "
+                          "(no terminal: the best reading with a note; an LLM's question ends the episode)")
     llm_when: LLMWhen = Field("doubt", description="hybrid front end: ask the LLM only when the offline "
                               "reading is in doubt, or always")
     planner_input: PlannerInput = Field("sas", description="what Fast Downward reads: our own SAS task "

@@ -27,6 +27,7 @@ from emboteam.mode_table import ModeConfigError, planner_for, wiring
 from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
+from emboteam.pfg.clarification import Clarification, ClarifyHook
 from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
@@ -52,6 +53,8 @@ class EpisodeContext:
     state: WorldState
     team: tuple[RobotProfile, ...]
     llm: LLMClient | None
+    #: settles an LLM front end's clarification (``--clarify``); None: it ends the episode
+    clarify: ClarifyHook | None = None
 
     @classmethod
     def open(cls, task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) -> EpisodeContext:
@@ -59,7 +62,18 @@ class EpisodeContext:
         unless given."""
         team = task.team()
         return cls(task=task, cfg=cfg, scene=load_scene(task.floor_plan), state=task.initial_state(),
-                   team=team, llm=llm if llm is not None else make_llm(cfg))
+                   team=team, llm=llm if llm is not None else make_llm(cfg),
+                   clarify=_ask_on_terminal if cfg.clarify else None)
+
+
+def _ask_on_terminal(clarification: Clarification) -> str | None:
+    """``--clarify`` for the LLM front ends: the model's question goes to the person (one
+    flag for both: the offline reader's close candidates are settled in :func:`understand`)."""
+    import sys
+
+    from emboteam.pfg.clarification import ask_terminal
+
+    return ask_terminal(clarification, sys.stdin, sys.stderr)
 
 
 def make_llm(cfg: RunConfig) -> LLMClient | None:
@@ -87,7 +101,7 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None,
         from emboteam.pfg.llm_frontend import LLMFrontend
 
         assert llm is not None
-        return LLMFrontend(llm).decompose(*args)
+        return LLMFrontend(llm, avoid_set=example_set(task)).decompose(*args, clarify=ctx.clarify)
     if cfg.frontend == "hybrid":
         from emboteam.pfg.hybrid import HybridFrontend
         from emboteam.pfg.llm_frontend import LLMFrontend
@@ -99,7 +113,8 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None,
         # or corrected spec must plan: the planner's error is fed back (its plan is cached
         # for plan_spec)
         hybrid = HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when,
-                                llm=LLMFrontend(llm, repair_rounds=1), review_rounds=1)
+                                llm=LLMFrontend(llm, repair_rounds=1, avoid_set=example_set(task)), review_rounds=1,
+                                clarify=ctx.clarify)
         return hybrid.decompose(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
     reading = offline_frontend().parse(*args)
     if cfg.clarify:
@@ -114,6 +129,17 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None,
     if notes is not None:
         notes.extend(reading_notes(reading))
     return reading.spec
+
+
+def example_set(task: EpisodeTask) -> str:
+    """The set a task comes from, as the worked-example pool names it (``blind_r20``,
+    ``mace-thor``): the LLM front ends never show an example of the task's own set."""
+    suite = str(getattr(task, "suite", ""))
+    if suite.startswith("smart-llm:"):
+        parts = [p for p in suite.removeprefix("smart-llm:").replace("\\", "/").split("/") if p]
+        named = [p for p in parts if p.startswith("blind_r")]
+        return named[-1] if named else (parts[-1] if parts else "")
+    return suite
 
 
 def reading_notes(reading: Reading) -> list[str]:
@@ -153,7 +179,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
     if llm is not None and cfg.frontend == "llm" and wiring(cfg.mode).llm_review:
         from emboteam.hp.llm_stages import review_spec
 
-        spec = review_spec(llm, spec, ctx.task.instruction, *args).spec
+        spec = review_spec(llm, spec, ctx.task.instruction, *args, avoid_set=example_set(ctx.task)).spec
     check_reachable(spec.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
     try:
         plan = planner.plan(spec, ctx.state)
@@ -162,7 +188,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
             raise
         from emboteam.pfg.llm_frontend import LLMFrontend
 
-        spec = LLMFrontend(llm).repair(spec, str(exc), *args)
+        spec = LLMFrontend(llm, avoid_set=example_set(ctx.task)).repair(spec, str(exc), *args)
         plan = planner.plan(spec, ctx.state)
     if llm is not None and cfg.llm_merge:
         # the paper's LLM merge: orderings it proposes become dependencies if they keep the

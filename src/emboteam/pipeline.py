@@ -17,6 +17,7 @@ from emboteam.errors import EmboTeamError
 from emboteam.exec.episode import Episode, episode_header, score
 from emboteam.llm.client import LLMClient
 from emboteam.modes import make_llm, run_mode
+from emboteam.pfg.clarification import ClarificationNeeded
 from emboteam.task import EpisodeTask
 
 
@@ -42,9 +43,10 @@ def run_episode(task: EpisodeTask, cfg: RunConfig) -> Episode:
         _, gcr, conds = score(truth, task.initial_state()) if truth is not None else (False, 0.0, ())
         # a failed episode still reports what its LLM calls cost
         usage = {"llm_calls": llm.usage.calls, "tokens": llm.usage.tokens} if llm is not None else {}
+        asked = exc.clarification if isinstance(exc, ClarificationNeeded) else None
         episode = Episode.model_validate({
             **episode_header(task, cfg, [p.name for p in team]), "success": False, "gcr": gcr,
-            "conditions": conds, "error": f"{type(exc).__name__}: {exc}", **usage})
+            "conditions": conds, "error": f"{type(exc).__name__}: {exc}", "clarification": asked, **usage})
     return episode.model_copy(update={"wall_seconds": round(time.perf_counter() - started, 4)})
 
 

@@ -19,6 +19,7 @@ from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceOutcome
 from emboteam.exec.trace import TraceEvent, write_jsonl
 from emboteam.hp.plan import MergedPlan
+from emboteam.pfg.clarification import Clarification
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
 from emboteam.task import EpisodeTask
@@ -94,6 +95,8 @@ class Episode(BaseModel):
                                          "goal and that nothing explains (offline front end)")
     candidates: tuple[dict[str, Any], ...] = Field((), description="the readings considered, best first: "
                                                    "sentence, goals, score, the doubts each settles")
+    clarification: Clarification | None = Field(None, description="the question the front end asked instead "
+                                                "of guessing (the episode then ends with ClarificationNeeded)")
 
     disturbance: DisturbanceOutcome | None = Field(None, description="what a benchmark disturbance did "
                                                    "(bench --breakdown/--join/--moves/--msg-*)")
@@ -111,6 +114,7 @@ class Episode(BaseModel):
             "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
             "notes": list(self.notes), "unexplained": list(self.unexplained),
             "candidates": list(self.candidates),
+            "clarification": self.clarification.to_json() if self.clarification is not None else None,
         }
 
     def save(self, directory: Path) -> None:

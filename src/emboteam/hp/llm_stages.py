@@ -26,9 +26,11 @@ from emboteam.llm.client import LLMClient
 from emboteam.llm.errors import LLMMalformedOutput
 from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
-from emboteam.pfg.focus import focus_types
-from emboteam.pfg.llm_frontend import answer_token_cap, quote_instruction
-from emboteam.pfg.prompts import load_prompt, render, render_scene, render_team
+from emboteam.pfg.answer_checks import copied_problems, repetition_problems
+from emboteam.pfg.fewshot import example_subject_types
+from emboteam.pfg.focus import focus_types, spec_types
+from emboteam.pfg.llm_frontend import LLMFrontend, answer_token_cap, checked_types, quote_instruction
+from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.schema import SceneVocabulary, taskspec_from_answer, taskspec_schema, taskspec_to_answer
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import RobotProfile
@@ -69,9 +71,11 @@ def review_schema(vocab: SceneVocabulary, spec: TaskSpec, *, max_subtasks: int =
         "required": ["verdict", "reason", "subtasks"],
         "properties": {
             "verdict": {"type": "string", "enum": ["ok", "corrected"]},
-            "reason": {"type": "string", "maxLength": REASON_MAX},
+            "reason": {"type": "string", "maxLength": REASON_MAX,
+                       "description": f"what was changed and why, at most {REASON_MAX} characters"},
             "subtasks": {**subtasks, "minItems": 0,
-                         "description": "the complete corrected subtasks; empty when the verdict is ok"},
+                         "description": f"the complete corrected subtasks, at most {max_subtasks}; empty when "
+                                        "the verdict is ok"},
         },
     }
 
@@ -89,17 +93,23 @@ def review_token_cap(spec: TaskSpec) -> int:
 
 def review_spec(client: LLMClient, spec: TaskSpec, instruction: str, scene: Scene, state: WorldState,
                 team: Sequence[RobotProfile], *, repair_rounds: int = 1, max_tokens: int | None = None,
-                seed: int = 0) -> SpecReview:
+                seed: int = 0, avoid_set: str = "") -> SpecReview:
     """Ask the LLM whether ``spec`` does what ``instruction`` says; one call when it does.
-    The scene lists in full only the types the instruction and the spec touch."""
-    vocab = SceneVocabulary.build(scene, state, team)
+    The scene lists in full only the types the instruction and the spec touch (and what
+    the instruction implies). A correction is held to the decomposition's own checks
+    (repeated subtasks, conditions copied from the PFG's worked example), so the review
+    never puts back what those checks rejected, nor rejects what they accept."""
     detail = focus_types(instruction, state, spec)
+    vocab = SceneVocabulary.build(scene, state, team, detail)
+    pfg = LLMFrontend(client, avoid_set=avoid_set)
+    allowed = checked_types(pfg, instruction, scene, state, team, spec)
+    example_types = example_subject_types(pfg.examples(scene, instruction))
     request = LLMRequest(
         stage=REVIEW_STAGE,
         messages=(Message(role="system", content=load_prompt("hp_validate_system").strip()),
                   Message(role="user", content=render(
                       "hp_validate_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
-                      scene=render_scene(state, detail=detail), team=render_team(team),
+                      scene=render_scene(state, detail=detail), team=render_team(team, GOAL_SKILLS),
                       subtasks=_subtasks_json(spec)))),
         json_schema=review_schema(vocab, spec), schema_name="review",
         max_tokens=max_tokens if max_tokens is not None else review_token_cap(spec), seed=seed)
@@ -111,6 +121,11 @@ def review_spec(client: LLMClient, spec: TaskSpec, instruction: str, scene: Scen
         if not answer["subtasks"]:
             raise Rejected("verdict 'corrected' needs the complete corrected list of subtasks")
         corrected = taskspec_from_answer({"subtasks": answer["subtasks"]}, spec.instruction, scene)
+        problems = repetition_problems(corrected)
+        if allowed is not None:
+            problems += copied_problems(corrected, state, allowed | spec_types(spec, state), example_types)
+        if problems:
+            raise Rejected("; ".join(problems))
         return SpecReview(spec=corrected, changed=corrected != spec, reason=reason)
 
     try:
@@ -152,10 +167,12 @@ def orderings_schema(spec: TaskSpec) -> dict[str, Any]:
         "required": ["orderings"],
         "properties": {"orderings": {
             "type": "array", "maxItems": max(1, n * (n - 1) // 2),
+            "description": f"at most {max(1, n * (n - 1) // 2)} orderings",
             "items": {
                 "type": "object", "additionalProperties": False, "required": ["before", "after", "reason"],
                 "properties": {"before": {"type": "string", "enum": ids}, "after": {"type": "string", "enum": ids},
-                               "reason": {"type": "string", "maxLength": 200}},
+                               "reason": {"type": "string", "maxLength": 200,
+                                          "description": "why, at most 200 characters"}},
             },
         }},
     }

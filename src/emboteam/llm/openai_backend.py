@@ -37,7 +37,10 @@ _UNPORTABLE = frozenset({"minLength", "maxLength", "minimum", "maximum", "exclus
 
 
 def strict_subset(schema: Any) -> Any:
-    """The schema without keywords outside OpenAI strict mode's portable subset."""
+    """The schema without keywords outside OpenAI strict mode's portable subset. The
+    schemas state every such bound in the node's ``description`` too (the model reads it
+    on every backend; tests/test_llm_schema_limits.py checks this), and the full schema is
+    checked on our side."""
     if isinstance(schema, dict):
         return {k: strict_subset(v) for k, v in schema.items() if k not in _UNPORTABLE}
     if isinstance(schema, list):

@@ -77,7 +77,7 @@ def _problems(exc: Exception) -> str:
 
 
 def _cut_off_problems(text: str, max_tokens: int, schema: dict[str, Any], convert: Callable[[dict[str, Any]], T],
-                      ) -> str:
+                      defaults: dict[str, Any] | None = None) -> str:
     """Feedback on an answer cut at the token limit: the limit, and what the checks find
     in its complete part (a looping model's repetitions), never an acceptance."""
     head = (f"- the answer is not a JSON object: it was cut off at the {max_tokens}-token limit; "
@@ -85,6 +85,8 @@ def _cut_off_problems(text: str, max_tokens: int, schema: dict[str, Any], conver
     partial = complete_prefix(text)
     if partial is None:
         return head
+    if defaults:
+        partial = {**defaults, **partial}
     problems = [p for p in schema_errors(partial, schema) if "is too short" not in p]
     if not problems:
         try:
@@ -99,7 +101,8 @@ def _cut_off_problems(text: str, max_tokens: int, schema: dict[str, Any], conver
 
 
 def ask_structured(client: LLMClient, request: LLMRequest, convert: Callable[[dict[str, Any]], T], *,
-                   repair_rounds: int = 2, feedback: str = FEEDBACK) -> T:
+                   repair_rounds: int = 2, feedback: str = FEEDBACK,
+                   defaults: dict[str, Any] | None = None) -> T:
     """Ask until ``convert`` accepts an answer, at most ``1 + repair_rounds`` calls.
 
     ``request.json_schema`` must be set. Repair calls are made under the stage
@@ -107,6 +110,8 @@ def ask_structured(client: LLMClient, request: LLMRequest, convert: Callable[[di
     :class:`string.Template` with ``$errors``. ``convert`` may raise
     :class:`Rejected`, ``ValueError``, pydantic's ``ValidationError`` or any
     non-LLM :class:`EmboTeamError` (a planner error, say): its message becomes feedback.
+    ``defaults`` fills top-level keys an answer leaves out (a nullable field strict mode
+    requires, such as ``clarification``: leaving out a null is not a wrong answer).
     """
     if request.json_schema is None:
         raise ValueError("ask_structured needs a request with a json_schema")
@@ -117,8 +122,10 @@ def ask_structured(client: LLMClient, request: LLMRequest, convert: Callable[[di
         stage = request.stage if round_no == 0 or request.stage.endswith(".repair") else f"{request.stage}.repair"
         response = client.complete(request.model_copy(update={"messages": tuple(messages), "stage": stage}))
         obj = response.parsed
+        if obj is not None and defaults:
+            obj = {**defaults, **obj}
         if obj is None and response.finish_reason in ("length", "max_tokens"):
-            last_error = _cut_off_problems(response.text, request.max_tokens, schema, convert)
+            last_error = _cut_off_problems(response.text, request.max_tokens, schema, convert, defaults)
         elif obj is None:
             last_error = "- the answer is not a JSON object"
         else:

@@ -48,12 +48,14 @@ def action_lists_schema(state: WorldState, team: Sequence[RobotProfile], *, max_
     for p in team:
         robots[p.name] = {
             "type": "array", "maxItems": max_actions,
+            "description": f"{p.name}'s actions in order, at most {max_actions}",
             "items": {
                 "type": "object", "additionalProperties": False, "required": ["skill", "target", "receptacle"],
                 "properties": {
                     "skill": {"type": "string", "enum": [s.value for s in Skill if s in p.skills]},
                     "target": {"type": "string", "enum": targets},
-                    "receptacle": {"anyOf": [{"type": "string", "enum": receptacles}, {"type": "null"}]},
+                    "receptacle": {"anyOf": [{"type": "string", "enum": receptacles}, {"type": "null"}],
+                                   "description": "the receptacle for PutObject; null for every other skill"},
                 },
             },
         }

@@ -47,19 +47,23 @@ def repetition_problems(spec: TaskSpec) -> list[str]:
     return problems
 
 
-def copied_problems(spec: TaskSpec, state: WorldState, mentioned: Collection[str],
+def copied_problems(spec: TaskSpec, state: WorldState, allowed: Collection[str],
                     example_types: Collection[str]) -> list[str]:
-    """Conditions about a type that a worked example shows and the instruction never
-    mentions: copied from the example, not asked for. Types the examples do not show are
-    left alone (a commonsense reading of "get breakfast ready" may name anything)."""
+    """Conditions about a type that a worked example shows and that is neither named by
+    the instruction, matched to one of its words, nor listed in detail for the task (what
+    its named places hold, what its intent touches, what a goal on those needs):
+    ``allowed`` is that union. Only such a condition is certainly copied; types the
+    examples do not show are left alone (a commonsense reading of "get breakfast ready"
+    may name anything). The rule is stated in the system prompt."""
     problems: list[str] = []
     for s in spec.subtasks:
         for c in s.goal:
             subject = ref_types(c.subject, state)
-            copied = sorted((subject & set(example_types)) - set(mentioned))
-            if copied and not subject & set(mentioned):
-                problems.append(f"{s.id}: {c} is about {', '.join(copied)}, which the instruction does not "
-                                "mention (it is from the worked example, not this task): remove it")
+            copied = sorted((subject & set(example_types)) - set(allowed))
+            if copied and not subject & set(allowed):
+                problems.append(f"{s.id}: {c} is about {', '.join(copied)}, which the instruction neither names "
+                                "nor implies and the task's listing does not show (it is from the worked "
+                                "example, not this task): remove it")
     return problems
 
 

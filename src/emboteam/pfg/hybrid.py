@@ -35,6 +35,7 @@ from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
 from emboteam.pfg.answer_checks import repetition_problems, sure_condition_problems
 from emboteam.pfg.candidates import Candidate
+from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
@@ -72,6 +73,7 @@ def review_schema(task_schema: dict[str, Any]) -> dict[str, Any]:
     complete corrected subtasks ("ok" first, so a grammar makes the model decide first)."""
     subtasks = deepcopy(task_schema["properties"]["subtasks"])
     subtasks["minItems"] = 0
+    subtasks["description"] = f"empty when ok; else all corrected subtasks, at most {subtasks['maxItems']}"
     return {"type": "object", "additionalProperties": False, "required": ["ok", "subtasks"],
             "properties": {"ok": {"type": "boolean", "description": "true if the draft is right as it is"},
                            "subtasks": subtasks}}
@@ -91,7 +93,8 @@ class HybridFrontend:
 
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
                  llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
-                 rank_margin: float = DEFAULT_MARGIN, rank_weight: float = DEFAULT_WEIGHT) -> None:
+                 rank_margin: float = DEFAULT_MARGIN, rank_weight: float = DEFAULT_WEIGHT,
+                 clarify: ClarifyHook | None = None) -> None:
         self.client = client
         self.parse = parse
         self.when = when
@@ -107,6 +110,8 @@ class HybridFrontend:
         self.rank_margin = rank_margin
         self.rank_weight = rank_weight
         self.last_ranking: Reranking[Candidate] | None = None
+        #: settles a clarification the LLM asks for when it writes a spec the parser could not
+        self.clarify = clarify
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
                   validate: Validator | None = None) -> TaskSpec:
@@ -121,7 +126,8 @@ class HybridFrontend:
         except OfflineParseError as exc:
             hint = (f"An offline parser could not read this instruction: {exc}. "
                     "Decompose what the user asks for.")
-            spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint)
+            spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint,
+                                      clarify=self.clarify)
             return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
                                              f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
         draft = self.rank_close_candidates(draft, instruction, scene)
@@ -155,12 +161,14 @@ class HybridFrontend:
                 team: Sequence[RobotProfile]) -> LLMRequest:
         from emboteam.pfg.focus import focus_types
 
-        system = load_prompt("pfg_system").strip() + "\n\n" + load_prompt("pfg_review_system").strip()
+        detail = focus_types(instruction, state, draft.spec)
+        system = self.llm.system_text() + "\n\n" + load_prompt("pfg_review_system").strip()
         answer = json.dumps(taskspec_to_answer(draft.spec), separators=(",", ":"), ensure_ascii=False)
         user = render("pfg_review_user", instruction=quote_instruction(instruction), floor_plan=scene.floor_plan,
-                      scene=render_scene(state, detail=focus_types(instruction, state, draft.spec)),
+                      scene=render_scene(state, detail=detail),
                       team=render_team(team, GOAL_SKILLS), draft=answer, notes=render_notes(draft))
-        schema = review_schema(self.llm.schema(scene, state, team, extra_ids=[s.id for s in draft.spec.subtasks]))
+        schema = review_schema(self.llm.schema(scene, state, team, extra_ids=[s.id for s in draft.spec.subtasks],
+                                               listed=detail))
         return LLMRequest(stage=self.stage, messages=(Message(role="system", content=system),
                                                       Message(role="user", content=user)),
                           json_schema=schema, schema_name="review", max_tokens=self.max_tokens,
@@ -168,8 +176,14 @@ class HybridFrontend:
 
     def converter(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile], validate: Validator | None) -> Callable[[dict[str, Any]], TaskSpec]:
-        mentioned = mentioned_types(instruction, scene, state, team, draft.spec)
-        free = any(n.kind == "vague" for n in draft.notes)
+        from emboteam.pfg.focus import focus_types
+
+        # the same rule as the LLM front end's "copied" check, stated in the review prompt:
+        # an added condition must be about a type the instruction names or implies, or the
+        # listing shows in detail (the whole scene, when it is listed whole)
+        listed = focus_types(instruction, state, draft.spec)
+        mentioned = None if listed is None else mentioned_types(instruction, scene, state, team, draft.spec) | listed
+        free = any(n.kind == "vague" for n in draft.notes) or mentioned is None
         known = {str(c) for c in draft.spec.goal().conditions}
 
         def convert(answer: dict[str, Any]) -> TaskSpec:
@@ -182,9 +196,10 @@ class HybridFrontend:
             if not free:
                 for s in spec.subtasks:
                     for c in s.goal:
-                        if str(c) not in known and not condition_types(c, state) & mentioned:
-                            problems.append(f"{s.id}: {c} is about something the instruction does not "
-                                            "mention: remove it")
+                        if str(c) not in known and mentioned is not None \
+                                and not condition_types(c, state) & mentioned:
+                            problems.append(f"{s.id}: {c} is about something the instruction neither names "
+                                            "nor implies and the listing does not show: remove it")
             if problems:
                 raise Rejected("; ".join(problems))
             if spec == draft.spec:

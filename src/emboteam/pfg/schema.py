@@ -17,13 +17,21 @@ raises :class:`~emboteam.llm.structured.Rejected` with a message for the model.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from pydantic import ValidationError
 
 from emboteam.llm.structured import Rejected
+from emboteam.pfg.clarification import (
+    MAX_READINGS,
+    MIN_READINGS,
+    QUESTION_MAX,
+    READING_MAX,
+    Clarification,
+)
+from emboteam.pfg.prompts import GOAL_PROPERTIES
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.catalogue import SAME_PLACE, load_catalogue
 from emboteam.world.checker import GoalValidationError, validate_goal
@@ -33,9 +41,14 @@ from emboteam.world.scene import Scene, is_object_id
 from emboteam.world.state import WorldState
 
 LIQUIDS = ("water", "coffee", "wine")
+
 #: a description is one short sentence; a weak model copies the whole instruction into it,
 #: and every character costs generation time on a local model
 DESCRIPTION_MAX = 80
+#: types one subject may list ("any of these": "the fruit" over Apple, Orange, ...)
+SUBJECT_TYPES_MAX = 6
+#: how many distinct objects one condition may ask for ("close all the cabinets": FloorPlan9 has 28)
+COUNT_MAX = 30
 
 
 @dataclass(frozen=True)
@@ -48,15 +61,22 @@ class SceneVocabulary:
     robots: tuple[str, ...]
 
     @classmethod
-    def build(cls, scene: Scene, state: WorldState, team: Sequence[RobotProfile]) -> SceneVocabulary:
+    def build(cls, scene: Scene, state: WorldState, team: Sequence[RobotProfile],
+              listed: Collection[str] | None = None) -> SceneVocabulary:
+        """``listed``: the types the prompt lists in detail; only their objects' ids are
+        enumerated (an answer names the others by type, which are all enumerated), which
+        keeps the schema, counted as input by the hosted APIs, small."""
         cat = load_catalogue()
         live = [o for o in state.objects.values() if not o.gone]
-        ids = tuple(sorted(o.id for o in live))
+        ids = tuple(sorted(o.id for o in live if listed is None or o.type in listed))
         present = {o.type for o in live}
         # a goal may speak of what slicing produces (AppleSliced) before it exists
         products = {p[0] for t in present if (p := cat.slice_product(t)) is not None}
-        types = tuple(sorted(present | products))
-        rec_ids = sorted(o.id for o in live if o.has("receptacle"))
+        # a subject type is one some goal can be about: a type with none of the goal
+        # properties (Floor, Window, CounterTop) is only ever a receptacle
+        subjects = {t for t in present | products if cat.type(t).properties & GOAL_PROPERTIES}
+        types = tuple(sorted(subjects))
+        rec_ids = sorted(o.id for o in live if o.has("receptacle") and (listed is None or o.type in listed))
         rec_types = {o.type for o in live if o.has("receptacle")}
         # "in the sink" may name the Sink or its basin (catalogue.SAME_PLACE)
         rec_types |= {alias for alias, group in SAME_PLACE.items() if alias in present and group & rec_types}
@@ -80,51 +100,89 @@ def condition_schema(vocab: SceneVocabulary) -> dict[str, Any]:
         "properties": {
             "predicate": {"type": "string", "enum": [p.value for p in Predicate]},
             "subject": {
-                "type": "array", "minItems": 1, "maxItems": 4,
-                "description": "one object id, or one or more object types (any instance matches)",
+                "type": "array", "minItems": 1, "maxItems": SUBJECT_TYPES_MAX,
+                "description": f"one id, or 1-{SUBJECT_TYPES_MAX} types",
                 "items": {"type": "string", "enum": [*vocab.object_ids, *vocab.types]},
             },
-            "receptacle": {**_nullable_enum(vocab.receptacles),
-                           "description": "for inside: the receptacle id or type; otherwise null"},
-            "count": {"type": "integer", "minimum": 1, "maximum": 10,
-                      "description": "how many distinct objects of the subject types; 1 for an id"},
-            "liquid": {**_nullable_enum(LIQUIDS), "description": "for filled: which liquid, or null"},
+            "receptacle": _nullable_enum(vocab.receptacles),
+            "count": {"type": "integer", "minimum": 1, "maximum": COUNT_MAX, "description": f"1-{COUNT_MAX}"},
+            "liquid": _nullable_enum(LIQUIDS),
+        },
+    }
+
+
+def clarification_schema() -> dict[str, Any]:
+    """"I cannot tell": a question and the readings it chooses between (null otherwise)."""
+    return {"anyOf": [{
+        "type": "object",
+        "additionalProperties": False,
+        "required": ["question", "readings"],
+        "properties": {
+            "question": {"type": "string", "maxLength": QUESTION_MAX,
+                         "description": f"at most {QUESTION_MAX} characters"},
+            "readings": {"type": "array", "minItems": MIN_READINGS, "maxItems": MAX_READINGS,
+                         "description": f"{MIN_READINGS}-{MAX_READINGS} end states, each at most {READING_MAX} "
+                                        "characters",
+                         "items": {"type": "string", "maxLength": READING_MAX}},
+        },
+    }, {"type": "null"}]}
+
+
+def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_conditions: int = 6,
+                    extra_ids: Sequence[str] = (), min_items: int = 1) -> dict[str, Any]:
+    """The list of subtasks (shared by the decomposition and the review answers)."""
+    ids = list(dict.fromkeys([*subtask_ids(max_subtasks), *extra_ids]))
+    return {
+        "type": "array", "minItems": min_items, "maxItems": max_subtasks,
+        "description": f"1-{max_subtasks}" if min_items else f"at most {max_subtasks}",
+        "items": {
+            "type": "object",
+            "additionalProperties": False,
+            "required": ["id", "description", "robot", "goal", "depends_on", "final"],
+            "properties": {
+                "id": {"type": "string", "enum": ids},
+                "description": {"type": "string", "maxLength": DESCRIPTION_MAX,
+                                "description": f"at most {DESCRIPTION_MAX} characters"},
+                "robot": _nullable_enum(vocab.robots),
+                "goal": {"type": "array", "minItems": 1, "maxItems": max_conditions,
+                         "description": f"1-{max_conditions} conditions", "items": condition_schema(vocab)},
+                "depends_on": {"type": "array", "maxItems": max_subtasks,
+                               "description": f"at most {max_subtasks}", "items": {"type": "string", "enum": ids}},
+                "final": {"type": "boolean"},
+            },
         },
     }
 
 
 def taskspec_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_conditions: int = 6,
-                    extra_ids: Sequence[str] = ()) -> dict[str, Any]:
+                    extra_ids: Sequence[str] = (), clarify: bool = False) -> dict[str, Any]:
     """The answer schema of a decomposition over this scene and team. Subtask ids are
-    ``s1..s<max_subtasks>`` plus ``extra_ids`` (those of a spec under review)."""
-    ids = list(dict.fromkeys([*subtask_ids(max_subtasks), *extra_ids]))
-    return {
-        "type": "object",
-        "additionalProperties": False,
-        "required": ["subtasks"],
-        "properties": {
-            "subtasks": {
-                "type": "array", "minItems": 1, "maxItems": max_subtasks,
-                "items": {
-                    "type": "object",
-                    "additionalProperties": False,
-                    "required": ["id", "description", "robot", "goal", "depends_on", "final"],
-                    "properties": {
-                        "id": {"type": "string", "enum": ids},
-                        "description": {"type": "string", "maxLength": DESCRIPTION_MAX},
-                        "robot": {**_nullable_enum(vocab.robots),
-                                  "description": "the team member who does it, or null to let the planner choose"},
-                        "goal": {"type": "array", "minItems": 1, "maxItems": max_conditions,
-                                 "items": condition_schema(vocab)},
-                        "depends_on": {"type": "array", "maxItems": max_subtasks,
-                                       "items": {"type": "string", "enum": ids}},
-                        "final": {"type": "boolean",
-                                  "description": "false for an intermediate step a later subtask undoes"},
-                    },
-                },
-            },
-        },
-    }
+    ``s1..s<max_subtasks>`` plus ``extra_ids`` (those of a spec under review). With
+    ``clarify`` the answer may instead be a clarification with no subtasks."""
+    subtasks = subtasks_schema(vocab, max_subtasks=max_subtasks, max_conditions=max_conditions,
+                               extra_ids=extra_ids, min_items=0 if clarify else 1)
+    properties: dict[str, Any] = {"subtasks": subtasks}
+    if clarify:
+        subtasks["description"] = f"at most {max_subtasks}"
+        properties["clarification"] = clarification_schema()
+    return {"type": "object", "additionalProperties": False, "required": list(properties),
+            "properties": properties}
+
+
+def clarification_from_answer(answer: dict[str, Any]) -> Clarification | None:
+    """The answer's clarification when it gives one instead of subtasks; Rejected for an
+    answer with neither (an empty answer is not a reading)."""
+    raw = answer.get("clarification")
+    if answer["subtasks"]:
+        return None
+    if raw is None:
+        raise Rejected("give the subtasks, or (only if the instruction has readings with different end "
+                       "states that the scene does not settle) a clarification with the subtasks empty")
+    try:
+        return Clarification(question=str(raw["question"]).strip(),
+                             readings=tuple(str(r).strip() for r in raw["readings"]))
+    except ValidationError as exc:
+        raise Rejected("clarification: " + "; ".join(str(e["msg"]) for e in exc.errors())) from None
 
 
 def condition_from_answer(raw: dict[str, Any]) -> Condition:

@@ -31,6 +31,11 @@ def render(name: str, **values: str) -> str:
     return Template(load_prompt(name)).substitute(**values).strip()
 
 
+#: the properties a goal's subject may need (world.checker); pickupable covers inside and
+#: held. A type with none of them (Floor, Window) can be no goal's subject
+GOAL_PROPERTIES = frozenset({"pickupable", "openable", "toggleable", "sliceable", "breakable", "cookable",
+                             "dirtyable", "canFillWithLiquid"})
+
 #: property -> the word a prompt uses for it
 _ABILITIES = (("pickupable", "pickupable"), ("receptacle", "receptacle"), ("openable", "openable"),
               ("toggleable", "switchable"), ("sliceable", "sliceable"), ("breakable", "breakable"),
@@ -71,7 +76,8 @@ def render_scene(state: WorldState, ids: Sequence[str] | None = None,
 
     ``ids`` restricts the listing (few-shot examples show an excerpt). ``detail`` lists
     only those types in full and the others by name on one last line (the prompt stays
-    small; an answer may still name those types, and the schema still allows their ids).
+    small; an answer may still name those types); that line leaves out the types no goal
+    can be about (neither a goal subject, :data:`GOAL_PROPERTIES`, nor a receptacle).
     """
     cat = load_catalogue()
     groups: dict[str, list[ObjectState]] = defaultdict(list)
@@ -82,6 +88,8 @@ def render_scene(state: WorldState, ids: Sequence[str] | None = None,
         groups[o.type].append(o)
     lines = []
     others = sorted(t for t in groups if detail is not None and t not in detail)
+    named = [t for t in others
+             if any(o.has(prop) for o in groups[t] for prop in (*GOAL_PROPERTIES, "receptacle"))]
     for t in sorted(groups):
         if t in others:
             continue
@@ -95,8 +103,8 @@ def render_scene(state: WorldState, ids: Sequence[str] | None = None,
             items.append(f"{o.id} [{'; '.join(flags)}]" if flags else o.id)
         head = f"{t} ({', '.join(abilities)})" if abilities else t
         lines.append(f"{head}: {', '.join(items)}")
-    if others:
-        lines.append(f"Also here (not listed in detail): {', '.join(others)}")
+    if named:
+        lines.append(f"Also here (not listed in detail): {', '.join(named)}")
     return "\n".join(lines)
 
 
@@ -108,10 +116,11 @@ GOAL_SKILLS: frozenset[Skill] = frozenset({
 
 
 def render_team(team: Sequence[RobotProfile], skills: Collection[Skill] | None = None) -> str:
-    """One line per robot: name, mass capacity, skills (in the canonical skill order;
-    only ``skills`` when given)."""
-    return "\n".join(
-        f"{p.name}: lifts up to {p.mass_capacity:g} kg; skills: "
-        f"{', '.join(s.value for s in Skill if s in p.skills and (skills is None or s in skills)) or 'none'}"
-        for p in team
-    )
+    """One line per kind of robot: names, mass capacity, skills (in the canonical skill
+    order; only ``skills`` when given). Robots alike share a line ("robot1, robot2: ..."):
+    a team of three identical robots costs one line of prompt, not three."""
+    lines: dict[str, list[str]] = {}
+    for p in team:
+        names = ", ".join(s.value for s in Skill if s in p.skills and (skills is None or s in skills)) or "none"
+        lines.setdefault(f"lifts up to {p.mass_capacity:g} kg; skills: {names}", []).append(p.name)
+    return "\n".join(f"{', '.join(robots)}: {what}" for what, robots in lines.items())

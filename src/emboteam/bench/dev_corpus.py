@@ -1,0 +1,65 @@
+"""The development tasks with ground truth, in one list: what the LLM front end's focus,
+answer checks and worked examples are measured and chosen against.
+
+- ``tests/data/blind_r*/dev``: the blind development rounds (SMART-LLM / MAT-THOR format);
+- ``tests/data/offline_dev*.jsonl``: the offline parser's development sets (records with
+  an expected error have no goal and are left out);
+- MACE-THOR (package data).
+
+Held-out sets (``blind_r*/heldout``, ``offline_heldout.jsonl``) and the unseen suite are
+never read here. Each task carries the name of its set, so a caller can keep a task's
+own set out of what it learns from (``DevTask.set``).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from emboteam.bench.importers.smart_llm import import_smart_llm
+from emboteam.bench.mace_thor import load_mace_thor
+from emboteam.task import BenchTask
+
+#: the team a record without one is read with (the offline sets' default)
+DEFAULT_ROBOTS = ("1", "2", "3")
+
+
+@dataclass(frozen=True)
+class DevTask:
+    """A development task and the set it belongs to (``blind_r20``, ``offline_dev``, ``mace-thor``)."""
+
+    set: str
+    task: BenchTask
+
+
+def _jsonl_tasks(path: Path) -> list[DevTask]:
+    out: list[DevTask] = []
+    name = path.stem
+    for line in path.read_text(encoding="utf-8").splitlines():
+        if not line.strip():
+            continue
+        rec = json.loads(line)
+        if "error" in rec or not rec.get("goal"):
+            continue
+        robots = tuple(str(r).strip() for r in str(rec.get("robots", ",".join(DEFAULT_ROBOTS))).split(","))
+        task = BenchTask(id=str(rec["id"]), suite=name, floor_plan=str(rec["scene"]), robots=robots,
+                         category="imported", instruction=str(rec["instruction"]), goal=rec["goal"],
+                         setup=tuple(rec.get("setup") or ()))
+        out.append(DevTask(name, task))
+    return out
+
+
+def development_tasks(data_dir: Path, *, mace_thor: bool = True) -> list[DevTask]:
+    """Every development task with a ground-truth goal under ``data_dir`` (``tests/data``),
+    in a fixed order (sets by name, tasks as their files list them)."""
+    out: list[DevTask] = []
+    for round_dir in sorted(data_dir.glob("blind_r*/dev")):
+        name = round_dir.parent.name
+        suite = import_smart_llm(round_dir, suite=name)
+        out += [DevTask(name, t) for t in suite.tasks if t.goal.conditions]
+    for path in sorted(data_dir.glob("offline_dev*.jsonl")):
+        out += _jsonl_tasks(path)
+    if mace_thor:
+        out += [DevTask("mace-thor", t) for t in load_mace_thor()]
+    return out
