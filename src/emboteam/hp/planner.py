@@ -78,7 +78,13 @@ from emboteam.hp.subtask_order import (
 from emboteam.hp.validate import estimate, simulate, with_times
 from emboteam.hp.visits import merge_visits
 from emboteam.pddl.domain import Universe
-from emboteam.pddl.errors import PlannerLimitError, PlanningError, PlanValidationError, UnsolvableSubtaskError
+from emboteam.pddl.errors import (
+    PlannerMemoryError,
+    PlannerTimeoutError,
+    PlanningError,
+    PlanValidationError,
+    UnsolvableSubtaskError,
+)
 from emboteam.pddl.problem import Problem, build_problem, planning_state
 from emboteam.pddl.runner import FastDownward, PlanCache, SolveResult
 from emboteam.pfg.taskspec import Subtask, TaskSpec
@@ -195,9 +201,11 @@ ELIMINATE_WINDOW = 40
 #: the robots whose clusters stay get their plans from the cache), counting the proposals
 #: that did not pay off
 REBALANCE_PASSES = 8
-#: no further pass once the passes have made this many Fast Downward calls (a pass of the
-#: 32-robot x 96-condition cell costs 10-20, of a 2-4 robot cell 3-5: the robots that keep
-#: their clusters hit the cache, so the budget buys more passes where the team is small)
+#: no further pass once the passes have asked for this many problems not asked before in
+#: this planning call (a pass of the 32-robot x 96-condition cell asks 10-20 new ones, of a
+#: 2-4 robot cell 3-5: the robots that keep their clusters ask the same problems again, so
+#: the budget buys more passes where the team is small). Counted in problems, not Fast
+#: Downward processes, so that a warm or disk cache gives the same plan as a cold one
 REBALANCE_CALLS = 32
 #: a proposal that does not shorten the plan is not the end: the next best one without its
 #: moves is tried from the same plan (measured seconds transfer only roughly: a robot's
@@ -231,6 +239,10 @@ class HybridPlanner:
     def __init__(self, config: PlannerConfig | None = None) -> None:
         self.config = config or PlannerConfig()
         self.cache = PlanCache(self.config.cache_dir)
+        #: texts of the problems asked for in the current :meth:`plan` call (cache hits
+        #: too): the re-allocation's budget counts these, so that a warm cache, a disk
+        #: cache or a planner reused for a second task does not change the plan
+        self.asked: set[str] = set()
         self.fd = FastDownward(self.config.alias, time_limit=self.config.time_limit,
                                memory_limit_mb=self.config.memory_limit_mb, cache=self.cache,
                                planner_input=self.config.planner_input,
@@ -242,6 +254,7 @@ class HybridPlanner:
         """A validated multi-robot plan for ``spec`` from ``state`` (not modified)."""
         t0 = time.perf_counter()
         calls0 = self.fd.calls
+        self.asked = set()
         team = [r for r, rs in state.robots.items() if not rs.down]
         if not team:
             raise PlanningError("no working robot in the team")
@@ -276,11 +289,23 @@ class HybridPlanner:
 
     # ---- Fast Downward ------------------------------------------------------------------
     def _solve(self, problems: Sequence[Problem]) -> list[SolveResult]:
-        results = self.fd.solve_problems(problems, self.config.workers)
+        results = self._solve_all(problems)
         for r in results:
             if isinstance(r, PlanningError):
                 raise r
         return [r for r in results if isinstance(r, SolveResult)]
+
+    def _solve_all(self, problems: Sequence[Problem], workers: int | None = None
+                   ) -> list[SolveResult | PlanningError]:
+        """Fast Downward on ``problems`` (in parallel), each slot the result or its typed
+        error; a time-out is raised, not returned: the time limit is a safety net, and no
+        plan may depend on where a search was cut off (issue 28)."""
+        self.asked.update(p.text for p in problems)
+        results = self.fd.solve_problems(problems, self.config.workers if workers is None else workers)
+        for r in results:
+            if isinstance(r, PlannerTimeoutError):
+                raise r
+        return results
 
     def _unsolvable(self, what: str, conditions: Sequence[Condition], state: WorldState,
                     robots: Sequence[str]) -> UnsolvableSubtaskError:
@@ -354,12 +379,12 @@ class HybridPlanner:
                 todo.append((u, problem))
             round_start = len(accepted)
             round_plans: list[tuple[Unit, list[SeqStep]]] = []
-            results = self.fd.solve_problems([p for _, p in todo], self.config.workers)
+            results = self._solve_all([p for _, p in todo])
             # users of the round's most contended spot are accepted (so ordered) first
             uses = [spot_seconds(base, p.decode(r.plan)) if isinstance(r, SolveResult) and r.solved else None
                     for (_, p), r in zip(todo, results, strict=True)]
             for (u, problem), result in bottleneck_first(list(zip(todo, results, strict=True)), uses):
-                if isinstance(result, PlannerLimitError) and len(u.subtasks) > 1:
+                if isinstance(result, PlannerMemoryError) and len(u.subtasks) > 1:
                     for t in u.subtasks:  # too big to solve at once: one subtask at a time
                         attempts[t.id].solo = True
                     notes.append(f"{u.describe()}: {result}; planned one subtask at a time")
@@ -485,11 +510,11 @@ class HybridPlanner:
         ``REBALANCE_CALLS`` Fast Downward calls)."""
         if self.config.rebalance == "off" or not self.config.validate:
             return plan
-        calls0 = self.fd.calls
+        asked0 = len(self.asked)
         tabu: set[tuple[str, str]] = set()  # moves that did not pay off from this plan
         for _ in range(REBALANCE_PASSES):
-            if self.fd.calls - calls0 >= REBALANCE_CALLS:
-                log.debug("rebalance: call budget spent (%d calls)", self.fd.calls - calls0)
+            if len(self.asked) - asked0 >= REBALANCE_CALLS:
+                log.debug("rebalance: call budget spent (%d problems)", len(self.asked) - asked0)
                 return plan  # the passes so far cost enough Fast Downward calls
             jobs = measured_jobs(plan, record.cluster, record.assigned, record.candidates)
             # a robot's time is its work and its waits (for a spot, a tool, another robot):
@@ -520,7 +545,7 @@ class HybridPlanner:
             if log.isEnabledFor(logging.DEBUG):
                 log.debug("rebalance: moves %s, promised %s, makespan %.1f -> %.1f (work %s -> %s, %d calls)",
                           sorted(moves), _rounded(loads(jobs, team, prefer)), plan.makespan, other.makespan,
-                          _rounded(work), _rounded(work_of(other)), self.fd.calls - calls0)
+                          _rounded(work), _rounded(work_of(other)), len(self.asked) - asked0)
             if other.makespan >= plan.makespan:
                 if not REBALANCE_RETRY:
                     return plan
@@ -609,7 +634,7 @@ class HybridPlanner:
         built = [(o, self._split_problem(here, conds(o[0]), target.helper, kept)) for o in orders]
         firsts = [(o, p) for o, p in built if p is not None]
         staged: list[tuple[list[GroundedStep], WorldState, Sequence[str], Problem]] = []
-        results = self.fd.solve_problems([p for _, p in firsts], self.config.workers)
+        results = self._solve_all([p for _, p in firsts])
         for ((a, b), problem), result in zip(firsts, results, strict=True):
             if not isinstance(result, SolveResult) or not result.solved:
                 continue
@@ -620,7 +645,7 @@ class HybridPlanner:
             second_problem = self._split_problem(after, conds(b), target.robot, [*kept, *conds(a)])
             if second_problem is not None:
                 staged.append((grounded, after, b, second_problem))
-        seconds = self.fd.solve_problems([p for *_, p in staged], self.config.workers) if staged else []
+        seconds = self._solve_all([p for *_, p in staged]) if staged else []
         best = plan
         for (grounded, after, part, problem), result in zip(staged, seconds, strict=True):
             if not isinstance(result, SolveResult) or not result.solved:
@@ -667,7 +692,7 @@ class HybridPlanner:
             problem = self._split_problem(state, conds(part), robot, reached)
             if problem is None:
                 return None
-            result = self.fd.solve_problems([problem], 1)[0]
+            result = self._solve_all([problem], 1)[0]
             if not isinstance(result, SolveResult) or not result.solved:
                 return None
             after = state.copy()
