@@ -6,7 +6,7 @@ import random
 
 import pytest
 
-import emboteam.hp.planner as planner_module
+import emboteam.hp.stages.reallocate as reallocate_module
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.rebalance import MAX_MOVES, Job, best_move, cp_sat, loads, lpt, rebalance, work_of
 from emboteam.hp.validate import simulate
@@ -108,9 +108,9 @@ def test_a_proposal_that_does_not_pay_off_is_not_the_last(monkeypatch: pytest.Mo
     # against 16.6 s per robot. Trying the next proposal without those moves relieves it
     # (17.1 s of work, makespan 23.2 -> 18.8 s).
     spec, state = random_cell(4, 16)
-    monkeypatch.setattr(planner_module, "REBALANCE_RETRY", False)
+    monkeypatch.setattr(reallocate_module, "REBALANCE_RETRY", False)
     stop = HybridPlanner(PlannerConfig()).plan(spec, state)
-    monkeypatch.setattr(planner_module, "REBALANCE_RETRY", True)
+    monkeypatch.setattr(reallocate_module, "REBALANCE_RETRY", True)
     on = [HybridPlanner(PlannerConfig()).plan(spec, state) for _ in range(2)]
     assert on[0].makespan == on[1].makespan and [s.id for s in on[0].steps] == [s.id for s in on[1].steps]
     assert on[0].makespan < 0.95 * stop.makespan
