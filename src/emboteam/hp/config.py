@@ -80,6 +80,11 @@ class PlannerConfig:
     #: move a step the robot drove to do to its other visit to the same object, when that
     #: saves seconds (:mod:`emboteam.hp.visits`; replays only, no planner call)
     merge_visits: bool = True
+    #: "fast" (the default): the stages above; "optimal": then the plan's actions given to
+    #: CP-SAT's exact model of the whole schedule (:mod:`emboteam.hp.optimal`: which robot
+    #: does each job, in which order, when; a deterministic time limit), and the plan
+    #: rebuilt from its answer when that simulates shorter (:mod:`emboteam.hp.stages.schedule`)
+    schedule: TypingLiteral["fast", "optimal"] = "fast"
 
     def __post_init__(self) -> None:
         if self.time_limit <= 0 or self.memory_limit_mb <= 0:
@@ -90,5 +95,7 @@ class PlannerConfig:
             raise PlanningError(f"merge must be 'formal' or 'concatenate', not {self.merge!r}")
         if self.rebalance not in ("off", "lpt", "cp-sat"):
             raise PlanningError(f"rebalance must be 'off', 'lpt' or 'cp-sat', not {self.rebalance!r}")
+        if self.schedule not in ("fast", "optimal"):
+            raise PlanningError(f"schedule must be 'fast' or 'optimal', not {self.schedule!r}")
         if self.planner_input not in ("sas", "pddl"):
             raise PlanningError(f"planner_input must be 'sas' or 'pddl', not {self.planner_input!r}")

@@ -35,6 +35,7 @@ from emboteam.hp.stages.decomposed import plan_decomposed
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
+from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.problem import planning_state
@@ -72,6 +73,7 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(reorder)
     if config.split_containers:
         stages.append(_then_reorder(split_containers, config.spot_order))
+    stages.append(schedule if config.schedule == "optimal" else schedule_small)
     return tuple(stages)
 
 

@@ -1,0 +1,405 @@
+"""An exact reference for the schedule: an OR-Tools CP-SAT model of the whole task's
+scheduling problem over a plan's grounded actions, solved to a proven optimum or to a
+best bound with a gap (issue 28).
+
+The model (:func:`build`): a *job* is one robot's steps for one subtask, in their order;
+its *operations* are its manipulation steps (each at an interaction spot, with its
+skill's duration), reached by driving between the places they happen (the plan's
+GoToObject steps, whose seconds depend on who drives from where: :func:`travel`, the one
+call a grid-based navigation model replaces). Decided by the solver:
+
+- which robot does each job: any robot with every skill the job uses and the mass
+  capacity for what it picks up (a job of a subtask several robots share, or of a robot
+  that ends a job holding something, stays where it is);
+- each robot's order of jobs (a circuit per robot, the drive from one job's last place to
+  the next one's first on each arc, from the robot's start to its first job);
+- when each operation starts: after the previous one of its job and the drive between
+  them; after the steps it waits for in the plan across subtasks with a dependency (or
+  within a subtask several robots share); one robot at a time at each spot.
+
+Minimised: the makespan. The objects' and spots' states are taken as the plan leaves them:
+the jobs keep the actions the plan gave them (a fridge one job opens stays opened by that
+job), so this is the optimum *for these actions*, a tighter reference than the
+resource-aware bound and exact where it proves optimality. Solved with one worker, a fixed
+seed and a *deterministic* time limit: the same answer on any machine.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+from ortools.sat.python import cp_model
+
+from emboteam.hp.plan import MergedPlan
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.sim.durations import navigation_seconds
+from emboteam.sim.rules import apply_action, check_action
+from emboteam.world.actions import Skill
+from emboteam.world.robots import RobotProfile
+from emboteam.world.state import WorldState
+
+#: model times in hundredths of a second (each rounded down: see :func:`_t`)
+SCALE = 100
+#: CP-SAT's deterministic time limit for the reference (about seconds of one core)
+REFERENCE_LIMIT = 10.0
+#: no model when the robots' circuits would have more arcs than this (the 32-robot cells)
+MAX_ARCS = 20_000
+
+Point = tuple[float, float]
+
+
+def travel(profile: RobotProfile, a: Point, b: Point) -> float:
+    """Seconds a robot of ``profile`` drives from ``a`` to ``b``: the scene's navigation
+    model (:func:`emboteam.sim.durations.navigation_seconds`), and nothing else here
+    knows how; 0 when already there."""
+    if a == b:
+        return 0.0
+    return navigation_seconds(a, b, profile.speed)
+
+
+@dataclass
+class Op:
+    """One manipulation step of a job: where it happens, the spot it holds, its seconds."""
+
+    step: str
+    place: Point
+    spot: str
+    seconds: float
+    #: a drive precedes it within the job (else the robot is already there)
+    drive: bool
+
+
+@dataclass
+class Job:
+    """A block of one robot's steps between two moments its hands are empty (ids in
+    order), its operations; ``group``: the jobs that move together (those serving the
+    same subtask with the same robot), and the robots that may take them."""
+
+    id: str
+    robot: str
+    group: str
+    steps: list[str] = field(default_factory=list)
+    ops: list[Op] = field(default_factory=list)
+    subtasks: set[str] = field(default_factory=set)
+    skills: set[Skill] = field(default_factory=set)
+    lift: float = 0.0
+
+
+@dataclass
+class Problem:
+    """The scheduling problem a plan poses (its jobs, who may take each group, the robots'
+    starts and profiles, the precedences between operations)."""
+
+    jobs: list[Job]
+    candidates: dict[str, tuple[str, ...]]
+    starts: dict[str, Point]
+    profiles: dict[str, RobotProfile]
+    #: (producer op step id, consumer op step id)
+    precedences: list[tuple[str, str]] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Reference:
+    """What CP-SAT found: the best makespan, its bound, whether it is proven optimal, the
+    robot of every step of a job (step id -> robot) and each operation's start (step id ->
+    seconds)."""
+
+    status: str
+    makespan: float
+    bound: float
+    robots: Mapping[str, str]
+    starts: Mapping[str, float]
+
+    @property
+    def optimal(self) -> bool:
+        return self.status == "optimal"
+
+    @property
+    def gap(self) -> float:
+        return (self.makespan - self.bound) / self.makespan if self.makespan > 0 else 0.0
+
+
+def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem | None:
+    """The jobs of ``plan`` (replayed on ``start`` in its step order for the places and
+    the hands); None when the replay fails."""
+    state = start.copy()
+    jobs: list[Job] = []
+    open_: dict[str, Job] = {}
+    drive: dict[str, bool] = {}
+    for s in plan.steps:
+        if check_action(state, s.robot, s.action) is not None:
+            return None
+        job = open_.get(s.robot)
+        if job is None:
+            job = open_[s.robot] = Job(f"{s.robot}#{len(jobs)}", s.robot, "")
+            jobs.append(job)
+        job.steps.append(s.id)
+        job.subtasks.add(s.subtask)
+        if s.action.skill is Skill.GoToObject:
+            drive[s.robot] = True
+        else:
+            job.skills.add(s.action.skill)
+            if s.action.skill is Skill.PickupObject:
+                job.lift = max(job.lift, state.objects[s.action.target].mass)
+            rp = state.robots[s.robot].position
+            job.ops.append(Op(s.id, (rp[0], rp[1]), s.resources[0] if s.resources else s.action.target,
+                              s.est_end - s.est_start, drive.pop(s.robot, False)))
+        apply_action(state, s.robot, s.action)
+        if s.action.skill is not Skill.GoToObject and state.robots[s.robot].holding is None:
+            del open_[s.robot]  # hands empty: any other job may follow
+    jobs = [j for j in jobs if j.ops]
+    profiles = {r: start.robots[r].profile for r in plan.robots}
+    candidates = _groups(jobs, plan, profiles, fixed={j.id for j in open_.values()})
+    starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
+    return Problem(jobs, candidates, starts, profiles, _precedences(plan, spec, jobs))
+
+
+def _groups(jobs: Sequence[Job], plan: MergedPlan, profiles: Mapping[str, RobotProfile], fixed: set[str]
+            ) -> dict[str, tuple[str, ...]]:
+    """Join the jobs serving a subtask with the same robot into groups (they move
+    together); the robots able to take each group: every skill and the mass capacity
+    it needs. A group stays with its robot when its subtask has several robots or it
+    ends with the robot's hands full."""
+    parent = {j.id: j.id for j in jobs}
+
+    def root(x: str) -> str:
+        while parent[x] != x:
+            x = parent[x]
+        return x
+
+    first: dict[tuple[str, str], str] = {}
+    robots_of: dict[str, set[str]] = {}
+    for j in jobs:
+        for t in j.subtasks:
+            robots_of.setdefault(t, set()).add(j.robot)
+            other = first.setdefault((t, j.robot), j.id)
+            parent[root(j.id)] = root(other)
+    members: dict[str, list[Job]] = {}
+    for j in jobs:
+        j.group = root(j.id)
+        members.setdefault(j.group, []).append(j)
+    out: dict[str, tuple[str, ...]] = {}
+    for g, js in members.items():
+        robot = js[0].robot
+        pinned = any(j.id in fixed or any(len(robots_of[t]) > 1 for t in j.subtasks) for j in js)
+        skills = set().union(*(j.skills for j in js))
+        lift = max(j.lift for j in js)
+        out[g] = (robot,) if pinned else tuple(r for r in plan.robots if all(profiles[r].can(k) for k in skills)
+                                              and profiles[r].mass_capacity >= lift)
+        if robot not in out[g]:
+            out[g] = (robot, *out[g])
+    return out
+
+
+def _precedences(plan: MergedPlan, spec: TaskSpec, jobs: Sequence[Job]) -> list[tuple[str, str]]:
+    """The plan's waits that are not choices: across subtasks in a dependency, and within a
+    subtask several robots share (a wait for a spot or a conflict is the solver's to
+    decide), from operation to operation (a drive maps to the operation it leads to, as a
+    consumer, or to the one before it, as a producer)."""
+    related = {t.id: set(_ancestors(spec, t.id)) for t in spec.subtasks}
+    op_after: dict[str, str] = {}
+    op_before: dict[str, str] = {}
+    for j in jobs:
+        last: str | None = None
+        pending: list[str] = []
+        ops = {o.step for o in j.ops}
+        for sid in j.steps:
+            if sid in ops:
+                for p in pending:
+                    op_after[p] = sid
+                pending = []
+                op_after[sid] = op_before[sid] = sid
+                last = sid
+            else:
+                pending.append(sid)
+                if last is not None:
+                    op_before[sid] = last
+    steps = {s.id: s for s in plan.steps}
+    out: set[tuple[str, str]] = set()
+    for s in plan.steps:
+        for p in s.after:
+            a, b = steps[p].subtask, s.subtask
+            if not (a == b or a in related.get(b, set())):
+                continue
+            prod, cons = op_before.get(p), op_after.get(s.id)
+            if prod is not None and cons is not None and prod != cons:
+                out.add((prod, cons))
+    chain: dict[str, str] = {}
+    for j in jobs:  # a group's jobs in their order
+        if j.group in chain:
+            out.add((chain[j.group], j.ops[0].step))
+        chain[j.group] = j.ops[-1].step
+    return sorted(out)
+
+
+def _ancestors(spec: TaskSpec, sid: str) -> list[str]:
+    seen: list[str] = []
+    todo = list(spec.subtask(sid).depends_on)
+    while todo:
+        d = todo.pop()
+        if d not in seen:
+            seen.append(d)
+            todo.extend(spec.subtask(d).depends_on)
+    return seen
+
+
+def arcs(problem: Problem) -> int:
+    """How many arc literals the robots' circuits would take (the model's size)."""
+    per: dict[str, int] = {}
+    for j in problem.jobs:
+        for r in problem.candidates[j.group]:
+            per[r] = per.get(r, 0) + 1
+    return sum((n + 1) ** 2 for n in per.values())
+
+
+def _t(seconds: float) -> int:
+    """Hundredths of a second, rounded down: every duration and drive rounded down keeps the
+    model a relaxation of the simulation (a lower bound stays one) and the plan's own
+    schedule, its starts rounded down too, a solution of it (the hint)."""
+    return math.floor(seconds * SCALE + 1e-6)
+
+
+class _Model:
+    """The CP-SAT model of a :class:`Problem` (see the module docstring)."""
+
+    def __init__(self, problem: Problem, hint: MergedPlan | None) -> None:
+        self.p = problem
+        m = self.m = cp_model.CpModel()
+        horizon = self.horizon = max(self._horizon(), _t(hint.makespan) + 1 if hint is not None else 0)
+        self.x: dict[tuple[str, str], cp_model.IntVar] = {}
+        self.start: dict[str, cp_model.IntVar] = {}
+        self.end: dict[str, cp_model.IntVar] = {}
+        #: (robot, from job, to job) -> arc literal ("" is the depot)
+        self.arc: dict[tuple[str, str, str], cp_model.IntVar] = {}
+        spots: dict[str, list[cp_model.IntervalVar]] = {}
+        for g, robots in problem.candidates.items():
+            for r in robots:
+                self.x[(g, r)] = m.new_bool_var(f"x[{g},{r}]")
+            m.add_exactly_one(self.x[(g, r)] for r in robots)
+        for j in problem.jobs:
+            for o in j.ops:
+                s = self.start[o.step] = m.new_int_var(0, horizon, f"s[{o.step}]")
+                e = self.end[o.step] = m.new_int_var(0, horizon, f"e[{o.step}]")
+                spots.setdefault(o.spot, []).append(m.new_interval_var(s, _t(o.seconds), e, f"i[{o.step}]"))
+            self._within(j)
+        for ivs in spots.values():
+            if len(ivs) > 1:
+                m.add_no_overlap(ivs)
+        for a, b in problem.precedences:
+            m.add(self.start[b] >= self.end[a])
+        self._circuits()
+        self._loads()
+        self.makespan = m.new_int_var(0, horizon, "makespan")
+        m.add_max_equality(self.makespan, [self.end[j.ops[-1].step] for j in problem.jobs])
+        for load in self.load_end.values():
+            m.add(self.makespan >= load)
+        m.minimize(self.makespan)
+        if hint is not None:
+            self._hint(hint)
+
+    def _horizon(self) -> int:
+        slowest = min(p.speed for p in self.p.profiles.values())
+        span = 0.0
+        for j in self.p.jobs:
+            span += sum(o.seconds for o in j.ops) + len(j.ops) * 30.0 / slowest + 30.0 / slowest
+        return _t(span) + 1
+
+    def _within(self, j: Job) -> None:
+        """A job's operations in order, the drives between them at the speed of its robot."""
+        for prev, o in zip(j.ops, j.ops[1:], strict=False):
+            if not o.drive:
+                self.m.add(self.start[o.step] >= self.end[prev.step])
+                continue
+            for r in self.p.candidates[j.group]:
+                d = _t(travel(self.p.profiles[r], prev.place, o.place))
+                self.m.add(self.start[o.step] >= self.end[prev.step] + d).only_enforce_if(self.x[(j.group, r)])
+
+    def _circuits(self) -> None:
+        """Per robot: a circuit over a depot and the jobs it may take (a job it does not
+        take is skipped by its own loop), with the drives on the arcs."""
+        for r, profile in self.p.profiles.items():
+            mine = [j for j in self.p.jobs if r in self.p.candidates[j.group]]
+            idle = self.arc[(r, "", "")] = self.m.new_bool_var(f"idle[{r}]")
+            arcs_: list[tuple[int, int, cp_model.LiteralT]] = [(0, 0, idle)]
+            for k, j in enumerate(mine, 1):
+                lit = self.x[(j.group, r)]
+                arcs_.append((k, k, ~lit))
+                first = self.arc[(r, "", j.id)] = self.m.new_bool_var("")
+                arcs_.append((0, k, first))
+                d0 = _t(travel(profile, self.p.starts[r], j.ops[0].place))
+                self.m.add(self.start[j.ops[0].step] >= d0).only_enforce_if(first)
+                last = self.arc[(r, j.id, "")] = self.m.new_bool_var("")
+                arcs_.append((k, 0, last))
+                for k2, j2 in enumerate(mine, 1):
+                    if k2 == k:
+                        continue
+                    lit2 = self.arc[(r, j.id, j2.id)] = self.m.new_bool_var("")
+                    arcs_.append((k, k2, lit2))
+                    d = _t(travel(profile, j.ops[-1].place, j2.ops[0].place))
+                    self.m.add(self.start[j2.ops[0].step] >= self.end[j.ops[-1].step] + d).only_enforce_if(lit2)
+            self.m.add_circuit(arcs_)
+
+    def _loads(self) -> None:
+        """Redundant, for the bound: a robot's jobs (their operations and the drives
+        within them) fit before the makespan, after the shortest drive to the first."""
+        self.load_end: dict[str, cp_model.LinearExprT] = {}
+        for r, profile in self.p.profiles.items():
+            terms = []
+            for j in self.p.jobs:
+                if r not in self.p.candidates[j.group]:
+                    continue
+                inner = sum(_t(o.seconds) for o in j.ops) + sum(
+                    _t(travel(profile, a.place, b.place)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
+                terms.append(inner * self.x[(j.group, r)])
+            if terms:
+                self.load_end[r] = sum(terms)
+
+    def _hint(self, plan: MergedPlan) -> None:
+        starts_of = {s.id: s.est_start for s in plan.steps}
+        robot_of = {j.group: j.robot for j in self.p.jobs}
+        for (g, r), lit in self.x.items():
+            self.m.add_hint(lit, r == robot_of[g])
+        for s in plan.steps:
+            if s.id in self.start:
+                self.m.add_hint(self.start[s.id], _t(s.est_start))
+                self.m.add_hint(self.end[s.id], _t(s.est_start) + _t(s.est_end - s.est_start))
+        order: dict[str, list[str]] = {r: [] for r in self.p.profiles}
+        for j in sorted(self.p.jobs, key=lambda j: starts_of[j.ops[0].step]):
+            order[j.robot].append(j.id)
+        for (r, a, b), lit in self.arc.items():
+            seq = ["", *order[r], ""] if order[r] else ["", ""]
+            self.m.add_hint(lit, any(seq[i] == a and seq[i + 1] == b for i in range(len(seq) - 1)))
+        self.m.add_hint(self.makespan, max(_t(s.est_start) + _t(s.est_end - s.est_start) for s in plan.steps
+                                           if s.id in self.start))
+
+
+def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT) -> Reference:
+    """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with one
+    worker, seed 0 and ``limit`` seconds of *deterministic* time."""
+    model = _Model(problem, hint)
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = 1
+    solver.parameters.random_seed = 0
+    solver.parameters.max_deterministic_time = limit
+    status = solver.solve(model.m)
+    if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+        name = "infeasible" if status == cp_model.INFEASIBLE else "unknown"
+        return Reference(name, 0.0, solver.best_objective_bound / SCALE, {}, {})
+    chosen = {g: next(r for r in robots if solver.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
+    assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
+    starts = {sid: solver.value(v) / SCALE for sid, v in model.start.items()}
+    return Reference("optimal" if status == cp_model.OPTIMAL else "feasible", solver.objective_value / SCALE,
+                     solver.best_objective_bound / SCALE, assignment, starts)
+
+
+def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
+              max_arcs: int = MAX_ARCS) -> Reference | None:
+    """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
+    the plan cannot be modelled (its replay fails) or the model is larger than
+    ``max_arcs`` (:func:`arcs`)."""
+    problem = problem_of(plan, spec, start)
+    if problem is None or not problem.jobs or arcs(problem) > max_arcs:
+        return None
+    return solve(problem, plan, limit)
