@@ -2,12 +2,21 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
+import pytest
+
+from emboteam.bench.suites import load_suite
 from emboteam.hp.optimal import Job, Op, Problem, reference, solve, travel
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
+from emboteam.pfg.oracle import OracleFrontend
+from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.actions import Skill
 from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+from emboteam.world.state import WorldState
 from sweep_cells import random_cell
 
 
@@ -35,9 +44,18 @@ def test_the_model_spreads_jobs_and_counts_the_drives() -> None:
     assert solve(problem, limit=5.0) == ref  # one worker, a seed, deterministic time
 
 
-def test_the_reference_of_a_plan_is_proven_and_never_above_it() -> None:
-    spec, state = random_cell(2, 6)
-    plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+def _salad() -> tuple[TaskSpec, WorldState]:
+    task = next(t for t in load_suite("mace-thor").tasks if t.id == "fp6-salad-prep")
+    state = task.initial_state()
+    return OracleFrontend(task.goal).decompose(task.instruction, load_scene(task.floor_plan), state, task.team()), state
+
+
+@pytest.mark.parametrize("make", [lambda: random_cell(2, 6), _salad], ids=["FloorPlan1 2x6", "fp6-salad-prep"])
+def test_the_reference_of_a_plan_is_proven_and_never_above_it(make: Callable[[], tuple[TaskSpec, WorldState]]
+                                                               ) -> None:
+    # the salad: two robots cut with one knife, one after the other (one robot per object)
+    spec, state = make()
+    plan = HybridPlanner(PlannerConfig(schedule="fast")).plan(spec, state)
     ref = reference(plan, spec, planning_state(state), limit=10.0)
     assert ref is not None and ref.optimal
     assert ref.bound <= ref.makespan <= plan.makespan + 1e-6

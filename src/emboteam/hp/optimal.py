@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 
 from ortools.sat.python import cp_model
 
-from emboteam.hp.plan import MergedPlan
+from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.durations import navigation_seconds
 from emboteam.sim.rules import apply_action, check_action
@@ -98,6 +98,9 @@ class Problem:
     profiles: dict[str, RobotProfile]
     #: (producer op step id, consumer op step id)
     precedences: list[tuple[str, str]] = field(default_factory=list)
+    #: object -> (first op, last op) spans during which one robot has it: from its pickup
+    #: to its release (one op when it is only acted on); one robot at a time per object
+    objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -128,6 +131,8 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     jobs: list[Job] = []
     open_: dict[str, Job] = {}
     drive: dict[str, bool] = {}
+    objects: dict[str, list[tuple[str, str]]] = {}
+    held: dict[str, tuple[str, str]] = {}  # robot -> (object, its pickup op)
     for s in plan.steps:
         if check_action(state, s.robot, s.action) is not None:
             return None
@@ -147,13 +152,31 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
             job.ops.append(Op(s.id, (rp[0], rp[1]), s.resources[0] if s.resources else s.action.target,
                               s.est_end - s.est_start, drive.pop(s.robot, False)))
         apply_action(state, s.robot, s.action)
+        if s.action.skill is not Skill.GoToObject:
+            _track(s, state.robots[s.robot].holding, held, objects)
         if s.action.skill is not Skill.GoToObject and state.robots[s.robot].holding is None:
             del open_[s.robot]  # hands empty: any other job may follow
     jobs = [j for j in jobs if j.ops]
     profiles = {r: start.robots[r].profile for r in plan.robots}
     candidates = _groups(jobs, plan, profiles, fixed={j.id for j in open_.values()})
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
-    return Problem(jobs, candidates, starts, profiles, _precedences(plan, spec, jobs))
+    return Problem(jobs, candidates, starts, profiles, _precedences(plan, spec, jobs),
+                   {o: spans for o, spans in objects.items() if len(spans) > 1})
+
+
+def _track(s: PlanStep, holding: str | None, held: dict[str, tuple[str, str]],
+           objects: dict[str, list[tuple[str, str]]]) -> None:
+    """Spans of one robot per object: a pickup opens one, the release closes it; an op on
+    an object nobody holds is a span of its own."""
+    if s.robot in held and holding != held[s.robot][0]:
+        obj, first = held.pop(s.robot)
+        objects.setdefault(obj, []).append((first, s.id))
+        if holding is None:
+            return
+    if holding is not None and s.robot not in held:
+        held[s.robot] = (holding, s.id)
+    elif s.action.target not in {h for h, _ in held.values()}:
+        objects.setdefault(s.action.target, []).append((s.id, s.id))
 
 
 def _groups(jobs: Sequence[Job], plan: MergedPlan, profiles: Mapping[str, RobotProfile], fixed: set[str]
@@ -271,6 +294,7 @@ class _Model:
         self.x: dict[tuple[str, str], cp_model.IntVar] = {}
         self.start: dict[str, cp_model.IntVar] = {}
         self.end: dict[str, cp_model.IntVar] = {}
+        self.size: dict[str, int] = {}
         #: (robot, from job, to job) -> arc literal ("" is the depot)
         self.arc: dict[tuple[str, str, str], cp_model.IntVar] = {}
         spots: dict[str, list[cp_model.IntervalVar]] = {}
@@ -282,11 +306,14 @@ class _Model:
             for o in j.ops:
                 s = self.start[o.step] = m.new_int_var(0, horizon, f"s[{o.step}]")
                 e = self.end[o.step] = m.new_int_var(0, horizon, f"e[{o.step}]")
-                spots.setdefault(o.spot, []).append(m.new_interval_var(s, _t(o.seconds), e, f"i[{o.step}]"))
+                self.size[o.step] = _t(o.seconds)
+                spots.setdefault(o.spot, []).append(m.new_interval_var(s, self.size[o.step], e, f"i[{o.step}]"))
             self._within(j)
         for ivs in spots.values():
             if len(ivs) > 1:
                 m.add_no_overlap(ivs)
+        for obj, spans in problem.objects.items():
+            m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
         for a, b in problem.precedences:
             m.add(self.start[b] >= self.end[a])
         self._circuits()
@@ -298,6 +325,12 @@ class _Model:
         m.minimize(self.makespan)
         if hint is not None:
             self._hint(hint)
+
+    def _span(self, obj: str, first: str, last: str) -> cp_model.IntervalVar:
+        if first == last:
+            return self.m.new_interval_var(self.start[first], self.size[first], self.end[first], f"o[{obj},{first}]")
+        size = self.m.new_int_var(0, self.horizon, "")
+        return self.m.new_interval_var(self.start[first], size, self.end[last], f"o[{obj},{first}]")
 
     def _horizon(self) -> int:
         slowest = min(p.speed for p in self.p.profiles.values())

@@ -29,6 +29,9 @@ OPTIMAL_ARCS = optimal.MAX_ARCS
 #: the machine's load)
 FAST_LIMIT = 0.05
 FAST_ARCS = 400
+#: ``schedule="fast"``: not even the model is built for a plan of more steps (its replay
+#: alone costs the 32-robot cells tens of milliseconds, and their models are far larger)
+FAST_STEPS = 80
 
 
 def schedule(ctx: Context, draft: Draft) -> Draft:
@@ -39,6 +42,8 @@ def schedule(ctx: Context, draft: Draft) -> Draft:
 
 def schedule_small(ctx: Context, draft: Draft) -> Draft:
     """``schedule="fast"``: the same for a small model under a small budget."""
+    if len(draft.plan.steps) > FAST_STEPS:
+        return draft
     return _rescheduled(ctx, draft, FAST_LIMIT, FAST_ARCS)
 
 
