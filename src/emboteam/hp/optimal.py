@@ -14,13 +14,16 @@ call a grid-based navigation model replaces). Decided by the solver:
 - each robot's order of jobs (a circuit per robot, the drive from one job's last place to
   the next one's first on each arc, from the robot's start to its first job);
 - when each operation starts: after the previous one of its job and the drive between
-  them; after the steps it waits for in the plan across subtasks with a dependency (or
-  within a subtask several robots share); one robot at a time at each spot.
+  them; after the steps it waits for in the plan (its causal order: what a step needs,
+  what must not change before it is used, the subtask dependencies); one robot at a time
+  at each spot (the order is the solver's) and on each object (a held one from its pickup
+  to its release).
 
-Minimised: the makespan. The objects' and spots' states are taken as the plan leaves them:
-the jobs keep the actions the plan gave them (a fridge one job opens stays opened by that
-job), so this is the optimum *for these actions*, a tighter reference than the
-resource-aware bound and exact where it proves optimality. Solved with one worker, a fixed
+Minimised: the makespan. The jobs keep the actions the plan gave them (a fridge one job
+opens stays opened by that job) and their places (an object another job moved is where the
+plan left it), so this is the optimum *for these actions in this causal order*: a tighter
+reference than the resource-aware bound, exact where it proves optimality, and no bound
+on plans with other actions. Solved with one worker, a fixed
 seed and a *deterministic* time limit: the same answer on any machine.
 """
 
@@ -160,7 +163,7 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     profiles = {r: start.robots[r].profile for r in plan.robots}
     candidates = _groups(jobs, plan, profiles, fixed={j.id for j in open_.values()})
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
-    return Problem(jobs, candidates, starts, profiles, _precedences(plan, spec, jobs),
+    return Problem(jobs, candidates, starts, profiles, _precedences(plan, jobs),
                    {o: spans for o, spans in objects.items() if len(spans) > 1})
 
 
@@ -216,12 +219,14 @@ def _groups(jobs: Sequence[Job], plan: MergedPlan, profiles: Mapping[str, RobotP
     return out
 
 
-def _precedences(plan: MergedPlan, spec: TaskSpec, jobs: Sequence[Job]) -> list[tuple[str, str]]:
-    """The plan's waits that are not choices: across subtasks in a dependency, and within a
-    subtask several robots share (a wait for a spot or a conflict is the solver's to
-    decide), from operation to operation (a drive maps to the operation it leads to, as a
-    consumer, or to the one before it, as a producer)."""
-    related = {t.id: set(_ancestors(spec, t.id)) for t in spec.subtasks}
+def _precedences(plan: MergedPlan, jobs: Sequence[Job]) -> list[tuple[str, str]]:
+    """The plan's waits, from operation to operation (a drive maps to the operation it
+    leads to, as a consumer, or to the one before it, as a producer): every one of them,
+    not only the subtask dependencies, since the model does not know which other orders
+    the state allows (a box is closed after the vases go in: the other order fails);
+    waits for a spot are not among them (the simulator makes those), the model decides
+    them. So the reference is the best schedule of these actions in this causal order,
+    by any capable robots."""
     op_after: dict[str, str] = {}
     op_before: dict[str, str] = {}
     for j in jobs:
@@ -239,13 +244,9 @@ def _precedences(plan: MergedPlan, spec: TaskSpec, jobs: Sequence[Job]) -> list[
                 pending.append(sid)
                 if last is not None:
                     op_before[sid] = last
-    steps = {s.id: s for s in plan.steps}
     out: set[tuple[str, str]] = set()
     for s in plan.steps:
         for p in s.after:
-            a, b = steps[p].subtask, s.subtask
-            if not (a == b or a in related.get(b, set())):
-                continue
             prod, cons = op_before.get(p), op_after.get(s.id)
             if prod is not None and cons is not None and prod != cons:
                 out.add((prod, cons))
@@ -255,17 +256,6 @@ def _precedences(plan: MergedPlan, spec: TaskSpec, jobs: Sequence[Job]) -> list[
             out.add((chain[j.group], j.ops[0].step))
         chain[j.group] = j.ops[-1].step
     return sorted(out)
-
-
-def _ancestors(spec: TaskSpec, sid: str) -> list[str]:
-    seen: list[str] = []
-    todo = list(spec.subtask(sid).depends_on)
-    while todo:
-        d = todo.pop()
-        if d not in seen:
-            seen.append(d)
-            todo.extend(spec.subtask(d).depends_on)
-    return seen
 
 
 def arcs(problem: Problem) -> int:
