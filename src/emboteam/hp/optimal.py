@@ -101,6 +101,9 @@ class Problem:
     profiles: dict[str, RobotProfile]
     #: (producer op step id, consumer op step id)
     precedences: list[tuple[str, str]] = field(default_factory=list)
+    #: (producer op, consumer op) where the consumer's *drive* waits for the producer (the
+    #: object it drives to arrives there then): the drive starts after the producer ends
+    drive_waits: list[tuple[str, str]] = field(default_factory=list)
     #: object -> (first op, last op) spans during which one robot has it: from its pickup
     #: to its release (one op when it is only acted on); one robot at a time per object
     objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
@@ -163,7 +166,8 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     profiles = {r: start.robots[r].profile for r in plan.robots}
     candidates = _groups(jobs, plan, profiles, fixed={j.id for j in open_.values()})
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
-    return Problem(jobs, candidates, starts, profiles, _precedences(plan, jobs),
+    waits, drives = _precedences(plan, jobs)
+    return Problem(jobs, candidates, starts, profiles, waits, drives,
                    {o: spans for o, spans in objects.items() if len(spans) > 1})
 
 
@@ -219,7 +223,7 @@ def _groups(jobs: Sequence[Job], plan: MergedPlan, profiles: Mapping[str, RobotP
     return out
 
 
-def _precedences(plan: MergedPlan, jobs: Sequence[Job]) -> list[tuple[str, str]]:
+def _precedences(plan: MergedPlan, jobs: Sequence[Job]) -> tuple[list[tuple[str, str]], list[tuple[str, str]]]:
     """The plan's waits, from operation to operation (a drive maps to the operation it
     leads to, as a consumer, or to the one before it, as a producer): every one of them,
     not only the subtask dependencies, since the model does not know which other orders
@@ -245,17 +249,18 @@ def _precedences(plan: MergedPlan, jobs: Sequence[Job]) -> list[tuple[str, str]]
                 if last is not None:
                     op_before[sid] = last
     out: set[tuple[str, str]] = set()
+    drives: set[tuple[str, str]] = set()
     for s in plan.steps:
         for p in s.after:
             prod, cons = op_before.get(p), op_after.get(s.id)
             if prod is not None and cons is not None and prod != cons:
-                out.add((prod, cons))
+                (drives if s.action.skill is Skill.GoToObject else out).add((prod, cons))
     chain: dict[str, str] = {}
     for j in jobs:  # a group's jobs in their order
         if j.group in chain:
             out.add((chain[j.group], j.ops[0].step))
         chain[j.group] = j.ops[-1].step
-    return sorted(out)
+    return sorted(out), sorted(drives - out)
 
 
 def arcs(problem: Problem) -> int:
@@ -288,6 +293,10 @@ class _Model:
         #: (robot, from job, to job) -> arc literal ("" is the depot)
         self.arc: dict[tuple[str, str, str], cp_model.IntVar] = {}
         spots: dict[str, list[cp_model.IntervalVar]] = {}
+        #: op -> the ops its drive waits for (see :attr:`Problem.drive_waits`)
+        self.drive_after: dict[str, list[str]] = {}
+        for a, b in problem.drive_waits:
+            self.drive_after.setdefault(b, []).append(a)
         for g, robots in problem.candidates.items():
             for r in robots:
                 self.x[(g, r)] = m.new_bool_var(f"x[{g},{r}]")
@@ -304,7 +313,7 @@ class _Model:
                 m.add_no_overlap(ivs)
         for obj, spans in problem.objects.items():
             m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
-        for a, b in problem.precedences:
+        for a, b in [*problem.precedences, *problem.drive_waits]:
             m.add(self.start[b] >= self.end[a])
         self._circuits()
         self._loads()
@@ -337,7 +346,8 @@ class _Model:
                 continue
             for r in self.p.candidates[j.group]:
                 d = _t(travel(self.p.profiles[r], prev.place, o.place))
-                self.m.add(self.start[o.step] >= self.end[prev.step] + d).only_enforce_if(self.x[(j.group, r)])
+                for after in [prev.step, *self.drive_after.get(o.step, ())]:
+                    self.m.add(self.start[o.step] >= self.end[after] + d).only_enforce_if(self.x[(j.group, r)])
 
     def _circuits(self) -> None:
         """Per robot: a circuit over a depot and the jobs it may take (a job it does not
@@ -353,6 +363,8 @@ class _Model:
                 arcs_.append((0, k, first))
                 d0 = _t(travel(profile, self.p.starts[r], j.ops[0].place))
                 self.m.add(self.start[j.ops[0].step] >= d0).only_enforce_if(first)
+                for after in self.drive_after.get(j.ops[0].step, ()):
+                    self.m.add(self.start[j.ops[0].step] >= self.end[after] + d0).only_enforce_if(first)
                 last = self.arc[(r, j.id, "")] = self.m.new_bool_var("")
                 arcs_.append((k, 0, last))
                 for k2, j2 in enumerate(mine, 1):
@@ -361,7 +373,8 @@ class _Model:
                     lit2 = self.arc[(r, j.id, j2.id)] = self.m.new_bool_var("")
                     arcs_.append((k, k2, lit2))
                     d = _t(travel(profile, j.ops[-1].place, j2.ops[0].place))
-                    self.m.add(self.start[j2.ops[0].step] >= self.end[j.ops[-1].step] + d).only_enforce_if(lit2)
+                    for after in [j.ops[-1].step, *self.drive_after.get(j2.ops[0].step, ())]:
+                        self.m.add(self.start[j2.ops[0].step] >= self.end[after] + d).only_enforce_if(lit2)
             self.m.add_circuit(arcs_)
 
     def _loads(self) -> None:
