@@ -29,6 +29,7 @@ from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_in
 from emboteam.errors import EmboTeamError
 from emboteam.hp.optimal import REFERENCE_LIMIT, reference
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.stages import schedule as schedule_stage
 from emboteam.pddl.problem import planning_state
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.state import WorldState
@@ -109,11 +110,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--seeds", default="0", help="goal seeds of the quick sweep")
     ap.add_argument("--no-suite", action="store_true")
     ap.add_argument("--no-sweep", action="store_true")
-    ap.add_argument("--schedule", choices=("fast", "optimal"), default="fast")
+    ap.add_argument("--schedule", choices=("fast", "optimal", "heuristic"), default="fast",
+                    help="heuristic: fast without its CP-SAT stage (what the heuristics alone make)")
     ap.add_argument("--limit", type=float, default=REFERENCE_LIMIT, help="CP-SAT deterministic seconds per input")
     ap.add_argument("--out", type=Path, help="write the rows here (JSON)")
     args = ap.parse_args(argv)
-    config = PlannerConfig(schedule=args.schedule)
+    if args.schedule == "heuristic":
+        schedule_stage.FAST_STEPS = 0  # no plan is small enough: the stage never runs
+    config = PlannerConfig(schedule="optimal" if args.schedule == "optimal" else "fast")
     load0 = os.getloadavg()[0]
     started = time.strftime("%Y-%m-%d %H:%M")
     suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit)

@@ -307,6 +307,7 @@ class _Model:
                 e = self.end[o.step] = m.new_int_var(0, horizon, f"e[{o.step}]")
                 self.size[o.step] = _t(o.seconds)
                 spots.setdefault(o.spot, []).append(m.new_interval_var(s, self.size[o.step], e, f"i[{o.step}]"))
+        for j in problem.jobs:
             self._within(j)
         for ivs in spots.values():
             if len(ivs) > 1:
