@@ -379,17 +379,20 @@ class _Model:
             self.m.add_circuit(arcs_)
 
     def _loads(self) -> None:
-        """Redundant, for the bound: a robot's jobs (their operations and the drives
-        within them) fit before the makespan, after the shortest drive to the first."""
+        """Redundant, for the bound: a robot's jobs fit before the makespan, each with its
+        operations, the drives within it and the shortest drive into it (from the robot's
+        start or from the end of any other job it may do)."""
         self.load_end: dict[str, cp_model.LinearExprT] = {}
         for r, profile in self.p.profiles.items():
             terms = []
-            for j in self.p.jobs:
-                if r not in self.p.candidates[j.group]:
-                    continue
+            mine = [j for j in self.p.jobs if r in self.p.candidates[j.group]]
+            ends = [j.ops[-1].place for j in mine]
+            for j in mine:
                 inner = sum(_t(o.seconds) for o in j.ops) + sum(
                     _t(travel(profile, a.place, b.place)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
-                terms.append(inner * self.x[(j.group, r)])
+                entry = min(_t(travel(profile, p, j.ops[0].place))
+                            for p in [self.p.starts[r], *(e for i, e in zip(mine, ends, strict=True) if i is not j)])
+                terms.append((inner + entry) * self.x[(j.group, r)])
             if terms:
                 self.load_end[r] = sum(terms)
 
