@@ -53,10 +53,13 @@ MAX_ARCS = 20_000
 Point = tuple[float, float]
 
 
-def travel(profile: RobotProfile, a: Point, b: Point) -> float:
-    """Seconds a robot of ``profile`` drives from ``a`` to ``b``: the scene's navigation
-    model (:func:`emboteam.sim.durations.navigation_seconds`), and nothing else here
-    knows how; 0 when already there."""
+def travel(profile: RobotProfile, a: Point, b: Point, floor_plan: str = "") -> float:
+    """Seconds a robot of ``profile`` drives from ``a`` to ``b`` in ``floor_plan``: the
+    scene's navigation model (:func:`emboteam.sim.durations.navigation_seconds`, the one
+    call that knows how: a grid-based model that needs the floor plan takes it here), 0
+    when already there. Free-flow seconds: waits for traffic only make the simulated plan
+    later, so the plan stays a solution of the model."""
+    del floor_plan  # the Manhattan model needs no floor plan; the navigation grid will
     if a == b:
         return 0.0
     return navigation_seconds(a, b, profile.speed)
@@ -107,6 +110,8 @@ class Problem:
     #: object -> (first op, last op) spans during which one robot has it: from its pickup
     #: to its release (one op when it is only acted on); one robot at a time per object
     objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
+    #: the scene, for :func:`travel`
+    floor_plan: str = ""
 
 
 @dataclass(frozen=True)
@@ -168,7 +173,7 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
     waits, drives = _precedences(plan, jobs)
     return Problem(jobs, candidates, starts, profiles, waits, drives,
-                   {o: spans for o, spans in objects.items() if len(spans) > 1})
+                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan)
 
 
 def _track(s: PlanStep, holding: str | None, held: dict[str, tuple[str, str]],
@@ -332,6 +337,9 @@ class _Model:
         size = self.m.new_int_var(0, self.horizon, "")
         return self.m.new_interval_var(self.start[first], size, self.end[last], f"o[{obj},{first}]")
 
+    def _travel(self, profile: RobotProfile, a: Point, b: Point) -> float:
+        return travel(profile, a, b, self.p.floor_plan)
+
     def _horizon(self) -> int:
         slowest = min(p.speed for p in self.p.profiles.values())
         span = 0.0
@@ -346,7 +354,7 @@ class _Model:
                 self.m.add(self.start[o.step] >= self.end[prev.step])
                 continue
             for r in self.p.candidates[j.group]:
-                d = _t(travel(self.p.profiles[r], prev.place, o.place))
+                d = _t(self._travel(self.p.profiles[r], prev.place, o.place))
                 for after in [prev.step, *self.drive_after.get(o.step, ())]:
                     self.m.add(self.start[o.step] >= self.end[after] + d).only_enforce_if(self.x[(j.group, r)])
 
@@ -362,7 +370,7 @@ class _Model:
                 arcs_.append((k, k, ~lit))
                 first = self.arc[(r, "", j.id)] = self.m.new_bool_var("")
                 arcs_.append((0, k, first))
-                d0 = _t(travel(profile, self.p.starts[r], j.ops[0].place))
+                d0 = _t(self._travel(profile, self.p.starts[r], j.ops[0].place))
                 self.m.add(self.start[j.ops[0].step] >= d0).only_enforce_if(first)
                 for after in self.drive_after.get(j.ops[0].step, ()):
                     self.m.add(self.start[j.ops[0].step] >= self.end[after] + d0).only_enforce_if(first)
@@ -373,7 +381,7 @@ class _Model:
                         continue
                     lit2 = self.arc[(r, j.id, j2.id)] = self.m.new_bool_var("")
                     arcs_.append((k, k2, lit2))
-                    d = _t(travel(profile, j.ops[-1].place, j2.ops[0].place))
+                    d = _t(self._travel(profile, j.ops[-1].place, j2.ops[0].place))
                     for after in [j.ops[-1].step, *self.drive_after.get(j2.ops[0].step, ())]:
                         self.m.add(self.start[j2.ops[0].step] >= self.end[after] + d).only_enforce_if(lit2)
             self.m.add_circuit(arcs_)
@@ -389,8 +397,8 @@ class _Model:
             ends = [j.ops[-1].place for j in mine]
             for j in mine:
                 inner = sum(_t(o.seconds) for o in j.ops) + sum(
-                    _t(travel(profile, a.place, b.place)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
-                entry = min(_t(travel(profile, p, j.ops[0].place))
+                    _t(self._travel(profile, a.place, b.place)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
+                entry = min(_t(self._travel(profile, p, j.ops[0].place))
                             for p in [self.p.starts[r], *(e for i, e in zip(mine, ends, strict=True) if i is not j)])
                 terms.append((inner + entry) * self.x[(j.group, r)])
             if terms:
