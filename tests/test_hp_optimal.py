@@ -21,7 +21,7 @@ from sweep_cells import random_cell
 
 
 def _job(i: int, robot: str, place: tuple[float, float], seconds: float) -> Job:
-    return Job(f"j{i}", robot, f"j{i}", [f"s{i}"], [Op(f"s{i}", place, f"spot{i}", seconds, True)],
+    return Job(f"j{i}", robot, f"j{i}", [f"s{i}"], [Op(f"s{i}", place, f"spot{i}", seconds, True, place)],
                {f"t{i}"}, {Skill.PickupObject})
 
 

@@ -75,6 +75,9 @@ class Op:
     seconds: float
     #: a drive precedes it within the job (else the robot is already there)
     drive: bool
+    #: where a drive to it goes: the point of the thing it acts on, as the plan's drive
+    #: went there (its holder's position if held); where the robot stands, with no drive
+    goal: Point = (0.0, 0.0)
 
 
 @dataclass
@@ -141,7 +144,7 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     state = start.copy()
     jobs: list[Job] = []
     open_: dict[str, Job] = {}
-    drive: dict[str, bool] = {}
+    drive: dict[str, Point] = {}
     objects: dict[str, list[tuple[str, str]]] = {}
     held: dict[str, tuple[str, str]] = {}  # robot -> (object, its pickup op)
     for s in plan.steps:
@@ -154,14 +157,16 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
         job.steps.append(s.id)
         job.subtasks.add(s.subtask)
         if s.action.skill is Skill.GoToObject:
-            drive[s.robot] = True
+            o = state.objects[s.action.target]
+            drive[s.robot] = state.robots[o.held_by].position if o.held_by else (o.position[0], o.position[2])
         else:
             job.skills.add(s.action.skill)
             if s.action.skill is Skill.PickupObject:
                 job.lift = max(job.lift, state.objects[s.action.target].mass)
-            rp = state.robots[s.robot].position
-            job.ops.append(Op(s.id, (rp[0], rp[1]), s.resources[0] if s.resources else s.action.target,
-                              s.est_end - s.est_start, drive.pop(s.robot, False)))
+            rp = (state.robots[s.robot].position[0], state.robots[s.robot].position[1])
+            goal = drive.pop(s.robot, None)
+            job.ops.append(Op(s.id, rp, s.resources[0] if s.resources else s.action.target,
+                              s.est_end - s.est_start, goal is not None, goal if goal is not None else rp))
         apply_action(state, s.robot, s.action)
         if s.action.skill is not Skill.GoToObject:
             _track(s, state.robots[s.robot].holding, held, objects)
@@ -354,7 +359,7 @@ class _Model:
                 self.m.add(self.start[o.step] >= self.end[prev.step])
                 continue
             for r in self.p.candidates[j.group]:
-                d = _t(self._travel(self.p.profiles[r], prev.place, o.place))
+                d = _t(self._travel(self.p.profiles[r], prev.place, o.goal))
                 for after in [prev.step, *self.drive_after.get(o.step, ())]:
                     self.m.add(self.start[o.step] >= self.end[after] + d).only_enforce_if(self.x[(j.group, r)])
 
@@ -370,7 +375,7 @@ class _Model:
                 arcs_.append((k, k, ~lit))
                 first = self.arc[(r, "", j.id)] = self.m.new_bool_var("")
                 arcs_.append((0, k, first))
-                d0 = _t(self._travel(profile, self.p.starts[r], j.ops[0].place))
+                d0 = _t(self._travel(profile, self.p.starts[r], j.ops[0].goal))
                 self.m.add(self.start[j.ops[0].step] >= d0).only_enforce_if(first)
                 for after in self.drive_after.get(j.ops[0].step, ()):
                     self.m.add(self.start[j.ops[0].step] >= self.end[after] + d0).only_enforce_if(first)
@@ -381,7 +386,7 @@ class _Model:
                         continue
                     lit2 = self.arc[(r, j.id, j2.id)] = self.m.new_bool_var("")
                     arcs_.append((k, k2, lit2))
-                    d = _t(self._travel(profile, j.ops[-1].place, j2.ops[0].place))
+                    d = _t(self._travel(profile, j.ops[-1].place, j2.ops[0].goal))
                     for after in [j.ops[-1].step, *self.drive_after.get(j2.ops[0].step, ())]:
                         self.m.add(self.start[j2.ops[0].step] >= self.end[after] + d).only_enforce_if(lit2)
             self.m.add_circuit(arcs_)
@@ -397,8 +402,8 @@ class _Model:
             ends = [j.ops[-1].place for j in mine]
             for j in mine:
                 inner = sum(_t(o.seconds) for o in j.ops) + sum(
-                    _t(self._travel(profile, a.place, b.place)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
-                entry = min(_t(self._travel(profile, p, j.ops[0].place))
+                    _t(self._travel(profile, a.place, b.goal)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
+                entry = min(_t(self._travel(profile, p, j.ops[0].goal))
                             for p in [self.p.starts[r], *(e for i, e in zip(mine, ends, strict=True) if i is not j)])
                 terms.append((inner + entry) * self.x[(j.group, r)])
             if terms:
