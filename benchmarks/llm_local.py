@@ -84,14 +84,15 @@ def tasks_of(frontend: str, only: Sequence[str]) -> list[BenchTask]:
 def needs_llm(task: BenchTask) -> bool:
     """Whether the hybrid front end will call the LLM on ``task`` (a doubtful reading or a
     parser error), found by running the offline parser alone (milliseconds)."""
+    from emboteam.pfg.doubt import needs_review
     from emboteam.pfg.hybrid import as_reading
     from emboteam.pfg.parser import offline_frontend
     from emboteam.world.scene import load_scene
 
     state, team = task.initial_state(), task.team()
     try:
-        return as_reading(offline_frontend().parse(task.instruction, load_scene(task.floor_plan), state,
-                                                   team)).doubtful
+        reading = as_reading(offline_frontend().parse(task.instruction, load_scene(task.floor_plan), state, team))
+        return needs_review(reading, task.instruction, state)
     except EmboTeamError:
         return True
 

@@ -19,10 +19,15 @@ from emboteam.world import Scene, WorldState, load_catalogue, load_scene, parse_
 from emboteam.world.catalogue import Catalogue
 from emboteam.world.robots import RobotProfile
 
-#: ../shared next to the repository (AI2-THOR metadata, SMART-LLM peer data)
-SHARED = Path(__file__).resolve().parents[2] / "shared"
-AI2THOR = SHARED / "data" / "ai2thor"
-SMART_LLM = SHARED / "data" / "peers" / "smart-llm"
+#: ../shared next to the repository (AI2-THOR metadata, SMART-LLM peer data); see shared_data.py
+from shared_data import AI2THOR, SHARED, SMART_LLM
+
+__all__ = ["AI2THOR", "SHARED", "SMART_LLM"]
+
+
+#: ``@pytest.mark.isolated``: the test runs in a child interpreter (tests/isolation.py)
+pytest_plugins = ["isolation"]
+
 
 
 def _shared_json(path: Path) -> Any:

@@ -14,10 +14,10 @@ from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 
 
-def random_cell(robots: int, conditions: int) -> tuple[TaskSpec, WorldState]:
+def random_cell(robots: int, conditions: int, seed: int = 0) -> tuple[TaskSpec, WorldState]:
     team = parse_team(["1", "2", "3", "4"][:robots])
     state = WorldState.from_scene(load_scene("FloorPlan1"), team)
-    conds = random_conditions(state, conditions, random.Random(0))
+    conds = random_conditions(state, conditions, random.Random(seed))
     spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
         Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
     return spec, state

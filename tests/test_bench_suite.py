@@ -199,10 +199,11 @@ def test_suite_is_cached_and_immutable() -> None:
 def test_package_ships_no_peer_data() -> None:
     """SMART-LLM's tasks have no licence: tests read them from ../shared, the package never."""
     bench = resources.files("emboteam.bench")
-    shipped = [p.name for p in bench.joinpath("data").iterdir()]
-    assert shipped == ["mace_thor.json"]
-    text = bench.joinpath("data/mace_thor.json").read_text()
-    assert "object_states" not in text and "robot list" not in text
+    shipped = sorted(p.name for p in bench.joinpath("data").iterdir())
+    assert shipped == ["congestion.json", "mace_thor.json"]  # both written by this project
+    for name in shipped:
+        text = bench.joinpath(f"data/{name}").read_text()
+        assert "object_states" not in text and "robot list" not in text
 
 
 def test_docs_table_matches_the_data() -> None:

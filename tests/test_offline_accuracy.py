@@ -19,6 +19,7 @@ from typing import Any
 
 import pytest
 
+import shared_data
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.evaluate import Outcome, evaluate, goal_keys, initial_state, load_records
@@ -31,7 +32,7 @@ from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 
 DATA = Path(__file__).parent / "data"
-SMART_LLM = Path(__file__).resolve().parents[2] / "shared" / "data" / "peers" / "smart-llm" / "final_test"
+SMART_LLM = shared_data.SMART_LLM / "final_test"
 
 
 def _report(name: str, outcomes: list[Outcome]) -> float:

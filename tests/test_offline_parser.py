@@ -322,19 +322,34 @@ def test_unknown_noun_names_the_phrase_and_suggests_scene_types() -> None:
     with pytest.raises(GroundingError) as err:
         parse("put the flux capacitor in the fridge")
     assert err.value.phrase == "flux capacitor"
-    assert "flux capacitor" in str(err.value) and err.value.suggestions
+    # nothing in the scene is spelt like it: no unrelated "closest objects" (issue 24)
+    assert "flux capacitor" in str(err.value) and err.value.suggestions == ()
 
 
 def test_type_missing_from_the_scene() -> None:
     with pytest.raises(GroundingError, match="FloorPlan414 has no apple") as err:
         parse("put the apple in the fridge", 414)
-    assert err.value.suggestions
+    assert err.value.suggestions == ()  # a bathroom has nothing spelt like an apple
 
 
-def test_misspelled_type_missing_from_the_scene_suggests_the_closest() -> None:
-    with pytest.raises(GroundingError) as err:
+def test_misspelled_type_missing_from_the_scene_says_it_is_missing() -> None:
+    with pytest.raises(GroundingError, match="FloorPlan1 has no candle") as err:
         parse("put the candel on the counter", 1)
-    assert err.value.suggestions
+    assert err.value.suggestions == ()
+
+
+def test_suggestions_are_close_spellings_never_the_very_object() -> None:
+    from emboteam.pfg.offline.grounding import Grounder
+    from emboteam.world.scene import load_scene
+    from emboteam.world.state import WorldState
+
+    scene = load_scene(1)
+    grounder = Grounder(scene, WorldState.from_scene(scene))
+    assert grounder.suggestions("spatual") == ["Spatula"]
+    assert grounder.suggestions("the red aple") == ["Apple"]
+    assert grounder.suggestions("fridge") == []           # the object itself: not a spelling problem
+    assert grounder.suggestions("bathtub") == []          # nothing like it in a kitchen
+    assert grounder.suggestions("toilet paper") == []
 
 
 @pytest.mark.parametrize(("text", "fp", "error", "match"), [

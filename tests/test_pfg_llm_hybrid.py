@@ -57,6 +57,8 @@ def draft(scene: Scene, *, unsure: tuple[str, ...] = (), notes: tuple[ReadingNot
 
 
 UNREAD = (ReadingNote(span="jiggle the blorp", reason="unknown word 'blorp'"),)
+# the review's own checks are tested with when="always": whether a reading is reviewed
+# at all is the doubt detector's (tests/test_pfg_doubt.py)
 
 
 def test_confident_reading_makes_no_call(scene1: Scene, state1: WorldState, team12: Sequence[RobotProfile]) -> None:
@@ -111,7 +113,7 @@ def test_dropping_or_contradicting_a_sure_condition_is_fed_back(scene1: Scene, s
     contradicted = {"ok": False, "subtasks": [subtask("s1", APPLE), subtask("s2", LIGHT_ON)]}
     added = {"ok": False, "subtasks": [subtask("s1", APPLE), subtask("s2", LIGHT_OFF), subtask("s3", FRIDGE_CLOSED)]}
     with ScriptedServer("openai", [Reply.answer(dropped), Reply.answer(contradicted), Reply.answer(added)]) as srv:
-        got = HybridFrontend(llm(srv), fixed_parse(reading)).read(INSTRUCTION, scene1, state1, team12)
+        got = HybridFrontend(llm(srv), fixed_parse(reading), when="always").read(INSTRUCTION, scene1, state1, team12)
     feedback = [r["messages"][-1]["content"] for r in srv.requests[1:]]
     assert "keep inside(Apple_1, Fridge_1)" in feedback[0]
     assert "switched_on(LightSwitch_1) contradicts switched_off(LightSwitch_1)" in feedback[1]
@@ -124,7 +126,7 @@ def test_a_weak_model_never_replaces_the_draft_with_a_worse_one(scene1: Scene, s
     worse = {"ok": False, "subtasks": [subtask("s1", LIGHT_ON)]}
     with ScriptedServer("openai", [Reply.answer(worse)] * 3) as srv:
         client = llm(srv)
-        got = HybridFrontend(client, fixed_parse(reading)).read(INSTRUCTION, scene1, state1, team12)
+        got = HybridFrontend(client, fixed_parse(reading), when="always").read(INSTRUCTION, scene1, state1, team12)
     assert got.spec == reading.spec
     assert client.usage.calls == 3                       # every call is still counted
     assert any("the offline reading stands" in n.reason for n in got.notes)
@@ -136,7 +138,7 @@ def test_an_added_condition_on_an_unmentioned_object_is_fed_back(scene1: Scene, 
     toaster = {"ok": False, "subtasks": [subtask("s1", APPLE), subtask("s2", LIGHT_OFF),
                                          subtask("s3", cond("switched_on", "Toaster_1"))]}
     with ScriptedServer("openai", [Reply.answer(toaster), Reply.answer({"ok": True, "subtasks": []})]) as srv:
-        got = HybridFrontend(llm(srv), fixed_parse(reading)).read(INSTRUCTION, scene1, state1, team12)
+        got = HybridFrontend(llm(srv), fixed_parse(reading), when="always").read(INSTRUCTION, scene1, state1, team12)
     assert "switched_on(Toaster_1) is about something the instruction does not mention" in \
         srv.requests[1]["messages"][-1]["content"]
     assert got.spec == reading.spec

@@ -325,3 +325,26 @@ def test_docs_screenshot_exists() -> None:
     assert head[:8] == b"\x89PNG\r\n\x1a\n"
     width, height = int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
     assert (width, height) == (VIEWPORT["width"], VIEWPORT["height"])
+
+
+def test_the_readings_considered_and_unexplained_mentions_are_listed(browser: Any, tmp_path: Path) -> None:
+    """Issue 25: the report lists the offline reader's candidates (best first, with their
+    scores and the doubts they settle) and the mentions nothing explained."""
+    candidates = (
+        {"sentence": "The potato is hot.", "goals": ["hot(Potato)"], "score": -0.44, "as_read": True,
+         "resolves": []},
+        {"sentence": "The potato is hot and the potato is in the microwave.",
+         "goals": ["hot(Potato)", "inside(Potato, Microwave)"], "score": -1.51, "as_read": False,
+         "resolves": [{"kind": "means", "span": "microwave", "choice": "left_in_device",
+                       "how": "the potato is in the microwave"}]},
+    )
+    episode = scripted_fridge_episode().model_copy(update={"candidates": candidates, "unexplained": ("tomato",)})
+    w = open_page(browser, report_for(episode, tmp_path / "run"))
+    items = w.page.eval_on_selector_all("#reading-candidates li", "ls => ls.map(l => l.textContent)")
+    assert items == ["-0.44  The potato is hot.",
+                     "-1.51  The potato is hot and the potato is in the microwave.  "
+                     "[the potato is in the microwave]"]
+    notes = w.page.eval_on_selector_all("#reading-notes li", "ls => ls.map(l => l.textContent)")
+    assert "unexplained: tomato (named, but in no goal)" in notes
+    w.assert_clean()
+    w.page.close()

@@ -9,7 +9,12 @@ import pytest
 
 from emboteam.errors import UnknownObjectError, UnknownRobotError
 from emboteam.sim import Breakdown, FaultConfig, ObjectMove, RobotBusyError, Simulator
-from emboteam.sim.durations import ACTION_SECONDS, FAILED_ACTION_SECONDS, MIN_NAVIGATION_SECONDS
+from emboteam.sim.durations import (
+    ACTION_SECONDS,
+    FAILED_ACTION_SECONDS,
+    MIN_NAVIGATION_SECONDS,
+    navigation_seconds,
+)
 from emboteam.world import (
     Action,
     ActionOutcome,
@@ -22,6 +27,8 @@ from emboteam.world import (
     parse_team,
 )
 from emboteam.world.environment import Environment
+from emboteam.world.navgrid import NavGrid
+from emboteam.world.navigation import navigator
 
 S = Skill
 R = FailureReason
@@ -45,13 +52,28 @@ def test_simulator_is_an_environment(sim1: Simulator) -> None:
 # ---- durations ---------------------------------------------------------------------------
 
 
-def test_navigation_takes_manhattan_distance_over_speed(sim1: Simulator) -> None:
-    x0, z0 = sim1.state.robots["robot1"].position
-    fx, _, fz = sim1.state.objects["Fridge_1"].position
-    out = ok(sim1, "robot1", S.GoToObject, "Fridge_1")
+def test_navigation_follows_the_grid_to_the_interaction_pose() -> None:
+    """A drive is a shortest sequence of 0.25 m moves and 90° turns on the reachable grid
+    (one agent action each, 0.25 s at 1 m/s), never shorter than the Manhattan distance
+    between the start cell and the pose cell (it was that distance to the object before the
+    grid: intended change)."""
+    sim = Simulator(load_scene("FloorPlan1"), parse_team("1"))  # alone: no one to drive round
+    x0, z0 = sim.state.robots["robot1"].position
+    fx, _, fz = sim.state.objects["Fridge_1"].position
+    nav = navigator("FloorPlan1")
+    best = nav.nearest_pose(nav.cell_of((x0, z0)), (fx, fz))
+    assert best is not None
+    pose = best[0]
+    path = nav.path(nav.cell_of((x0, z0)), pose)
+    assert path is not None and len(path) - 1 == best[1]
+    out = ok(sim, "robot1", S.GoToObject, "Fridge_1")
     assert out.start == 0.0
-    assert out.end == pytest.approx(abs(fx - x0) + abs(fz - z0))
-    assert sim1.now == pytest.approx(out.end)
+    assert out.end == pytest.approx(0.25 * (len(path) - 1))
+    px, pz = NavGrid.point(pose.cell)
+    assert out.end >= abs(px - x0) + abs(pz - z0) - 1e-9
+    assert out.end == pytest.approx(navigation_seconds((x0, z0), (fx, fz), 1.0, "FloorPlan1"))
+    assert sim.state.robots["robot1"].position == (px, pz)
+    assert sim.now == pytest.approx(out.end)
 
 
 def test_a_faster_robot_arrives_sooner() -> None:

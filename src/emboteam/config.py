@@ -15,7 +15,7 @@ from emboteam.pddl.runner import PlannerInput
 from emboteam.sim.disturbances import Disturbances
 from emboteam.sim.faults import FaultConfig
 
-Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p"]
+Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "no-avoidance", "smart-llm", "lamma-p"]
 Frontend = Literal["oracle", "offline", "llm", "hybrid"]
 #: when the hybrid front end asks the LLM: only for a doubtful offline reading, or always
 LLMWhen = Literal["doubt", "always"]
@@ -23,8 +23,8 @@ LLMWhen = Literal["doubt", "always"]
 EnvName = Literal["sim", "ai2thor"]
 
 #: every mode, in the order the tables list them
-MODES: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "smart-llm", "lamma-p")
-ABLATIONS: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc")
+MODES: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "no-avoidance", "smart-llm", "lamma-p")
+ABLATIONS: tuple[Mode, ...] = ("full", "no-pfg-hp", "no-hp", "no-btc", "no-avoidance")
 BASELINES: tuple[Mode, ...] = ("smart-llm", "lamma-p")
 #: front ends that call an LLM (and need an LLM spec)
 LLM_FRONTENDS: tuple[Frontend, ...] = ("llm", "hybrid")
@@ -41,6 +41,8 @@ class RunConfig(BaseModel):
     llm_timeout: float = 60.0
     llm_record: str | None = Field(None, description="cassette folder to record LLM calls into")
     llm_merge: bool = Field(False, description="the paper's LLM merge stage: the LLM proposes orderings")
+    clarify: bool = Field(False, description="offline front end: ask the person on the terminal to "
+                          "choose among close readings (no terminal: the best one, with a note)")
     llm_when: LLMWhen = Field("doubt", description="hybrid front end: ask the LLM only when the offline "
                               "reading is in doubt, or always")
     planner_input: PlannerInput = Field("sas", description="what Fast Downward reads: our own SAS task "

@@ -49,4 +49,7 @@ def make_environment(cfg: RunConfig, scene: Scene, team: Sequence[RobotProfile],
         from emboteam.thor.session import open_thor
 
         return open_thor(scene, team, state, spare_agents=len(cfg.joins))
-    return Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state)
+    from emboteam.mode_table import wiring
+
+    return Simulator(scene, team, seed=cfg.seed, faults=cfg.fault_config(), state=state,
+                     avoidance=wiring(cfg.mode).avoidance)

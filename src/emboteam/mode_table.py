@@ -9,6 +9,8 @@ no-hp          front end (PFG)         FD per subtask, no      behavior trees
                                        validation, concatenated
 no-btc         front end (PFG)         HP                      linear per robot, no checks
 no-pfg-hp      LLM action lists        none                    behavior trees (no sync)
+no-avoidance   front end (PFG)         HP                      behavior trees; robots drive
+                                                               through each other on the grid
 smart-llm      LLM action lists        none                    concurrent lists, no checks
 lamma-p        front end (PFG)         FD per subtask + merge, linear per robot, no checks
                                        no validation
@@ -46,6 +48,8 @@ class ModeWiring:
     execution: Execution
     replan: bool = False
     llm_review: bool = False
+    #: robots avoid each other on the navigation grid (reservations, waits, yields)
+    avoidance: bool = True
 
 
 #: LaMMA-P: optimal Fast Downward calls per subtask, one at a time, no cache, sub-plans
@@ -58,6 +62,7 @@ MODE_TABLE: dict[Mode, ModeWiring] = {
     "no-pfg-hp": ModeWiring(None, "tree"),
     "no-hp": ModeWiring(PlannerConfig(validate=False, merge="concatenate"), "tree"),
     "no-btc": ModeWiring(PlannerConfig(), "linear"),
+    "no-avoidance": ModeWiring(PlannerConfig(), "tree", replan=True, llm_review=True, avoidance=False),
     "smart-llm": ModeWiring(None, "sequences"),
     "lamma-p": ModeWiring(PlannerConfig(alias="astar(hmax())", workers=1, validate=False, merge="concatenate"),
                           "linear"),

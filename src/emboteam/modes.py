@@ -17,7 +17,9 @@ from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, 
 from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
 from emboteam.exec.episode import Episode, episode_header, score
 from emboteam.exec.executor import ExecutorSettings
+from emboteam.exec.nav_check import check_motion
 from emboteam.exec.result import ExecutionResult
+from emboteam.exec.trace import TraceEvent
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner
 from emboteam.llm.client import LLMClient, make_client
@@ -34,6 +36,7 @@ from emboteam.sim.simulator import Simulator
 from emboteam.task import EpisodeTask
 from emboteam.world.actions import Action
 from emboteam.world.goals import Goal
+from emboteam.world.navfit import check_reachable
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene, load_scene
 from emboteam.world.state import WorldState
@@ -67,9 +70,11 @@ def make_llm(cfg: RunConfig) -> LLMClient | None:
     return make_client(cfg.llm, timeout=cfg.llm_timeout, record_dir=cfg.llm_record, seed=cfg.seed)
 
 
-def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
+def understand(ctx: EpisodeContext, notes: list[str] | None = None,
+               readings: list[Reading] | None = None) -> TaskSpec:
     """The PFG: the instruction as a TaskSpec, by the configured front end. ``notes``, if
-    given, receives what the front end could not read or read with doubt (for the user)."""
+    given, receives what the front end could not read or read with doubt (for the user);
+    ``readings`` the offline reading itself (its candidates and unexplained mentions)."""
     task, cfg, llm = ctx.task, ctx.cfg, ctx.llm
     args = (task.instruction, ctx.scene, ctx.state, ctx.team)
     if cfg.frontend == "oracle":
@@ -97,6 +102,15 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None) -> TaskSpec:
                                 llm=LLMFrontend(llm, repair_rounds=1), review_rounds=1)
         return hybrid.decompose(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
     reading = offline_frontend().parse(*args)
+    if cfg.clarify:
+        import sys
+
+        from emboteam.pfg.clarify import settle
+        from emboteam.pfg.offline.doubts.priors import load_priors
+
+        reading = settle(reading, load_priors().close_margin, sys.stdin, sys.stdout)
+    if readings is not None:
+        readings.append(reading)
     if notes is not None:
         notes.extend(reading_notes(reading))
     return reading.spec
@@ -106,6 +120,14 @@ def reading_notes(reading: Reading) -> list[str]:
     """A reading's notes and unsure conditions, one line each, as the user sees them."""
     return [*(str(n) for n in reading.notes),
             *(f"unsure {c}: chosen with doubt" for c in reading.unsure)]
+
+
+def reading_fields(reading: Reading | None) -> dict[str, object]:
+    """What an episode records of the offline reading: the mentions nothing explained and
+    the candidates considered, with their scores and the doubts each settles."""
+    if reading is None:
+        return {}
+    return {"unexplained": reading.unexplained, "candidates": tuple(c.to_json() for c in reading.candidates)}
 
 
 def _plans(planner: HybridPlanner, spec: TaskSpec, state: WorldState) -> None:
@@ -132,6 +154,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
         from emboteam.hp.llm_stages import review_spec
 
         spec = review_spec(llm, spec, ctx.task.instruction, *args).spec
+    check_reachable(spec.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
     try:
         plan = planner.plan(spec, ctx.state)
     except PlanningError as exc:
@@ -152,9 +175,10 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
     return spec, plan
 
 
-def plan_task(ctx: EpisodeContext, notes: list[str] | None = None) -> tuple[TaskSpec, MergedPlan]:
+def plan_task(ctx: EpisodeContext, notes: list[str] | None = None,
+              readings: list[Reading] | None = None) -> tuple[TaskSpec, MergedPlan]:
     """PFG then HP: what ``emboteam plan`` shows and a planning mode executes."""
-    return plan_spec(ctx, understand(ctx, notes))
+    return plan_spec(ctx, understand(ctx, notes, readings))
 
 
 def action_lists(ctx: EpisodeContext) -> dict[str, list[Action]]:
@@ -237,18 +261,20 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     t0 = time.perf_counter()
     spec: TaskSpec | None = None
     notes: list[str] = []
+    readings: list[Reading] = []
     if wiring(cfg.mode).planner is None:
         lists = action_lists(ctx)
         plan_seconds = time.perf_counter() - t0
         result, sim = _run_lists(ctx, lists, task.ground_truth or Goal(conditions=()))
     else:
-        spec, plan = plan_task(ctx, notes)
+        spec, plan = plan_task(ctx, notes, readings)
         plan_seconds = time.perf_counter() - t0
         result, sim = execute(ctx, plan, spec.goal(), finish_plan=any(not s.final for s in spec.subtasks))
     truth = task.ground_truth or (spec.goal() if spec else Goal(conditions=()))
     success, gcr, conditions = score(truth, sim.state)
     fields = result.episode_fields()
     fields.update(success=success, gcr=gcr, conditions=conditions)
+    fields.update(_motion_fields(sim, fields))
     error = result.error
     if prepared is not None:
         assert isinstance(sim, Simulator)  # disturbances are the simulator's (check_thor_config)
@@ -260,8 +286,25 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     return Episode.model_validate({
         **header, "llm_calls": llm.usage.calls if llm else 0, "tokens": llm.usage.tokens if llm else 0,
         "plan_seconds": round(plan_seconds, 4), "taskspec": spec, "notes": tuple(notes), "error": error,
-        **fields,
+        **reading_fields(readings[-1] if readings else None), **fields,
     })
+
+
+def _motion_fields(env: object, fields: dict[str, object]) -> dict[str, object]:
+    """The robots' recorded motion, checked by the independent trace checker, and the
+    trace with its ``nav`` event (environments without a grid record nothing)."""
+    if not isinstance(env, Simulator):
+        return {}
+    record = env.nav_record()
+    check = check_motion(record)
+    old = fields.get("trace", ())
+    trace: tuple[TraceEvent, ...] = tuple(old) if isinstance(old, tuple) else ()
+    end = max([ev.t for ev in trace], default=0.0)
+    event = TraceEvent(t=end, kind="nav", data={**record, "vertex_conflicts": len(check.vertex),
+                                                "edge_conflicts": len(check.edge)})
+    tr = env.traffic
+    return {"collisions": check.collisions, "nav_waits": tr.waits, "nav_replans": tr.replans,
+            "path_seconds": round(tr.search_seconds, 4), "trace": (*trace, event)}
 
 
 __all__ = ["EpisodeContext", "ModeConfigError", "action_lists", "execute", "make_llm",

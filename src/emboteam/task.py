@@ -21,6 +21,7 @@ from emboteam.errors import EmboTeamError
 from emboteam.sim.setup import StateChange, apply_changes
 from emboteam.world.checker import validate_goal
 from emboteam.world.goals import Goal
+from emboteam.world.navgrid import load_grid
 from emboteam.world.robots import RobotProfile, parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
@@ -44,6 +45,9 @@ class BenchTask(BaseModel):
     instruction: str
     goal: Goal
     setup: tuple[StateChange, ...] = Field((), description="initial-state changes")
+    starts: tuple[tuple[float, float], ...] = Field(
+        (), description="start cells (x, z) of the first robots, in team order (e.g. one parked in a "
+                        "doorway); the others start as usual")
     notes: str = ""
 
     @field_validator("robots", mode="before")
@@ -91,7 +95,10 @@ class BenchTask(BaseModel):
 
     def initial_state(self) -> WorldState:
         """A fresh state of the floor plan with the team placed and the setup applied."""
-        return initial_state(self.floor_plan, self.team(), self.setup)
+        state = initial_state(self.floor_plan, self.team(), self.setup)
+        for robot, start in zip(state.robots.values(), self.starts, strict=False):
+            robot.position = start
+        return state
 
     @property
     def ground_truth(self) -> Goal | None:
@@ -111,6 +118,11 @@ class BenchTask(BaseModel):
             if not self.goal.conditions:
                 raise InvalidTaskError("the goal has no conditions")
             validate_goal(self.goal, scene)
+            grid = load_grid(scene.floor_plan)
+            bad = [p for p in self.starts if grid.cell_at(p) is None]
+            if bad or len(set(self.starts)) < len(self.starts) or len(self.starts) > len(self.robots):
+                raise InvalidTaskError(f"starts must be distinct reachable cells, one per robot at most "
+                                       f"(not {', '.join(map(str, bad)) or 'repeated'})")
         except EmboTeamError as exc:
             raise InvalidTaskError(f"task {self.key}: {exc}") from None
 

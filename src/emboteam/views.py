@@ -15,6 +15,7 @@ from rich.text import Text
 from emboteam.exec.episode import Episode
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
+from emboteam.terminal import one_line, printable, user_message
 
 
 def spec_json(spec: TaskSpec) -> list[dict[str, object]]:
@@ -41,7 +42,7 @@ def spec_table(spec: TaskSpec) -> Table:
         table.add_column(col)
     for s in spec.subtasks:
         goal = "\n".join(str(c) for c in s.goal) + ("" if s.final else "  (intermediate)")
-        table.add_row(escape(s.id), escape(s.robot) if s.robot else "[dim]any[/dim]", escape(goal),
+        table.add_row(escape(printable(s.id)), escape(s.robot) if s.robot else "[dim]any[/dim]", escape(printable(goal)),
                       escape(", ".join(s.depends_on)))
     return table
 
@@ -85,11 +86,20 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
         conds.add_row("[green]✓[/green]" if c.holds else "[red]✗[/red]", Text(c.condition))
     body: list[object] = [metrics, Text(""), conds]
     if episode.notes:      # what the front end could not read, or read with doubt
-        body += [Text("")] + [Text(f"note: {n}", style="yellow") for n in episode.notes]
+        body += [Text("")] + [Text(f"note: {one_line(n)}", style="yellow") for n in episode.notes]
+    if episode.unexplained:     # things named that ended in no goal, with nothing to explain them
+        body += [Text(f"unexplained: {', '.join(repr(w) for w in episode.unexplained)} (named, but in no goal)",
+                      style="yellow")]
+    if len(episode.candidates) > 1:     # the readings considered, best first
+        body += [Text(""), Text("readings considered (score = log prior):")]
+        body += [Text(f"{'→' if k == 0 else ' '} {c['score']:6.2f}  {c['sentence']}"
+                      + (f"  [{'; '.join(r['how'] for r in c['resolves'])}]" if c["resolves"] else ""),
+                      style="bold" if k == 0 else "dim")
+                 for k, c in enumerate(episode.candidates)]
     if episode.error:
-        body += [Text(""), Text(f"error: {episode.error}", style="red")]
+        body += [Text(""), Text(f"error: {one_line(user_message(episode.error))}", style="red")]
     if out_dir:
         body += [Text(""), Text(f"report: {out_dir}/report.html", style="cyan")]
-    return Panel(Group(*body), title=f"{escape(episode.task)} {verdict}",  # type: ignore[arg-type]
+    return Panel(Group(*body), title=f"{escape(printable(episode.task))} {verdict}",  # type: ignore[arg-type]
                  subtitle=escape(f"{episode.floor_plan} · {', '.join(episode.robots)}"))
 

@@ -147,11 +147,17 @@ class BenchSummary(BaseModel):
     llm_calls_mean: float = 0.0
     tokens_mean: float = 0.0
     errors: int = Field(0, description="episodes ended by a typed error")
+    collisions: int = Field(0, description="vertex and edge conflicts the independent trace checker "
+                                           "found (exec/nav_check.py), over all episodes")
+    nav_waits: int = Field(0, description="times a robot waited for another on the grid, over all episodes")
+    nav_replans: int = Field(0, description="drives re-planned around other robots, over all episodes")
     disturbance: DisturbanceSummary | None = Field(
         None, description="breakdowns, joins, moves, message faults: SR of savable, savable share (None: "
                           "no episode was disturbed by options)")
     disturbance_by_mode: dict[str, DisturbanceSummary] = Field(
         default_factory=dict, description="the same per mode")
+    not_applicable: tuple[str, ...] = Field(
+        (), description="'TASK: why' of the tasks a named disturbance cannot happen in: not run, in no SR")
 
     def to_json(self) -> dict[str, object]:
         """The bench ``--json`` object (the disturbance fields only when a run was disturbed,
@@ -159,6 +165,8 @@ class BenchSummary(BaseModel):
         data = self.model_dump(mode="json")
         if self.disturbance is None:
             del data["disturbance"], data["disturbance_by_mode"]
+        if not self.not_applicable:
+            del data["not_applicable"]
         return data
 
 
@@ -228,5 +236,7 @@ def summarize(episodes: Iterable[Episode], *, suite: str = "", seed: int = CI_SE
         llm_calls_mean=_mean([float(e.llm_calls) for e in eps]),
         tokens_mean=_mean([float(e.tokens) for e in eps]),
         errors=sum(1 for e in eps if e.error),
+        collisions=sum(e.collisions for e in eps), nav_waits=sum(e.nav_waits for e in eps),
+        nav_replans=sum(e.nav_replans for e in eps),
         disturbance=summarize_disturbance(eps), disturbance_by_mode=disturbance_by_mode(eps),
     )

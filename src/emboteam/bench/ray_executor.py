@@ -16,6 +16,7 @@ episode function (install the package on the nodes, or pass a ``runtime_env``).
 from __future__ import annotations
 
 import logging
+import socket
 from typing import Any
 
 from emboteam.bench.jobs import BenchConfigError, EpisodeFn, Job, JobResult, execute_job, failed_episode
@@ -30,6 +31,41 @@ def _import_ray() -> Any:
     except ImportError:
         raise BenchConfigError("--executor ray needs Ray: pip install 'emboteam[ray]'") from None
     return ray
+
+
+#: seconds to wait for a TCP answer from --ray-address before handing it to Ray (which
+#: would retry for minutes, printing its own C++ log lines on the terminal)
+PROBE_TIMEOUT = 3.0
+
+
+def _host_port(address: str) -> tuple[str, int] | None:
+    """``HOST:PORT`` or ``ray://HOST:PORT`` -> (host, port); None for what Ray resolves
+    itself (``auto``, ``local``) or a form without a port."""
+    text = address.strip()
+    rest = text.split("://", 1)[1] if "://" in text else text
+    host, sep, port = rest.rstrip("/").rpartition(":")
+    if not sep or not port.isdigit():
+        return None
+    return host.strip("[]") or "127.0.0.1", int(port)
+
+
+def probe_address(address: str | None, timeout: float = PROBE_TIMEOUT) -> None:
+    """Fail fast (:class:`ServiceUnavailableError`, exit 3) when nothing answers at the
+    cluster address: one TCP connection with a short timeout, before Ray is started."""
+    if not address:
+        return
+    target = _host_port(address)
+    if target is None:
+        return
+    host, port = target
+    if not 0 < port < 65536:
+        raise BenchConfigError(f"--ray-address {address}: port {port} is not a TCP port (1-65535)")
+    try:
+        with socket.create_connection((host, port), timeout=timeout):
+            pass
+    except OSError as exc:
+        why = f"no answer within {timeout:g} s" if isinstance(exc, TimeoutError) else (exc.strerror or str(exc))
+        raise ServiceUnavailableError(f"cannot reach the Ray cluster at {address}: {why}") from None
 
 
 class RayExecutor:

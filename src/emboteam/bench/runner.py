@@ -18,6 +18,7 @@ time: for debugging, and for episode functions that cannot be pickled).
 
 from __future__ import annotations
 
+import json
 import logging
 import multiprocessing
 import os
@@ -28,9 +29,10 @@ import sys
 import threading
 import time
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
+from contextlib import contextmanager
 from pathlib import Path
 from types import TracebackType
 from typing import Protocol
@@ -43,7 +45,6 @@ from rich.progress import (
     TaskID,
     TextColumn,
     TimeElapsedColumn,
-    TimeRemainingColumn,
 )
 
 from emboteam.bench.jobs import (
@@ -67,6 +68,8 @@ log = logging.getLogger(__name__)
 PIPELINE_EPISODE_FN = "emboteam.bench.runner:pipeline_episode"
 
 STORE_NAME = "results.sqlite"
+#: the store's meta entry listing the tasks a disturbance does not apply to
+NOT_APPLICABLE = "not_applicable"
 EPISODES_DIR = "episodes"
 
 
@@ -166,13 +169,14 @@ class ProcessExecutor:
         return bool(self._running or self._suspects)
 
     def submit(self, job: Job) -> None:
-        try:
-            future = self._pool.submit(execute_job, self._fn, job)
-        except BrokenProcessPool:
-            # a worker died since the last wait(); the jobs it took down are collected by
-            # wait() from their futures, this one never started
-            self._replace_pool()
-            future = self._pool.submit(execute_job, self._fn, job)
+        with _workers_start_ignoring_sigint():  # the pool starts its processes on submit
+            try:
+                future = self._pool.submit(execute_job, self._fn, job)
+            except BrokenProcessPool:
+                # a worker died since the last wait(); the jobs it took down are collected by
+                # wait() from their futures, this one never started
+                self._replace_pool()
+                future = self._pool.submit(execute_job, self._fn, job)
         self._running[future] = (job, self._generation)
 
     def wait(self) -> list[tuple[Job, JobResult]]:
@@ -225,6 +229,27 @@ class ProcessExecutor:
         self._pool.shutdown(wait=True, cancel_futures=True)
 
 
+@contextmanager
+def _workers_start_ignoring_sigint() -> Iterator[None]:
+    """Processes started in this block ignore SIGINT from their first instruction.
+
+    Ctrl-C reaches the whole process group, and a worker still importing EmboTeam (before
+    the pool's initializer sets SIG_IGN) would die of it with a KeyboardInterrupt trace. An
+    ignored signal stays ignored across fork and exec, and Python then installs no
+    KeyboardInterrupt handler. The runner's own Ctrl-C is blocked meanwhile, not lost: it
+    is delivered when the block ends."""
+    if threading.current_thread() is not threading.main_thread():
+        yield  # signal dispositions can only be changed from the main thread
+        return
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
 _TRACKER_WARNING = "ignore:resource_tracker:UserWarning"
 
 
@@ -252,6 +277,9 @@ def _exit_with_parent(parent: int, every: float = 0.5) -> None:
     # Ctrl-C reaches the whole process group: the runner handles it (it stops the
     # workers and says what is saved); a worker would only add a KeyboardInterrupt trace
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from emboteam.logs import configure
+
+    configure()  # the runner's -v level (EMBOTEAM_LOG_VERBOSITY): no log lines on stderr by default
 
     def watch() -> None:
         while os.getppid() == parent:
@@ -288,14 +316,20 @@ def _check_picklable(episode_fn: EpisodeFn, executor: str) -> None:
 
 class _Progress:
     """done/total, SR so far, errors and ETA on stderr: a rich progress bar on a terminal,
-    one plain line per episode otherwise (CI logs, ``2> file``), log records when quiet."""
+    one plain line per episode otherwise (CI logs, ``2> file``), log records when quiet.
 
-    def __init__(self, total: int, previous: Sequence[Episode], enabled: bool) -> None:
+    A resumed run says so first ("resuming: N of M ..."). The ETA is the remaining
+    episodes times the mean wall time of the episodes this run finished, shared among the
+    workers: neither the stored episodes nor the workers' start-up (imports, the first
+    planner call) count, so the first estimate is not dominated by start-up."""
+
+    def __init__(self, total: int, previous: Sequence[Episode], enabled: bool, workers: int = 1) -> None:
         self.total, self.done = total, len(previous)
         self.successes = sum(e.success for e in previous)
         self.errors = sum(e.error is not None for e in previous)
         self._resumed = self.done
-        self._started = time.monotonic()
+        self._workers = max(1, workers)
+        self._episode_seconds = 0.0  # wall time of the episodes this run finished
         self._console = Console(stderr=True) if enabled else None
         self._bar: Progress | None = None
         self._task: TaskID | None = None
@@ -303,11 +337,11 @@ class _Progress:
             self._bar = Progress(
                 TextColumn("[bold]bench"), BarColumn(), MofNCompleteColumn(),
                 TextColumn("SR {task.fields[sr]}"), TextColumn("{task.fields[errors]}"),
-                TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
+                TimeElapsedColumn(), TextColumn("ETA {task.fields[eta]}"),
                 console=self._console, transient=False,
             )
             self._task = self._bar.add_task("bench", total=total, completed=self.done, sr=self._sr(),
-                                            errors=self._errors())
+                                            errors=self._errors(), eta=self._eta())
 
     def _sr(self) -> str:
         return f"{self.successes / self.done:.1%}" if self.done else "-"
@@ -319,10 +353,23 @@ class _Progress:
         ran = self.done - self._resumed
         if not ran:
             return "-"
-        seconds = round((time.monotonic() - self._started) / ran * (self.total - self.done))
+        remaining = self.total - self.done
+        seconds = round(self._episode_seconds / ran * remaining / min(self._workers, max(remaining, 1)))
         return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
 
+    def resuming(self) -> str | None:
+        """What a resumed run continues, or None for a fresh one."""
+        if not self._resumed:
+            return None
+        return f"resuming {self.total - self._resumed} of {self.total} episodes ({self._resumed} already stored)"
+
     def __enter__(self) -> _Progress:
+        line = self.resuming()
+        if line is not None:
+            if self._console is not None:
+                self._console.print(line, markup=False, highlight=False, soft_wrap=True)
+            else:
+                log.info("%s", line)
         if self._bar is not None:
             self._bar.start()
         return self
@@ -336,8 +383,9 @@ class _Progress:
         self.done += 1
         self.successes += int(episode.success)
         self.errors += int(episode.error is not None)
+        self._episode_seconds += episode.wall_seconds
         if self._bar is not None and self._task is not None:
-            self._bar.update(self._task, advance=1, sr=self._sr(), errors=self._errors())
+            self._bar.update(self._task, advance=1, sr=self._sr(), errors=self._errors(), eta=self._eta())
             return
         outcome = "success" if episode.success else "failure"
         error = f" ({episode.error})" if episode.error else ""
@@ -384,9 +432,11 @@ def default_out_dir(config: BenchConfig, *, root: Path = Path("bench-out"), now:
 
 
 def run_bench(config: BenchConfig, jobs: Sequence[Job], episode_fn: EpisodeFn = PIPELINE_EPISODE_FN,
-              *, progress: bool = True, reports: bool = True) -> list[Episode]:
+              *, progress: bool = True, reports: bool = True, not_applicable: Sequence[str] = ()) -> list[Episode]:
     """Run every job not yet in ``config.out_dir``'s store; return the episodes of all
     ``jobs`` (stored earlier or now) in job order, then write tables and plots.
+    ``not_applicable``: ``"TASK: why"`` of the tasks the disturbance cannot happen in
+    (bench/disturbance_scope.py), kept in the store and listed in the tables.
 
     Without ``config.resume`` an out dir that already holds results is refused, so a run
     never mixes into another by accident.
@@ -395,12 +445,13 @@ def run_bench(config: BenchConfig, jobs: Sequence[Job], episode_fn: EpisodeFn = 
     unique = list({job.key: job for job in jobs}.values())
     resolve_episode_fn(episode_fn)  # a bad import path fails here, before any worker starts
     if config.executor == "ray":  # fail before the store exists when Ray is not installed
-        from emboteam.bench.ray_executor import _import_ray
+        from emboteam.bench.ray_executor import _import_ray, probe_address
 
         _import_ray()
+        probe_address(config.ray_address)  # a cluster that does not answer: exit 3 in seconds
     fresh = not store_path(out_dir).exists()
     try:
-        episodes = _run_stored(config, unique, episode_fn, out_dir, progress)
+        episodes = _run_stored(config, unique, episode_fn, out_dir, progress, not_applicable)
     except EmboTeamError as exc:
         if fresh and not isinstance(exc, BenchInterrupted):
             _drop_empty_store(out_dir)  # a refused run (an executor that cannot start) leaves nothing
@@ -423,7 +474,7 @@ def _drop_empty_store(out_dir: Path) -> None:
 
 
 def _run_stored(config: BenchConfig, unique: list[Job], episode_fn: EpisodeFn, out_dir: Path,
-                progress: bool) -> list[Episode]:
+                progress: bool, not_applicable: Sequence[str] = ()) -> list[Episode]:
     with ResultStore(store_path(out_dir)) as store:
         stored = len(store)
         if stored and not config.resume:
@@ -433,15 +484,15 @@ def _run_stored(config: BenchConfig, unique: list[Job], episode_fn: EpisodeFn, o
         done = store.done_keys()
         pending = [job for job in unique if job.key not in done]
         interrupted = store.interrupted_keys() & {job.key for job in pending}
-        if done or interrupted:
-            log.info("resuming: %d of %d jobs already stored, %d interrupted jobs to re-run",
-                     len(unique) - len(pending), len(unique), len(interrupted))
+        if interrupted:
+            log.info("%d jobs the last run left unfinished are run again", len(interrupted))
         store.set_meta("config", config.model_dump_json())
+        store.set_meta(NOT_APPLICABLE, json.dumps(list(not_applicable)))
         previous = store.episodes(keys={j.key for j in unique})
         if pending:
             try:
                 _run_pending(config, pending, episode_fn, store, out_dir,
-                             _Progress(len(unique), previous, progress))
+                             _Progress(len(unique), previous, progress, workers=config.workers))
             except KeyboardInterrupt:
                 saved = len(store.done_keys() & {j.key for j in unique})
                 raise BenchInterrupted(out_dir, saved, len(unique)) from None
@@ -500,11 +551,18 @@ def write_reports(out_dir: Path) -> list[Path]:
     with ResultStore(path) as store:
         episodes = store.episodes()
         suite = _suite_name(store)
+        skipped = stored_not_applicable(store)
     summaries = GroupSummaries(episodes)
-    written = [write_tables(summaries, out_dir / "tables.md"),
-               write_summary(episodes, out_dir / "summary.json", suite=suite)]
+    written = [write_tables(summaries, out_dir / "tables.md", not_applicable=skipped),
+               write_summary(episodes, out_dir / "summary.json", suite=suite, not_applicable=skipped)]
     written += write_plots(summaries, out_dir)
     return written
+
+
+def stored_not_applicable(store: ResultStore) -> list[str]:
+    """The ``"TASK: why"`` lines of the tasks the run's disturbance did not apply to."""
+    text = store.meta(NOT_APPLICABLE)
+    return list(json.loads(text)) if text else []
 
 
 def _suite_name(store: ResultStore) -> str:

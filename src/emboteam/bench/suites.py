@@ -10,6 +10,8 @@ from __future__ import annotations
 import difflib
 from pathlib import Path
 
+from emboteam.bench.congestion import SUITE_NAME as CONGESTION
+from emboteam.bench.congestion import load_congestion
 from emboteam.bench.mace_thor import SUITE_NAME as MACE_THOR
 from emboteam.bench.mace_thor import load_mace_thor
 from emboteam.bench.suite import Suite, UnknownSuiteError, UnknownTaskError
@@ -18,14 +20,17 @@ from emboteam.task import BenchTask
 SMART_LLM_PREFIX = "smart-llm:"
 
 #: how suites are written on the command line
-SUITE_SPECS: tuple[str, ...] = (MACE_THOR, SMART_LLM_PREFIX + "PATH")
+SUITE_SPECS: tuple[str, ...] = (MACE_THOR, CONGESTION, SMART_LLM_PREFIX + "PATH")
 
 
 def load_suite(spec: str) -> Suite:
-    """``mace-thor`` or ``smart-llm:PATH`` (a directory searched recursively, or one file)."""
+    """``mace-thor``, ``congestion`` or ``smart-llm:PATH`` (a directory searched recursively,
+    or one file)."""
     text = spec.strip()
     if text == MACE_THOR:
         return Suite(name=MACE_THOR, tasks=load_mace_thor())
+    if text == CONGESTION:
+        return Suite(name=CONGESTION, tasks=load_congestion())
     if text.startswith(SMART_LLM_PREFIX):
         from emboteam.bench.importers.smart_llm import import_smart_llm
 
@@ -33,7 +38,7 @@ def load_suite(spec: str) -> Suite:
         if not path:
             raise UnknownSuiteError("smart-llm needs a path: smart-llm:PATH (a folder of FloorPlanN*.json files)")
         return import_smart_llm(Path(path).expanduser(), suite=text)
-    close = difflib.get_close_matches(text, [MACE_THOR, "smart-llm"], n=1, cutoff=0.5)
+    close = difflib.get_close_matches(text, [MACE_THOR, CONGESTION, "smart-llm"], n=1, cutoff=0.5)
     hint = f"; did you mean {close[0]}{':PATH' if close[0] == 'smart-llm' else ''}?" if close else ""
     raise UnknownSuiteError(f"unknown suite {spec!r}{hint} (suites: {', '.join(SUITE_SPECS)})")
 

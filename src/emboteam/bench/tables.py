@@ -29,7 +29,7 @@ from emboteam.exec.episode import Episode
 
 METHOD_LABELS = {"smart-llm": "SMART-LLM", "lamma-p": "LaMMA-P", "full": "EmboTeam"}
 ABLATION_LABELS = {"full": "EmboTeam (full)", "no-pfg-hp": "w/o PFG & HP", "no-hp": "w/o HP",
-                   "no-btc": "w/o BTC"}
+                   "no-btc": "w/o BTC", "no-avoidance": "w/o avoidance"}
 MODE_LABELS: dict[str, str] = {**{m: m for m in MODES}, **METHOD_LABELS}
 TABLE1_MODES = ("smart-llm", "lamma-p", "full")
 
@@ -172,8 +172,10 @@ def runs_table(summaries: GroupSummaries) -> list[str]:
     return lines
 
 
-def render_tables(episodes: Sequence[Episode] | GroupSummaries, *, title: str = "Benchmark results") -> str:
-    """The Markdown of ``tables.md``."""
+def render_tables(episodes: Sequence[Episode] | GroupSummaries, *, title: str = "Benchmark results",
+                  not_applicable: Sequence[str] = ()) -> str:
+    """The Markdown of ``tables.md``; ``not_applicable``: ``"TASK: why"`` of the tasks the
+    disturbance could not happen in (not run, not in any SR)."""
     summaries = episodes if isinstance(episodes, GroupSummaries) else GroupSummaries(episodes)
     eps = summaries.episodes
     out = [f"# {title}", ""]
@@ -197,28 +199,41 @@ def render_tables(episodes: Sequence[Episode] | GroupSummaries, *, title: str = 
     from emboteam.bench.disturbance_table import disturbance_section
 
     out += disturbance_section(eps)
+    out += not_applicable_section(not_applicable)
     out += ["## All runs", "", *runs_table(summaries), ""]
     return "\n".join(out)
 
 
+def not_applicable_section(lines: Sequence[str]) -> list[str]:
+    """The tasks a disturbance could not happen in, one line each with the reason."""
+    if not lines:
+        return []
+    return [f"## Not applicable ({len(lines)} tasks)", "",
+            "The disturbance cannot happen in these tasks: they were not run and count in no SR.", "",
+            *(f"- {line}" for line in lines), ""]
+
+
 def write_tables(episodes: Sequence[Episode] | GroupSummaries, path: Path, *,
-                 title: str = "Benchmark results") -> Path:
+                 title: str = "Benchmark results", not_applicable: Sequence[str] = ()) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(render_tables(episodes, title=title))
+    path.write_text(render_tables(episodes, title=title, not_applicable=not_applicable))
     return path
 
 
-def bench_summary(episodes: Iterable[Episode], *, suite: str = "") -> BenchSummary:
+def bench_summary(episodes: Iterable[Episode], *, suite: str = "", not_applicable: Sequence[str] = ()) -> BenchSummary:
     """The summary ``emboteam bench --json`` prints (``.to_json()``), in canonical order so
     it is the same whatever order the episodes finished in."""
-    return summarize(canonical_order(episodes), suite=suite)
+    summary = summarize(canonical_order(episodes), suite=suite)
+    return summary.model_copy(update={"not_applicable": tuple(not_applicable)}) if not_applicable else summary
 
 
-def write_summary(episodes: Sequence[Episode], path: Path, *, suite: str = "") -> Path:
+def write_summary(episodes: Sequence[Episode], path: Path, *, suite: str = "",
+                  not_applicable: Sequence[str] = ()) -> Path:
     """``summary.json``: :func:`bench_summary` of the episodes."""
     path = Path(path)
-    path.write_text(json.dumps(bench_summary(episodes, suite=suite).to_json(), indent=1) + "\n")
+    summary = bench_summary(episodes, suite=suite, not_applicable=not_applicable)
+    path.write_text(json.dumps(summary.to_json(), indent=1) + "\n")
     return path
 
 

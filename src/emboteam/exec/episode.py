@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -61,7 +62,7 @@ class Episode(BaseModel):
     floor_plan: str
     robots: tuple[str, ...] = Field(description="team member names, e.g. robot1")
     category: str = ""
-    mode: str = Field("full", description="full | no-pfg-hp | no-hp | no-btc | smart-llm | lamma-p")
+    mode: str = Field("full", description="full | no-pfg-hp | no-hp | no-btc | no-avoidance | smart-llm | lamma-p")
     frontend: str = "offline"
     llm: str | None = Field(None, description="PROVIDER:MODEL[@BASE_URL] of the LLM front end, if any")
     seed: int = 0
@@ -77,6 +78,11 @@ class Episode(BaseModel):
     failed_actions: int = 0
     recoveries: int = 0
     replans: int = 0
+    collisions: int = Field(0, description="vertex and edge conflicts of the robots' motion "
+                                           "(exec/nav_check.py replaying the trace's nav event)")
+    nav_waits: int = Field(0, description="times a robot waited on the grid for another robot")
+    nav_replans: int = Field(0, description="drives re-planned around other robots")
+    path_seconds: float = Field(0.0, description="wall-clock seconds spent planning paths on the grid")
     llm_calls: int = 0
     tokens: int = 0
     plan_seconds: float = Field(0.0, description="wall-clock seconds in PFG + HP")
@@ -84,6 +90,10 @@ class Episode(BaseModel):
     error: str | None = Field(None, description="the typed error that ended the episode early")
     notes: tuple[str, ...] = Field((), description="what the front end could not read, or read "
                                    "with doubt, one line each (span and why)")
+    unexplained: tuple[str, ...] = Field((), description="words naming a thing of the scene that ended in no "
+                                         "goal and that nothing explains (offline front end)")
+    candidates: tuple[dict[str, Any], ...] = Field((), description="the readings considered, best first: "
+                                                   "sentence, goals, score, the doubts each settles")
 
     disturbance: DisturbanceOutcome | None = Field(None, description="what a benchmark disturbance did "
                                                    "(bench --breakdown/--join/--moves/--msg-*)")
@@ -99,7 +109,8 @@ class Episode(BaseModel):
             "exec": round(self.exec, 4), "makespan": round(self.makespan, 2),
             "actions": self.actions, "llm_calls": self.llm_calls, "tokens": self.tokens,
             "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
-            "notes": list(self.notes),
+            "notes": list(self.notes), "unexplained": list(self.unexplained),
+            "candidates": list(self.candidates),
         }
 
     def save(self, directory: Path) -> None:

@@ -216,6 +216,7 @@ class Executor:
                         "; ".join(f"{r}: {rt.branch_failures[r]}" for r in sorted(fresh))
                     # a breakdown gets its own replan, as a join does: it is not the plan's fault
                     broken = any(self._is_down(r) for r in fresh)
+                    drained_from = len(self.outcomes)
                     replaced = self._replan_if_possible(tree, reason, budgeted=not broken)
                     if replaced is not None:
                         tree, handled_failures = replaced, set()
@@ -225,6 +226,8 @@ class Executor:
                     if self._goal_holds():
                         stop = "success"
                         break
+                    if not done and len(self.outcomes) > drained_from:
+                        continue  # actions ended while draining: the old tree reacts first
                     if done:
                         stop = "failed" if rt.branch_failures else "plan_done"
                         break

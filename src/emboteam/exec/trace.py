@@ -16,6 +16,10 @@ Kinds (``data`` fields in brackets):
 - ``network``                          robot, [what, key, ...] the blackboard as a lossy network:
   ``release_lost`` (a lock release did not arrive), ``lock_timeout`` (a waiter took over a
   lock whose lease ran out), ``late_read`` (a done flag reaches this robot late)
+- ``nav``                              (once, at the end) [floor_plan, grid, avoidance, starts,
+  moves, waits, replans, yields, vertex_conflicts, edge_conflicts]: every robot's start cell and every
+  MoveAhead it executed on the navigation grid (``Simulator.nav_record``), which
+  ``exec/nav_check.py`` replays and the report draws
 """
 
 from __future__ import annotations
@@ -28,7 +32,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict
 
 EventKind = Literal["action_start", "action_end", "node", "blackboard", "pose", "sim", "replan",
-                    "recovery", "network"]
+                    "recovery", "network", "nav"]
 
 
 class TraceEvent(BaseModel):

@@ -81,7 +81,7 @@ def nominal_seconds(state: WorldState, robot: str, action: Action) -> float:
         r = state.robots[robot]
         o = state.objects[action.target]
         dest = state.robots[o.held_by].position if o.held_by else (o.position[0], o.position[2])
-        return navigation_seconds(r.position, dest, r.profile.speed)
+        return navigation_seconds(r.position, dest, r.profile.speed, state.floor_plan)
     return action_seconds(action.skill)
 
 

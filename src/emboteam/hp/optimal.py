@@ -56,13 +56,12 @@ Point = tuple[float, float]
 def travel(profile: RobotProfile, a: Point, b: Point, floor_plan: str = "") -> float:
     """Seconds a robot of ``profile`` drives from ``a`` to ``b`` in ``floor_plan``: the
     scene's navigation model (:func:`emboteam.sim.durations.navigation_seconds`, the one
-    call that knows how: a grid-based model that needs the floor plan takes it here), 0
-    when already there. Free-flow seconds: waits for traffic only make the simulated plan
+    call that knows how: along the floor plan's navigation grid; Manhattan without a floor
+    plan), 0 when already there. Free-flow seconds: waits for traffic only make the simulated plan
     later, so the plan stays a solution of the model."""
-    del floor_plan  # the Manhattan model needs no floor plan; the navigation grid will
     if a == b:
         return 0.0
-    return navigation_seconds(a, b, profile.speed)
+    return navigation_seconds(a, b, profile.speed, floor_plan or None)
 
 
 @dataclass

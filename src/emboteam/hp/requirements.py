@@ -229,7 +229,7 @@ def estimate(state: WorldState, robot: str, needs: Sequence[Need]) -> float:
                 continue
             o = state.objects[anchor]
             dest = (o.position[0], o.position[2])
-            total += navigation_seconds(pos, dest, r.profile.speed)
+            total += navigation_seconds(pos, dest, r.profile.speed, state.floor_plan)
             pos = dest
         total += need.work
     return total

@@ -15,6 +15,7 @@ from typing import Literal, Protocol
 
 from emboteam.llm.errors import LLMConfigError
 from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.llm.spec import LLMSpec
 
 TransientKind = Literal["rate_limit", "server", "timeout", "connection"]
@@ -42,12 +43,24 @@ class PermanentFailure(Exception):
         self.status = status
 
 
+class ScoringUnsupported(Exception):
+    """The backend cannot return token log-probabilities (Anthropic's API, a server
+    without ``echo``/``logprobs`` on its completions endpoint)."""
+
+
 class Backend(Protocol):
     """One provider. ``name`` is the spec without secrets, for logs and cassettes."""
 
     name: str
 
     def send(self, request: LLMRequest) -> LLMResponse: ...
+
+
+class ScoringBackend(Protocol):
+    """A backend that also returns token log-probabilities (:mod:`emboteam.llm.scoring`);
+    it raises :class:`ScoringUnsupported` when the model or server turns out not to."""
+
+    def score(self, request: ScoreRequest) -> ScoreResponse: ...
 
 
 def parse_retry_after(value: str | None) -> float | None:

@@ -6,6 +6,11 @@ Layout::
                             "recorded_with": ["openai:gpt-4o-mini@http://host/v1", ...]}
     DIR/<key>.json         {"key", "stage", "request": <canonical request>, "response": {...}}
                            or, for a call that timed out for good, "failure": {"kind": "timeout", "message"}
+    DIR/<key>.json         {"key", "stage", "kind": "score", "request": <canonical score request>,
+                            "response": {"scores": [{sentence, conditional, unconditional, tokens}],
+                                         input_tokens, evaluated_tokens, latency, model}}
+                           a PMI scoring call (:mod:`emboteam.llm.scoring`); its key hashes the
+                           rendered scoring prompts and the candidates
 
 ``<key>`` is :meth:`LLMRequest.key`, a hash of the provider-independent request, so a
 benchmark recorded with one model replays without it, and a request the recording never
@@ -27,9 +32,10 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from emboteam.llm.backend import Backend, PermanentFailure
+from emboteam.llm.backend import Backend, PermanentFailure, ScoringUnsupported
 from emboteam.llm.errors import LLMConfigError, LLMReplayMiss
 from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 
 FORMAT = "emboteam-llm-cassette"
 VERSION = 1
@@ -108,26 +114,64 @@ class Cassette:
             "failure": {"kind": failure.kind, "message": str(failure)},
         })
 
-    def load(self, request: LLMRequest) -> LLMResponse:
+    def save_score(self, request: ScoreRequest, response: ScoreResponse) -> None:
         key = request.key()
+        _write_atomic(self.entry_path(key), {"key": key, "stage": request.stage, "kind": "score",
+                                             "request": request.canonical(), "response": response.stored()})
+
+    def save_score_failure(self, request: ScoreRequest, failure: PermanentFailure) -> None:
+        key = request.key()
+        _write_atomic(self.entry_path(key), {"key": key, "stage": request.stage, "kind": "score",
+                                             "request": request.canonical(),
+                                             "failure": {"kind": failure.kind, "message": str(failure)}})
+
+    def _entry(self, key: str, stage: str, canonical: dict[str, Any]) -> tuple[Path, dict[str, Any]]:
+        """The stored entry of a request, checked against it; a miss raises LLMReplayMiss."""
         path = self.entry_path(key)
         if not path.is_file():
             raise LLMReplayMiss(f"no recorded response for request {key} in cassette {self.folder}; "
                                 f"the prompt, schema or parameters differ from the recording",
-                                stage=request.stage, key=key)
+                                stage=stage, key=key)
         try:
             entry = json.loads(path.read_text(encoding="utf-8"))
-            if entry.get("request") != json.loads(json.dumps(request.canonical())):
+            if entry.get("request") != json.loads(json.dumps(canonical)):
                 raise ValueError("stored request differs from the request (corrupt or edited entry)")
-            failure = entry.get("failure")
-            if failure is not None:
-                if failure.get("kind") != "timeout":
-                    raise ValueError(f"unknown recorded failure {failure.get('kind')!r}")
-                recorded = PermanentFailure("timeout", f"(recorded) {failure['message']}")
-            else:
+        except (OSError, ValueError, AttributeError) as exc:
+            raise LLMReplayMiss(f"unusable cassette entry {path}: {exc}", stage=stage, key=key) from None
+        return path, entry
+
+    @staticmethod
+    def _recorded_failure(entry: dict[str, Any]) -> PermanentFailure | None:
+        failure = entry.get("failure")
+        if failure is None:
+            return None
+        if failure.get("kind") != "timeout":
+            raise ValueError(f"unknown recorded failure {failure.get('kind')!r}")
+        return PermanentFailure("timeout", f"(recorded) {failure['message']}")
+
+    def load(self, request: LLMRequest) -> LLMResponse:
+        key = request.key()
+        path, entry = self._entry(key, request.stage, request.canonical())
+        try:
+            recorded = self._recorded_failure(entry)
+            if recorded is None:
                 stored = entry["response"]
                 return LLMResponse(**{f: stored[f] for f in _STORED if f in stored}, replayed=True)
-        except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        except (ValueError, KeyError, TypeError, AttributeError) as exc:
+            raise LLMReplayMiss(f"unusable cassette entry {path}: {exc}", stage=request.stage, key=key) from None
+        raise recorded
+
+    def load_score(self, request: ScoreRequest) -> ScoreResponse:
+        key = request.key()
+        path, entry = self._entry(key, request.stage, request.canonical())
+        try:
+            recorded = self._recorded_failure(entry)
+            if recorded is None:
+                response = ScoreResponse.model_validate({**entry["response"], "replayed": True})
+                if [s.sentence for s in response.scores] != list(request.candidates):
+                    raise ValueError("the recorded scores are not of the request's candidates")
+                return response
+        except (ValueError, KeyError, TypeError, AttributeError) as exc:  # pydantic's ValidationError too
             raise LLMReplayMiss(f"unusable cassette entry {path}: {exc}", stage=request.stage, key=key) from None
         raise recorded
 
@@ -151,6 +195,19 @@ class RecordingBackend:
         self.cassette.save(request, response)
         return response
 
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        inner = getattr(self.inner, "score", None)
+        if inner is None:
+            raise ScoringUnsupported(f"{self.inner.name} gives no token log-probabilities")
+        try:
+            response: ScoreResponse = inner(request)
+        except PermanentFailure as failure:
+            if failure.kind == "timeout":
+                self.cassette.save_score_failure(request, failure)
+            raise
+        self.cassette.save_score(request, response)
+        return response
+
 
 class ReplayBackend:
     """Answers from a cassette only; a request it does not hold raises LLMReplayMiss."""
@@ -163,3 +220,6 @@ class ReplayBackend:
 
     def send(self, request: LLMRequest) -> LLMResponse:
         return self.cassette.load(request)
+
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        return self.cassette.load_score(request)

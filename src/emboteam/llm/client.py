@@ -16,25 +16,29 @@ import re
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
-from emboteam.llm.backend import Backend, PermanentFailure, TransientFailure
+from emboteam.llm.backend import Backend, PermanentFailure, ScoringUnsupported, TransientFailure
 from emboteam.llm.cassette import RecordingBackend, ReplayBackend
 from emboteam.llm.errors import (
     LLMConfigError,
     LLMError,
     LLMRateLimited,
     LLMRefusal,
+    LLMScoringUnsupported,
     LLMServerError,
     LLMTimeout,
     LLMUnreachable,
 )
 from emboteam.llm.messages import LLMRequest, LLMResponse
 from emboteam.llm.retry import RetryPolicy
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.llm.spec import LLMSpec, parse_llm_spec
 from emboteam.llm.usage import Budget, Usage
 
 log = logging.getLogger(__name__)
+
+_T = TypeVar("_T")
 
 #: the CLI's ``--llm-timeout`` default, seconds per attempt
 DEFAULT_TIMEOUT = 60.0
@@ -104,13 +108,39 @@ class LLMClient:
             response = response.model_copy(update={"parsed": extract_json_object(response.text)})
         return response
 
-    def _send_with_retries(self, request: LLMRequest) -> tuple[LLMResponse, int]:
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        """Token log-probabilities of each candidate sentence (:mod:`emboteam.llm.scoring`),
+        with the budget, retries, ledger and recording of :meth:`complete`; a backend
+        without log-probabilities raises :class:`LLMScoringUnsupported` (before any call
+        for one that never has them)."""
         stage = request.stage
+        score: Callable[[ScoreRequest], ScoreResponse] | None = getattr(self.backend, "score", None)
+        if score is None:
+            raise LLMScoringUnsupported(f"{self.name} gives no token log-probabilities: it cannot score "
+                                        "candidates", stage=stage)
+        self._check_budget(stage)
+        response, attempts = self._with_retries(stage, lambda: score(request))
+        for c in self._chain():
+            c.usage.record(stage, input_tokens=response.input_tokens, output_tokens=0, attempts=attempts)
+        log.debug("llm %s %s: %d candidates, %d tokens (%d evaluated) in %.2fs%s", stage, request.key()[:12],
+                  len(response.scores), response.input_tokens, response.evaluated_tokens, response.latency,
+                  ", replayed" if response.replayed else "")
+        for c in self._chain():
+            c.usage.check_tokens(c.budget, stage)
+        return response
+
+    def _send_with_retries(self, request: LLMRequest) -> tuple[LLMResponse, int]:
+        return self._with_retries(request.stage, lambda: self.backend.send(request))
+
+    def _with_retries(self, stage: str, attempt_once: Callable[[], _T]) -> tuple[_T, int]:
         policy = self.retry
         last: TransientFailure | None = None
         for attempt in range(1, policy.max_attempts + 1):
             try:
-                return self.backend.send(request), attempt
+                return attempt_once(), attempt
+            except ScoringUnsupported as exc:
+                self._record(stage, None, attempt)
+                raise LLMScoringUnsupported(f"{self.name} cannot score candidates: {exc}", stage=stage) from None
             except TransientFailure as failure:
                 last = failure
                 if failure.retry_after is not None and failure.retry_after > policy.max_retry_after:

@@ -73,3 +73,9 @@ class LLMReplayMiss(LLMError):
 
 class LLMBudgetExceeded(LLMError):
     """The run's budget of calls or tokens is spent."""
+
+
+class LLMScoringUnsupported(LLMError):
+    """The backend gives no token log-probabilities, so it cannot score candidates
+    (Anthropic; an OpenAI-compatible server without ``echo``/``logprobs``). A caller
+    keeps its other way of deciding (the hybrid front end keeps its review)."""

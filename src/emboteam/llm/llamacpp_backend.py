@@ -32,6 +32,7 @@ from typing import Any
 from emboteam.llm.backend import PermanentFailure
 from emboteam.llm.errors import LLMConfigError
 from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.llm.spec import LLMSpec
 
 #: one loaded model per (file, context size): loading costs time and memory
@@ -61,7 +62,11 @@ def _load(path: str, n_ctx: int, n_threads: int | None) -> tuple[Any, threading.
         key = (path, n_ctx)
         if key not in _MODELS:
             try:
-                model = Llama(model_path=path, n_ctx=n_ctx, n_threads=n_threads, seed=0, verbose=False)
+                # the batch (prompt) threads too: llama-cpp-python defaults them to every core,
+                # and on a shared machine a second thread that is not scheduled stalls the first
+                # at llama.cpp's spinning barrier (prompt and scoring ran ~10x slower)
+                model = Llama(model_path=path, n_ctx=n_ctx, n_threads=n_threads, n_threads_batch=n_threads,
+                              seed=0, verbose=False)
             except (ValueError, RuntimeError, OSError) as exc:
                 raise LLMConfigError(f"cannot load GGUF model {path}: {exc}") from None
             _MODELS[key] = (model, threading.Lock())
@@ -99,6 +104,12 @@ class LlamaCppBackend:
         self._timeout = timeout
         self._llama, self._lock = _load(str(path.resolve()), n_ctx, n_threads)
         self._grammars: dict[str, Any] = {}
+
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        """PMI scores of the candidates (:mod:`emboteam.llm.llamacpp_scoring`)."""
+        from emboteam.llm.llamacpp_scoring import LlamaCppScorer
+
+        return LlamaCppScorer(self._llama, self._lock, timeout=self._timeout, model=self.model).score(request)
 
     def _grammar(self, schema: dict[str, Any]) -> Any:
         from llama_cpp.llama_grammar import LlamaGrammar

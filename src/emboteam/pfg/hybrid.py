@@ -1,8 +1,9 @@
 """The hybrid front end: the offline parser reads, the LLM reviews only what is in doubt.
 
 1. The offline parser reads the instruction (milliseconds, no call).
-2. ``when="doubt"`` (the default): a reading with no notes and no unsure condition is
-   used as it is; ``when="always"`` asks the LLM every time.
+2. ``when="doubt"``: a reading the doubt detector does not flag
+   (:func:`emboteam.pfg.doubt.needs_review`) is used as it is; ``when="always"`` asks
+   the LLM every time.
 3. Review: the LLM sees the draft (in the answer form of :mod:`emboteam.pfg.schema`), the
    parser's notes and the conditions it was unsure of, and answers ``ok`` or the whole
    corrected decomposition, validated like the LLM front end's answers (schema, scene,
@@ -25,15 +26,19 @@ import json
 import logging
 from collections.abc import Callable, Sequence
 from copy import deepcopy
+from dataclasses import replace
 from typing import Any, Literal
 
 from emboteam.llm.client import LLMClient
-from emboteam.llm.errors import LLMMalformedOutput
+from emboteam.llm.errors import LLMMalformedOutput, LLMScoringUnsupported
 from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
 from emboteam.pfg.answer_checks import repetition_problems, sure_condition_problems
+from emboteam.pfg.candidates import Candidate
+from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
+from emboteam.pfg.model_ranker import DEFAULT_MARGIN, DEFAULT_WEIGHT, Reranking, rerank_in_scene
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.schema import taskspec_from_answer, taskspec_to_answer
@@ -85,7 +90,8 @@ class HybridFrontend:
     stage = "pfg.review"
 
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
-                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768) -> None:
+                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
+                 rank_margin: float = DEFAULT_MARGIN, rank_weight: float = DEFAULT_WEIGHT) -> None:
         self.client = client
         self.parse = parse
         self.when = when
@@ -97,6 +103,10 @@ class HybridFrontend:
         #: answer by tokens, not by a time-out, keeps a slow local model's runs reproducible
         #: (a cut-off answer is recorded and fed back; a timed-out call is not recorded)
         self.max_tokens = max_tokens
+        #: the model ranker's margin and weight (0 turns it off); the last ranking, for views
+        self.rank_margin = rank_margin
+        self.rank_weight = rank_weight
+        self.last_ranking: Reranking[Candidate] | None = None
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile], *,
                   validate: Validator | None = None) -> TaskSpec:
@@ -114,9 +124,31 @@ class HybridFrontend:
             spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint)
             return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
                                              f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
-        if self.when == "doubt" and not draft.doubtful:
+        draft = self.rank_close_candidates(draft, instruction, scene)
+        if self.when == "doubt" and not needs_review(draft, instruction, state):
             return draft
         return self.review(draft, instruction, scene, state, team, validate=validate)
+
+    # ---- the local model as a scorer of close readings (issue 25) --------------------
+    def rank_close_candidates(self, draft: Reading, instruction: str, scene: Scene) -> Reading:
+        """The reader's candidates re-ranked by the model where their priors are close
+        (:mod:`emboteam.pfg.model_ranker`: PMI of each end-state sentence, one call, none
+        when the prior is sure). A backend without log-probabilities (Anthropic) leaves
+        the draft as read: the review below is its way to decide."""
+        if len(draft.candidates) < 2 or self.rank_weight <= 0:
+            return draft
+        try:
+            ranking = rerank_in_scene(draft.candidates, client=self.client, scene=scene, instruction=instruction,
+                                      margin=self.rank_margin, weight=self.rank_weight)
+        except LLMScoringUnsupported:
+            return draft
+        self.last_ranking = ranking
+        if not ranking.overturned:
+            return draft
+        best = ranking.candidates[0]
+        chosen = ReadingNote(span="(model ranking)", kind="assumed",
+                             reason=f"the local model preferred a close reading: {best.sentence}")
+        return replace(draft, spec=best.spec, candidates=ranking.candidates, notes=(*draft.notes, chosen))
 
     # ---- the review call ---------------------------------------------------------------
     def request(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,

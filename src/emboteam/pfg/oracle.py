@@ -34,6 +34,10 @@ class OracleFrontend:
     def decompose(self, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile]) -> TaskSpec:
         """One subtask per condition, in the goal's order; duplicates are kept once."""
+        return self.spec(instruction)
+
+    def spec(self, instruction: str) -> TaskSpec:
+        """The TaskSpec of the goal (it needs no scene: the stand-in model answers with it)."""
         seen: dict[str, int] = {}
         subtasks: list[Subtask] = []
         for cond in self.goal.conditions:

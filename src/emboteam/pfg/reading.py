@@ -11,11 +11,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+from emboteam.pfg.candidates import Candidate, Doubt
 from emboteam.pfg.taskspec import TaskSpec
 
 #: unread: words the reader could not use (unknown, unparsable, not groundable in the scene);
 #: vague: a chore with no single household reading ("tidy up"); assumed: a reading the
 #: reader chose among several plausible ones; unsure: a condition kept with low confidence
+#: (a mention that ends in no goal and that nothing explains is ``Reading.unexplained``)
 NoteKind = Literal["unread", "vague", "assumed", "unsure"]
 
 
@@ -34,13 +36,29 @@ class ReadingNote:
 @dataclass(frozen=True)
 class Reading:
     """A front end's TaskSpec, its notes, and the conditions (``str(Condition)``) it was
-    unsure of. The hybrid front end trusts every condition not listed in ``unsure``."""
+    unsure of. The hybrid front end trusts every condition not listed in ``unsure``.
+
+    ``candidates``: the complete readings the words and the scene allow, best first (the
+    first is ``spec``'s), each with its goal, its end-state sentence, its prior score and
+    the doubts it settles (:mod:`emboteam.pfg.candidates`); empty for a front end that
+    makes one guess. ``unexplained``: the words of each mention of a scene thing that
+    ends in no goal and that nothing explains. ``doubts``: the points of doubt the
+    candidates were made from, each with its alternatives (the views list them)."""
 
     spec: TaskSpec
     notes: tuple[ReadingNote, ...] = ()
     unsure: tuple[str, ...] = ()
+    candidates: tuple[Candidate, ...] = ()
+    unexplained: tuple[str, ...] = ()
+    doubts: tuple[Doubt, ...] = ()
+
+    @property
+    def as_read(self) -> Candidate | None:
+        """The reader's own reading among the candidates (before any doubt was settled
+        another way), if it made candidates."""
+        return next((c for c in self.candidates if c.as_read), None)
 
     @property
     def doubtful(self) -> bool:
         """Whether an LLM should look at this reading (``--llm-when doubt``)."""
-        return bool(self.notes or self.unsure)
+        return bool(self.notes or self.unsure or self.unexplained)

@@ -99,6 +99,7 @@ def episode_view(episode: Episode) -> dict[str, Any]:
             "fault_level": episode.fault_level, "faults": episode.faults.model_dump(mode="json"),
             "disturbance": episode.disturbance.model_dump(mode="json") if episode.disturbance else None,
             "error": episode.error, "notes": list(episode.notes),
+            "unexplained": list(episode.unexplained), "candidates": list(episode.candidates),
         },
         "metrics": {
             "success": episode.success, "gcr": episode.gcr, "exec": episode.exec,

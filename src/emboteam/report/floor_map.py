@@ -14,6 +14,8 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict
 
+from emboteam.errors import UnknownSceneError
+from emboteam.world.navgrid import NavGrid, load_grid
 from emboteam.world.scene import Scene, SceneObject
 
 Kind = Literal["furniture", "appliance", "fixture", "item"]
@@ -69,6 +71,8 @@ class FloorMap(BaseModel):
     min_z: float
     max_z: float
     objects: tuple[MapObject, ...]
+    #: the reachable cells of the navigation grid (x, z), where robots can stand
+    cells: tuple[tuple[float, float], ...] = ()
 
 
 def _kind(o: SceneObject) -> Kind:
@@ -124,6 +128,10 @@ def floor_map(scene: Scene, highlight: Iterable[str] = (),
             y=round(o.position[1], 3), parent=o.parent, highlight=o.id in marked))
     # big shapes first, so smaller ones are drawn over them and stay hoverable
     objects.sort(key=lambda m: (m.kind == "item", -(m.w * m.d), m.id))
+    try:
+        cells = tuple(NavGrid.point(c) for c in load_grid(scene.floor_plan).ordered)
+    except UnknownSceneError:
+        cells = ()
     return FloorMap(floor_plan=scene.floor_plan, room=scene.room, min_x=round(bounds[0], 3),
                     max_x=round(bounds[1], 3), min_z=round(bounds[2], 3), max_z=round(bounds[3], 3),
-                    objects=tuple(objects))
+                    objects=tuple(objects), cells=cells)

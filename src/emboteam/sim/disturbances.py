@@ -93,6 +93,8 @@ class BreakdownSpec(BaseModel):
     @classmethod
     def parse(cls, text: str) -> BreakdownSpec:
         who, when = _split(text, "--breakdown")
+        if who.lower() != RANDOM:
+            robot_profile(who)  # an unknown robot is a typed error now, not mid-run
         return cls(robot=who.lower(), at=parse_when(when, bare="fraction", option="--breakdown"))
 
     def __str__(self) -> str:

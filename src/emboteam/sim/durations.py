@@ -1,14 +1,19 @@
 """How long actions take in simulated seconds.
 
-Navigation: AI2-THOR agents move on a 0.25 m grid in axis-aligned steps, so the path
-length between two points of open floor is their Manhattan distance; a robot covers it at
-its profile's speed. Manipulation: fixed durations per skill, in the range AI2-THOR's
+Navigation: AI2-THOR agents move on a 0.25 m grid of reachable cells, one MoveAhead
+(0.25 m) or one 90° rotation per agent action; a drive is a shortest sequence of such
+actions from the robot's cell to the target's interaction pose
+(:mod:`emboteam.world.navigation`), and one action takes 0.25 m / speed (0.25 s at the
+profiles' 1 m/s, AI2-THOR's ~4 actions per second). Without a floor plan (or between points
+the grid cannot join) the Manhattan distance at the profile's speed stands in. Manipulation: fixed durations per skill, in the range AI2-THOR's
 physics settles them (arm motion and object settling take about a second).
 """
 
 from __future__ import annotations
 
 from emboteam.world.actions import Skill
+from emboteam.world.navgrid import GRID
+from emboteam.world.navigation import navigator
 
 ACTION_SECONDS: dict[Skill, float] = {
     Skill.PickupObject: 1.0,
@@ -34,8 +39,20 @@ MIN_NAVIGATION_SECONDS = 0.5
 FAILED_ACTION_SECONDS = 0.5
 
 
-def navigation_seconds(a: tuple[float, float], b: tuple[float, float], speed: float) -> float:
-    """Time to drive from floor point ``a`` to ``b`` (x, z) at ``speed`` m/s."""
+def agent_action_seconds(speed: float) -> float:
+    """One agent action (a 0.25 m MoveAhead or a 90° turn) at ``speed`` m/s."""
+    return GRID / speed
+
+
+def navigation_seconds(a: tuple[float, float], b: tuple[float, float], speed: float,
+                       floor_plan: str | None = None) -> float:
+    """Time for a robot at floor point ``a`` (x, z) to reach the thing at ``b`` at ``speed``
+    m/s: along ``floor_plan``'s navigation grid to ``b``'s interaction pose when given (the
+    simulator, the planner's cost model and its bound all call this), else Manhattan."""
+    if floor_plan is not None:
+        actions = navigator(floor_plan).travel_actions(a, b)
+        if actions is not None:
+            return max(MIN_NAVIGATION_SECONDS, actions * agent_action_seconds(speed))
     manhattan = abs(a[0] - b[0]) + abs(a[1] - b[1])
     return max(MIN_NAVIGATION_SECONDS, manhattan / speed)
 

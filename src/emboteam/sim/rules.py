@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from emboteam.sim.physics import settle, switch
 from emboteam.world.actions import Action, FailureReason, Skill
 from emboteam.world.catalogue import BURNERS, INTERLOCKED, KNIVES, load_catalogue
+from emboteam.world.navigation import arrival_point
 from emboteam.world.state import ObjectState, WorldState
 
 R = FailureReason
@@ -161,8 +162,9 @@ def _floor_for(state: WorldState) -> str | None:
 def apply_action(state: WorldState, robot: str, action: Action) -> None:
     """Apply a checked action's effects, then its side effects (heat, cold, water).
 
-    - GoToObject puts the robot at the object's interaction point (its x, z; a held
-      object's point is its holder's).
+    - GoToObject puts the robot on the object's interaction pose that the simulator's drive
+      from where it stands ends at when nobody is in the way (a held object's point is its
+      holder's), so what a plan thinks is in reach there is what the simulator finds.
     - SliceObject spawns the catalogue's pieces on the whole's receptacle; the whole is
       deactivated (``gone``), as AI2-THOR does. Breaking an Egg cracks it the same way.
     - ThrowObject lands the held object in the nearest GarbageCan within reach whatever the
@@ -178,7 +180,7 @@ def apply_action(state: WorldState, robot: str, action: Action) -> None:
     skill = action.skill
     if skill is Skill.GoToObject:
         x, _, z = o.position
-        r.position = (x, z)
+        r.position = arrival_point(state.floor_plan, r.position, (x, z))
         r.at = o.id
         if r.holding is not None:
             state.attach_to_robot(r.holding, robot)

@@ -6,6 +6,15 @@ checked again when it ends, because other robots may have changed the world mean
 its effects apply at the end. Interactions hold their object's *interaction spot* (see
 :meth:`WorldState.spot_of`) for their whole duration: a second robot trying to interact at
 the same spot gets ``spot_busy``. Every failure leaves the state unchanged.
+
+Robots drive on the floor plan's navigation grid, one cell each (:mod:`emboteam.sim.traffic`):
+a GoToObject plans a timed path to one of the target's interaction poses around the other
+robots' reservations, waits while robots block the way (asking idle ones to step aside),
+and re-plans when a robot breaks down across its path. That is ``avoidance=True``, which the
+environment of every episode uses (``environments.make_environment``); the default,
+``avoidance=False``, drives shortest paths through everyone: the planner's nominal model,
+with which it validates plans (hp/validate.py), and the benchmark's ``no-avoidance``
+ablation, where the trace checker counts the collisions.
 """
 
 from __future__ import annotations
@@ -18,11 +27,21 @@ from dataclasses import dataclass, field
 from pydantic import BaseModel, ConfigDict
 
 from emboteam.errors import EmboTeamError, UnknownObjectError, UnknownRobotError
-from emboteam.sim.durations import FAILED_ACTION_SECONDS, action_seconds, navigation_seconds
+from emboteam.sim.durations import (
+    FAILED_ACTION_SECONDS,
+    MIN_NAVIGATION_SECONDS,
+    action_seconds,
+    agent_action_seconds,
+    navigation_seconds,
+)
 from emboteam.sim.faults import FaultConfig, FaultInjector, ObjectMove
 from emboteam.sim.rules import Failure, apply_action, check_action
+from emboteam.sim.traffic import Step, Traffic
 from emboteam.world.actions import Action, ActionOutcome, FailureReason, Skill
 from emboteam.world.catalogue import load_catalogue
+from emboteam.world.navgrid import GRID, NavGrid
+from emboteam.world.navigation import navigator
+from emboteam.world.poses import Pose
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import RobotState, WorldState
@@ -52,6 +71,9 @@ class _Running:
     origin: tuple[float, float]
     destination: tuple[float, float]
     failure: Failure | None = None
+    #: a drive's candidate interaction poses, and how often it found its way blocked
+    goals: tuple[Pose, ...] = ()
+    blocked: int = 0
 
 
 @dataclass(order=True, slots=True)
@@ -62,16 +84,27 @@ class _Scheduled:
     payload: object = field(compare=False)
 
 
+#: a blocked drive looks again after this many seconds
+NAV_RETRY_SECONDS = 1.0
+#: a drive blocked this many times in a row (a broken robot walls the target off) fails
+#: ``not_reachable``; the behavior tree's recovery or a replan takes over
+NAV_MAX_BLOCKED = 30
+
+
 class Simulator:
     """Implements :class:`emboteam.world.environment.Environment` on the symbolic state."""
 
     def __init__(self, scene: Scene, team: Sequence[RobotProfile], *, seed: int = 0,
-                 faults: FaultConfig | None = None, state: WorldState | None = None) -> None:
+                 faults: FaultConfig | None = None, state: WorldState | None = None,
+                 avoidance: bool = False) -> None:
         self.scene = scene
         self.state = state.copy() if state is not None else WorldState.from_scene(scene, team)
+        self.traffic = Traffic(navigator(scene.floor_plan), avoid=avoidance)
         self.faults = faults or FaultConfig()
         self.injector = FaultInjector(self.faults, seed)
         self._now = 0.0
+        for name in sorted(self.state.robots, key=lambda n: self.state.robots[n].down, reverse=True):
+            self._place(name)
         self._running: dict[str, _Running] = {}
         self._locks: dict[str, str] = {}
         self._queue: list[_Scheduled] = []
@@ -110,6 +143,7 @@ class Simulator:
             raise UnknownRobotError(f"a robot named {profile.name} is already in the team")
         pos = self.scene.robot_start(len(self.state.robots))
         self.state.robots[profile.name] = RobotState(profile.name, profile, pos)
+        self._place(profile.name)
         self.events.append(SimEvent(t=self._now, kind="join", detail=profile.name))
         self.disturbances.append((self._now, "join", profile.name, self.state.copy()))
 
@@ -138,12 +172,29 @@ class Simulator:
             return
         if action.skill is Skill.GoToObject:
             o = self.state.objects[action.target]
-            dest = (o.position[0], o.position[2])
+            point = (o.position[0], o.position[2])
             if o.held_by is not None:
-                dest = self.state.robots[o.held_by].position
+                point = self.state.robots[o.held_by].position
+            goals = self.traffic.nav.poses_for(point)
+            if not goals:
+                self._launch(_Running(robot, action, self._now, self._now + FAILED_ACTION_SECONDS, None,
+                                      origin, origin, Failure(FailureReason.NOT_REACHABLE,
+                                      f"no cell of {self.scene.floor_plan}'s navigation grid is within "
+                                      f"1.5 m of {action.target}")))
+                return
             # ``at`` and the position change when the drive ends (a failed drive changes
-            # nothing); :meth:`pose` interpolates for observers meanwhile
-            duration = navigation_seconds(origin, dest, r.profile.speed)
+            # nothing); :meth:`pose` follows the path for observers meanwhile
+            if self.injector.action_fails(robot, k):
+                # the drive aborts and the robot ends where it started, after the time the
+                # drive would have taken (its cell stays reserved: it never left it)
+                failure = Failure(FailureReason.ACTUATION_FAULT,
+                                  f"{action.skill.value} did not complete (injected fault)")
+                seconds = navigation_seconds(origin, point, r.profile.speed, self.scene.floor_plan)
+                self._launch(_Running(robot, action, self._now, self._now + seconds, None, origin, origin,
+                                      failure))
+                return
+            self._drive(_Running(robot, action, self._now, self._now, None, origin, origin, goals=goals))
+            return
         else:
             dest = origin
             duration = action_seconds(action.skill)
@@ -154,6 +205,92 @@ class Simulator:
             run.failure = Failure(FailureReason.ACTUATION_FAULT,
                                   f"{action.skill.value} did not complete (injected fault)")
         self._launch(run)
+
+    def _place(self, robot: str) -> None:
+        """Put a robot on its grid cell (the nearest free one)."""
+        r = self.state.robots[robot]
+        cell = self.traffic.place(robot, self.traffic.nav.cell_of(r.position), self._now)
+        r.position = NavGrid.point(cell)
+
+    def _dt(self, robot: str) -> float:
+        return agent_action_seconds(self.state.robots[robot].profile.speed)
+
+    def _drive(self, run: _Running) -> None:
+        """Plan a drive and launch it, or wait and look again when the way is blocked."""
+        path = self.traffic.drive(run.robot, self._now, self._dt(run.robot), run.goals)
+        if path is None:  # robots stand in the only way: idle ones step aside at once
+            self._make_way(run)
+            path = self.traffic.drive(run.robot, self._now, self._dt(run.robot), run.goals)
+            self.traffic.replans += 1
+        if path is None:
+            self._blocked(run)
+            return
+        run.end = max(path[-1].t, run.start + MIN_NAVIGATION_SECONDS)
+        run.destination = NavGrid.point(path[-1].cell)
+        self._launch(run)
+
+    def _blocked(self, run: _Running) -> None:
+        run.blocked += 1
+        self.traffic.waits += 1
+        self._running[run.robot] = run
+        if run.blocked > NAV_MAX_BLOCKED:
+            del self._running[run.robot]
+            run.end = self._now
+            run.failure = Failure(FailureReason.NOT_REACHABLE,
+                                  f"{run.robot} found no way to {run.action.target} around the other robots")
+            self._launch(run)
+            return
+        self.events.append(SimEvent(t=self._now, kind="nav-wait", detail=f"{run.robot} -> {run.action.target}"))
+        self._schedule(self._now + NAV_RETRY_SECONDS, "nav-retry", run)
+
+    def _retry(self, run: _Running) -> None:
+        """A blocked drive looks again; robots in its way that are idle, or that are
+        themselves waiting for a way and started later (a deadlock), step aside."""
+        if self._running.get(run.robot) is not run:
+            return
+        self.traffic.replans += 1
+        path = self.traffic.drive(run.robot, self._now, self._dt(run.robot), run.goals)
+        if path is None:
+            self._make_way(run)
+            path = self.traffic.drive(run.robot, self._now, self._dt(run.robot), run.goals)
+        if path is None:
+            self._blocked(run)
+            return
+        run.end = max(path[-1].t, self._now + FAILED_ACTION_SECONDS)
+        run.destination = NavGrid.point(path[-1].cell)
+        self.events.append(SimEvent(t=self._now, kind="nav-replan", detail=f"{run.robot} -> {run.action.target}"))
+        self._launch(run)
+
+    def _make_way(self, run: _Running) -> None:
+        way = self.traffic.way_of(run.robot, self._now, run.goals)
+        for other in self.traffic.blockers(run.robot, self._now, run.goals):
+            o = self.state.robots.get(other)
+            if o is None or o.down:
+                continue  # a broken robot is an obstacle
+            theirs = self._running.get(other)
+            waiting = theirs is not None and theirs.end == float("inf")
+            if theirs is not None and not (waiting and (theirs.start, other) > (run.start, run.robot)):
+                continue
+            near = None
+            if o.at is not None and o.at in self.state.objects:
+                p = self.state.objects[o.at].position
+                near = (p[0], p[2])
+            path = self.traffic.step_aside(other, self._now, self._dt(other), way, near)
+            if path is not None:
+                self.events.append(SimEvent(t=self._now, kind="nav-yield",
+                                            detail=f"{other} makes way for {run.robot}"))
+                self._schedule(path[-1].t, "yield-end", (other, path[-1]))
+
+    def _yielded(self, robot: str, step: Step) -> None:
+        """A robot that stepped aside is at its new cell (unless it set off since)."""
+        r = self.state.robots[robot]
+        if robot in self._running or r.down:
+            return
+        r.position = NavGrid.point(step.cell)
+        if r.at is not None and not self.state.in_reach(robot, r.at):
+            r.at = None
+        if r.holding is not None:
+            self.state.attach_to_robot(r.holding, robot)
 
     def next_event_time(self) -> float | None:
         return self._queue[0].t if self._queue else None
@@ -176,6 +313,13 @@ class Simulator:
             elif ev.kind == "move":
                 assert isinstance(ev.payload, ObjectMove)
                 self._move_object(ev.payload)
+            elif ev.kind == "nav-retry":
+                assert isinstance(ev.payload, _Running)
+                self._retry(ev.payload)
+            elif ev.kind == "yield-end":
+                assert isinstance(ev.payload, tuple)
+                who, where = ev.payload
+                self._yielded(who, where)
         self._now = max(self._now, until)
         return done
 
@@ -200,17 +344,26 @@ class Simulator:
         return done
 
     def pose(self, robot: str) -> tuple[float, float]:
-        """Where a robot is now, interpolated along a navigation in progress."""
-        run = self._running.get(robot)
-        if run is None or run.action.skill is not Skill.GoToObject or run.end <= run.start:
+        """Where a robot is now, interpolated along its path on the grid."""
+        if robot not in self.traffic.paths:
             return self.state.robots[robot].position
-        f = min(1.0, max(0.0, (self._now - run.start) / (run.end - run.start)))
-        (x0, z0), (x1, z1) = run.origin, run.destination
-        return (x0 + f * (x1 - x0), z0 + f * (z1 - z0))
+        return self.traffic.point(robot, self._now)
 
     def running(self, robot: str) -> Action | None:
         run = self._running.get(robot)
         return run.action if run else None
+
+    def nav_record(self) -> dict[str, object]:
+        """The robots' motion so far, for the trace (``nav`` event) and its checker: start
+        cells, every MoveAhead begun before now, and the traffic counters."""
+        tr = self.traffic
+        return {
+            "floor_plan": self.scene.floor_plan, "grid": GRID, "avoidance": tr.avoid,
+            "starts": {r: [round(t, 6), c[0], c[1]] for r, (t, c) in sorted(tr.starts.items())},
+            "moves": [[m.robot, round(m.start, 6), round(m.end, 6), m.a[0], m.a[1], m.b[0], m.b[1]]
+                      for m in sorted(tr.moves, key=lambda m: (m.start, m.robot)) if m.start < self._now],
+            "waits": tr.waits, "replans": tr.replans, "yields": tr.yields,
+        }
 
     @property
     def locks(self) -> dict[str, str]:
@@ -265,9 +418,13 @@ class Simulator:
                 self._approaches[run.robot] = self._approaches.get(run.robot, 0) + 1
                 for target in self._occluded_now.pop(run.robot, set()):
                     self._cleared.add((run.robot, target))
-        elif run.action.skill is Skill.GoToObject and failure.reason is FailureReason.ACTUATION_FAULT:
+        elif run.action.skill is Skill.GoToObject and run.goals and run.destination != run.origin:
+            # the drive happened (the grid keeps its cells) but it did not end at the object
             r = self.state.robots[run.robot]
-            r.position = run.origin  # navigation aborted: back where it started
+            r.position = run.destination
+            r.at = None
+            if r.holding is not None:
+                self.state.attach_to_robot(r.holding, run.robot)
         outcome = ActionOutcome(
             robot=run.robot, action=run.action, start=run.start, end=run.end,
             success=failure is None, reason=failure.reason if failure else None,
@@ -291,8 +448,10 @@ class Simulator:
         r = self.state.robots.get(robot)
         if r is None or r.down:
             return None
-        r.position = self.pose(robot)  # a robot that breaks down mid-drive stops there
+        stop = self.traffic.stop(robot, self._now)  # mid-drive: it stops at the cell it entered
+        r.position = NavGrid.point(stop.cell)
         r.down = True
+        self._reroute_around(robot, stop)
         self.events.append(SimEvent(t=self._now, kind="breakdown", detail=robot))
         run = self._running.pop(robot, None)
         if r.holding is not None:
@@ -311,6 +470,24 @@ class Simulator:
                                 message=f"{robot} broke down")
         self.outcomes.append(outcome)
         return outcome
+
+    def _reroute_around(self, broken: str, stop: Step) -> None:
+        """Drives whose reserved way crosses a robot that broke down re-plan from where
+        they are (or wait, if it walls them off)."""
+        for other in self.traffic.crossing(stop.cell, self._now, broken):
+            run = self._running.get(other)
+            if run is None or not run.goals or run.end == float("inf"):
+                continue
+            fresh = _Running(run.robot, run.action, run.start, run.end, None, run.origin, run.destination,
+                             run.failure, run.goals, run.blocked)
+            path = self.traffic.replan(other, self._now, self._dt(other), run.goals)
+            self.events.append(SimEvent(t=self._now, kind="nav-replan", detail=f"{other} around {broken}"))
+            if path is None:
+                self._blocked(fresh)
+                continue
+            fresh.end = max(path[-1].t, self._now)
+            fresh.destination = NavGrid.point(path[-1].cell)
+            self._launch(fresh)
 
     def _move_object(self, move: ObjectMove) -> None:
         oid = move.object if move.object is not None else self._draw_moved(move)

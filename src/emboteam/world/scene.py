@@ -11,6 +11,7 @@ import gzip
 import json
 import math
 import re
+from collections.abc import Sequence
 from functools import cache
 from importlib import resources
 from typing import Literal
@@ -18,6 +19,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr
 
 from emboteam.errors import UnknownObjectError, UnknownSceneError
+from emboteam.world.navgrid import NavGrid, load_grid
 
 Room = Literal["kitchen", "living_room", "bedroom", "bathroom"]
 Temperature = Literal["RoomTemp", "Hot", "Cold"]
@@ -92,23 +94,38 @@ class Scene(BaseModel):
         return {o.type for o in self.objects}
 
     def robot_start(self, index: int) -> tuple[float, float]:
-        """Start pose (x, z) of the ``index``-th robot of a team.
+        """Start pose (x, z) of the ``index``-th robot of a team: a cell of the floor
+        plan's navigation grid (:mod:`emboteam.world.navgrid`).
 
-        AI2-THOR's agent start positions are not in the metadata dump, and the bounding-box
-        centre of the objects is a poor guess: in L-shaped or off-origin rooms it lies
-        outside the room or inside a kitchen island. Robots therefore start on free floor
-        cells (AI2-THOR's 0.25 m grid) chosen by :func:`free_floor_cells`, nearest first to
-        the median object position, 0.5 m or more apart while such cells remain.
+        AI2-THOR's agent start positions are not in the metadata dump. Robots start on
+        reachable cells that are also clear of objects and inside the room
+        (:func:`free_floor_cells`: not next to a counter, not in the empty notch of an
+        L-shaped room's bounding box), nearest first to the median object position and
+        0.5 m or more apart while such cells remain; then on the other reachable cells,
+        so every robot of a team gets its own cell.
         """
         if index < 0:
             raise ValueError(f"robot index must be >= 0, got {index}")
         if not self._starts:
-            self._starts = _spread(free_floor_cells(self), _median_point(self), TEAM_SPACING)
+            grid = _grid_cells(self.floor_plan)
+            free = free_floor_cells(self)
+            roomy = [c for c in grid if c in set(free)] if grid else free
+            centre = _median_point(self)
+            spaced = _spread(roomy, centre, TEAM_SPACING, strict=True)
+            self._starts = _spread(grid or free, centre, TEAM_SPACING, first=spaced)
         starts = self._starts
         if not starts:  # no free cell (never happens in iTHOR): fall back to the centre
             cx, cz = _median_point(self)
             return (round(cx + TEAM_SPACING * index, 3), round(cz, 3))
         return starts[index % len(starts)]
+
+
+def _grid_cells(floor_plan: str) -> list[tuple[float, float]]:
+    try:
+        grid = load_grid(floor_plan)
+    except UnknownSceneError:
+        return []
+    return [NavGrid.point(c) for c in grid.ordered]
 
 
 #: AI2-THOR's navigation grid (m)
@@ -168,15 +185,18 @@ def free_floor_cells(scene: Scene) -> list[tuple[float, float]]:
     return cells
 
 
-def _spread(cells: list[tuple[float, float]], centre: tuple[float, float],
-            spacing: float) -> list[tuple[float, float]]:
-    """Cells nearest ``centre`` first, those ``spacing`` apart from earlier ones before the
-    rest (a large team in a small room still gets distinct cells)."""
+def _spread(cells: list[tuple[float, float]], centre: tuple[float, float], spacing: float, *,
+            strict: bool = False, first: Sequence[tuple[float, float]] = ()) -> list[tuple[float, float]]:
+    """Cells nearest ``centre`` first, those ``spacing`` apart from earlier ones (``first``
+    included) before the rest (a large team in a small room still gets distinct cells);
+    ``strict``: only the spaced ones."""
     ordered = sorted(cells, key=lambda c: (math.hypot(c[0] - centre[0], c[1] - centre[1]), c))
-    chosen: list[tuple[float, float]] = []
+    chosen: list[tuple[float, float]] = list(first)
     for c in ordered:
-        if all(math.hypot(c[0] - d[0], c[1] - d[1]) >= spacing - 1e-9 for d in chosen):
+        if c not in chosen and all(math.hypot(c[0] - d[0], c[1] - d[1]) >= spacing - 1e-9 for d in chosen):
             chosen.append(c)
+    if strict:
+        return chosen
     taken = set(chosen)
     return chosen + [c for c in ordered if c not in taken]
 

@@ -14,27 +14,20 @@ appliance runs.
 
 from __future__ import annotations
 
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.tagger import Item
 
+_W = word_tables("adjuncts")
 #: nouns and adverbs that name a point or stretch of time (not a duration unit)
-TIME_POINTS = frozenset({
-    "today", "tonight", "tomorrow", "yesterday", "morning", "afternoon", "evening", "night",
-    "noon", "midnight", "later", "earlier", "weekend", "week", "month", "year", "day",
-    "monday", "tuesday", "wednesday", "thursday", "friday", "saturday", "sunday",
-    "breakfast", "brunch", "lunch", "dinner", "supper", "bedtime", "lunchtime", "dinnertime",
-    "afterwards", "tomorrows", "mornings", "evenings", "nights",
-})
+TIME_POINTS = _W.set("time_points")
 #: words that introduce a time adjunct ("on" only before a day: "leave the light on all
 #: night" keeps its particle)
-_INTRODUCERS = frozenset({"before", "after", "by", "until", "till", "at", "in", "during",
-                          "around", "over", "from", "since", "for", "later"})
-_DAYS = frozenset({"monday", "tuesday", "wednesday", "thursday", "friday", "saturday", "sunday",
-                   "weekend"})
+_INTRODUCERS = _W.set("introducers")
+_DAYS = _W.set("days")
 #: words that modify a time noun ("this afternoon", "next week", "all day", "at some point")
-_MODIFIERS = frozenset({"this", "next", "last", "every", "each", "all", "the", "a", "some",
-                        "any", "one", "tomorrow", "later", "early", "late", "that"})
+_MODIFIERS = _W.set("modifiers")
 #: "at some point", "at any time": a vague point in time
-_VAGUE_POINTS = frozenset({"point", "time", "stage"})
+_VAGUE_POINTS = _W.set("vague_points")
 
 
 def _time_run(items: list[Item], k: int) -> int:

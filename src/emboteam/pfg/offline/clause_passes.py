@@ -14,6 +14,7 @@ from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start, parse_np
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
@@ -32,13 +33,14 @@ def known_objects(items: list[Item]) -> list[Head] | None:
 
 #: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
 _NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
+_W = word_tables("clause_passes")
 #: a person's own doings under "when", "before", "if": "when I get home", "before you go"
 #: are a time, not a request
-_PERSON = frozenset({"i", "we", "you"})
+_PERSON = _W.set("person")
 
 
 #: verbs of a question that points something out ("see the box on the table?")
-_POINTING = frozenset({"see", "notice", "spot", "remember", "know"})
+_POINTING = _W.set("pointing")
 
 
 #: acts a purpose infinitive asks of what was just placed ("put it on the hob to boil")
@@ -65,7 +67,7 @@ def purpose_acts(clause: Clause, parsed: ParsedClause) -> None:
 
 
 #: words that make "X should be in Y" a guess about where X is, not a wish
-_WHEREABOUTS = frozenset({"somewhere", "probably", "presumably", "somewhere in", "anywhere"})
+_WHEREABOUTS = _W.set("whereabouts")
 
 
 def whereabouts(clause: Clause, parsed: ParsedClause) -> bool:
@@ -102,7 +104,7 @@ def pointing_question(clause: Clause, parsed: ParsedClause) -> bool:
 
 
 #: "don't worry about ...", "no rush": reassurance, nothing to do
-_NO_WORRIES = frozenset({"worry", "bother", "rush", "stress", "panic", "fuss", "hurry"})
+_NO_WORRIES = _W.set("no_worries")
 
 
 def small_talk(clause: Clause) -> bool:
@@ -173,8 +175,7 @@ def own_future(clause: Clause) -> bool:
     return words[2].copula
 
 
-_WISH_WORDS = frozenset({"love", "like", "appreciate", "prefer", "great", "nice", "good", "grateful", "brilliant",
-                         "lovely", "ideal", "perfect", "helpful", "amazing", "fantastic", "wonderful"})
+_WISH_WORDS = _W.set("wish_words")
 
 
 def _wish_for_it(clause: Clause) -> bool:
@@ -269,7 +270,7 @@ def _fixed_place(head: Head) -> bool:
 
 
 #: prepositions that say where something goes, most telling first
-_GOES_TO = ("into", "onto", "to", "in", "on")
+_GOES_TO = _W.seq("goes_to")
 
 
 def _label_to_place(label: list[Head], nxt: Clause) -> Frame | None:
@@ -414,7 +415,7 @@ def elided_participle(clause: Clause, before: ParsedClause | None) -> list[Frame
 
 
 #: words that may stand beside an elided state: "(then) off again", "back off afterwards"
-_ELIDED_STATE_EXTRAS = frozenset({"again", "back", "afterwards", "after", "too", "later"})
+_ELIDED_STATE_EXTRAS = _W.set("elided_state_extras")
 
 
 def elided_state(clause: Clause, before: ParsedClause | None) -> list[Frame]:

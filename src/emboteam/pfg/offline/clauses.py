@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.tagger import Item
 
 #: how a clause attaches to the one before it
@@ -36,15 +37,11 @@ class Clause:
 
 
 _SENTENCE_END = frozenset(".!?;:")
+_W = word_tables("clauses")
 #: ordinals that number the steps of a spoken list
-_LIST_ORDINALS = frozenset({"first", "firstly", "second", "secondly", "third", "thirdly", "fourth",
-                            "fourthly", "fifth", "fifthly"})
-_HUMAN = frozenset({"i", "we", "you", "someone", "somebody", "nobody", "anyone", "anybody",
-                    "everyone", "everybody", "they", "he", "she", "one"})
-_VERB_CUES = frozenset({"should", "must", "will", "can", "could", "would", "to", "please",
-                        "also", "just", "then", "now", "go", "quickly", "kindly", "you",
-                        "someone", "somebody", "anyone", "anybody", "we", "let", "us", "ahead",
-                        "and", "maybe", "perhaps", "possibly"})
+_LIST_ORDINALS = _W.set("list_ordinals")
+_HUMAN = _W.set("human")
+_VERB_CUES = _W.set("verb_cues")
 
 
 def _next_is_object(items: list[Item], j: int) -> bool:
@@ -84,8 +81,7 @@ def verb_here(items: list[Item], j: int) -> bool:
 
 
 #: words that only introduce a robot: "have robot 2 ...", "the second robot", "ask robot 1 to"
-_ROBOT_INTRO = frozenset({"the", "have", "let", "ask", "tell", "get", "make", "use", "using",
-                          "with", "by", "for", "assign", "order", "instruct"})
+_ROBOT_INTRO = _W.set("robot_intro")
 
 
 def _without_robot_words(items: list[Item]) -> list[Item]:
@@ -130,12 +126,7 @@ def _sentences(items: list[Item]) -> list[tuple[list[Item], str | None]]:
 
 
 #: team members named without a number: "one of you", "the other", "another robot"
-TEAM_SUBJECTS: tuple[tuple[str, ...], ...] = (
-    ("one", "of", "you"), ("one", "of", "the", "robots"), ("one", "of", "them"),
-    ("the", "other", "robot"), ("the", "other", "one"), ("the", "other"),
-    ("another", "robot"), ("another", "one"), ("another",), ("one", "robot"),
-    ("someone", "else"), ("somebody", "else"), ("each", "robot"), ("both", "robots"),
-    ("both", "of", "you"), ("the", "first", "one"), ("the", "second", "one"))
+TEAM_SUBJECTS = _W.phrases("team_subjects")
 
 
 def team_subject(items: list[Item], j: int) -> int:
@@ -156,10 +147,10 @@ def team_subject(items: list[Item], j: int) -> int:
 
 
 #: "I'd like my phone brought over": the verb after the object is the wished state
-_WISH_VERBS = frozenset({"want", "like", "need", "love", "prefer"})
+_WISH_VERBS = _W.set("wish_verbs")
 
 #: nouns that name a team member
-_ROBOT_HEADS = frozenset({"robot", "robots", "bot", "bots"})
+_ROBOT_HEADS = _W.set("robot_heads")
 
 
 def _has_predicate(items: list[Item]) -> bool:
@@ -186,16 +177,14 @@ def _has_predicate(items: list[Item]) -> bool:
 
 
 #: adverbs between a person and the verb: "I still need", "we really want"
-_SUBJECT_ADVERBS = frozenset({"still", "really", "also", "just", "only", "actually", "already", "definitely",
-                              "probably", "usually", "always", "never", "honestly"})
+_SUBJECT_ADVERBS = _W.set("subject_adverbs")
 
 #: verbs that start a run-on request after a complete one ("turn off the light put the
 #: book on the table")
-_RUN_ON_VERBS = frozenset({"put", "turn", "switch", "close", "open", "take", "bring", "throw", "slice", "place",
-                           "move", "shut", "grab", "get", "make", "cut", "wash", "fill"})
+_RUN_ON_VERBS = _W.set("run_on_verbs")
 
 #: "once it's ready bring it over": words of being done that end a state clause
-_READY = frozenset({"ready", "done", "finished", "over", "through"})
+_READY = _W.set("ready")
 
 
 def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
@@ -260,17 +249,13 @@ def _ends_with_place(items: list[Item]) -> bool:
     return p > 0 and p + 1 < len(items) and _skip_np(items, p + 1) == len(items)
 
 
-_NP_WORDS = frozenset({"of", "all", "both", "each", "every"})
+_NP_WORDS = _W.set("np_words")
 #: adjectives inside a subject ("the big floor lamp's still on")
-_NP_ADJECTIVES = frozenset({"big", "small", "large", "little", "tiny", "huge", "tall", "short", "long", "old",
-                            "new", "spare", "other", "red", "green", "blue", "yellow", "black", "white", "brown",
-                            "grey", "gray", "wooden", "plastic", "metal", "glass", "main", "whole"})
+_NP_ADJECTIVES = _W.set("np_adjectives")
 
 
 #: words after which "to" starts an infinitive of the same clause, not a purpose
-_TO_INFINITIVE_HEADS = frozenset({"going", "gonna", "want", "wants", "wanted", "need", "needs", "needed",
-                                  "have", "has", "had", "used", "ought", "able", "about", "supposed",
-                                  "meant", "trying", "try", "tried", "planning", "plan", "hoping", "hope"})
+_TO_INFINITIVE_HEADS = _W.set("to_infinitive_heads")
 
 
 def _skip_np(items: list[Item], j: int) -> int:
@@ -407,14 +392,13 @@ def _state_item_here(items: list[Item], j: int) -> bool:
 
 
 #: states that end a "thing state" item of a run-on list (not "on": it is also a place)
-_RUN_ON_STATES = frozenset({"off", "running", "open", "closed", "shut", "ajar", "sliced", "clean"})
+_RUN_ON_STATES = _W.set("run_on_states")
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")
-_SUBJECT_PLACES = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "off", "out of", "under"})
+_SUBJECT_PLACES = _W.set("subject_places")
 
 #: words that open a predicate of a new subject: "should go", "wants to go", "can come out"
-_SUBJECT_MODALS = frozenset({"should", "can", "could", "must", "will", "would", "needs", "wants", "has",
-                             "might", "may", "ought", "need", "want"})
+_SUBJECT_MODALS = _W.set("subject_modals")
 
 
 def _modal_predicate(items: list[Item], k: int) -> bool:

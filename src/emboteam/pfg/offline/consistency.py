@@ -62,6 +62,43 @@ def check_consistent(clauses: Sequence[Clause], drafts: dict[int, list[Draft]]) 
                     raise ContradictoryInstruction(first, second, a, b)
 
 
+def check_placements(clauses: Sequence[Clause],
+                     superseded: Sequence[tuple[int, Draft, int, Draft]]) -> list[tuple[str, str]]:
+    """One object placed in two places (draft_passes.drop_superseded_placements kept the
+    later one): an error naming both when they are asked at once ("put the apple in the
+    fridge and put the apple in the sink"), else the later one wins and this returns a
+    note (span, reason) saying so ("put it in the sink, then in the fridge")."""
+    order = {ci: k for k, group in enumerate(steps(clauses)) for ci in group}
+    notes = []
+    for ci, first, cj, second in superseded:
+        if ci == cj or not (_asks_to_place(clauses[ci]) and _asks_to_place(clauses[cj])):
+            # one clause's list read twice ("pillow and paper up - pillow on the sofa"), or
+            # where the object is now ("the candle fell in the bin, put it on the counter",
+            # "the wine bottle on the table - can it go in the fridge?"): a reading, no request
+            continue
+        if order.get(ci) == order.get(cj) and clauses[ci].sentence == clauses[cj].sentence:
+            a = next(c for c in first.conditions if c.predicate is P.inside)
+            b = next(c for c in second.conditions if c.predicate is P.inside)
+            raise ContradictoryInstruction(first, second, a, b)
+        notes.append((first.description, f"a later step places it elsewhere ({second.description!r}): "
+                                         "the later place is kept"))
+    return notes
+
+
+#: verbs that open a request to place something: only two such requests can contradict
+#: (a small list on purpose: what else reads as a placement is mostly where a thing is now)
+_PLACING = frozenset({"put", "place", "set", "move", "leave", "stick", "pop", "stand", "lay", "hang", "store"})
+_OPENERS = frozenset({"and", "then", "also", "please", "now", "so", "but"})
+
+
+def _asks_to_place(clause: Clause) -> bool:
+    """Does the clause open with a placing verb ("put the apple in the sink")?"""
+    words = [w for w in clause.text.lower().split() if w.isalpha()]
+    while words and words[0] in _OPENERS:
+        words.pop(0)
+    return bool(words) and words[0] in _PLACING
+
+
 def narrow_contrasts(drafts: dict[int, list[Draft]]) -> None:
     """"Switch on the tall lamp and turn off the little one on the desk": when one of two
     opposed requests names an instance and the other a choice of kinds that includes it, the

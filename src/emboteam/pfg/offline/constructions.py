@@ -11,6 +11,7 @@ import re
 from dataclasses import replace
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
@@ -46,10 +47,14 @@ def places_to_locations(frame: Frame) -> None:
             t.dest = []
 
 
+_W = word_tables("constructions")
 #: what a noun phrase can be said to be when it is only the means: "the microwave is fine"
-_INSTRUMENT_OK = frozenset({"fine", "ok", "okay", "good", "best", "better", "easiest",
-                            "quickest", "fastest", "faster", "available", "free", "enough",
-                            "handiest"})
+_INSTRUMENT_OK = _W.set("instrument_ok")
+#: "the pan could really do with a good scrub", "the mug badly needs a wash": the words
+#: between the thing and the verbal noun of a light-verb construction
+_BEFORE_VERBAL_NOUN = _W.set("before_verbal_noun")
+#: what may stand between the means and its approval ("the microwave is totally fine")
+_BEFORE_INSTRUMENT_OK = _W.set("before_instrument_ok")
 #: acts a noun can name in "give X a rinse", "the pan could do with a scrub"
 _LIGHT_ACTS = frozenset({Act.CLEAN, Act.HEAT, Act.MICROWAVE, Act.COOK, Act.TOAST, Act.COOL,
                          Act.SLICE, Act.WATER})
@@ -70,8 +75,7 @@ def instrument_clause(items: list[Item], mentions: list[Head]) -> Head | None:
     if head is None or head.noun is None or k >= n:
         return None
     m = k
-    while m < n and items[m].text in ("is", "are", "will", "would", "should", "be", "totally",
-                                      "perfectly", "just", "really", "also", "probably"):
+    while m < n and items[m].text in _BEFORE_INSTRUMENT_OK:
         m += 1
     rest = {x.text for x in items[m:]}
     if m > k and m < n and (items[m].text in _INSTRUMENT_OK or items[m].text == "do") \
@@ -118,10 +122,7 @@ def light_verb(items: list[Item]) -> list[Item]:
         return items
     k = skip_locative(items, k)       # "the pan on the stove needs a good scrub"
     m = k
-    while m < len(items) and items[m].text in ("could", "would", "really", "definitely",
-                                               "badly", "do", "with", "use", "needs", "need",
-                                               "wants", "deserves", "is", "in", "of", "has",
-                                               "got", "want", "needed", "urgently"):
+    while m < len(items) and items[m].text in _BEFORE_VERBAL_NOUN:
         m += 1
     if m == k:
         return items
@@ -132,7 +133,7 @@ def light_verb(items: list[Item]) -> list[Item]:
 
 
 #: verbs that make something happen to an object: "get the kettle boiling"
-_CAUSATIVES = frozenset({"get", "have", "keep", "set"})
+_CAUSATIVES = _W.set("causatives")
 _NO_ACT = frozenset({Act.CAUSE, Act.GO, Act.MAKE, Act.VAGUE})
 
 
@@ -186,8 +187,7 @@ def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
 
 
 #: parts of a place that are the place for a goal: AI2-THOR has no "edge of the bathtub"
-PLACE_PARTS = frozenset({"side", "edge", "top", "corner", "rim", "end", "middle", "surface", "bottom",
-                         "back", "front", "ledge", "lip"})
+PLACE_PARTS = _W.set("place_parts")
 
 
 def parts_as_places(items: list[Item]) -> list[Item]:
@@ -238,14 +238,12 @@ def commaless_lists(items: list[Item]) -> list[Item]:
 
 #: verbs that non-native speakers often put after their object ("the book put on sofa",
 #: "desk lamp turn off", "the wine bottle bring to fridge")
-_OBJECT_FIRST_VERBS = frozenset({"put", "bring", "take", "turn", "switch", "make", "throw", "place", "move",
-                                 "carry", "set", "close", "open", "slice", "cut", "wash", "clean", "heat",
-                                 "toss", "give", "leave", "shut", "pop", "stick", "chuck", "bin", "fill"})
-_CLAUSE_OPENERS = frozenset({"please", "pls", "plz", "also", "then", "and", "now", "just", "so"})
+_OBJECT_FIRST_VERBS = _W.set("object_first_verbs")
+_CLAUSE_OPENERS = _W.set("clause_openers")
 #: verbs whose base form is also a participle or a state: only with "it" after them
-_PARTICIPLE_LIKE = frozenset({"shut", "close", "open", "set", "clean", "wash", "cut", "slice"})
-_PIECE_WORDS = frozenset({"slice", "slices", "piece", "pieces", "bit", "bits", "half", "halves", "chunk", "chunks"})
-_NP_WORDS = frozenset({"big", "small", "little", "tall", "old", "new", "other", "my", "your", "our", "both", "all"})
+_PARTICIPLE_LIKE = _W.set("participle_like")
+_PIECE_WORDS = _W.set("piece_words")
+_NP_WORDS = _W.set("np_words")
 
 
 def _object_first_np(items: list[Item], j: int) -> int:

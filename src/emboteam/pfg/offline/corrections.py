@@ -8,13 +8,12 @@ everything downstream sees the corrected instruction only.
 
 from __future__ import annotations
 
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.tagger import Item
 
+_W = word_tables("corrections")
 #: marker word sequences; a bare "no"/"sorry" is a marker only between punctuation
-_MARKERS: tuple[tuple[str, ...], ...] = (
-    ("i", "mean"), ("no", "wait"), ("wait", "no"), ("or", "rather"), ("scratch", "that"),
-    ("no", "sorry"), ("sorry",), ("no",), ("correction",), ("rather",),
-)
+_MARKERS = _W.phrases("markers")
 _BREAK = frozenset(".!?;:,")
 
 

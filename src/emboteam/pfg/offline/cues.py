@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
 from emboteam.pfg.offline.errors import OfflineParseError
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import Frame, Head, Target, np_start, parse_np
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import Item
@@ -31,31 +32,29 @@ from emboteam.pfg.offline.tagger import Item
 Act = lx.Act
 Stat = lx.Stat
 
+_W = word_tables("cues")
 #: prepositions (canonical, :data:`lexicon.PREPOSITIONS`) that introduce where an object goes
-_PLACE_PREPS = frozenset({"in", "on", "to", "at", "near", "by"})
+_PLACE_PREPS = _W.set("place_preps")
 #: acts that say nothing about the goal on their own ("get", "leave", "go"): a cue only
 #: together with a state word or a place
 _GENERIC_ACTS = frozenset({Act.CAUSE, Act.GO, Act.MAKE, Act.VAGUE})
 #: words after which a noun phrase is what is NOT meant ("all but the apple", "not the
 #: knife", "instead of the cup")
-_EXCLUDING = frozenset({"except", "but", "besides", "apart", "other", "instead", "rather", "not",
-                        "excluding", "without"})
+_EXCLUDING = _W.set("excluding")
 #: nouns that name no object ("everything", "the room")
-_NOT_OBJECTS = frozenset({"anything", "room"})
+_NOT_OBJECTS = _W.set("not_objects")
 
 
 #: forms of "be": a clause with one and no act is a statement about how things are
-_BE = frozenset({"is", "are", "was", "were", "am", "be", "been", "being", "s", "re", "m"})
+_BE = _W.set("be")
 #: "should be", "needs to be": a wished state, not a statement
-_MODAL_BEFORE_BE = frozenset({"should", "must", "could", "would", "will", "can", "might", "may",
-                              "shall", "to"})
+_MODAL_BEFORE_BE = _W.set("modal_before_be")
 
 
 #: words that open a relative clause ("the potato that's in the sink")
-_RELATIVE = frozenset({"that", "which", "who"})
+_RELATIVE = _W.set("relative")
 #: words that open a subordinate clause ("once it's on there")
-_SUBORDINATE = frozenset({"once", "when", "whenever", "after", "before", "until", "till", "while",
-                          "if", "because", "since", "as", "so"})
+_SUBORDINATE = _W.set("subordinate")
 
 
 def _embedded_be(items: list[Item], k: int) -> bool:
@@ -67,7 +66,9 @@ def _embedded_be(items: list[Item], k: int) -> bool:
 
 
 #: past participles of "have gone off" kind (the regular ones end in -ed)
-_PARTICIPLES = frozenset({"gone", "been", "got", "gotten", "left", "fallen", "broken", "run", "come"})
+_PARTICIPLES = _W.set("participles")
+#: "the fork sitting in the sink": verbs of posture, which say where something is
+_POSTURE_VERBS = _W.set("posture_verbs")
 
 
 def _perfect(items: list[Item], k: int) -> bool:
@@ -96,7 +97,7 @@ def _posture(items: list[Item], k: int) -> bool:
     """"the fork and spoon sitting in the sink": where something is, as a participle."""
     verb = items[k].verb
     return k > 0 and items[k - 1].noun is not None and verb is not None and verb.form == "ing" \
-        and verb.lemma in ("sit", "lie", "stand", "rest", "wait", "hang")
+        and verb.lemma in _POSTURE_VERBS
 
 
 def is_statement(items: list[Item]) -> bool:

@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import Head
 from emboteam.pfg.offline.tagger import NounReading
 from emboteam.world.catalogue import load_catalogue
@@ -18,9 +19,9 @@ from emboteam.world.goals import ObjectRef
 from emboteam.world.state import ObjectState
 
 _names = ref_types
+_W = word_tables("discourse")
 #: words that make "one" another instance of the kind just named ("a fresh one", "a new one")
-OTHER_WORDS = frozenset({"other", "another", "new", "fresh", "spare", "second", "different", "clean", "old",
-                         "remaining", "rest"})
+OTHER_WORDS = _W.set("other_words")
 
 
 @dataclass

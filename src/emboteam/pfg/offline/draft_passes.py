@@ -74,12 +74,16 @@ def drop_fulfilled_wishes(drafts: dict[int, list[Draft]]) -> None:
     drop_drafts(drafts, fulfilled)
 
 
-def drop_superseded_placements(drafts: dict[int, list[Draft]], grounder: Grounder) -> None:
+def drop_superseded_placements(drafts: dict[int, list[Draft]],
+                               grounder: Grounder) -> list[tuple[int, Draft, int, Draft]]:
     """"Pick the pillow and the paper up - pillow on the sofa, paper on the coffee table":
     an object placed twice ends where it is placed last; the earlier placement of one
     object (an id, or a kind the scene has one of) is no goal (both cannot hold at the
-    end). "The toilet paper on the holder, the spare roll on the shelf" is two rolls."""
+    end). "The toilet paper on the holder, the spare roll on the shelf" is two rolls.
+    Returns (clause, dropped draft, clause, the draft that supersedes it) for each, which
+    consistency.check_placements turns into an error or a note."""
     order = [(ci, k, d) for ci in sorted(drafts) for k, d in enumerate(drafts[ci])]
+    dropped: list[tuple[int, Draft, int, Draft]] = []
 
     def one_object(ref: ObjectRef) -> bool:
         return ref.id is not None or sum(len(grounder.instances(t)) for t in ref.types) == 1
@@ -99,8 +103,13 @@ def drop_superseded_placements(drafts: dict[int, list[Draft]], grounder: Grounde
             # "potato in the microwave, switch it on, then put it on a plate": a step
             d.intermediate = True
             return False
+        cj, by = next((cj, e) for cj, _, e in order[at + 1:] if not e.intermediate and any(
+            c2.predicate is Predicate.inside and refs_overlap(c.subject, c2.subject) and c2.receptacle != c.receptacle
+            for c in d.conditions for c2 in e.conditions))
+        dropped.append((ci, d, cj, by))
         return True
     drop_drafts(drafts, superseded)
+    return dropped
 
 
 def _used_there(placed: Draft, after: list[Draft]) -> bool:

@@ -22,6 +22,8 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from pydantic import model_validator
+
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause, team_subject
 from emboteam.pfg.offline.constructions import (
@@ -34,6 +36,7 @@ from emboteam.pfg.offline.constructions import (
     places_to_locations,
     with_as_and,
 )
+from emboteam.pfg.offline.knowledge import Strict, load, word_tables
 from emboteam.pfg.offline.phrases import (
     MODIFIER_PREPS,
     Frame,
@@ -59,79 +62,48 @@ Act = lx.Act
 Stat = lx.Stat
 
 
+class _Framing(Strict):
+    pattern: str
+    why: str = ""
+
+
+class PreambleFile(Strict):
+    """``data/preamble.json``: politeness, hedges and framing that carry no content."""
+
+    about: str = ""
+    who: str
+    preamble: tuple[_Framing, ...]
+    trailing: str
+    wish: str
+    ask_for: str
+
+    def compiled(self) -> tuple[list[re.Pattern[str]], re.Pattern[str], re.Pattern[str], re.Pattern[str]]:
+        """The preamble patterns ("{who}" filled in), the trailing one, the wish and ask-for ones."""
+        return ([re.compile(r"^(?:" + f.pattern.replace("{who}", self.who) + r")\b\s*") for f in self.preamble],
+                re.compile(r"\s*\b(?:" + self.trailing + r")$"), re.compile(self.wish), re.compile(self.ask_for))
+
+    @model_validator(mode="after")
+    def _compiles(self) -> PreambleFile:
+        for where, pattern in [("who", self.who), ("trailing", self.trailing), ("wish", self.wish),
+                               ("ask_for", self.ask_for), *((f"preamble[{i}]", f.pattern)
+                                                           for i, f in enumerate(self.preamble))]:
+            try:
+                re.compile(pattern.replace("{who}", self.who))
+            except re.error as exc:
+                raise ValueError(f"{where}: {pattern[:60]!r} is no regular expression: {exc}") from None
+        return self
+
+
 # --- preamble: politeness, hedges and framing that carry no content -------------------
-_WHO = (r"(?:you|someone|somebody|anyone|anybody|one of you|one of the robots|one robot|"
-        r"another robot|the other robot|the other one|the other|another one|another|"
-        r"either of you|any robot|the robots?|robots?|the team|team|guys|you two|you guys)")
-_PREAMBLE = [re.compile(r"^(?:" + p + r")\b\s*") for p in (
-    r"please|kindly|just|also|now|ok|okay|alright|all right|so|well|oh|hey|hi|hello|um|uh|"
-    r"hmm|and|but|first|firstly|to begin|to start|then|quickly|right|yes|yeah|finally",
-    r"(?:could|can|would|will|might) " + _WHO + r"(?: please)?(?: kindly)?(?: possibly)?",
-    r"(?:can|could|may|might) (?:i|we)(?: please)?(?= (?:have|get|grab)\b)",
-    r"(?:be )?(?:able|willing) to",
-    r"(?:do you think|i was wondering if|i wonder if|any chance|is there any chance|"
-    r"i would be grateful if|i would love it if|it would help if) " + _WHO
-    + r" (?:could|can|would|might|will)(?: please)?",
-    r"(?:if " + _WHO + r" (?:could|can|would|have time),? ?)",
-    r"(?:would|do) " + _WHO + r" mind|mind",
-    # "I'd love to come home to the telly on": the state found on coming home is the wish
-    r"(?:i|we) (?:would|will|do)? ?(?:want|like|love) to (?:come home|come back|get home|get back|"
-    r"wake up|walk in|come down) to",
-    r"(?:i|we) (?:would|will|do|really)? ?(?:want|need|like|love|wish|expect|require|ask) "
-    + _WHO + r"? ?to",
-    r"(?:i|we) (?:would|will)? ?(?:want|need|like|love) to",
-    _WHO + r" (?:should|must|need to|needs to|have to|has to|will|can|could|might|may|"
-    r"ought to|are to|is to|would)",
-    r"let us|let s|lets",
-    r"go ahead and|go and|try to|try and|be sure to|make sure to|remember to|"
-    r"do not forget to|never forget to|dont forget to",
-    r"make sure that|make sure|ensure that|ensure|see to it that|check that|verify that",
-    r"help me|help us|help",
-    r"(?:it would be|it will be|that would be|would be) (?:really |very |so )?"
-    r"(?:great|nice|good|lovely|awesome|helpful|wonderful|cool|ideal|perfect)",
-    r"(?:is it|would it be|will it be|it is) possible (?:for " + _WHO + r" )?to",
-    r"(?:your|the|our) (?:task|job|goal|mission|assignment) is to",
-    r"i would appreciate it if " + _WHO + r" (?:could|would|can)",
-    r"what (?:i|we) (?:want|need|would like|would love) is",
-    r"(?:be )?(?:so kind as to|kind enough to|a dear and|a star and)",
-    r"time to|it is time to|now is the time to",
-    r"(?:how|what) about(?= \w+ing\b)",       # "how about putting the bread in the toaster"
-    r"to",
-    # "don't forget the TV is still on", "remember that the fridge is open": a reminder of
-    # a state, read as the statement (a complaint)
-    r"(?:do not|never|dont) forget(?: that)?(?= (?:the|my|your|our|this|that|these|those) )",
-    r"(?:remember|note|notice)(?: that)?(?= (?:the|my|your|our|this|that|these|those) )",
-    # "I think my phone is in one of the drawers": an opinion about a state is the statement
-    r"(?:i|we) (?:think|guess|believe|reckon|suppose|bet|am sure|am pretty sure|know)"
-    r"(?: that)?(?= (?:the|my|your|our|this|that|these|those|a|an) )",
-)]
-_TRAILING = re.compile(r"\s*\b(?:please|for me|for us|thanks|thank you|if you can|if possible|"
-                       r"right now|now|asap|when you can|would you|will you|as well|too|also|"
-                       r"okay|ok|real quick|for a moment|for a second|again|"
-                       r"(?:would|will|that would|it would) be (?:really |very |so |just )?"
-                       r"(?:great|nice|lovely|perfect|ideal|wonderful|awesome|appreciated|good|"
-                       r"brilliant|amazing|fantastic|super|helpful)|"
-                       r"if you (?:could|would|can|do not mind|please))$")
+_PREAMBLE, _TRAILING, _WISH, _ASK_FOR = load("preamble.json", PreambleFile).compiled()
+_W = word_tables("frames")
 #: words dropped anywhere outside noun phrases
-_MID_FILLERS = frozenset({"please", "also", "just", "quickly", "carefully", "gently", "kindly",
-                          "immediately", "really", "actually", "again", "back", "right",
-                          "away", "as", "well", "then", "way", "first"})
-
-
-#: preambles that turn what follows into a wish ("make sure the fridge is closed")
-_WISH = re.compile(r"^(?:make sure|ensure|see to it|check that|verify that|what (?:i|we)|"
-                   r"(?:i|we) (?:would|will|do|really)? ?(?:want|need|like|love)|it would be)")
-
-
-_ASK_FOR = re.compile(r"^(?:can|could|may|might) (?:i|we) (?:please )?(?:have|get|grab)\b")
+_MID_FILLERS = _W.set("mid_fillers")
 
 
 #: sentence adverbs and hesitations that may come before the verb ("maybe throw the CD
 #: away", "um, like, wash the mug", "honestly just close it")
-_LEADING_ADVERBS = frozenset({"maybe", "perhaps", "possibly", "probably", "actually",
-                              "basically", "honestly", "seriously", "like", "um", "uh", "erm",
-                              "so", "well", "just", "anyway", "anyways", "really", "simply",
-                              "also", "please", "kindly", "quickly", "carefully", "now"})
+_LEADING_ADVERBS = _W.set("leading_adverbs")
 
 
 def _drop_leading_adverbs(items: list[Item], flags: dict[str, bool]) -> list[Item]:
@@ -195,21 +167,21 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
 
 
 # --- clause parsing ---------------------------------------------------------------------
-_HUMAN_SUBJECTS = frozenset({"i", "we", "you", "someone", "somebody", "nobody", "anyone",
-                             "anybody", "everyone", "everybody", "they", "he", "she",
-                             "no one", "no"})
-_WANT = frozenset({"want", "need", "like", "love", "prefer", "wish", "require", "fancy",
-                   "crave"})
-_REFLEXIVE = frozenset({"itself", "themselves", "himself", "herself"})
+_HUMAN_SUBJECTS = _W.set("human_subjects")
+_WANT = _W.set("want")
+_REFLEXIVE = _W.set("reflexive")
 
 
 #: irregular past participles after "have" ("I've left it", "it has gone")
-_IRREGULAR_PARTICIPLES = frozenset({"left", "put", "gone", "got", "gotten", "taken", "done", "made",
-                                    "broken", "forgotten", "lost", "set", "thrown", "kept", "brought"})
+_IRREGULAR_PARTICIPLES = _W.set("irregular_participles")
 
 
 #: "would look nicer on": a wished place
-_LOOKS = frozenset({"nicer", "better", "good", "great", "lovely", "best", "nice"})
+_LOOKS = _W.set("looks")
+#: adverbs, hedges and auxiliaries between a subject and its state ("is still nicely warm")
+_BEFORE_STATE = _W.set("before_state")
+#: "should end up sliced", "winds up on the plate": as "be"
+_END_UP = _W.set("end_up")
 
 
 def _participle(it: Item) -> bool:
@@ -243,20 +215,13 @@ def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
             frame_flags["modal"] = True
         elif t == "to" and not (nxt_item is not None and (nxt_item.text == "be" or nxt_item.verb)):
             break      # "towel to towel holder": a place, not an infinitive
-        elif it.copula or t in ("still", "already", "always", "now", "currently", "way", "so",
-                                "somewhere", "probably", "usually", "normally", "definitely",
-                                "very", "really", "again", "kept", "be", "been", "being",
-                                "all", "nice", "and", "both", "completely", "fully",
-                                "properly", "totally", "pretty", "bit", "a", "little",
-                                "somewhat", "quite", "rather", "extremely", "super", "well",
-                                "nicely", "brightly", "wide", "slightly", "partly", "partially",
-                                "entirely", "absolutely", "literally", "even", "just", "back"):
+        elif it.copula or t in _BEFORE_STATE:
             pass
         elif t in ("look", "looks") and j + 2 < len(items) and items[j + 1].text in _LOOKS \
                 and items[j + 2].prep in ("on", "in"):
             frame_flags["modal"] = True
             j += 1      # "the vase would look nicer on the side table": where it should be
-        elif t in ("end", "ends", "wind", "winds") and j + 2 < len(items) and items[j + 1].text == "up" \
+        elif t in _END_UP and j + 2 < len(items) and items[j + 1].text == "up" \
                 and items[j + 2].state is not None and items[j + 2].prep is None:
             j += 1      # "should end up sliced (and on a plate)": as "be"
         else:
@@ -704,7 +669,7 @@ def _state_word_at(items: list[Item], k: int) -> bool:
 
 
 #: what may follow "goes" for "in the one just named": "goes in", "goes back in there"
-_BARE_IN = frozenset({"in", "inside", "back", "there", "too", "as", "well", "then", "next"})
+_BARE_IN = _W.set("bare_in")
 
 
 def _bare_in(items: list[Item], k: int) -> bool:
@@ -950,8 +915,7 @@ def parse_clause(clause: Clause, directive: bool = False) -> ParsedClause:
 
 
 #: verbs that stand for the verb before: "so does the tomato", "the egg should too"
-_PRO_VERBS = frozenset({"does", "do", "did", "is", "are", "should", "can", "will", "must",
-                        "has", "have"})
+_PRO_VERBS = _W.set("pro_verbs")
 
 
 def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],

@@ -30,7 +30,12 @@ from emboteam.pfg.offline.clause_passes import (
     whereabouts,
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
-from emboteam.pfg.offline.consistency import check_consistent, narrow_choices, narrow_contrasts
+from emboteam.pfg.offline.consistency import (
+    check_consistent,
+    check_placements,
+    narrow_choices,
+    narrow_contrasts,
+)
 from emboteam.pfg.offline.constructions import (
     commaless_lists,
     object_first,
@@ -40,6 +45,8 @@ from emboteam.pfg.offline.constructions import (
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
+from emboteam.pfg.offline.doubts.choose import choices
+from emboteam.pfg.offline.doubts.priors import Priors
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
     drop_guessed_water,
@@ -51,10 +58,11 @@ from emboteam.pfg.offline.draft_passes import (
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
-from emboteam.pfg.offline.tagger import tag
+from emboteam.pfg.offline.tagger import Item, tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.taskspec import TaskSpec
@@ -72,9 +80,10 @@ log = logging.getLogger(__name__)
 ParseResult = Reading
 
 
+_W = word_tables("frontend")
 #: a prefix of only these is the person's own words ("(when) you have got the egg out"),
 #: nothing left unread
-_PERSON_WORDS = frozenset({"you", "i", "we", "have", "has", "had", "ve", "will", "ll", "would", "d"})
+_PERSON_WORDS = _W.set("person_words")
 
 
 def _note(exc: OfflineParseError) -> ReadingNote:
@@ -138,7 +147,7 @@ def _vague_phrase(clause: Clause) -> str | None:
 
 
 #: "leave the spray bottle", "forget the vase", "skip the candle": no change to it
-_LEAVE_VERBS = frozenset({"leave", "forget", "skip"})
+_LEAVE_VERBS = _W.set("leave_verbs")
 
 
 def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dict[int, list[Draft]]) -> bool:
@@ -172,6 +181,25 @@ def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dic
     return bool(taken_back)
 
 
+def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
+                     team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None) -> Reading:
+    """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
+    list of the mentions nothing explains, and the conditions a close
+    alternative would change marked unsure."""
+    found = choices(reading.spec, items, scene, state, team, semantics.history, priors)
+    best = found.candidates[0]
+    notes = reading.notes
+    unsure = reading.unsure
+    if not best.as_read:
+        notes += (ReadingNote(", ".join(r.span for r in best.resolves), "read as: " + "; ".join(
+            r.how for r in best.resolves), "assumed"),)
+        unsure += tuple(str(c) for c in best.goals if str(c) not in unsure and c not in reading.spec.goal().conditions)
+    noted = " ".join(n.span for n in notes if n.kind == "vague")    # "make the bed": the bed is the chore's
+    unexplained = tuple(w for w in found.unexplained if w not in noted)
+    return replace(reading, spec=best.spec, notes=notes, unsure=unsure, candidates=found.candidates,
+                   unexplained=unexplained, doubts=found.doubts)
+
+
 class OfflineFrontend:
     """Rule-based semantic parser: instruction -> TaskSpec, deterministic and offline.
 
@@ -192,7 +220,9 @@ class OfflineFrontend:
 
     name = "offline"
 
-    def __init__(self) -> None:
+    def __init__(self, priors: Priors | None = None) -> None:
+        #: the ranker's priors (None: the shipped ``doubts/priors.json``)
+        self.priors = priors
         # build the lexicon and the spelling index now (about 0.1 s, once per process), so
         # that every instruction parses in milliseconds
         lexicon.nouns()
@@ -213,7 +243,8 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tag(text))))))
+        tagged = tag(text)     # as said, self-corrections and all: what the points of doubt read
+        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tagged)))))
         clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
@@ -339,7 +370,9 @@ class OfflineFrontend:
         drop_guessed_water(drafts)
         drop_holds_before_placing(drafts)
         drop_self_placements(drafts)
-        drop_superseded_placements(drafts, semantics.g)
+        superseded = drop_superseded_placements(drafts, semantics.g)
+        # one object in two places: an error when asked at once, else the later one wins
+        unread += [ReadingNote(span, why, "assumed") for span, why in check_placements(clauses, superseded)]
         for what, why in drop_impossible(drafts, scene, state):
             unread.append(ReadingNote(what, f"left out, the scene cannot have it: {why}"))
         if not drafts:
@@ -357,7 +390,8 @@ class OfflineFrontend:
         unsure = _unsure(spec, semantics.g.doubts)
         unsure += tuple(dict.fromkeys(str(c) for ci in sorted(guessed) for d in drafts.get(ci, [])
                                       for c in d.conditions if str(c) not in unsure))
-        return Reading(spec, notes, unsure)
+        return _with_candidates(Reading(spec, notes, unsure), tagged, scene, state, team, semantics,
+                                self.priors)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,

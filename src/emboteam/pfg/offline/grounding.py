@@ -28,6 +28,12 @@ from emboteam.world.state import ObjectState, WorldState
 Stat = lx.Stat
 
 
+#: how close a spelling must be to be suggested (difflib ratio): "aple"/"apple" 0.89,
+#: "spatual"/"spatula" 0.86; "sponj"/"spoon" 0.8, "piano"/"pan" 0.75 and "bathtub"/"bottle"
+#: 0.46 are no help
+SUGGEST_RATIO = 0.82
+
+
 @dataclass(frozen=True)
 class Ref:
     """A grounded noun phrase: one or more (reference, count) groups."""
@@ -125,7 +131,10 @@ class Grounder:
 
     def suggestions(self, phrase: str, limit: int = 3) -> list[str]:
         """Scene types closest to a phrase, by the spelling of their names and synonyms
-        (difflib's ratio: a typo of a name scores high, an unrelated word low)."""
+        (difflib's ratio: a typo of a name scores high, an unrelated word low). Only close
+        spellings (SUGGEST_RATIO) of the phrase or its head (last) word count, and never
+        the very object the phrase names: the error is then not about the spelling, and
+        "closest objects: Fridge" after "no fridge can be picked up" helps no one."""
         names: dict[str, str] = {}
         for key, concept in lx.nouns().items():
             for t in (*concept.types, *concept.fallback):
@@ -135,7 +144,8 @@ class Grounder:
         for t in sorted(self.present):
             names.setdefault(split_camel(t).lower(), t)
         scored: dict[str, float] = {}
-        for query in {phrase.lower(), *phrase.lower().split()}:
+        words = phrase.lower().split()
+        for query in {phrase.lower(), *words[-1:]}:
             matcher = difflib.SequenceMatcher(None, "", query)
             for key, t in names.items():
                 matcher.set_seq1(key)
@@ -143,7 +153,7 @@ class Grounder:
                     continue
                 scored[t] = max(scored.get(t, 0.0), matcher.ratio())
         ranked = sorted(scored.items(), key=lambda kv: (-kv[1], kv[0]))
-        return [t for t, _ in ranked[:limit]]
+        return [t for t, score in ranked[:limit] if SUGGEST_RATIO <= score < 1.0]
 
     def fail(self, message: str, phrase: str) -> GroundingError:
         return GroundingError(message, phrase=phrase, suggestions=lambda: self.suggestions(phrase))

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.tagger import Item, NounReading
 from emboteam.world.catalogue import load_catalogue
 
@@ -127,10 +128,9 @@ class ParsedClause:
     also: list[Head] = field(default_factory=list)
 
 
+_W = word_tables("phrases")
 # --- noun phrases ---------------------------------------------------------------------
-_PIECE_NOUNS = frozenset({"slice", "piece", "chunk", "wedge", "bit", "half", "segment",
-                          "portion", "sliver", "slices", "pieces", "chunks", "wedges", "bits",
-                          "halves", "segments", "portions", "slivers"})
+_PIECE_NOUNS = _W.set("piece_nouns")
 
 
 def is_piece_word(it: Item) -> bool:
@@ -144,7 +144,7 @@ def np_start(it: Item) -> bool:
                 or is_piece_word(it) or it.ordinal is not None)
 
 
-_HUMAN_OBJECTS = frozenset({"me", "us", "here", "over here", "him", "her", "my hand"})
+_HUMAN_OBJECTS = _W.set("human_objects")
 
 
 @dataclass
@@ -490,8 +490,8 @@ def _finish_np(s: _NP, i: int) -> tuple[Head | None, int]:
     return h, j
 
 
-_RELATIVE = frozenset({"that", "which", "where", "who"})
-_LOCATIVE = frozenset({"in", "on", "inside", "into"})
+_RELATIVE = _W.set("relative")
+_LOCATIVE = _W.set("locative")
 
 
 def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> int:
@@ -546,8 +546,7 @@ def fix_ellipsis(prev: Head, nxt: Head) -> None:
         prev.plural = nxt.plural or prev.plural
 
 
-MODIFIER_PREPS = frozenset({"in", "on", "from", "by", "near", "beside", "next to", "behind", "under", "beneath",
-                            "off", "out of"})
+MODIFIER_PREPS = _W.set("modifier_preps")
 
 
 def predicate_at(items: list[Item], k: int) -> bool:
@@ -562,8 +561,7 @@ def predicate_at(items: list[Item], k: int) -> bool:
 
 
 #: participles that only say where something is: "the lettuce sitting on the counter"
-_POSITION_VERBS = frozenset({"sit", "lie", "stand", "rest", "leave", "keep", "store", "place",
-                             "put", "hang", "stay", "find", "wait", "remain"})
+_POSITION_VERBS = _W.set("position_verbs")
 
 
 def position_participle(it: Item) -> bool:
@@ -613,8 +611,7 @@ def list_end(items: list[Item], j: int) -> int:
     return j
 
 
-_PRE_PREDICATE = frozenset({"still", "really", "currently", "also", "always", "probably",
-                            "definitely", "somehow", "all", "both", "now"})
+_PRE_PREDICATE = _W.set("pre_predicate")
 
 
 #: states an indefinite noun phrase can ask for ("a cold apple", "a clean plate")

@@ -15,10 +15,12 @@ import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
+from emboteam.pfg.inflection import past_participle
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.discourse import OTHER_WORDS, Discourse, Mention
 from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
 from emboteam.pfg.offline.tagger import NounReading
 from emboteam.world.catalogue import BREWERS, load_catalogue
@@ -53,8 +55,9 @@ class Draft:
     carried: bool = False
 
 
+_W = word_tables("semantics")
 #: verbs of carrying: with a pronoun and no place, who carries what is placed elsewhere
-_CARRYING = frozenset({"carry", "move", "lift", "take", "handle", "shift", "haul", "lug"})
+_CARRYING = _W.set("carrying")
 
 #: which capability a role needs, for grounding and for choosing a pronoun's antecedent
 ACT_NEEDS: dict[Act, str | None] = {
@@ -72,9 +75,8 @@ STAT_NEEDS: dict[Stat, str | None] = {
     Stat.FILLED: "fill", Stat.HELD: "hold", Stat.BRIGHT: None, Stat.TOASTED: None,
 }
 
-_VERBS_TO_HAND = frozenset({"bring", "fetch", "take", "get", "give", "hand", "carry", "grab",
-                            "deliver", "collect", "retrieve", "find", "send"})
-_VERBS_TO_BIN = frozenset({"throw", "toss", "dump", "chuck"})
+_VERBS_TO_HAND = _W.set("verbs_to_hand")
+_VERBS_TO_BIN = _W.set("verbs_to_bin")
 
 #: acts that are one state of their object
 _PLAIN_ACTS: dict[Act, Predicate] = {
@@ -113,14 +115,14 @@ def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef 
 
 
 #: verbs that discard alone ("chuck it") but move to a place when one is said
-_THROWING = frozenset({"chuck", "throw", "toss", "dump", "fling", "lob"})
+_THROWING = _W.set("throwing")
 
 
 #: things whose temperature is a tool's, not food's ("the pan's hot" is a warning)
 _COOKWARE = frozenset({"Pan", "Pot", "Kettle", "Toaster", "CoffeeMachine", "Microwave"})
 
 #: cooking verbs that happen in a pan: the food ends up in it
-_PAN_VERBS = frozenset({"fry", "saute", "sear"})
+_PAN_VERBS = _W.set("pan_verbs")
 
 
 class Semantics:
@@ -507,7 +509,7 @@ class Semantics:
                 return self._each(P.switched_off, ref)
             # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
-                                    f"{frame.verb}ed?", phrase=frame.text, vague=True)
+                                    f"{past_participle(frame.verb)}?", phrase=frame.text, vague=True)
         if act is Act.GO:
             act = Act.PLACE if any(t.dest for t in targets) else act
             if act is Act.GO:
@@ -784,6 +786,8 @@ class Semantics:
             return Act.TRASH
         if frame.verb in _VERBS_TO_HAND or frame.recipient:
             return Act.HOLD
+        if head.pron is None and head.noun is not None:
+            self.g.candidate_types(head, "hold")  # a thing the room lacks: say that, not "where"
         raise OfflineParseError(f"where should {head.label()!r} go? "
                                 f"('{frame.verb or 'put'} {head.label()} in/on ...')",
                                 phrase=frame.text, vague=True)

@@ -15,6 +15,7 @@ import re
 from dataclasses import dataclass, field
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import (
     correct,
     is_english_word,
@@ -121,8 +122,11 @@ def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
     return None
 
 
+_W = word_tables("tagger")
 #: words after which a clause's verb comes
-_CLAUSE_OPENERS = frozenset({"and", "then", "please", "pls", "plz", "also", "just", "now"})
+_CLAUSE_OPENERS = _W.set("clause_openers")
+#: "turn of the tv": after these, "of" is a typo of "off"
+_SWITCHING = _W.set("switching")
 
 
 def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
@@ -159,8 +163,7 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
         i += 1
     # "turn of the tv": "of" right after a switching verb is "off"
     for k in range(len(out) - 1):
-        if out[k] in ("turn", "switch", "shut", "power", "turning", "switching", "flick") \
-                and out[k + 1] == "of":
+        if out[k] in _SWITCHING and out[k + 1] == "of":
             out[k + 1] = "off"
     return out, fixed
 

@@ -75,6 +75,20 @@
       notes.hidden = false;
       m.notes.forEach(function (n) { el("li", {}, notes, n); });
     }
+    if (m.unexplained && m.unexplained.length) {   // named things that ended in no goal, unexplained
+      var un = document.getElementById("reading-notes");
+      un.hidden = false;
+      el("li", {}, un, "unexplained: " + m.unexplained.join(", ") + " (named, but in no goal)");
+    }
+    if (m.candidates && m.candidates.length > 1) {   // the readings considered, best first, with scores
+      var cands = document.getElementById("reading-candidates");
+      cands.hidden = false;
+      m.candidates.forEach(function (c, k) {
+        var how = c.resolves.map(function (r) { return r.how; }).join("; ");
+        el("li", { class: k === 0 ? "chosen" : null, title: c.goals.join(" & ") }, cands,
+           c.score.toFixed(2) + "  " + c.sentence + (how ? "  [" + how + "]" : ""));
+      });
+    }
     var box = document.getElementById("metrics");
     function card(label, value, cls, title) {
       var c = el("div", { class: "metric", title: title || null }, box);
@@ -124,6 +138,10 @@
     var grid = svg("g", {}, root);
     for (var gx = Math.ceil(M.min_x); gx <= M.max_x; gx++) svg("line", { class: "grid", x1: X(gx), x2: X(gx), y1: 3, y2: H - 3 }, grid);
     for (var gz = Math.ceil(M.min_z); gz <= M.max_z; gz++) svg("line", { class: "grid", y1: Y(gz), y2: Y(gz), x1: 3, x2: W - 3 }, grid);
+    // the navigation grid: the 0.25 m cells robots can stand on
+    (M.cells || []).forEach(function (c) {
+      svg("rect", { class: "nav-cell", x: X(c[0]) - S * 0.11, y: Y(c[1]) - S * 0.11, width: S * 0.22, height: S * 0.22, rx: 2 }, grid);
+    });
 
     var byId = {};
     var objs = svg("g", {}, root);
@@ -231,6 +249,26 @@
       return [((h % 17) - 8) * 1.6, (((h >> 5) % 17) - 8) * 1.6];
     }
 
+    // where robots waited for each other, re-planned their drive or stepped aside: shown
+    // from the moment it happened
+    var NAV_MARKS = { "nav-wait": "waited", "nav-replan": "re-planned", "nav-yield": "stepped aside" };
+    var navLayer = svg("g", {}, root);
+    var navMarks = [];
+    var byName = {};
+    robots.forEach(function (rs) { byName[rs.name] = rs; });
+    TL.events.forEach(function (e) {
+      if (e.category !== "sim" || !(e.key in NAV_MARKS)) return;
+      var who = String(e.value || "").split(" ")[0];
+      var rs = byName[who];
+      var p = rs ? poseAt(rs, e.t) : null;
+      if (!p) return;
+      var mark = svg("circle", { class: "nav-mark " + e.key, cx: p.x, cy: p.y, r: 6, visibility: "hidden" }, navLayer);
+      var label = who + " " + NAV_MARKS[e.key] + " at " + ET.secs(e.t) + " (" + e.value + ")";
+      mark.addEventListener("mousemove", function (ev) { ET.showTip([label], ev.clientX, ev.clientY); });
+      mark.addEventListener("mouseleave", ET.hideTip);
+      navMarks.push({ t: e.t, node: mark });
+    });
+
     // a robot that broke down is drawn greyed out from then on
     var downAt = {};
     TL.events.forEach(function (e) {
@@ -239,6 +277,7 @@
       if (!(who in downAt)) downAt[who] = e.t;
     });
     function update(t) {
+      navMarks.forEach(function (m) { m.node.setAttribute("visibility", t >= m.t ? "visible" : "hidden"); });
       robots.forEach(function (rs) {
         var p = poseAt(rs, t);
         if (!p) { rs.g.setAttribute("visibility", "hidden"); return; }
@@ -351,12 +390,44 @@
     return ": " + (reason.length > 28 ? reason.slice(0, 27) + "…" : reason);
   }
 
+  // The first of ``texts`` that fits ``room`` pixels, else no label (false): a label never
+  // runs out of its bar into the next one; the bar's tooltip has the whole text.
+  function fitLabel(node, texts, room) {
+    for (var i = 0; i < texts.length; i++) {
+      node.textContent = texts[i];
+      var len = node.getComputedTextLength ? node.getComputedTextLength() : 0;
+      if (!len) len = texts[i].length * 6;  // not laid out (a hidden panel): estimate
+      if (len <= room) return true;
+    }
+    node.remove();
+    return false;
+  }
+
+  // Labels that would overlap one drawn before them are hidden (their marker's tooltip
+  // says it all): bar labels first, then replans, then disturbances.
+  function declutter(labels) {
+    var kept = [];
+    labels.forEach(function (t) {
+      if (!t.isConnected) return;
+      var b = t.getBBox();
+      if (!b.width) return;
+      var hit = kept.some(function (k) {
+        return b.x < k.x + k.width + 3 && k.x < b.x + b.width + 3 && b.y < k.y + k.height && k.y < b.y + b.height;
+      });
+      if (hit) t.setAttribute("display", "none");
+      else kept.push(b);
+    });
+  }
+
   function buildGantt() {
     var box = document.getElementById("gantt");
     var robots = TL.robots;
     var edges = syncEdges();
-    var rowH = 32, top = 24, left = 84, right = 14, bottom = 6;
     var markers = TL.events.filter(function (e) { return e.category === "replan" || e.category === "sim" || e.category === "recovery"; });
+    // replan labels get a band of their own between the time axis and the rows, so they
+    // never sit on a robot's bars
+    var band = markers.some(function (e) { return e.category === "replan"; }) ? 14 : 0;
+    var rowH = 32, top = 24 + band, left = 84, right = 14, bottom = 6;
     var state = { svg: null, cursor: null, head: null, x: null, bars: [], active: {}, dragging: false, seek: null };
 
     function render() {
@@ -382,7 +453,7 @@
       var step = ET.niceStep(END, Math.max(3, Math.floor(plotW / 80)));
       for (var tt = 0; tt <= END + 1e-9; tt += step) {
         svg("line", { x1: x(tt), x2: x(tt), y1: top - 4, y2: height - bottom }, axis);
-        svg("text", { x: x(tt), y: top - 9 }, axis, (step < 1 ? tt.toFixed(1) : Math.round(tt)) + " s");
+        svg("text", { x: x(tt), y: 15 }, axis, (step < 1 ? tt.toFixed(1) : Math.round(tt)) + " s");
       }
       var rows = svg("g", {}, root);
       robots.forEach(function (r, i) {
@@ -396,6 +467,7 @@
       var rowOf = {};
       robots.forEach(function (r, i) { rowOf[r] = i; });
       state.bars = [];
+      var labels = [];  // every text drawn on the plot, in priority order (see declutter)
       TL.actions.forEach(function (a, idx) {
         var y = top + rowOf[a.robot] * rowH + 5;
         var x0 = x(a.start), w = Math.max(1.5, x(a.end) - x0);
@@ -405,13 +477,9 @@
         state.bars.push(rect);
         if (a.recovery) svg("rect", { x: x0, y: y, width: w, height: rowH - 10, rx: 3, fill: "url(#hatch)", "pointer-events": "none" }, barLayer);
         var label = shortSkill(a.skill) + (a.args.length ? " " + a.args[0] : "");
-        if (w > label.length * 6 + 8) {
-          svg("text", { class: "bar-label" + (a.outcome === "unfinished" || a.reason === "spot_busy" ? " dark" : ""),
-                        x: x0 + 4, y: y + (rowH - 10) / 2 }, barLayer, label);
-        } else if (w > shortSkill(a.skill).length * 6 + 6) {
-          svg("text", { class: "bar-label" + (a.outcome === "unfinished" || a.reason === "spot_busy" ? " dark" : ""),
-                        x: x0 + 3, y: y + (rowH - 10) / 2 }, barLayer, shortSkill(a.skill));
-        }
+        var text = svg("text", { class: "bar-label" + (a.outcome === "unfinished" || a.reason === "spot_busy" ? " dark" : ""),
+                                 x: x0 + 4, y: y + (rowH - 10) / 2 }, barLayer, label);
+        if (fitLabel(text, [label, shortSkill(a.skill)], w - 7)) labels.push(text);
       });
       var syncLayer = svg("g", {}, root);
       edges.forEach(function (e) {
@@ -433,7 +501,9 @@
           var g = svg("g", { class: "replan" }, markLayer);
           svg("line", { x1: x(ev.t), x2: x(ev.t), y1: top, y2: height - bottom }, g);
           // name what caused the replan: a breakdown, a joiner, a lost object, the plan ending
-          svg("text", { x: x(ev.t) + 3, y: top + 9 }, g, "replan" + replanCause(ev.key));
+          var rtext = svg("text", { x: x(ev.t) + 3, y: top - 4 }, g, "replan" + replanCause(ev.key));
+          fitLabel(rtext, [rtext.textContent, "replan"], width - right - x(ev.t) - 3);
+          labels.push(rtext);
           svg("title", {}, g, "replan at " + ev.t.toFixed(2) + " s: " + ev.key + " " + ev.value);
         } else if (ev.category === "recovery" && ev.robot in rowOf) {
           var ry = top + rowOf[ev.robot] * rowH + rowH - 3, rx = x(ev.t);
@@ -447,9 +517,10 @@
           // the disturbances a benchmark injects are labelled on the chart, not only in the tooltip
           var label = ev.key === "breakdown" ? "✕ " + ev.value + " down" : ev.key === "join" ? "+ " + ev.value + " joins"
             : ev.key === "moved" ? "moved " + ev.value.split(" ")[0] : null;
-          if (label) svg("text", { class: "simlabel", x: x(ev.t) + 7, y: cy + 4 }, markLayer, label);
+          if (label) labels.push(svg("text", { class: "simlabel", x: x(ev.t) + 7, y: cy + 4 }, markLayer, label));
         }
       });
+      declutter(labels);
       state.cursor = svg("line", { class: "cursor", x1: x(clock.t), x2: x(clock.t), y1: top - 4, y2: height - bottom }, root);
       state.head = svg("path", { class: "cursor-head", d: "M-5,0 L5,0 L0,6 z", transform: "translate(" + x(clock.t) + "," + (top - 4) + ")" }, root);
       state.active = {};
@@ -704,7 +775,7 @@
     // The list is virtual: only the rows in view exist in the DOM (a long episode logs
     // thousands of events, and re-styling thousands of rows per frame is what makes a
     // page stutter). Rows have a fixed height; a spacer gives the scrollbar its length.
-    var ROW_H = 22;
+    var ROW_H = 32;  // two lines: a long key wraps (episode.css)
     var list = document.getElementById("event-list");
     var times = events.map(function (e) { return e.t; });
     var filtered = events.map(function (_, i) { return i; });

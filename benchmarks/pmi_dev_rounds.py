@@ -1,0 +1,144 @@
+"""The PMI scorer on the offline reader's close candidates, development rounds only.
+
+For every task of ``tests/data/blind_r*/dev`` (development halves: never the held-out
+halves, never the unseen suite) the offline reader gives its ranked candidates
+(``Reading.candidates``: sentence, log-prior ``score``, goals). Where at least two are
+within ``--margin`` of the first, the leading ones (at most 5) are scored once by the
+local model (one ``client.score`` call, PMI) and recorded with which of them meets the
+ground truth (``fit_reading_priors.satisfies``). From these records the script reports,
+for a grid of margins and weights, what ``prior + weight * pmi`` does: top-1 on the
+scored tasks, how often the model overturns the prior's first and how often that was
+right, and calls per task. Nothing is tuned here; the grid is the data for choosing
+``model_ranker``'s margin and weight.
+
+    EMBOTEAM_LLAMACPP_THREADS=1 nice .venv/bin/python benchmarks/pmi_dev_rounds.py --out /tmp/pmi-dev.json
+    .venv/bin/python benchmarks/pmi_dev_rounds.py --replay --out /tmp/pmi-dev.json   # from the cassette
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+from emboteam.bench.importers.smart_llm import import_smart_llm
+from emboteam.errors import EmboTeamError
+from emboteam.llm.client import LLMClient, make_client
+from emboteam.pfg.model_ranker import close_count, rerank_in_scene
+from emboteam.pfg.offline import OfflineFrontend
+from emboteam.pfg.offline.evaluate import goal_keys
+from emboteam.world.scene import load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "tests" / "data"
+OUT = ROOT / "benchmarks" / "pmi_dev"
+CASSETTE = OUT / "cassette"
+#: candidates within this much of the first are scored (the grid's widest margin)
+WIDEST = 1.0
+MARGINS = (0.25, 0.5, 1.0)
+WEIGHTS = (0.0, 0.1, 0.25, 0.5, 1.0, 2.0)
+
+
+def _fit_module() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("fit_reading_priors", ROOT / "benchmarks" / "fit_reading_priors.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["fit_reading_priors"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def records(client: LLMClient) -> list[dict[str, Any]]:
+    """One record per development task the reader read: priors, and for the close ones
+    the PMI of each scored candidate and whether it meets the ground truth."""
+    satisfies = _fit_module().satisfies
+    reader = OfflineFrontend()
+    out: list[dict[str, Any]] = []
+    rounds = sorted(DATA.glob("blind_r*/dev"), key=lambda p: int(p.parent.name.removeprefix("blind_r")))
+    for folder in rounds:
+        for task in import_smart_llm(folder).tasks:
+            if task.ground_truth is None:
+                continue
+            scene = load_scene(task.floor_plan)
+            truth = goal_keys(task.ground_truth.conditions, scene)
+            try:
+                reading = reader.parse(task.instruction, scene, task.initial_state(), task.team())
+            except EmboTeamError:
+                continue
+            cands = reading.candidates
+            row: dict[str, Any] = {"round": folder.parent.name, "instruction": task.instruction,
+                                   "priors": [round(c.score, 4) for c in cands],
+                                   "right": [bool(satisfies(goal_keys(c.goals, scene), truth)) for c in cands],
+                                   "pmi": None}
+            if close_count([c.score for c in cands], WIDEST) >= 2:
+                start = time.process_time()
+                ranking = rerank_in_scene(cands, client=client, scene=scene, instruction=task.instruction,
+                                          margin=WIDEST, weight=0.0)
+                row["cpu"] = round(time.process_time() - start, 3)
+                by_sentence = {r.candidate.sentence: r.pmi for r in ranking.ranked if r.pmi is not None}
+                row["pmi"] = [by_sentence.get(c.sentence) for c in cands]
+                row["sentences"] = [c.sentence for c in cands]
+                print(f"{row['round']} {len(by_sentence)} scored, right {row['right'][:len(by_sentence)]} "
+                      f"{row['cpu']:.2f}s cpu", file=sys.stderr, flush=True)
+            out.append(row)
+    return out
+
+
+def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float) -> dict[str, Any]:
+    """What re-ranking with this margin and weight does to the recorded tasks."""
+    calls = overturned = overturned_right = top1 = prior_top1 = 0
+    for r in rows:
+        priors, right = r["priors"], r["right"]
+        if not priors:
+            continue
+        prior_top1 += right[0]
+        n = min(close_count(priors, margin), 5)
+        if n < 2 or r["pmi"] is None:
+            top1 += right[0]
+            continue
+        calls += 1
+        scored = [(priors[i] + weight * (r["pmi"][i] or 0.0), -i) for i in range(n)]
+        best = -max(scored)[1]
+        top1 += right[best]
+        if best != 0:
+            overturned += 1
+            overturned_right += right[best] and not right[0]
+    read = sum(1 for r in rows if r["priors"])
+    return {"margin": margin, "weight": weight, "tasks": read, "calls": calls, "top1": top1,
+            "prior_top1": prior_top1, "overturned": overturned, "overturned_to_right": overturned_right}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--replay", action="store_true", help="scores from the committed cassette")
+    ap.add_argument("--out", type=Path, required=True, help="records and the grid, as JSON")
+    ap.add_argument("--model", type=Path, help="GGUF file (default: the Qwen 0.5B model)")
+    args = ap.parse_args(argv)
+    try:
+        if args.replay:
+            client = make_client(f"replay:{CASSETTE}")
+        else:
+            from emboteam.llm.local_model import fetch_model
+
+            client = make_client(f"llamacpp:{args.model or fetch_model()}", timeout=600, record_dir=CASSETTE)
+        rows = records(client)
+    except EmboTeamError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    grid = [outcome(rows, m, w) for m in MARGINS for w in WEIGHTS]
+    args.out.write_text(json.dumps({"rows": rows, "grid": grid}, indent=1) + "\n", encoding="utf-8")
+    print(f"{'margin':>6} {'weight':>6} {'calls':>5} {'top1':>5} {'prior':>5} {'overturned':>10} {'to right':>8}")
+    for g in grid:
+        print(f"{g['margin']:6.2f} {g['weight']:6.2f} {g['calls']:5d} {g['top1']:5d} {g['prior_top1']:5d} "
+              f"{g['overturned']:10d} {g['overturned_to_right']:8d}   of {g['tasks']} tasks")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,50 @@
+"""Points of doubt of an offline reading: one small named rule per kind.
+
+Each rule looks at the words and the reading's goal (:class:`.context.DoubtContext`) and
+returns :class:`~emboteam.pfg.candidates.Doubt` s, each with the reading as read first and
+its alternatives after. :mod:`emboteam.pfg.ranker` combines them into candidates with the
+priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
+
+| kind | rule |
+| --- | --- |
+| unexplained_mention | :mod:`.unexplained` (also elided verbs and list items: carried-over goals) |
+| scene_type | :mod:`.scene_type` |
+| state | :mod:`.state` |
+| slices | :mod:`.slices` |
+| device | :mod:`.device` |
+| exclusion, correction | :mod:`.scope` |
+| of_compound | :mod:`.of_compound` |
+| means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |
+| instance | :mod:`.instances` (one object, or any of its type) |
+| stays | :mod:`.stays` (a thing kept as it is: its present place or switch state as a goal) |
+"""
+
+from __future__ import annotations
+
+from emboteam.pfg.candidates import Doubt
+from emboteam.pfg.offline.doubts import (
+    device,
+    instances,
+    means,
+    of_compound,
+    scene_type,
+    scope,
+    slices,
+    state,
+    stays,
+    unexplained,
+)
+from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.priors import Priors, load_priors
+
+
+def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
+    """Every point of doubt of a reading, rule by rule."""
+    priors = priors or load_priors()
+    found = [*unexplained.doubts(ctx), *scope.doubts(ctx), *of_compound.doubts(ctx), *scene_type.doubts(ctx),
+             *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
+             *instances.doubts(ctx), *stays.doubts(ctx)]
+    return [d for d in found if len(d.choices) > 1]
+
+
+__all__ = ["DoubtContext", "Priors", "find_doubts", "load_priors"]

@@ -1,0 +1,67 @@
+"""A candidate reading is checked like the reader's own: every condition names things the
+scene has and can take that state (the goal checker), the goal compiler can compile it
+(AI2-THOR's placement rules), and the team has the skills it needs.
+
+Conditions are checked one at a time and remembered (:class:`FeasibilityCheck`): the
+candidates of one instruction share most of their conditions, and the team check is the
+costly part, so each condition is checked once per instruction.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from emboteam.pddl.errors import ImpossibleGoalError
+from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.sim.capability import analyse_condition
+from emboteam.world.checker import GoalValidationError, validate_goal
+from emboteam.world.goals import Condition, Goal
+from emboteam.world.robots import RobotProfile
+from emboteam.world.scene import Scene
+from emboteam.world.state import WorldState
+
+
+class FeasibilityCheck:
+    """Whether goals are ones the scene, the placement rules and the team allow; the
+    reader's own conditions (``checked``) count as checked."""
+
+    def __init__(self, scene: Scene, state: WorldState, team: Sequence[RobotProfile],
+                 checked: Sequence[Condition] = ()) -> None:
+        self.scene, self.state, self.team = scene, state, tuple(team)
+        self.robots = list(state.robots)
+        self.base = tuple(checked)
+        self.known: dict[Condition, bool] = dict.fromkeys(checked, True)
+        # the wholes the reading cuts (slicing_targets is a union over conditions: the
+        # reading's part is computed once)
+        self._base_slices: set[str] | None = None
+
+    def condition(self, c: Condition) -> bool:
+        if c not in self.known:
+            self.known[c] = self._check(c)
+        return self.known[c]
+
+    def _check(self, c: Condition) -> bool:
+        try:
+            validate_goal(Goal(conditions=(c,)), self.scene)
+            if self._base_slices is None:
+                self._base_slices = slicing_targets(list(self.base), self.state, self.robots)
+            slices = self._base_slices | slicing_targets([c], self.state, self.robots)
+            compile_condition(c, self.state, self.robots, slices=slices, narrow=False)
+        except (GoalValidationError, ImpossibleGoalError):
+            return False
+        return True
+
+    def team_can(self, goals: tuple[Condition, ...]) -> bool:
+        """Whether the team has the skills for the goals' new conditions (the costly part,
+        a few ms a condition: asked only of the candidates that may run or be offered)."""
+        return not self.team or all(analyse_condition(c, self.state).team_method(self.team) is not None
+                                    for c in goals if c not in self.base)
+
+    def __call__(self, goals: tuple[Condition, ...]) -> bool:
+        return all(self.condition(c) for c in goals)
+
+
+def feasible(goals: tuple[Condition, ...], scene: Scene, state: WorldState, team: Sequence[RobotProfile]) -> bool:
+    """One goal checked on its own (no reading to share the work with)."""
+    check = FeasibilityCheck(scene, state, team)
+    return check(goals) and check.team_can(goals)

@@ -1,0 +1,45 @@
+"""The offline reading as a choice: its points of doubt, its ranked candidates and the
+mentions nothing explains (the hook :class:`~emboteam.pfg.offline.frontend.OfflineFrontend`
+calls once it has read an instruction)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from emboteam.pfg.candidates import Candidate, Doubt
+from emboteam.pfg.offline.discourse import Mention
+from emboteam.pfg.offline.doubts import find_doubts
+from emboteam.pfg.offline.doubts.check import FeasibilityCheck
+from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.priors import Priors, load_priors
+from emboteam.pfg.offline.doubts.unexplained import unexplained_spans
+from emboteam.pfg.offline.tagger import Item
+from emboteam.pfg.ranker import rank
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.robots import RobotProfile
+from emboteam.world.scene import Scene
+from emboteam.world.state import WorldState
+
+
+@dataclass(frozen=True)
+class Choices:
+    candidates: tuple[Candidate, ...]
+    unexplained: tuple[str, ...]
+    doubts: tuple[Doubt, ...]
+
+
+def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldState,
+            team: Sequence[RobotProfile], history: Sequence[Mention] = (), priors: Priors | None = None) -> Choices:
+    """The candidates of a reading (best first, the reader's own among them) and the
+    words of each mention nothing explains."""
+    ctx = DoubtContext(items=items, goals=tuple(spec.goal().conditions), scene=scene, state=state,
+                       history=history)
+    priors = priors or load_priors()
+    doubts = find_doubts(ctx, priors)
+    check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
+    ranked = rank(spec, doubts, priors, check)
+    # the team check for the candidates that may run or be offered (the best and the close ones)
+    best = ranked[0].score
+    ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))
+    return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(ctx)), tuple(doubts))

@@ -1,0 +1,94 @@
+"""What every point-of-doubt rule reads: the tagged words, the reading's goal, the scene.
+
+The rules run after the reader has made its reading (they never change it): each looks at
+the words and the goal and says where else the words could lead. The helpers here answer
+the questions several rules ask: which scene types a word names, where a goal condition's
+object is mentioned, which clause a word stands in.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+from emboteam.pfg.offline.discourse import Mention
+from emboteam.pfg.offline.tagger import Item
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import Condition, ObjectRef
+from emboteam.world.scene import Scene
+from emboteam.world.state import WorldState
+
+#: concept kinds that name objects of the scene
+_THING_KINDS = frozenset({"object", "category", "lights", "lamps"})
+
+
+def ref_types(ref: ObjectRef) -> frozenset[str]:
+    """The types a reference names, slices folded into their whole."""
+    cat = load_catalogue()
+    names = ref.types if ref.id is None else (ref.id.split("_")[0],)
+    return frozenset(cat.source_type(t) or t for t in names)
+
+
+def condition_types(c: Condition) -> frozenset[str]:
+    """Every type a condition names (its object and its place)."""
+    out = ref_types(c.subject)
+    return out | ref_types(c.receptacle) if c.receptacle is not None else out
+
+
+@dataclass(frozen=True)
+class DoubtContext:
+    """One instruction as read: its tagged words, its goal and the scene."""
+
+    items: Sequence[Item]
+    goals: tuple[Condition, ...]
+    scene: Scene
+    state: WorldState
+    history: Sequence[Mention] = ()
+
+    @cached_property
+    def scene_types(self) -> frozenset[str]:
+        return frozenset(self.scene.types())
+
+    @cached_property
+    def words(self) -> tuple[str, ...]:
+        return tuple(i.text for i in self.items)
+
+    def named_types(self, item: Item) -> tuple[str, ...]:
+        """The scene's types a word names, in the lexicon's order of preference (its
+        fallbacks after), none when it names no thing or nothing of this scene."""
+        if item.noun is None or item.verb is not None or item.noun.concept.kind not in _THING_KINDS:
+            return ()
+        concept = item.noun.concept
+        return tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in self.scene_types)
+
+    @cached_property
+    def _mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
+        return [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+
+    def mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
+        """(position, word, scene types) of every word that names a thing of the scene."""
+        return self._mentions
+
+    def clause_bounds(self, k: int) -> tuple[int, int]:
+        """The positions [start, end) of the stretch of words around ``k`` between
+        punctuation marks or sequence/conjunction-led breaks."""
+        start = k
+        while start > 0 and self.items[start - 1].punct is None and self.items[start - 1].seq is None:
+            start -= 1
+        end = k + 1
+        while end < len(self.items) and self.items[end].punct is None and self.items[end].seq is None:
+            end += 1
+        return start, end
+
+    def position_of(self, c: Condition) -> int | None:
+        """Where the instruction first names the object of a goal condition."""
+        subject = ref_types(c.subject)
+        return next((k for k, _, types in self.mentions() if subject & set(types)), None)
+
+    @cached_property
+    def _goal_types(self) -> frozenset[str]:
+        return frozenset(t for c in self.goals for t in condition_types(c))
+
+    def goal_types(self) -> frozenset[str]:
+        return self._goal_types

@@ -1,0 +1,59 @@
+"""Why a mention of a scene thing that ends in no goal was not dropped: it is a place or
+a landmark, a called-off or negated act, an excluded item or a condition.
+
+A mention none of these explain is an *unexplained mention* (:mod:`.unexplained`): the
+reading may have dropped a requested end state.
+"""
+
+from __future__ import annotations
+
+from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.world.catalogue import load_catalogue
+
+
+def _props(type_: str) -> frozenset[str]:
+    return frozenset(load_catalogue().type(type_).properties)
+
+#: words that put what follows out of the request: negation, exclusion, calling off
+EXCLUDERS = frozenset({"not", "no", "never", "except", "without", "but", "instead", "rather", "leave",
+                       "forget", "skip", "besides", "apart", "excluding", "other", "than", "nor",
+                       "dont", "don't", "leaving", "ignore", "keep"})
+#: words that make the rest of their clause a condition or a circumstance
+CONDITIONS = frozenset({"if", "when", "whenever", "unless", "once", "until", "while", "since", "because",
+                        "as", "after", "before"})
+#: words that start a self-correction ("in the fridge, no, on the counter")
+CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scratch", "oops", "rather",
+                         "instead", "no", "nope", "nah"})
+#: words around a place that make it the scene of a chore, not a thing to act on ("tidy
+#: the counter: ...", "the floor is covered in stuff")
+CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
+                         "clutter", "cluttered", "cluttering", "clean", "empty"})
+#: how far back (in words) an excluder or a place preposition reaches
+_REACH = 4
+
+
+def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...]) -> str | None:
+    """Why the mention at ``k`` needs no goal of its own, or None when nothing explains
+    it. A mention whose thing is in a goal is explained by that goal."""
+    if set(types) & ctx.goal_types():
+        return "in a goal"
+    item = ctx.items[k]
+    if item.noun is not None and item.noun.concept.kind in ("lights", "lamps") and any(
+            ref_types(c.subject) & {"LightSwitch", "DeskLamp", "FloorLamp"} for c in ctx.goals):
+        return "in a goal"
+    start, _ = ctx.clause_bounds(k)
+    before = ctx.items[max(start, k - _REACH):k]
+    if any(i.prep is not None for i in before if i.noun is None):
+        return "a place or landmark"
+    if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
+            ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):
+        return "the place of a chore"
+    if any(i.neg or i.text in EXCLUDERS for i in before):
+        return "negated or excluded"
+    if any(i.text in CONDITIONS or i.sub is not None for i in ctx.items[start:k]):
+        return "a condition"
+    if any(i.text in CORRECTIONS for i in ctx.items[k + 1:k + 1 + 2 * _REACH]):
+        return "called off by a self-correction"
+    if any(m.role in ("place", "dest") and set(types) & m.ref.types for m in ctx.history):
+        return "a place or landmark"
+    return None

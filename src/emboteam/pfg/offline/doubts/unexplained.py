@@ -1,0 +1,78 @@
+"""Point of doubt: an unexplained mention, a thing of the scene the instruction names
+that ends in no goal and that nothing explains (:mod:`.explained`).
+
+It is the most common silent loss (a clause after a misheard conjunction, an item joined
+by "+", a participle in a verbless list, a split or misspelled name). Its alternatives:
+leave it (chatter, as read), or give it the end state its neighbours ask for: the goal
+before it or after it carried over ("the apple in the fridge, the egg too"), a state word
+or verb of its own stretch ("the mug washed"), a place named after it ("bowl + plate in
+the sink").
+"""
+
+from __future__ import annotations
+
+from emboteam.pfg.candidates import AS_READ, Choice, Doubt
+from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.explained import explanation
+from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
+from emboteam.pfg.sentences import clause, type_name
+from emboteam.world.goals import Condition, Predicate
+
+KIND = "unexplained_mention"
+
+
+def unexplained_spans(ctx: DoubtContext) -> list[tuple[int, str, tuple[str, ...]]]:
+    """(position, words, scene types) of each mention nothing explains, one per thing."""
+    out: list[tuple[int, str, tuple[str, ...]]] = []
+    seen: set[str] = set()
+    for k, item, types in ctx.mentions():
+        if types[0] in seen or explanation(ctx, k, types) is not None:
+            continue
+        seen.add(types[0])
+        out.append((k, item.text, types))
+    return out
+
+
+def _neighbour_goals(ctx: DoubtContext, k: int) -> tuple[Condition | None, Condition | None]:
+    """The goal conditions whose objects are named last before ``k`` and first after."""
+    placed_at = [(pos, c) for c in ctx.goals if (pos := ctx.position_of(c)) is not None]
+    before = [(pos, c) for pos, c in placed_at if pos < k]
+    after = [(pos, c) for pos, c in placed_at if pos > k]
+    return (max(before, key=lambda x: x[0])[1] if before else None,
+            min(after, key=lambda x: x[0])[1] if after else None)
+
+
+def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
+    """Goals the words of the mention's own stretch ask of it: a state word or verb, a
+    place after it."""
+    start, end = ctx.clause_bounds(k)
+    out: list[Condition] = []
+    for j in range(start, end):
+        item = ctx.items[j]
+        pred = asked_predicate(item)
+        if pred is not None and pred is not Predicate.inside:
+            out.append(one_object(pred, thing))
+        if j > k and item.prep in ("in", "into", "on", "onto", "inside", "to") and j + 1 < end:
+            place = next((types[0] for m, _, types in ctx.mentions() if j < m < min(end, j + 4)), None)
+            if place is not None and place != thing:
+                out.append(placed(thing, place))
+    return out
+
+
+def doubts(ctx: DoubtContext) -> list[Doubt]:
+    out = []
+    for k, words, types in unexplained_spans(ctx):
+        thing = types[0]
+        proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
+        prev, nxt = _neighbour_goals(ctx, k)
+        for label, c in (("carry_previous", prev), ("carry_next", nxt)):
+            if c is not None:
+                proposals.append((label, with_subject(c, thing)))
+        choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
+        seen: set[str] = set()
+        for label, c in proposals:
+            if str(c) not in seen:
+                seen.add(str(c))
+                choices.append(Choice(label, f"{type_name(thing)}: {clause(c)}", add=(c,)))
+        out.append(Doubt(KIND, words, tuple(choices)))
+    return out
