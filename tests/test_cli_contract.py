@@ -179,6 +179,7 @@ def test_sigkill_leaves_no_leaked_semaphore_warning(tmp_path: Path) -> None:
     (("run", "mace-thor/fp1-toast", "--llm-merge"), "--llm-merge needs --llm"),
     (("run", "mace-thor/fp1-toast", "--llm-record", "cassette"), "--llm-record needs --llm"),
     (("run", "mace-thor/fp1-toast", "--join", "3@inf"), "--join '3@inf'"),
+    (("plan", "mace-thor/fp1-toast", "--schedule", "best"), "--schedule takes fast or optimal"),
     (("run", "open the fridge", "--scene", "1", "--robots", "1,,2"), "empty item"),
     (("export-bt", "mace-thor/fp1-toast", "--format", "btcpp", "--out", "tree.png"), "is an image"),
     (("export-bt", "open the fridge"), "needs --scene FLOORPLAN and --robots LIST"),

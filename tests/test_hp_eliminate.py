@@ -12,6 +12,7 @@ from emboteam.hp.eliminate import eliminate, eliminate_steps
 from emboteam.hp.goalgen import random_conditions
 from emboteam.hp.merge import SeqStep, assemble, ground_sequence, nominal_seconds, order
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.stages.trim import trimmed
 from emboteam.hp.validate import simulate
 from emboteam.pddl.domain import Universe
 from emboteam.pfg.taskspec import Subtask, TaskSpec
@@ -182,7 +183,7 @@ def test_the_whole_sequence_loses_a_second_run_and_keeps_the_other_groundings() 
            act("robot2", S.SwitchOff, "Microwave_1"), act("robot2", S.OpenObject, "Microwave_1")]
     accepted, _ = ground_sequence(state, [SeqStep(r, a, "c1", "u1") for r, a in seq])
     spec = TaskSpec(instruction="heat the egg", subtasks=(Subtask(id="c1", description="x", goal=(C("hot(Egg_1)"),)),))
-    shorter = HybridPlanner._eliminated(accepted, spec, state, Universe(state))
+    shorter = trimmed(accepted, spec, state, Universe(state))
     assert shorter is not None and len(shorter) == len(heat_egg("robot1"))
     assert all(g is a for g, a in zip(shorter, accepted, strict=False))
     plan = assemble(shorter, order(shorter, {}), ["robot1", "robot2"], {})

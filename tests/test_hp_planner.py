@@ -11,6 +11,7 @@ from emboteam.bench.suites import load_suite
 from emboteam.hp import planner as planner_module
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.stages.context import Fallback
 from emboteam.hp.validate import simulate
 from emboteam.pddl.errors import (
     ImpossibleGoalError,
@@ -146,9 +147,9 @@ def test_joint_planning_and_the_fallback(hp: HybridPlanner, monkeypatch: pytest.
     assert_valid(joint, state, task.goal())
 
     def refuse(*args: object, **kwargs: object) -> MergedPlan:
-        raise planner_module._Fallback("the subtasks interleave")
+        raise Fallback("the subtasks interleave")
 
-    monkeypatch.setattr(HybridPlanner, "_decomposed", refuse)
+    monkeypatch.setattr(planner_module, "plan_decomposed", refuse)
     plan = hp.plan(task, state)
     assert plan.joint and any("decomposition failed (the subtasks interleave)" in n for n in plan.notes)
     assert_valid(plan, state, task.goal())

@@ -6,7 +6,7 @@ import random
 
 import pytest
 
-import emboteam.hp.planner as planner_module
+import emboteam.hp.stages.reallocate as reallocate_module
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.rebalance import MAX_MOVES, Job, best_move, cp_sat, loads, lpt, rebalance, work_of
 from emboteam.hp.validate import simulate
@@ -107,9 +107,9 @@ def test_a_proposal_that_does_not_pay_off_is_not_the_last(monkeypatch: pytest.Mo
     # relieves it (21.25 s, makespan 24.75 -> 21.25 s on the navigation grid). Seed 0, the
     # cell this test used with Manhattan drives (23.2 -> 18.8 s), gains 1 s on the grid.
     spec, state = random_cell(4, 16, seed=3)
-    monkeypatch.setattr(planner_module, "REBALANCE_RETRY", False)
+    monkeypatch.setattr(reallocate_module, "REBALANCE_RETRY", False)
     stop = HybridPlanner(PlannerConfig()).plan(spec, state)
-    monkeypatch.setattr(planner_module, "REBALANCE_RETRY", True)
+    monkeypatch.setattr(reallocate_module, "REBALANCE_RETRY", True)
     on = [HybridPlanner(PlannerConfig()).plan(spec, state) for _ in range(2)]
     assert on[0].makespan == on[1].makespan and [s.id for s in on[0].steps] == [s.id for s in on[1].steps]
     assert on[0].makespan < 0.95 * stop.makespan

@@ -11,10 +11,10 @@ from collections.abc import Callable
 
 import pytest
 
-from emboteam.hp import planner as planner_module
 from emboteam.hp.merge import GroundedStep, SeqStep, assemble, ground_sequence, order
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner
+from emboteam.hp.stages import merge as merge_stage
 from emboteam.hp.subtask_order import dependency_waits, goal_changes, subtask_dependencies
 from emboteam.hp.validate import Timing, simulate
 from emboteam.pfg.parser import offline_frontend
@@ -286,7 +286,7 @@ def test_planner_orders_causally_and_falls_back_to_strict_when_that_fails(
             return Timing(ok=False, failure=f"{first.id} failed (test)", failed_step=first.id)
         return real(plan, start, goal)
 
-    monkeypatch.setattr(planner_module, "simulate", reject_first)
+    monkeypatch.setattr(merge_stage, "simulate", reject_first)
     strict = hp.plan(task, state)
     assert len(calls) == 2 and not strict.joint
     assert any("causal ordering of s1 -> s2 failed in the simulator" in n and "strict" in n for n in strict.notes)
@@ -313,7 +313,7 @@ def test_only_the_dependency_whose_step_failed_becomes_strict(
             return Timing(ok=False, failure=f"{first.id} failed (test)", failed_step=first.id)
         return real(plan, start, goal)
 
-    monkeypatch.setattr(planner_module, "simulate", reject_first)
+    monkeypatch.setattr(merge_stage, "simulate", reject_first)
     plan = hp.plan(task, state)
     assert len(calls) == 2
     fallback = [n for n in plan.notes if "causal ordering" in n]
@@ -340,7 +340,7 @@ def test_planner_falls_back_to_the_joint_problem_when_strict_fails_too(
             return Timing(ok=False, failure="the goal does not hold at the end (test)")
         return real(plan, start, goal)
 
-    monkeypatch.setattr(planner_module, "simulate", reject_decomposed)
+    monkeypatch.setattr(merge_stage, "simulate", reject_decomposed)
     plan = hp.plan(task, state)
     assert plan.joint
     assert any("causal ordering of s1 -> s2" in n for n in plan.notes)

@@ -361,11 +361,18 @@ PLANNER_INPUT_HELP = ("what Fast Downward reads: sas (our own grounded task, sea
                       "| pddl (its driver and translator)")
 
 
-def _with_planner_input(cfg: Any, planner_input: str) -> Any:
-    """A RunConfig or BenchConfig with ``--planner-input`` set (checked here: one line)."""
+def _with_planner_input(cfg: Any, planner_input: str, schedule: str = "fast") -> Any:
+    """A RunConfig or BenchConfig with ``--planner-input`` and ``--schedule`` set (checked
+    here: one line)."""
     if planner_input not in ("sas", "pddl"):
         raise EmboTeamError(f"--planner-input takes sas or pddl, not {planner_input!r}")
-    return cfg.model_copy(update={"planner_input": planner_input})
+    if schedule not in ("fast", "optimal"):
+        raise EmboTeamError(f"--schedule takes fast or optimal, not {schedule!r}")
+    return cfg.model_copy(update={"planner_input": planner_input, "schedule": schedule})
+
+
+SCHEDULE_HELP = ("fast (default) | optimal: then CP-SAT over the whole schedule (who does what, in which order), "
+                 "kept when shorter; up to ~10 s more per plan (docs/planning.md)")
 
 
 # the backslash keeps rich from reading [ai2thor] as markup in --help
@@ -434,6 +441,7 @@ def plan(
     llm_timeout: float = typer.Option(60.0, "--llm-timeout", help="seconds per LLM request"),
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
+    schedule: str = typer.Option("fast", "--schedule", help=SCHEDULE_HELP),
 ) -> None:
     """Decompose and plan a task (PFG + HP) without executing it."""
     import time
@@ -445,7 +453,7 @@ def plan(
     fe, when = _front_end(frontend, llm, llm_when)
     cfg = _run_config("full", fe, llm, llm_timeout=llm_timeout, llm_when=when)
     ctx = EpisodeContext.open(task, cfg)
-    ctx = replace(ctx, cfg=_with_planner_input(cfg, planner_input))
+    ctx = replace(ctx, cfg=_with_planner_input(cfg, planner_input, schedule))
     client = ctx.llm
     t0 = time.perf_counter()
     notes: list[str] = []        # what the front end could not read, or read with doubt
@@ -487,6 +495,7 @@ def run(
     clarify: bool = typer.Option(False, "--clarify", help="when the offline reading is close, or the LLM "
                                  "cannot tell, ask which end state was meant (numbered sentences; without a "
                                  "terminal the best reading)"),
+    schedule: str = typer.Option("fast", "--schedule", help=SCHEDULE_HELP),
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join
@@ -504,7 +513,7 @@ def run(
                       llm_merge=llm_merge, llm_when=when,
                       fault_level=faults, seed=seed, joins=tuple(join), env=_env(env),
                       clarify=clarify and not as_json)    # with --json the candidates are in the output
-    cfg = _with_planner_input(cfg, planner_input)
+    cfg = _with_planner_input(cfg, planner_input, schedule)
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run
     check_config(cfg)
@@ -574,6 +583,7 @@ def bench(
     resume: bool = typer.Option(False, "--resume", help="continue a killed run in --out DIR"),
     as_json: bool = typer.Option(False, "--json", help="one JSON summary object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
+    schedule: str = typer.Option("fast", "--schedule", help=SCHEDULE_HELP),
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
     from emboteam.bench.disturbance_scope import split_applicable
@@ -600,7 +610,7 @@ def bench(
         check_config(RunConfig(env=cfg.env, fault_level=max(cfg.fault_levels), disturbance=cfg.disturbance))
     for f in cfg.frontends:
         check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout, llm_when=cfg.llm_when))
-    cfg = _with_planner_input(cfg, planner_input)
+    cfg = _with_planner_input(cfg, planner_input, schedule)
     tasks_run, not_applicable = split_applicable(cfg.disturbance, loaded.tasks)  # exit 2 if it fits none
     cfg = _bench_out(cfg, out_dir)
     out_dir = cfg.out_dir

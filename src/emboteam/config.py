@@ -48,6 +48,8 @@ class RunConfig(BaseModel):
                               "reading is in doubt, or always")
     planner_input: PlannerInput = Field("sas", description="what Fast Downward reads: our own SAS task "
                                         "(search binary only) or PDDL (driver and translator)")
+    schedule: Literal["fast", "optimal"] = Field("fast", description="fast: the planner's own stages; optimal: "
+                                                 "then CP-SAT over the whole schedule (hp/optimal.py)")
     fault_level: float = Field(0.0, ge=0, le=1)
     faults: FaultConfig | None = Field(None, description="explicit faults (overrides fault_level)")
     seed: int = 0

@@ -79,12 +79,14 @@ def wiring(mode: Mode) -> ModeWiring:
 
 
 @cache
-def planner_for(mode: Mode, planner_input: PlannerInput = "sas") -> HybridPlanner:
-    """One planner per mode and process, so its plan cache serves every episode."""
+def planner_for(mode: Mode, planner_input: PlannerInput = "sas", schedule: str = "fast") -> HybridPlanner:
+    """One planner per mode and process (and input, schedule), so its plan cache serves
+    every episode."""
     config = MODE_TABLE[mode].planner
     if config is None:
         raise ModeConfigError(f"mode {mode} does not plan")
-    return HybridPlanner(replace(config, planner_input=planner_input))
+    return HybridPlanner(replace(config, planner_input=planner_input,
+                                 schedule="optimal" if schedule == "optimal" else "fast"))
 
 
 __all__ = ["MODE_TABLE", "Execution", "ModeConfigError", "ModeWiring", "planner_for", "wiring"]

@@ -175,7 +175,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
     reviews the TaskSpec first, and one planner error goes back to the LLM for repair."""
     cfg, llm = ctx.cfg, ctx.llm
     args = (ctx.scene, ctx.state, ctx.team)
-    planner = planner_for(cfg.mode, cfg.planner_input)
+    planner = planner_for(cfg.mode, cfg.planner_input, cfg.schedule)
     if llm is not None and cfg.frontend == "llm" and wiring(cfg.mode).llm_review:
         from emboteam.hp.llm_stages import review_spec
 
@@ -258,7 +258,7 @@ def execute(ctx: EpisodeContext, plan: MergedPlan, goal: Goal, *,
     if how.execution == "linear":
         return run_linear(sim, plan, goal, time_limit=cfg.time_limit, joins=[(j.profile, j.at) for j in joins],
                           messages=messages, seed=cfg.seed), sim
-    replanner = planner_replanner(planner_for("full", cfg.planner_input)) if how.replan else None
+    replanner = planner_replanner(planner_for("full", cfg.planner_input, cfg.schedule)) if how.replan else None
     settings = ExecutorSettings(time_limit=cfg.time_limit, seed=cfg.seed, finish_plan=finish_plan, messages=messages)
     executor = Executor(sim, plan, goal, replanner=replanner, joins=joins, settings=settings)
     return executor.run(), sim

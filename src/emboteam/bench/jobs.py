@@ -75,6 +75,8 @@ class Job(RunConfig):
             parts.append(f"llm-when={self.llm_when}")
         if self.planner_input != "sas":
             parts.append(f"planner-input={self.planner_input}")
+        if self.schedule != "fast":
+            parts.append(f"schedule={self.schedule}")
         if self.disturbance.any:  # likewise: undisturbed keys stay as they were
             parts.append(f"disturb={self.disturbance.label}")
         if self.env != "sim":  # likewise: simulator keys stay as they were
@@ -111,6 +113,7 @@ class BenchConfig(BaseModel):
     out_dir: Path = Path("bench-out")
     resume: bool = False
     planner_input: PlannerInput = "sas"
+    schedule: Literal["fast", "optimal"] = "fast"
     llm_timeout: float = Field(60.0, gt=0)
     llm_when: LLMWhen = "doubt"
 
@@ -204,7 +207,7 @@ def expand_jobs(config: BenchConfig, tasks: Sequence[BenchTask]) -> list[Job]:
         seen.add(task.key)
     return [
         Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed, disturbance=config.disturbance,
-            planner_input=config.planner_input,
+            planner_input=config.planner_input, schedule=config.schedule,
             env=config.env,
             fault_level=level, llm_timeout=config.llm_timeout, llm_when=config.llm_when)
         for mode in config.modes

@@ -85,13 +85,14 @@ SEARCH_ALIASES: dict[str, tuple[str, ...]] = {
 OWN_ALIASES = frozenset({"lama-wastar5"})
 
 #: the second pass for a long plan (``refine_cost``): the same heuristics in lazy A*
-#: (w=1), bounded by the first plan's cost (exclusive) and by ``max_time`` seconds; what
-#: it finds replaces the first plan only when cheaper
+#: (w=1), bounded by the first plan's cost (exclusive); what it finds replaces the first
+#: plan only when cheaper. No ``max_time``: a search cut off by the clock gives another
+#: plan on a loaded machine (issue 28); the runner's time limit is the safety net, and
+#: running into it raises :class:`PlannerTimeoutError` rather than keeping the first plan
 REFINE_SEARCH = (
     "let(hlm, eval_modify_costs(landmark_sum(lm_factory=lm_reasonable_orders_hps(lm_rhw()),pref=false),"
     "cost_type=plusone),let(hff, eval_modify_costs(ff(),cost_type=plusone),"
-    "lazy_wastar([hff,hlm],preferred=[hff,hlm],w=1,bound={bound},max_time={seconds})))")
-REFINE_SECONDS = 0.1
+    "lazy_wastar([hff,hlm],preferred=[hff,hlm],w=1,bound={bound})))")
 
 #: exit codes, from the driver's returncodes.py
 SOLVED = frozenset({0, 1, 2, 3})  # 1-3: a plan was found, a later portfolio run hit a limit
@@ -331,9 +332,11 @@ class FastDownward:
         cost = plan_cost(first.plan)
         if cost < (self.refine_cost or 0):
             return first
-        search = REFINE_SEARCH.format(bound=cost, seconds=REFINE_SECONDS)
+        search = REFINE_SEARCH.format(bound=cost)
         try:
             second = self.solve_sas(sas, ["--search", search])
+        except PlannerTimeoutError:
+            raise  # the safety net: which plan a cut-off search leaves depends on the machine
         except PlanningError:
             return first
         if second.solved and plan_cost(second.plan) < cost:
@@ -348,9 +351,17 @@ class FastDownward:
                 return self.solve_problem(p)
             except PlanningError as exc:
                 return exc
-        if len(problems) <= 1 or workers <= 1:
-            return [one(p) for p in problems]
-        return list(_pool(workers).map(one, problems))
+        # the same problem twice is solved once: two threads missing the cache together
+        # would both run it, and the count of calls (a budget of the planner's) would
+        # depend on which thread got there first
+        distinct = list(dict.fromkeys(p.text for p in problems))
+        first = {p.text: p for p in reversed(problems)}
+        if len(distinct) <= 1 or workers <= 1:
+            solved = [one(first[t]) for t in distinct]
+        else:
+            solved = list(_pool(workers).map(one, [first[t] for t in distinct]))
+        by_text = dict(zip(distinct, solved, strict=True))
+        return [by_text[p.text] for p in problems]
 
     def solve_sas(self, sas: str, args: Sequence[str] | None = None) -> SolveResult:
         """Run the search binary on a SAS task (``output.sas`` text) given on its stdin."""

@@ -1,0 +1,147 @@
+"""Our schedules against CP-SAT's exact reference (emboteam.hp.optimal, issue 28).
+
+For every MACE-THOR task and every cell of the quick sweep (benchmarks/plan_latency.py's
+cells, goal seeds given by --seeds), plan with the hybrid planner (``--schedule fast``, the
+default, or ``optimal``), then give the plan's actions to the CP-SAT model of the whole
+schedule (allocation of the jobs to capable robots, their order, dependencies, one robot
+per spot, drives between places) with a deterministic time limit. Reported per input: our
+makespan, CP-SAT's best makespan and bound, whether it proved optimality, our makespan /
+proven optimum (or / best bound), and the makespan / resource-aware bound.
+
+    .venv/bin/python benchmarks/plan_optimal.py --seeds 0,1,2,3,4 --out /tmp/optimal.json
+    .venv/bin/python benchmarks/plan_optimal.py --no-sweep          # MACE-THOR only
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import sys
+import time
+from collections.abc import Iterator, Sequence
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_inputs
+
+from emboteam.errors import EmboTeamError
+from emboteam.hp.optimal import REFERENCE_LIMIT, reference
+from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.stages import schedule as schedule_stage
+from emboteam.pddl.problem import planning_state
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.state import WorldState
+
+
+@dataclass
+class Row:
+    label: str
+    robots: int
+    conditions: int
+    seconds: float
+    makespan: float
+    resource_bound: float
+    status: str = "not modelled"
+    best: float = 0.0
+    bound: float = 0.0
+    solve_seconds: float = 0.0
+    error: str = ""
+
+    @property
+    def ratio(self) -> float | None:
+        """Our makespan / proven optimum (optimal) or / CP-SAT's best bound."""
+        ref = self.best if self.status == "optimal" else self.bound
+        return self.makespan / ref if ref > 0 else None
+
+
+def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfig, limit: float) -> list[Row]:
+    rows: list[Row] = []
+    for label, spec, state in inputs:
+        t0 = time.perf_counter()
+        try:
+            plan = HybridPlanner(config).plan(spec, state)
+        except EmboTeamError as exc:
+            rows.append(Row(label, len(state.robots), len(spec.subtasks), time.perf_counter() - t0, 0.0, 0.0,
+                            error=f"{type(exc).__name__}: {exc}"[:120]))
+            continue
+        row = Row(label, len(state.robots), len(spec.subtasks), time.perf_counter() - t0, plan.makespan,
+                  plan.resource_bound)
+        t1 = time.perf_counter()
+        ref = reference(plan, spec, planning_state(state), limit)
+        row.solve_seconds = time.perf_counter() - t1
+        if ref is not None:
+            row.status, row.best, row.bound = ref.status, ref.makespan, ref.bound
+        rows.append(row)
+        r = row.ratio
+        print(f"{label}: makespan {row.makespan:.1f}, CP-SAT {row.status} {row.best:.1f} (bound {row.bound:.1f}), "
+              f"ratio {'-' if r is None else f'{r:.3f}'}, {row.solve_seconds:.1f} s", file=sys.stderr)
+    return rows
+
+
+def summary(rows: Sequence[Row], what: str) -> list[str]:
+    modelled = [r for r in rows if r.ratio is not None]
+    proven = [r for r in rows if r.status == "optimal"]
+    lines = [f"- {what}: {len(rows)} inputs, {len(modelled)} with a CP-SAT reference, optimality proven on "
+             f"{len(proven)} ({len(proven) / max(len(rows), 1):.0%})."]
+    if modelled:
+        ratios = [r.ratio for r in modelled if r.ratio is not None]
+        lines.append(f"  makespan / (proven optimum or best bound): mean {statistics.mean(ratios):.3f}, "
+                     f"max {max(ratios):.3f}; above 1.10 on {sum(x > 1.10 for x in ratios)}.")
+    if proven:
+        pr = [r.makespan / r.best for r in proven if r.best > 0]
+        lines.append(f"  where proven: makespan / optimum mean {statistics.mean(pr):.3f}, max {max(pr):.3f}.")
+    return lines
+
+
+def table(rows: Sequence[Row]) -> str:
+    head = "| input | robots | cond. | ours s | makespan | CP-SAT | best | bound | ours / ref | CP-SAT s |"
+    out = [head, "|" + "---|" * 10]
+    for r in rows:
+        ratio = r.ratio
+        out.append(f"| {r.label} | {r.robots} | {r.conditions} | {r.seconds:.2f} | {r.makespan:.1f} | {r.status} | "
+                   f"{r.best:.1f} | {r.bound:.1f} | {'-' if ratio is None else f'{ratio:.3f}'} | {r.solve_seconds:.1f} |")
+    return "\n".join(out)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seeds", default="0", help="goal seeds of the quick sweep")
+    ap.add_argument("--no-suite", action="store_true")
+    ap.add_argument("--no-sweep", action="store_true")
+    ap.add_argument("--schedule", choices=("fast", "optimal", "heuristic"), default="fast",
+                    help="heuristic: fast without its CP-SAT stage (what the heuristics alone make)")
+    ap.add_argument("--limit", type=float, default=REFERENCE_LIMIT, help="CP-SAT deterministic seconds per input")
+    ap.add_argument("--out", type=Path, help="write the rows here (JSON)")
+    args = ap.parse_args(argv)
+    if args.schedule == "heuristic":
+        schedule_stage.FAST_STEPS = 0  # no plan is small enough: the stage never runs
+    config = PlannerConfig(schedule="optimal" if args.schedule == "optimal" else "fast")
+    load0 = os.getloadavg()[0]
+    started = time.strftime("%Y-%m-%d %H:%M")
+    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit)
+    seeds = [int(s) for s in args.seeds.split(",")]
+    cells: dict[int, list[Row]] = {}
+    if not args.no_sweep:
+        for seed in seeds:
+            cells[seed] = run(sweep_inputs(QUICK_ROBOTS, QUICK_CONDITIONS, [seed]), config, args.limit)
+    lines = [f"{started}, load {load0:.1f} before, {os.cpu_count()} cores; schedule {args.schedule}, CP-SAT limit "
+             f"{args.limit:g} deterministic s"]
+    if suite:
+        lines += summary(suite, "MACE-THOR")
+    for seed, rows in cells.items():
+        lines += summary(rows, f"quick sweep, seed {seed}")
+    print("\n".join(lines))
+    for name, rows in [("MACE-THOR", suite), *((f"quick sweep, seed {s}", r) for s, r in cells.items())]:
+        if rows:
+            print(f"\n### {name}\n\n{table(rows)}")
+    if args.out:
+        args.out.write_text(json.dumps({"summary": lines, "suite": [asdict(r) for r in suite],
+                                        "sweep": {str(s): [asdict(r) for r in rows] for s, rows in cells.items()}},
+                                       indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

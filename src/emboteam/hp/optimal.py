@@ -1,0 +1,457 @@
+"""An exact reference for the schedule: an OR-Tools CP-SAT model of the whole task's
+scheduling problem over a plan's grounded actions, solved to a proven optimum or to a
+best bound with a gap (issue 28).
+
+The model (:func:`build`): a *job* is one robot's steps for one subtask, in their order;
+its *operations* are its manipulation steps (each at an interaction spot, with its
+skill's duration), reached by driving between the places they happen (the plan's
+GoToObject steps, whose seconds depend on who drives from where: :func:`travel`, the one
+call a grid-based navigation model replaces). Decided by the solver:
+
+- which robot does each job: any robot with every skill the job uses and the mass
+  capacity for what it picks up (a job of a subtask several robots share, or of a robot
+  that ends a job holding something, stays where it is);
+- each robot's order of jobs (a circuit per robot, the drive from one job's last place to
+  the next one's first on each arc, from the robot's start to its first job);
+- when each operation starts: after the previous one of its job and the drive between
+  them; after the steps it waits for in the plan (its causal order: what a step needs,
+  what must not change before it is used, the subtask dependencies); one robot at a time
+  at each spot (the order is the solver's) and on each object (a held one from its pickup
+  to its release).
+
+Minimised: the makespan. The jobs keep the actions the plan gave them (a fridge one job
+opens stays opened by that job) and their places (an object another job moved is where the
+plan left it), so this is the optimum *for these actions in this causal order*: a tighter
+reference than the resource-aware bound, exact where it proves optimality, and no bound
+on plans with other actions. Solved with one worker, a fixed
+seed and a *deterministic* time limit: the same answer on any machine.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+from ortools.sat.python import cp_model
+
+from emboteam.hp.plan import MergedPlan, PlanStep
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.sim.durations import navigation_seconds
+from emboteam.sim.rules import apply_action, check_action
+from emboteam.world.actions import Skill
+from emboteam.world.robots import RobotProfile
+from emboteam.world.state import WorldState
+
+#: model times in hundredths of a second (each rounded down: see :func:`_t`)
+SCALE = 100
+#: CP-SAT's deterministic time limit for the reference (about seconds of one core)
+REFERENCE_LIMIT = 10.0
+#: no model when the robots' circuits would have more arcs than this (the 32-robot cells)
+MAX_ARCS = 20_000
+
+Point = tuple[float, float]
+
+
+def travel(profile: RobotProfile, a: Point, b: Point, floor_plan: str = "") -> float:
+    """Seconds a robot of ``profile`` drives from ``a`` to ``b`` in ``floor_plan``: the
+    scene's navigation model (:func:`emboteam.sim.durations.navigation_seconds`, the one
+    call that knows how: along the floor plan's navigation grid; Manhattan without a floor
+    plan), 0 when already there. Free-flow seconds: waits for traffic only make the simulated plan
+    later, so the plan stays a solution of the model."""
+    if a == b:
+        return 0.0
+    return navigation_seconds(a, b, profile.speed, floor_plan or None)
+
+
+@dataclass
+class Op:
+    """One manipulation step of a job: where it happens, the spot it holds, its seconds."""
+
+    step: str
+    place: Point
+    spot: str
+    seconds: float
+    #: a drive precedes it within the job (else the robot is already there)
+    drive: bool
+    #: where a drive to it goes: the point of the thing it acts on, as the plan's drive
+    #: went there (its holder's position if held); where the robot stands, with no drive
+    goal: Point = (0.0, 0.0)
+
+
+@dataclass
+class Job:
+    """A block of one robot's steps between two moments its hands are empty (ids in
+    order), its operations; ``group``: the jobs that move together (those serving the
+    same subtask with the same robot), and the robots that may take them."""
+
+    id: str
+    robot: str
+    group: str
+    steps: list[str] = field(default_factory=list)
+    ops: list[Op] = field(default_factory=list)
+    subtasks: set[str] = field(default_factory=set)
+    skills: set[Skill] = field(default_factory=set)
+    lift: float = 0.0
+
+
+@dataclass
+class Problem:
+    """The scheduling problem a plan poses (its jobs, who may take each group, the robots'
+    starts and profiles, the precedences between operations)."""
+
+    jobs: list[Job]
+    candidates: dict[str, tuple[str, ...]]
+    starts: dict[str, Point]
+    profiles: dict[str, RobotProfile]
+    #: (producer op step id, consumer op step id)
+    precedences: list[tuple[str, str]] = field(default_factory=list)
+    #: (producer op, consumer op) where the consumer's *drive* waits for the producer (the
+    #: object it drives to arrives there then): the drive starts after the producer ends
+    drive_waits: list[tuple[str, str]] = field(default_factory=list)
+    #: object -> (first op, last op) spans during which one robot has it: from its pickup
+    #: to its release (one op when it is only acted on); one robot at a time per object
+    objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
+    #: the scene, for :func:`travel`
+    floor_plan: str = ""
+
+
+@dataclass(frozen=True)
+class Reference:
+    """What CP-SAT found: the best makespan, its bound, whether it is proven optimal, the
+    robot of every step of a job (step id -> robot) and each operation's start (step id ->
+    seconds)."""
+
+    status: str
+    makespan: float
+    bound: float
+    robots: Mapping[str, str]
+    starts: Mapping[str, float]
+
+    @property
+    def optimal(self) -> bool:
+        return self.status == "optimal"
+
+    @property
+    def gap(self) -> float:
+        return (self.makespan - self.bound) / self.makespan if self.makespan > 0 else 0.0
+
+
+def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem | None:
+    """The jobs of ``plan`` (replayed on ``start`` in its step order for the places and
+    the hands); None when the replay fails."""
+    state = start.copy()
+    jobs: list[Job] = []
+    open_: dict[str, Job] = {}
+    drive: dict[str, Point] = {}
+    objects: dict[str, list[tuple[str, str]]] = {}
+    held: dict[str, tuple[str, str]] = {}  # robot -> (object, its pickup op)
+    for s in plan.steps:
+        if check_action(state, s.robot, s.action) is not None:
+            return None
+        job = open_.get(s.robot)
+        if job is None:
+            job = open_[s.robot] = Job(f"{s.robot}#{len(jobs)}", s.robot, "")
+            jobs.append(job)
+        job.steps.append(s.id)
+        job.subtasks.add(s.subtask)
+        if s.action.skill is Skill.GoToObject:
+            o = state.objects[s.action.target]
+            drive[s.robot] = state.robots[o.held_by].position if o.held_by else (o.position[0], o.position[2])
+        else:
+            job.skills.add(s.action.skill)
+            if s.action.skill is Skill.PickupObject:
+                job.lift = max(job.lift, state.objects[s.action.target].mass)
+            rp = (state.robots[s.robot].position[0], state.robots[s.robot].position[1])
+            goal = drive.pop(s.robot, None)
+            job.ops.append(Op(s.id, rp, s.resources[0] if s.resources else s.action.target,
+                              s.est_end - s.est_start, goal is not None, goal if goal is not None else rp))
+        apply_action(state, s.robot, s.action)
+        if s.action.skill is not Skill.GoToObject:
+            _track(s, state.robots[s.robot].holding, held, objects)
+        if s.action.skill is not Skill.GoToObject and state.robots[s.robot].holding is None:
+            del open_[s.robot]  # hands empty: any other job may follow
+    jobs = [j for j in jobs if j.ops]
+    profiles = {r: start.robots[r].profile for r in plan.robots}
+    candidates = _groups(jobs, plan, profiles, fixed={j.id for j in open_.values()})
+    starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
+    waits, drives = _precedences(plan, jobs)
+    return Problem(jobs, candidates, starts, profiles, waits, drives,
+                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan)
+
+
+def _track(s: PlanStep, holding: str | None, held: dict[str, tuple[str, str]],
+           objects: dict[str, list[tuple[str, str]]]) -> None:
+    """Spans of one robot per object: a pickup opens one, the release closes it; an op on
+    an object nobody holds is a span of its own."""
+    if s.robot in held and holding != held[s.robot][0]:
+        obj, first = held.pop(s.robot)
+        objects.setdefault(obj, []).append((first, s.id))
+        if holding is None:
+            return
+    if holding is not None and s.robot not in held:
+        held[s.robot] = (holding, s.id)
+    elif s.action.target not in {h for h, _ in held.values()}:
+        objects.setdefault(s.action.target, []).append((s.id, s.id))
+
+
+def _groups(jobs: Sequence[Job], plan: MergedPlan, profiles: Mapping[str, RobotProfile], fixed: set[str]
+            ) -> dict[str, tuple[str, ...]]:
+    """Join the jobs serving a subtask with the same robot into groups (they move
+    together); the robots able to take each group: every skill and the mass capacity
+    it needs. A group stays with its robot when its subtask has several robots or it
+    ends with the robot's hands full."""
+    parent = {j.id: j.id for j in jobs}
+
+    def root(x: str) -> str:
+        while parent[x] != x:
+            x = parent[x]
+        return x
+
+    first: dict[tuple[str, str], str] = {}
+    robots_of: dict[str, set[str]] = {}
+    for j in jobs:
+        for t in j.subtasks:
+            robots_of.setdefault(t, set()).add(j.robot)
+            other = first.setdefault((t, j.robot), j.id)
+            parent[root(j.id)] = root(other)
+    members: dict[str, list[Job]] = {}
+    for j in jobs:
+        j.group = root(j.id)
+        members.setdefault(j.group, []).append(j)
+    out: dict[str, tuple[str, ...]] = {}
+    for g, js in members.items():
+        robot = js[0].robot
+        pinned = any(j.id in fixed or any(len(robots_of[t]) > 1 for t in j.subtasks) for j in js)
+        skills = set().union(*(j.skills for j in js))
+        lift = max(j.lift for j in js)
+        out[g] = (robot,) if pinned else tuple(r for r in plan.robots if all(profiles[r].can(k) for k in skills)
+                                              and profiles[r].mass_capacity >= lift)
+        if robot not in out[g]:
+            out[g] = (robot, *out[g])
+    return out
+
+
+def _precedences(plan: MergedPlan, jobs: Sequence[Job]) -> tuple[list[tuple[str, str]], list[tuple[str, str]]]:
+    """The plan's waits, from operation to operation (a drive maps to the operation it
+    leads to, as a consumer, or to the one before it, as a producer): every one of them,
+    not only the subtask dependencies, since the model does not know which other orders
+    the state allows (a box is closed after the vases go in: the other order fails);
+    waits for a spot are not among them (the simulator makes those), the model decides
+    them. So the reference is the best schedule of these actions in this causal order,
+    by any capable robots."""
+    op_after: dict[str, str] = {}
+    op_before: dict[str, str] = {}
+    for j in jobs:
+        last: str | None = None
+        pending: list[str] = []
+        ops = {o.step for o in j.ops}
+        for sid in j.steps:
+            if sid in ops:
+                for p in pending:
+                    op_after[p] = sid
+                pending = []
+                op_after[sid] = op_before[sid] = sid
+                last = sid
+            else:
+                pending.append(sid)
+                if last is not None:
+                    op_before[sid] = last
+    out: set[tuple[str, str]] = set()
+    drives: set[tuple[str, str]] = set()
+    for s in plan.steps:
+        for p in s.after:
+            prod, cons = op_before.get(p), op_after.get(s.id)
+            if prod is not None and cons is not None and prod != cons:
+                (drives if s.action.skill is Skill.GoToObject else out).add((prod, cons))
+    chain: dict[str, str] = {}
+    for j in jobs:  # a group's jobs in their order
+        if j.group in chain:
+            out.add((chain[j.group], j.ops[0].step))
+        chain[j.group] = j.ops[-1].step
+    return sorted(out), sorted(drives - out)
+
+
+def arcs(problem: Problem) -> int:
+    """How many arc literals the robots' circuits would take (the model's size)."""
+    per: dict[str, int] = {}
+    for j in problem.jobs:
+        for r in problem.candidates[j.group]:
+            per[r] = per.get(r, 0) + 1
+    return sum((n + 1) ** 2 for n in per.values())
+
+
+def _t(seconds: float) -> int:
+    """Hundredths of a second, rounded down: every duration and drive rounded down keeps the
+    model a relaxation of the simulation (a lower bound stays one) and the plan's own
+    schedule, its starts rounded down too, a solution of it (the hint)."""
+    return math.floor(seconds * SCALE + 1e-6)
+
+
+class _Model:
+    """The CP-SAT model of a :class:`Problem` (see the module docstring)."""
+
+    def __init__(self, problem: Problem, hint: MergedPlan | None) -> None:
+        self.p = problem
+        m = self.m = cp_model.CpModel()
+        horizon = self.horizon = max(self._horizon(), _t(hint.makespan) + 1 if hint is not None else 0)
+        self.x: dict[tuple[str, str], cp_model.IntVar] = {}
+        self.start: dict[str, cp_model.IntVar] = {}
+        self.end: dict[str, cp_model.IntVar] = {}
+        self.size: dict[str, int] = {}
+        #: (robot, from job, to job) -> arc literal ("" is the depot)
+        self.arc: dict[tuple[str, str, str], cp_model.IntVar] = {}
+        spots: dict[str, list[cp_model.IntervalVar]] = {}
+        #: op -> the ops its drive waits for (see :attr:`Problem.drive_waits`)
+        self.drive_after: dict[str, list[str]] = {}
+        for a, b in problem.drive_waits:
+            self.drive_after.setdefault(b, []).append(a)
+        for g, robots in problem.candidates.items():
+            for r in robots:
+                self.x[(g, r)] = m.new_bool_var(f"x[{g},{r}]")
+            m.add_exactly_one(self.x[(g, r)] for r in robots)
+        for j in problem.jobs:
+            for o in j.ops:
+                s = self.start[o.step] = m.new_int_var(0, horizon, f"s[{o.step}]")
+                e = self.end[o.step] = m.new_int_var(0, horizon, f"e[{o.step}]")
+                self.size[o.step] = _t(o.seconds)
+                spots.setdefault(o.spot, []).append(m.new_interval_var(s, self.size[o.step], e, f"i[{o.step}]"))
+        for j in problem.jobs:
+            self._within(j)
+        for ivs in spots.values():
+            if len(ivs) > 1:
+                m.add_no_overlap(ivs)
+        for obj, spans in problem.objects.items():
+            m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
+        for a, b in [*problem.precedences, *problem.drive_waits]:
+            m.add(self.start[b] >= self.end[a])
+        self._circuits()
+        self._loads()
+        self.makespan = m.new_int_var(0, horizon, "makespan")
+        m.add_max_equality(self.makespan, [self.end[j.ops[-1].step] for j in problem.jobs])
+        for load in self.load_end.values():
+            m.add(self.makespan >= load)
+        m.minimize(self.makespan)
+        if hint is not None:
+            self._hint(hint)
+
+    def _span(self, obj: str, first: str, last: str) -> cp_model.IntervalVar:
+        if first == last:
+            return self.m.new_interval_var(self.start[first], self.size[first], self.end[first], f"o[{obj},{first}]")
+        size = self.m.new_int_var(0, self.horizon, "")
+        return self.m.new_interval_var(self.start[first], size, self.end[last], f"o[{obj},{first}]")
+
+    def _travel(self, profile: RobotProfile, a: Point, b: Point) -> float:
+        return travel(profile, a, b, self.p.floor_plan)
+
+    def _horizon(self) -> int:
+        slowest = min(p.speed for p in self.p.profiles.values())
+        span = 0.0
+        for j in self.p.jobs:
+            span += sum(o.seconds for o in j.ops) + len(j.ops) * 30.0 / slowest + 30.0 / slowest
+        return _t(span) + 1
+
+    def _within(self, j: Job) -> None:
+        """A job's operations in order, the drives between them at the speed of its robot."""
+        for prev, o in zip(j.ops, j.ops[1:], strict=False):
+            if not o.drive:
+                self.m.add(self.start[o.step] >= self.end[prev.step])
+                continue
+            for r in self.p.candidates[j.group]:
+                d = _t(self._travel(self.p.profiles[r], prev.place, o.goal))
+                for after in [prev.step, *self.drive_after.get(o.step, ())]:
+                    self.m.add(self.start[o.step] >= self.end[after] + d).only_enforce_if(self.x[(j.group, r)])
+
+    def _circuits(self) -> None:
+        """Per robot: a circuit over a depot and the jobs it may take (a job it does not
+        take is skipped by its own loop), with the drives on the arcs."""
+        for r, profile in self.p.profiles.items():
+            mine = [j for j in self.p.jobs if r in self.p.candidates[j.group]]
+            idle = self.arc[(r, "", "")] = self.m.new_bool_var(f"idle[{r}]")
+            arcs_: list[tuple[int, int, cp_model.LiteralT]] = [(0, 0, idle)]
+            for k, j in enumerate(mine, 1):
+                lit = self.x[(j.group, r)]
+                arcs_.append((k, k, ~lit))
+                first = self.arc[(r, "", j.id)] = self.m.new_bool_var("")
+                arcs_.append((0, k, first))
+                d0 = _t(self._travel(profile, self.p.starts[r], j.ops[0].goal))
+                self.m.add(self.start[j.ops[0].step] >= d0).only_enforce_if(first)
+                for after in self.drive_after.get(j.ops[0].step, ()):
+                    self.m.add(self.start[j.ops[0].step] >= self.end[after] + d0).only_enforce_if(first)
+                last = self.arc[(r, j.id, "")] = self.m.new_bool_var("")
+                arcs_.append((k, 0, last))
+                for k2, j2 in enumerate(mine, 1):
+                    if k2 == k:
+                        continue
+                    lit2 = self.arc[(r, j.id, j2.id)] = self.m.new_bool_var("")
+                    arcs_.append((k, k2, lit2))
+                    d = _t(self._travel(profile, j.ops[-1].place, j2.ops[0].goal))
+                    for after in [j.ops[-1].step, *self.drive_after.get(j2.ops[0].step, ())]:
+                        self.m.add(self.start[j2.ops[0].step] >= self.end[after] + d).only_enforce_if(lit2)
+            self.m.add_circuit(arcs_)
+
+    def _loads(self) -> None:
+        """Redundant, for the bound: a robot's jobs fit before the makespan, each with its
+        operations, the drives within it and the shortest drive into it (from the robot's
+        start or from the end of any other job it may do)."""
+        self.load_end: dict[str, cp_model.LinearExprT] = {}
+        for r, profile in self.p.profiles.items():
+            terms = []
+            mine = [j for j in self.p.jobs if r in self.p.candidates[j.group]]
+            ends = [j.ops[-1].place for j in mine]
+            for j in mine:
+                inner = sum(_t(o.seconds) for o in j.ops) + sum(
+                    _t(self._travel(profile, a.place, b.goal)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
+                entry = min(_t(self._travel(profile, p, j.ops[0].goal))
+                            for p in [self.p.starts[r], *(e for i, e in zip(mine, ends, strict=True) if i is not j)])
+                terms.append((inner + entry) * self.x[(j.group, r)])
+            if terms:
+                self.load_end[r] = sum(terms)
+
+    def _hint(self, plan: MergedPlan) -> None:
+        starts_of = {s.id: s.est_start for s in plan.steps}
+        robot_of = {j.group: j.robot for j in self.p.jobs}
+        for (g, r), lit in self.x.items():
+            self.m.add_hint(lit, r == robot_of[g])
+        for s in plan.steps:
+            if s.id in self.start:
+                self.m.add_hint(self.start[s.id], _t(s.est_start))
+                self.m.add_hint(self.end[s.id], _t(s.est_start) + _t(s.est_end - s.est_start))
+        order: dict[str, list[str]] = {r: [] for r in self.p.profiles}
+        for j in sorted(self.p.jobs, key=lambda j: starts_of[j.ops[0].step]):
+            order[j.robot].append(j.id)
+        for (r, a, b), lit in self.arc.items():
+            seq = ["", *order[r], ""] if order[r] else ["", ""]
+            self.m.add_hint(lit, any(seq[i] == a and seq[i + 1] == b for i in range(len(seq) - 1)))
+        self.m.add_hint(self.makespan, max(_t(s.est_start) + _t(s.est_end - s.est_start) for s in plan.steps
+                                           if s.id in self.start))
+
+
+def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT) -> Reference:
+    """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with one
+    worker, seed 0 and ``limit`` seconds of *deterministic* time."""
+    model = _Model(problem, hint)
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = 1
+    solver.parameters.random_seed = 0
+    solver.parameters.max_deterministic_time = limit
+    status = solver.solve(model.m)
+    if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+        name = "infeasible" if status == cp_model.INFEASIBLE else "unknown"
+        return Reference(name, 0.0, solver.best_objective_bound / SCALE, {}, {})
+    chosen = {g: next(r for r in robots if solver.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
+    assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
+    starts = {sid: solver.value(v) / SCALE for sid, v in model.start.items()}
+    return Reference("optimal" if status == cp_model.OPTIMAL else "feasible", solver.objective_value / SCALE,
+                     solver.best_objective_bound / SCALE, assignment, starts)
+
+
+def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
+              max_arcs: int = MAX_ARCS) -> Reference | None:
+    """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
+    the plan cannot be modelled (its replay fails) or the model is larger than
+    ``max_arcs`` (:func:`arcs`)."""
+    problem = problem_of(plan, spec, start)
+    if problem is None or not problem.jobs or arcs(problem) > max_arcs:
+        return None
+    return solve(problem, plan, limit)

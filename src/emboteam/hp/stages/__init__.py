@@ -1,0 +1,17 @@
+"""The hybrid planner's stages, each a module with one entry point that takes the
+planning :class:`~emboteam.hp.stages.context.Context` and returns a typed result; the
+:class:`~emboteam.hp.planner.HybridPlanner` only composes them, as
+:class:`~emboteam.hp.planner.PlannerConfig` chooses:
+
+- :mod:`.decomposed`: decompose (clusters, allocation, planning units), solve (Fast
+  Downward, in rounds; each unit's plan eliminated, replayed, accepted), eliminate over the
+  whole sequence and merge (:mod:`.merge`: partial order, validation) -> a
+  :class:`.context.Draft`;
+- the improvements, each ``(Context, Draft) -> Draft`` and kept only when the simulated
+  makespan is shorter: :mod:`.reallocate` (re-allocation from measured plans),
+  :mod:`.split` (two or more robots on one long cluster), :mod:`.reorder` (who goes first
+  at a shared spot), :mod:`.schedule` (CP-SAT over the whole schedule,
+  ``schedule="optimal"``);
+- the fallback and the ablation: :mod:`.joint` (one joint problem), :mod:`.concatenate`
+  (the no-HP pipeline).
+"""

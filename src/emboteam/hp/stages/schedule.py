@@ -1,0 +1,112 @@
+"""The CP-SAT stage (``PlannerConfig.schedule="optimal"``): the plan's actions given to the
+exact model of the whole schedule (:mod:`emboteam.hp.optimal`: which robot does each job,
+in which order, when), and the plan rebuilt from its answer: each job's steps for the
+robot CP-SAT chose, all steps in the order of its start times, replayed on the symbolic
+state (a moved job first drives to its object), merged and simulated; kept when the
+simulated makespan is shorter. Only for specs whose subtasks are final and independent,
+as the split (the rebuilt sequence keeps no dependency waits)."""
+
+from __future__ import annotations
+
+import logging
+
+from emboteam.hp import optimal
+from emboteam.hp.merge import SeqStep
+from emboteam.hp.stages.context import Context, Draft, Invalid
+from emboteam.hp.stages.merge import finish_independent
+from emboteam.hp.stages.replay import replay
+from emboteam.pddl.domain import Universe
+from emboteam.world.checker import check_condition
+
+log = logging.getLogger(__name__)
+
+#: ``schedule="optimal"``: CP-SAT's deterministic time limit (about seconds of one core)
+#: and the largest model (:func:`emboteam.hp.optimal.arcs`) it is given
+OPTIMAL_LIMIT = optimal.REFERENCE_LIMIT
+OPTIMAL_ARCS = optimal.MAX_ARCS
+#: ``schedule="fast"``: the same for small models only (a MACE-THOR task's solves in a
+#: few milliseconds; the budget is deterministic time, so the plan does not depend on
+#: the machine's load)
+FAST_LIMIT = 0.05
+FAST_ARCS = 400
+#: ``schedule="fast"``: not even the model is built for a plan of more steps (its replay
+#: alone costs the 32-robot cells tens of milliseconds, and their models are far larger)
+FAST_STEPS = 80
+
+
+def schedule(ctx: Context, draft: Draft) -> Draft:
+    """``schedule="optimal"``: the draft rescheduled as CP-SAT's best schedule says, or
+    the draft itself."""
+    return _rescheduled(ctx, draft, OPTIMAL_LIMIT, OPTIMAL_ARCS)
+
+
+def schedule_small(ctx: Context, draft: Draft) -> Draft:
+    """``schedule="fast"``: the same for a small model under a small budget."""
+    if len(draft.plan.steps) > FAST_STEPS:
+        return draft
+    return _rescheduled(ctx, draft, FAST_LIMIT, FAST_ARCS)
+
+
+#: rounds of the stage, each from the plan the last one made (the model lets nobody wait
+#: for what the merge orders on the way, so its schedule simulates a little longer, and
+#: the next round's model starts from the new plan's actions); a count, not a clock
+ROUNDS = 3
+
+
+def _rescheduled(ctx: Context, draft: Draft, limit: float, max_arcs: int) -> Draft:
+    for _ in range(ROUNDS):
+        better = _once(ctx, draft, limit, max_arcs)
+        if better is draft:
+            break
+        draft = better
+    return draft
+
+
+def _once(ctx: Context, draft: Draft, limit: float, max_arcs: int) -> Draft:
+    plan, seq = draft.plan, draft.record.sequence
+    if not ctx.independent or len(seq) != len(plan.steps):
+        return draft
+    ref = optimal.reference(plan, ctx.spec, ctx.start, limit, max_arcs)
+    if ref is None or not ref.robots or ref.makespan >= plan.makespan - 1e-6:
+        return draft
+    # a step's key: its own start (an operation) or that of the operation of its robot it
+    # drives to (a drive: just before it); a drive to nothing stays after the one before
+    key: dict[str, tuple[float, int]] = {}
+    pending: dict[str, list[str]] = {}
+    last: dict[str, float] = {}
+    for s in plan.steps:
+        mine = pending.setdefault(s.robot, [])
+        if s.id in ref.starts:
+            last[s.robot] = ref.starts[s.id]
+            for k, p in enumerate(mine):
+                key[p] = (last[s.robot], k - len(mine))
+            mine.clear()
+            key[s.id] = (last[s.robot], 0)
+        else:
+            mine.append(s.id)
+    for robot, mine in pending.items():
+        for p in mine:
+            key[p] = (last.get(robot, 0.0), 1)
+    robot_of = {s.id: ref.robots.get(s.id, s.robot) for s in plan.steps}
+    order = sorted(range(len(seq)), key=lambda i: (*key[plan.steps[i].id], i))
+    steps = [SeqStep(robot_of[plan.steps[i].id], seq[i].action, seq[i].subtask, seq[i].group) for i in order]
+    state = ctx.start.copy()
+    grounded, why = replay(state, steps, Universe(state.copy()))
+    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
+        why = "misses the goal"
+    if why is not None:
+        log.debug("CP-SAT's schedule does not replay: %s", why)
+        return draft
+    try:
+        other = finish_independent(ctx, grounded)
+    except Invalid as exc:
+        log.debug("CP-SAT's schedule fails in the simulator: %s", exc)
+        return draft
+    if other.makespan >= plan.makespan - 1e-6:
+        log.debug("CP-SAT's schedule (%.1f s in its model) simulates %.1f s, not shorter", ref.makespan,
+                  other.makespan)
+        return draft
+    ctx.notes.append(f"rescheduled by CP-SAT ({ref.status}, {ref.makespan:.1f} s in its model): makespan "
+                     f"{plan.makespan:.1f} -> {other.makespan:.1f} s")
+    draft.record.sequence = grounded
+    return Draft(other, draft.record)

@@ -1,0 +1,70 @@
+"""CP-SAT's exact reference for the schedule (hp/optimal.py) and the "optimal" schedule."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import pytest
+
+from emboteam.bench.suites import load_suite
+from emboteam.hp.optimal import Job, Op, Problem, reference, solve, travel
+from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.validate import simulate
+from emboteam.pddl.problem import planning_state
+from emboteam.pfg.oracle import OracleFrontend
+from emboteam.pfg.taskspec import TaskSpec
+from emboteam.world.actions import Skill
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
+from emboteam.world.state import WorldState
+from sweep_cells import random_cell
+
+
+def _job(i: int, robot: str, place: tuple[float, float], seconds: float) -> Job:
+    return Job(f"j{i}", robot, f"j{i}", [f"s{i}"], [Op(f"s{i}", place, f"spot{i}", seconds, True, place)],
+               {f"t{i}"}, {Skill.PickupObject})
+
+
+def test_the_model_spreads_jobs_and_counts_the_drives() -> None:
+    a, b = parse_team(["1", "1"])
+    profiles = {"robot1": a, "robot2": b}
+    places = [(2.0, 0.0), (0.0, 2.0), (2.0, 2.0)]
+    jobs = [_job(i, "robot1", p, 10.0) for i, p in enumerate(places)]
+    problem = Problem(jobs, {j.group: ("robot1", "robot2") for j in jobs},
+                      {"robot1": (0.0, 0.0), "robot2": (0.0, 0.0)}, profiles)
+    ref = solve(problem, limit=5.0)
+    assert ref.optimal
+    # three 10 s jobs on two robots: one robot does two, driving between them
+    d = {(i, k): travel(a, places[i], places[k]) for i in range(3) for k in range(3)}
+    start = [travel(a, (0.0, 0.0), p) for p in places]
+    best = min(max(start[i] + 10 + d[(i, k)] + 10, start[m] + 10)
+               for i in range(3) for k in range(3) for m in range(3) if len({i, k, m}) == 3)
+    assert abs(ref.makespan - best) < 0.05
+    assert set(ref.robots.values()) == {"robot1", "robot2"}
+    assert solve(problem, limit=5.0) == ref  # one worker, a seed, deterministic time
+
+
+def _salad() -> tuple[TaskSpec, WorldState]:
+    task = next(t for t in load_suite("mace-thor").tasks if t.id == "fp6-salad-prep")
+    state = task.initial_state()
+    return OracleFrontend(task.goal).decompose(task.instruction, load_scene(task.floor_plan), state, task.team()), state
+
+
+@pytest.mark.parametrize("make", [lambda: random_cell(2, 6), _salad], ids=["FloorPlan1 2x6", "fp6-salad-prep"])
+def test_the_reference_of_a_plan_is_proven_and_never_above_it(make: Callable[[], tuple[TaskSpec, WorldState]]
+                                                               ) -> None:
+    # the salad: two robots cut with one knife, one after the other (one robot per object)
+    spec, state = make()
+    plan = HybridPlanner(PlannerConfig(schedule="fast")).plan(spec, state)
+    ref = reference(plan, spec, planning_state(state), limit=10.0)
+    assert ref is not None and ref.optimal
+    assert ref.bound <= ref.makespan <= plan.makespan + 1e-6
+
+
+def test_the_optimal_schedule_is_valid_and_never_longer() -> None:
+    spec, state = random_cell(3, 10)
+    fast = HybridPlanner(PlannerConfig()).plan(spec, state)
+    best = HybridPlanner(PlannerConfig(schedule="optimal")).plan(spec, state)
+    assert best.makespan <= fast.makespan + 1e-6
+    timing = simulate(best, planning_state(state), spec.goal())
+    assert timing.ok, timing.failure
