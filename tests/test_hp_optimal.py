@@ -68,3 +68,16 @@ def test_the_optimal_schedule_is_valid_and_never_longer() -> None:
     assert best.makespan <= fast.makespan + 1e-6
     timing = simulate(best, planning_state(state), spec.goal())
     assert timing.ok, timing.failure
+
+
+def test_a_subtask_the_spec_gives_to_a_robot_stays_with_it() -> None:
+    """The schedule may move the planner's own choices, never a spec's allocation (a
+    joining robot given work, an LLM's or a user's robot per subtask)."""
+    spec, state = random_cell(2, 6)
+    plain = HybridPlanner(PlannerConfig(schedule="optimal")).plan(spec, state)
+    for sub in spec.subtasks:
+        other = next(r for r in plain.robots if not any(s.subtask == sub.id for s in plain.for_robot(r)))
+        pinned = spec.model_copy(update={"subtasks": tuple(
+            t.model_copy(update={"robot": other}) if t.id == sub.id else t for t in spec.subtasks)})
+        plan = HybridPlanner(PlannerConfig(schedule="optimal")).plan(pinned, state)
+        assert {s.robot for s in plan.steps if s.subtask == sub.id} == {other}, sub.id

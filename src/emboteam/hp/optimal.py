@@ -173,7 +173,11 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
             del open_[s.robot]  # hands empty: any other job may follow
     jobs = [j for j in jobs if j.ops]
     profiles = {r: start.robots[r].profile for r in plan.robots}
-    candidates = _groups(jobs, plan, profiles, fixed={j.id for j in open_.values()})
+    # a subtask the spec gives to a robot stays with it (a joining robot given work, an LLM's
+    # allocation): only the planner's own choices are the model's to change
+    assigned = {t.id for t in spec.subtasks if t.robot is not None}
+    fixed = {j.id for j in open_.values()} | {j.id for j in jobs if j.subtasks & assigned}
+    candidates = _groups(jobs, plan, profiles, fixed=fixed)
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
     waits, drives = _precedences(plan, jobs)
     return Problem(jobs, candidates, starts, profiles, waits, drives,
