@@ -18,13 +18,11 @@ right, and calls per task. Nothing is tuned here; the grid is the data for choos
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import json
 import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 from emboteam.bench.importers.smart_llm import import_smart_llm
@@ -45,19 +43,10 @@ MARGINS = (0.25, 0.5, 1.0)
 WEIGHTS = (0.0, 0.1, 0.25, 0.5, 1.0, 2.0)
 
 
-def _fit_module() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("fit_reading_priors", ROOT / "benchmarks" / "fit_reading_priors.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["fit_reading_priors"] = module
-    spec.loader.exec_module(module)
-    return module
-
-
 def records(client: LLMClient) -> list[dict[str, Any]]:
     """One record per development task the reader read: priors, and for the close ones
     the PMI of each scored candidate and whether it meets the ground truth."""
-    satisfies = _fit_module().satisfies
+    from fit_reading_priors import satisfies  # a script beside this one (benchmarks/ is on sys.path)
     reader = OfflineFrontend()
     out: list[dict[str, Any]] = []
     rounds = sorted(DATA.glob("blind_r*/dev"), key=lambda p: int(p.parent.name.removeprefix("blind_r")))
