@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
 from emboteam.bench.importers.smart_llm import import_smart_llm
 from emboteam.bench.mace_thor import load_mace_thor
 from emboteam.bench.standin import DISCLAIMER, StandInServer, known_tasks
@@ -57,7 +58,7 @@ DATA = ROOT / "tests" / "data"
 #: "measured held-out sets become development data" and "rounds 13 and 14 read")
 READ_HELDOUT = ("blind_r8", "blind_r9", "blind_r12", "blind_r13", "blind_r14")
 #: held-out rounds this script refuses to read, even when given by --round-dir
-HELD_OUT = ("blind_r42",)
+HELD_OUT = HELD_OUT_ROUNDS
 #: the modes measured: name -> (front end, --llm-when)
 MODES: dict[str, tuple[str, str]] = {"llm": ("llm", "doubt"), "hybrid-doubt": ("hybrid", "doubt"),
                                      "hybrid-always": ("hybrid", "always")}

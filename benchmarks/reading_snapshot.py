@@ -2,7 +2,7 @@
 refactoring of the reader can be checked for an unchanged behaviour with a plain diff.
 
 What is read: every line of every ``FloorPlanN*.json`` under ``tests/data/blind_r*/`` (dev
-and heldout folders; ``blind_r42`` excluded), ``tests/data/offline_*.jsonl``, MACE-THOR,
+and heldout folders; the held-out rounds of ``HELD_OUT_ROUNDS`` excluded), ``tests/data/offline_*.jsonl``, MACE-THOR,
 and the SMART-LLM peers' tasks under ``/work/shared/data/peers`` (or ``--peers DIR``).
 Never ``tests/data/unseen_tasks.json``. For each instruction: the goal conditions, the
 full TaskSpec, the notes and the unsure conditions, or the error's class and message.
@@ -23,6 +23,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
 from emboteam.bench.importers.lenient import read_record
 from emboteam.bench.importers.smart_llm import _floor_number, task_files
 from emboteam.bench.mace_thor import load_mace_thor
@@ -37,7 +38,7 @@ from emboteam.world.scene import load_scene, normalize_floor_plan
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
 PEERS = Path("/work/shared/data/peers")
-EXCLUDED_ROUNDS = {"blind_r42"}
+EXCLUDED_ROUNDS = set(HELD_OUT_ROUNDS)
 
 #: (key, instruction, floor plan, team, setup records or None)
 Item = tuple[str, str, str, str, list[Any]]
