@@ -127,3 +127,18 @@ def test_a_robot_holding_something_gets_a_place_to_put_it() -> None:
 def test_impossible_or_unknown_goals_are_typed_errors(goal: str, error: type[Exception], match: str) -> None:
     with pytest.raises(error, match=match):
         build_problem(fresh(), [C(goal)], ["robot1"])
+
+
+def test_hot_in_the_fridge_is_refused_before_the_search() -> None:
+    """A fridge cools what it holds: the same tomato cannot end hot in it (Fast Downward
+    would spend its whole time limit failing to prove that)."""
+    s = fresh("1", "FloorPlan2")
+    assert len(list(s.of_type("Tomato"))) == 1
+    with pytest.raises(ImpossibleGoalError, match="cools what it holds"):
+        build_problem(s, [C("hot(Tomato)"), C("inside(Tomato, Fridge)")], ["robot1"])
+
+
+def test_hot_and_in_the_fridge_are_fine_for_different_objects() -> None:
+    s = fresh("1", "FloorPlan2")
+    p = build_problem(s, [C("hot(Potato)"), C("inside(Tomato, Fridge)")], ["robot1"])
+    assert {"Potato_1", "Tomato_1", "Fridge_1"} <= set(p.objects)

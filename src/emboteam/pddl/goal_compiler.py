@@ -363,4 +363,24 @@ def compile_goal(conditions: Sequence[Condition], state: WorldState, robots: Seq
                  narrow: bool = True) -> list[GoalPart]:
     """Compile conditions that one problem must satisfy together."""
     slices = slicing_targets(conditions, state, robots)
-    return [compile_condition(c, state, robots, slices=slices, narrow=narrow) for c in conditions]
+    parts = [compile_condition(c, state, robots, slices=slices, narrow=narrow) for c in conditions]
+    _check_hot_in_fridge(parts, state)
+    return parts
+
+
+def _check_hot_in_fridge(parts: Sequence[GoalPart], state: WorldState) -> None:
+    """A fridge cools what it holds (AI2-THOR: an object inside a cold source becomes Cold,
+    and Hot and Cold are one temperature), so "hot" and "in the fridge" cannot hold for the
+    same object. Raised here, before the search: Fast Downward cannot prove a goal
+    unreachable quickly, and would spend its whole time limit on this one."""
+    for hot in (p for p in parts if p.condition.predicate is Predicate.hot):
+        for cooled in parts:
+            places = [state.objects[x] for x in cooled.places if x in state.objects]
+            if (cooled.condition.predicate is not Predicate.inside or not places
+                    or not all(is_cold_source(f) for f in places)):
+                continue
+            distinct = set(hot.subjects) | set(cooled.subjects)
+            if len(distinct) < hot.condition.count + cooled.condition.count:
+                raise ImpossibleGoalError(
+                    f"{hot.condition} and {cooled.condition}: {cooled.condition.receptacle} cools what "
+                    f"it holds, so the same {hot.condition.subject} cannot be hot in it")
