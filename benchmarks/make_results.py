@@ -100,7 +100,7 @@ def commit() -> str:
 
 def measured(out: Path, steps: Sequence[Callable[[], None]]) -> None:
     """Run ``steps`` while sampling the 1-minute load average; write ``run.json``."""
-    loads = [os.getloadavg()[0]]
+    loads, code = [os.getloadavg()[0]], commit()  # the code as it was when the run began
     stop = threading.Event()
 
     def sample() -> None:
@@ -119,7 +119,7 @@ def measured(out: Path, steps: Sequence[Callable[[], None]]) -> None:
     loads.append(os.getloadavg()[0])
     finished = datetime.now(timezone.utc)
     meta = {"started": started.isoformat(timespec="seconds"), "finished": finished.isoformat(timespec="seconds"),
-            "commit": commit(), "cpus": os.cpu_count(), "load_min": min(loads), "load_max": max(loads),
+            "commit": code, "cpus": os.cpu_count(), "load_min": min(loads), "load_max": max(loads),
             "load_mean": sum(loads) / len(loads)}
     (out / "run.json").write_text(json.dumps(meta, indent=2) + "\n")
 
