@@ -15,7 +15,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
-from make_results import main, markers  # noqa: E402
+from make_results import main, markers, splice  # noqa: E402
 
 HAND = """## Reading, end to end (kept by hand)
 
@@ -125,3 +125,11 @@ def test_new_page_holds_every_block(tmp_path: Path) -> None:
     assert page.startswith("# Results\n")
     positions = [page.index(markers(n)[0]) for n in ("provenance", "oracle", "offline", "unseen", "smart-llm")]
     assert positions == sorted(positions)
+
+
+def test_the_repository_page_has_every_block_once() -> None:
+    """docs/results.md as committed: make_results.py can rewrite it without appending."""
+    names = ("provenance", "oracle", "offline", "unseen", "smart-llm")
+    page, appended = splice((ROOT / "docs" / "results.md").read_text(), {n: f"<{n}>" for n in names})
+    assert appended == []
+    assert [page.index(f"<{n}>") for n in names] == sorted(page.index(f"<{n}>") for n in names)
