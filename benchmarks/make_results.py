@@ -15,7 +15,7 @@ scripts' blocks such as ``disturbances`` or ``llm_local``) is left byte for byte
 missing from the page is appended at its end (with a note on stderr); a page without any
 block is written whole from :data:`BLOCKS`' order; unmatched or repeated markers stop the
 script (exit 2, one line) before anything is written. ``--skip-run`` only rebuilds the
-blocks from the outputs already in ``--out``. Takes about 40 minutes on 2 cores. Nothing
+blocks from the outputs already in ``--out``. Takes about 15 minutes on 2 cores (13 on 2026-12-06, shared, load 4-11). Nothing
 is copied from the paper: LLM rows need an endpoint and are not measured here.
 """
 
@@ -27,6 +27,7 @@ import os
 import shutil
 import subprocess
 import sys
+import textwrap
 import threading
 from collections.abc import Callable, Sequence
 from datetime import datetime, timezone
@@ -134,12 +135,13 @@ def tables(tables_md: Path) -> str:
 def provenance_block(meta: dict[str, Any]) -> str:
     start, end = datetime.fromisoformat(meta["started"]), datetime.fromisoformat(meta["finished"])
     minutes = round((end - start).total_seconds() / 60)
-    return (f"**Measured** on {start:%Y-%m-%d} between {start:%H:%M} and {end:%H:%M} UTC ({minutes} min) at "
-            f"commit `{meta['commit']}` on this project's reference machine ({meta['cpus']} cores, no GPU, "
-            f"shared: 1-minute load average {meta['load_min']:.1f}-{meta['load_max']:.1f}, mean "
-            f"{meta['load_mean']:.1f}) by `.venv/bin/python benchmarks/make_results.py`, which runs the "
-            "commands below. The sections between its markers come from that run; the other sections "
-            "say their own date.")
+    return textwrap.fill(
+        f"**Measured** on {start:%Y-%m-%d} between {start:%H:%M} and {end:%H:%M} UTC ({minutes} min) at "
+        f"commit `{meta['commit']}` on this project's reference machine ({meta['cpus']} cores, no GPU, "
+        f"shared: 1-minute load average {meta['load_min']:.1f}-{meta['load_max']:.1f}, mean "
+        f"{meta['load_mean']:.1f}) by `.venv/bin/python benchmarks/make_results.py`, which runs the "
+        "commands below. The sections between its markers come from that run; the other sections "
+        "say their own date.", width=92)
 
 
 def frontend_block(title: str, cmd: str, fe: str, out: Path, preface: str = "") -> str:
