@@ -178,3 +178,48 @@ def test_loads_and_ticks_in_behaviortree_cpp() -> None:
     tree = factory.create_tree(doc.attrib["main_tree_to_execute"])
     assert tree.tick_while_running() == bt.NodeStatus.SUCCESS
     assert "PutObject" in ticked and "SignalDone" in ticked
+
+
+def test_each_steps_drive_is_exported_with_its_grid_path(doc: ET.Element) -> None:
+    """A step's GoToObject carries the cells and AI2-THOR actions the simulator drives for
+    it; walked from its first cell, the moves visit exactly those cells and end facing
+    the target from one of its interaction poses."""
+    from emboteam.world.navgrid import STEPS, load_grid
+    from emboteam.world.navigation import navigator
+    from emboteam.world.scene import load_scene
+
+    plan, _ = fridge_handoff()
+    grid, nav, scene = load_grid("FloorPlan1"), navigator("FloorPlan1"), load_scene("FloorPlan1")
+    trees = _trees(doc)
+    drives = 0
+    for step in plan.steps:
+        if step.action.skill.value != "GoToObject":
+            continue
+        body = trees[f"Step_{step.id.replace('.', '_')}"]
+        (go,) = [el for el in body.iter("GoToObject") if "path" in el.attrib]
+        cells = [tuple(map(float, c.split(","))) for c in go.attrib["path"].split(";")]
+        here = grid.cell_at(cells[0][:2])
+        assert here is not None
+        moves = go.attrib["moves"].split()
+        # a cell's yaw is the one it is left with: undo the turns made on the first cell
+        leading = moves[:moves.index("MoveAhead")] if "MoveAhead" in moves else moves
+        turned = sum({"RotateRight": 1, "RotateLeft": -1}.get(m, 0) for m in leading)
+        heading = (int(cells[0][2]) // 90 - turned) % 4
+        visited = [here]
+        for move in moves:
+            if move == "MoveAhead":
+                here = (here[0] + STEPS[heading][0], here[1] + STEPS[heading][1])
+                visited.append(here)
+            elif move in ("RotateRight", "RotateLeft"):
+                heading = (heading + (1 if move == "RotateRight" else 3)) % 4
+            else:
+                assert move.startswith("Wait:") and float(move.split(":")[1]) > 0
+        assert visited == [grid.cell_at(c[:2]) for c in cells]
+        target = scene.get(step.action.target).position
+        assert (here, heading) in {(p.cell, p.heading) for p in nav.poses_for((target[0], target[2]))}
+        drives += 1
+    assert drives >= 1
+    model = doc.find("TreeNodesModel")
+    assert model is not None
+    go_model = next(m for m in model if m.attrib.get("ID") == "GoToObject")
+    assert {"path", "moves"} <= {p.attrib["name"] for p in go_model}

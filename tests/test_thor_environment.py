@@ -4,21 +4,28 @@ double of the Unity process (tests/thor_unity_double.py) that answers with real
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 
 pytest.importorskip("ai2thor.server")
 
-from emboteam.sim.durations import FAILED_ACTION_SECONDS, MIN_NAVIGATION_SECONDS, action_seconds
+from emboteam.exec.nav_check import check_motion
+from emboteam.sim.drives import drive_steps
+from emboteam.sim.durations import FAILED_ACTION_SECONDS, action_seconds
 from emboteam.sim.setup import StateChange
+from emboteam.sim.simulator import Simulator
 from emboteam.thor.changes import changes_between
 from emboteam.thor.environment import ThorEnvironment
 from emboteam.thor.errors import ThorSetupError, ThorTeamError
-from emboteam.thor.skills import path_length
+from emboteam.thor.skills import facing
 from emboteam.world.actions import Action, ActionOutcome, FailureReason, Skill
 from emboteam.world.environment import Environment
+from emboteam.world.navgrid import NavGrid, load_grid
+from emboteam.world.navigation import navigator
 from emboteam.world.robots import RobotProfile, parse_team, robot_profile
 from emboteam.world.scene import load_scene
-from emboteam.world.state import REACH, WorldState
+from emboteam.world.state import WorldState
 from thor_unity_double import UnityDouble
 
 FP = "FloorPlan1"
@@ -48,32 +55,102 @@ def test_it_is_an_environment() -> None:
     assert isinstance(env, Environment)
 
 
-def test_goto_plans_with_reachable_positions_and_shortest_path_then_teleports_at_the_end() -> None:
+def _replay(unity: UnityDouble, agent_id: int) -> list[tuple[float, float, float]]:
+    """(x, z, yaw) after each MoveAhead/Rotate the double carried out for an agent."""
+    return [(c["x"], c["z"], c["yaw"]) for c in unity.poses if c["agentId"] == agent_id]
+
+
+def test_goto_drives_the_simulators_grid_path_step_by_step() -> None:
     env, unity = make()
-    start = env.observe().robots["robot1"].position
+    sim = Simulator(load_scene(FP), parse_team("1"), avoidance=True)
+    expected = sim.execute("robot1", Action(skill=Skill.GoToObject, target="Fridge_1"))
+    steps = drive_steps(sim.traffic.paths["robot1"], start=0.0, heading_before=0)  # the agent faces +z
     env.start("robot1", Action(skill=Skill.GoToObject, target="Fridge_1"))
-    (reach,) = unity.by_action("GetReachablePositions")
-    (path,) = unity.by_action("GetShortestPathToPoint")
-    assert path["agentId"] == 0 and (path["position"]["x"], path["position"]["z"]) == start
-    dest = path["target"]
-    fridge = env.observe().objects["Fridge_1"].position
-    assert ((dest["x"] - fridge[0]) ** 2 + (dest["z"] - fridge[2]) ** 2) ** 0.5 <= REACH
-    assert dest in unity.reachable
-    assert unity.by_action("Teleport") == []  # the robot is still driving
-    length = path_length([path["position"], dest])
-    env.advance(env.now + 0.25)  # halfway along the drive, for the trace's floor map
+    assert env.busy("robot1") and unity.by_action("MoveAhead") == []  # steps are sent as they end
+    env.advance(steps[len(steps) // 2].end)  # halfway: the agent is on the path's cell of then
     x, z = env.pose("robot1")
-    assert min(start[0], dest["x"]) <= x <= max(start[0], dest["x"]) and (x, z) != start
-    assert env.next_event_time() == pytest.approx(max(MIN_NAVIGATION_SECONDS, length / 1.0))
+    assert (x, z) == NavGrid.point(steps[len(steps) // 2].cell)
     outcome = env.advance(env.next_event_time() or 0.0)[0]
-    assert outcome.success
-    (tele,) = unity.by_action("Teleport")
-    assert tele["agentId"] == 0 and tele["position"] == dest and tele["standing"] is True
+    assert outcome.success and outcome.end - outcome.start == pytest.approx(expected.end - expected.start)
+    sent = [c["action"] for c in unity.calls if c["action"] in ("MoveAhead", "RotateLeft", "RotateRight")]
+    moves = [s.action for s in steps if s.action != "Wait"]
+    assert sent[:len(moves)] == moves  # then at most a turn by the last few degrees to face it
+    grid = load_grid(FP)
+    agent = unity.agents[0]["agent"]
+    cell = grid.cell_at((agent["position"]["x"], agent["position"]["z"]))
+    fridge = load_scene(FP).get("Fridge_1").position
+    assert cell == sim.traffic.cell("robot1", sim.now).cell  # the very cell the simulator ends on
+    assert cell in {p.cell for p in navigator(FP).poses_for((fridge[0], fridge[2]))}
+    assert agent["rotation"]["y"] == pytest.approx(facing(agent["position"], dict(x=fridge[0], y=fridge[1],
+                                                                                  z=fridge[2]))[0], abs=0.2)
+    assert unity.by_action("Teleport") == [] and unity.by_action("GetShortestPathToPoint") == []
     robot = env.observe().robots["robot1"]
-    assert robot.position == (round(dest["x"], 3), round(dest["z"], 3)) and robot.at == "Fridge_1"
-    # the navmesh is queried once per scene
-    run(env, "robot1", Action(skill=Skill.GoToObject, target="Apple_1"))
-    assert len(unity.by_action("GetReachablePositions")) == 1 and reach["agentId"] == 0
+    assert robot.at == "Fridge_1" and robot.position == NavGrid.point(cell)
+
+
+def test_every_move_lands_on_a_grid_cell_and_the_next_drive_starts_from_there() -> None:
+    env, unity = make()
+    grid = load_grid(FP)
+    for target in ("Fridge_1", "Apple_1", "Toaster_1", "GarbageCan_1"):
+        assert run(env, "robot1", Action(skill=Skill.GoToObject, target=target)).success, target
+    cells = [grid.cell_at((x, z)) for x, z, _ in _replay(unity, 0)]
+    assert cells and None not in cells
+    assert all(abs(a[0] - b[0]) + abs(a[1] - b[1]) <= 1 for a, b in itertools.pairwise(cells))  # type: ignore[index]
+    assert check_motion(env.nav_record()).collisions == 0
+
+
+def test_teleport_mode_teleports_cell_by_cell_then_faces_the_object() -> None:
+    profiles = parse_team("1")
+    unity = UnityDouble(FP, 1)
+    env = ThorEnvironment(unity, load_scene(FP), profiles, steps="teleport")
+    assert run(env, "robot1", Action(skill=Skill.GoToObject, target="Fridge_1")).success
+    tele = unity.by_action("Teleport")
+    grid = load_grid(FP)
+    cells = [grid.cell_at((t["position"]["x"], t["position"]["z"])) for t in tele]
+    assert len(tele) >= 3 and None not in cells
+    assert all(abs(a[0] - b[0]) + abs(a[1] - b[1]) <= 1 for a, b in itertools.pairwise(cells))  # type: ignore[index]
+    assert unity.by_action("MoveAhead") == []
+    fridge = load_scene(FP).get("Fridge_1").position
+    yaw, horizon = facing(tele[-1]["position"], dict(x=fridge[0], y=fridge[1], z=fridge[2]))
+    assert tele[-1]["rotation"]["y"] == yaw and tele[-1]["horizon"] == horizon
+    with pytest.raises(ThorTeamError, match="step mode"):
+        ThorEnvironment(UnityDouble(FP, 1), load_scene(FP), profiles, steps="fly")
+
+
+def test_robots_crossing_paths_never_share_a_cell_in_thor() -> None:
+    env, unity = make("1,2,3,4")
+    targets = {"robot1": "Fridge_1", "robot2": "Sink_1", "robot3": "StoveBurner_1", "robot4": "Toaster_1"}
+    for robot, target in targets.items():
+        env.start(robot, Action(skill=Skill.GoToObject, target=target))
+    done: list[ActionOutcome] = []
+    while (t := env.next_event_time()) is not None:
+        done += env.advance(t)
+    assert len(done) == 4 and all(o.success for o in done), done  # the double refuses a move onto an agent
+    assert check_motion(env.nav_record()).collisions == 0
+    assert len(unity.by_action("MoveAhead")) > 8
+
+
+def test_a_step_thor_refuses_ends_the_drive_where_the_agent_stands() -> None:
+    env, unity = make()
+    unity.fail_next("MoveAhead", "StandardIslandHeight is blocking Agent 0 from moving 0")
+    failed = run(env, "robot1", Action(skill=Skill.GoToObject, target="Fridge_1"))
+    assert not failed.success and failed.reason is FailureReason.NOT_REACHABLE
+    assert "StandardIslandHeight" in failed.message
+    agent = unity.agents[0]["agent"]["position"]
+    here = load_grid(FP).cell_at((agent["x"], agent["z"]))
+    assert here is not None and env.traffic.cell("robot1", env.now).cell == here
+    assert env.observe().robots["robot1"].at is None
+    assert run(env, "robot1", Action(skill=Skill.GoToObject, target="Fridge_1")).success  # from there
+
+
+def test_agents_are_put_on_their_start_cells() -> None:
+    profiles = parse_team("1,2")
+    unity = UnityDouble(FP, 2, starts=[(0.1, 0.1), (-0.4, 0.3)])  # where AI2-THOR happened to put them
+    starts = {"robot1": (-1.0, -1.5), "robot2": (-0.75, -1.5)}
+    env = ThorEnvironment(unity, load_scene(FP), profiles, starts=starts)
+    assert [(c["agentId"], c["position"]["x"], c["position"]["z"]) for c in unity.by_action("Teleport")] == [
+        (0, -1.0, -1.5), (1, -0.75, -1.5)]
+    assert {r: s.position for r, s in env.observe().robots.items()} == starts
 
 
 @pytest.mark.parametrize(("skill", "target", "thor_action"), [
@@ -157,8 +234,6 @@ def test_thor_failures_come_back_typed_with_thors_message_after_the_actions_dura
     unity.fail_next("OpenObject", "Fridge|-02.10|+00.00|+01.07 is not interactable and (perhaps it is "
                                   "occluded by something).")
     assert run(env, "robot1", Action(skill=Skill.OpenObject, target="Fridge_1")).reason is FailureReason.NOT_VISIBLE
-    unity.fail_next("Teleport", "StandardIslandHeight is blocking Agent 0 from moving 0")
-    assert run(env, "robot1", Action(skill=Skill.GoToObject, target="Fridge_1")).reason is FailureReason.NOT_REACHABLE
 
 
 def test_team_rules_are_checked_before_any_controller_call() -> None:
@@ -184,11 +259,13 @@ def test_robots_act_through_their_own_agents_in_multi_agent_mode() -> None:
     assert unity.by_action("PickupObject")[0]["agentId"] == 0
     assert env.observe().robots["robot5"].holding == "Apple_1"
     assert env.observe().objects["Apple_1"].held_by == "robot5"
-    # two robots never head for the same grid position
+    # two robots never end on the same grid cell
     env.start("robot5", Action(skill=Skill.GoToObject, target="Fridge_1"))
     env.start("robot24", Action(skill=Skill.GoToObject, target="Fridge_1"))
-    d5, d24 = (c["target"] for c in unity.by_action("GetShortestPathToPoint")[-2:])
-    assert (d5["x"], d5["z"]) != (d24["x"], d24["z"])
+    while (t := env.next_event_time()) is not None:
+        env.advance(t)
+    a5, a24 = (unity.agents[i]["agent"]["position"] for i in (0, 1))
+    assert (a5["x"], a5["z"]) != (a24["x"], a24["z"])
 
 
 def test_a_joining_robot_needs_a_spare_agent() -> None:

@@ -61,3 +61,18 @@ def test_a_process_keeps_one_controller_and_resets_it_between_episodes(monkeypat
     assert again is first and len(started) == 1
     assert again.floor_plan == "FloorPlan201" and len(again.agents) == 3
     assert again.calls[-1] == {"action": "SetDecayTemperatureBool", "allowDecayTemperature": False}
+
+
+def test_crowded_doorways_run_on_the_grid_in_thor_without_collisions(unity: list[UnityDouble]) -> None:
+    """The congestion suite's doorway tasks (a robot parked in a one-cell doorway, the team
+    beyond it): in the AI2-THOR environment robots drive the simulator's grid paths step by
+    step, wait for each other, and the double refuses any move onto another agent's cell."""
+    from emboteam.bench.suites import load_suite
+    from emboteam.modes import run_mode
+
+    doorways = [t for t in load_suite("congestion").tasks if t.starts]
+    episodes = [run_mode(t, RunConfig(env="ai2thor", frontend="oracle", mode="full")) for t in doorways]
+    assert all(e.success for e in episodes), [(e.task, e.error) for e in episodes if not e.success]
+    assert sum(e.collisions for e in episodes) == 0 and sum(e.nav_waits for e in episodes) > 0
+    assert all(d.by_action("MoveAhead") for d in unity)
+    assert not [c for d in unity for c in d.calls if c["action"] in ("GetShortestPathToPoint", "GetReachablePositions")]

@@ -34,9 +34,10 @@ def test_every_floor_plan_has_a_grid_and_the_licence_ships() -> None:
 
 def test_the_grid_keeps_only_the_connected_floor() -> None:
     """FloorPlan29's AI2-THOR 2.1 grid falls in two parts (35 and 30 cells); a robot in the
-    smaller one could never leave it, so only the larger is kept, and the report says so."""
+    smaller one could never leave it, so only the larger is kept, and the report says so
+    (with the six cells added for AI2-THOR 5.x objects: 41)."""
     grid = load_grid("FloorPlan29")
-    assert grid.dropped == 30 and len(grid.cells) == 35
+    assert grid.dropped == 30 and len(grid.cells) == 41 and len(grid.added) == 6
     seen = {grid.ordered[0]}
     stack = [grid.ordered[0]]
     while stack:
@@ -126,30 +127,36 @@ def test_a_wall_makes_the_drive_longer_than_the_straight_line() -> None:
 def test_fit_report_names_objects_out_of_reach() -> None:
     assert nav_fit("FloorPlan1").unposed == ()
     fit = nav_fit("FloorPlan29")
-    assert {"Egg_1", "Tomato_1", "GarbageCan_1"} <= set(fit.unposed)
-    assert "Egg_1" in fit.summary()
+    assert fit.unposed == ("GarbageCan_1",)
+    assert "out of reach of every cell: GarbageCan_1" in fit.summary()
 
 
 def test_scene_command_shows_the_fit() -> None:
     res = runner.invoke(app, ["scene", "29", "--json"])
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout)
-    assert "Egg_1" in data["navigation"]["unposed"] and data["navigation"]["dropped_cells"] == 30
+    nav = data["navigation"]
+    assert nav["unposed"] == ["GarbageCan_1"] and nav["dropped_cells"] == 30
+    assert any("within reach of Egg_1" in c["reason"] for c in nav["added_cells"])
     res = runner.invoke(app, ["scene", "29"])
-    assert res.exit_code == 0 and "out of reach of every cell: Egg_1" in " ".join(res.stdout.split())
+    text = " ".join(res.stdout.split())
+    assert res.exit_code == 0 and "out of reach of every cell: GarbageCan_1" in text
+    assert "cells added for AI2-THOR 5.x objects (to reach Egg_1, LightSwitch_1, Tomato_1)" in text
 
 
 def test_a_goal_needing_an_unreachable_object_is_a_capability_error() -> None:
-    scene = load_scene("FloorPlan29")
-    with pytest.raises(UnreachableObjectError, match="Egg_1"):
-        check_reachable(Goal.parse("broken(Egg_1)"), scene)
-    with pytest.raises(UnreachableObjectError, match="Tomato"):
-        check_reachable(Goal.parse("sliced(Tomato)"), scene)  # the only tomato is out of reach
-    check_reachable(Goal.parse("switched_on(Toaster)"), scene)  # reachable: no error
+    scene = load_scene("FloorPlan211")
+    with pytest.raises(UnreachableObjectError, match="Plate_1"):
+        check_reachable(Goal.parse("broken(Plate_1)"), scene)
+    with pytest.raises(UnreachableObjectError, match="Laptop"):
+        check_reachable(Goal.parse("switched_on(Laptop)"), scene)  # the only laptop is out of reach
+    check_reachable(Goal.parse("switched_on(LightSwitch)"), scene)  # reachable: no error
+    # FloorPlan29's egg and tomato are reached from the cells added for AI2-THOR 5.x
+    check_reachable(Goal.parse("sliced(Tomato)"), load_scene("FloorPlan29"))
 
 
 def test_run_rejects_such_a_task_with_exit_2() -> None:
-    res = runner.invoke(app, ["run", "break the egg", "--scene", "29", "--robots", "1", "--frontend", "offline",
-                              "--json"])
+    res = runner.invoke(app, ["run", "break the plate", "--scene", "211", "--robots", "1", "--frontend",
+                              "offline", "--json"])
     assert res.exit_code == EXIT_BAD_INPUT, res.output
-    assert "Egg_1" in res.output and "navigation grid" in res.output
+    assert "Plate_1" in res.output and "navigation grid" in res.output

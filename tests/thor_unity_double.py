@@ -8,14 +8,20 @@
   records every action dict and answers with real ``ai2thor.server.Event`` /
   ``MultiAgentEvent`` objects built from those metadata dicts, applying the plain
   bookkeeping effect of each action (a pickup fills the inventory, a teleport moves the
-  agent, the fridge chills what is put in it). It has no physics: navigation goes wherever it is told, placement never fails
-  unless a failure is scripted with :meth:`UnityDouble.fail_next`.
+  agent, the fridge chills what is put in it). Its only physics is the agent's:
+  ``MoveAhead`` goes ``moveMagnitude`` along the agent's yaw and is refused, as AI2-THOR
+  refuses it, when it would leave the reachable positions (by default the floor plan's
+  navigation grid, which models AI2-THOR's) or come within one grid cell of another agent;
+  ``RotateLeft/Right`` and ``LookUp/Down`` turn by ``degrees``. Teleports go wherever they
+  are told, placement never fails unless a failure is scripted with
+  :meth:`UnityDouble.fail_next`.
 """
 
 from __future__ import annotations
 
 import copy
 import json
+import math
 from functools import cache
 from typing import Any
 
@@ -90,17 +96,20 @@ class UnityDouble:
 
     def __init__(self, floor_plan: str, agent_count: int = 1, *, reachable: list[dict[str, float]] | None = None,
                  starts: list[tuple[float, float]] | None = None) -> None:
-        from emboteam.world.scene import free_floor_cells, load_scene
+        from emboteam.world.navgrid import NavGrid, load_grid
+        from emboteam.world.scene import load_scene
 
         scene = load_scene(floor_plan)
         self.floor_plan = floor_plan
         self.objects = metadata_objects(floor_plan)
-        cells = free_floor_cells(scene)
+        cells = [NavGrid.point(c) for c in load_grid(floor_plan).ordered]
         self.reachable = reachable if reachable is not None else [{"x": x, "y": AGENT_Y, "z": z} for x, z in cells]
         starts = starts or [scene.robot_start(i) for i in range(agent_count)]
         self.agents = [agent_metadata(self.objects, {"x": x, "y": AGENT_Y, "z": z}, i)
                        for i, (x, z) in enumerate(starts)]
         self.calls: list[dict[str, Any]] = []
+        #: each agent's pose after every MoveAhead / Rotate it carried out
+        self.poses: list[dict[str, Any]] = []
         self._failures: dict[str, str] = {}
         self.stopped = False
         self.last_event = self._event(0)
@@ -146,6 +155,37 @@ class UnityDouble:
         return events[0] if len(events) == 1 else MultiAgentEvent(active, events)
 
     # ---- effects ---------------------------------------------------------------------
+    def _move(self, name: str, call: dict[str, Any], meta: dict[str, Any]) -> str:
+        agent = meta["agent"]
+        if name in ("LookUp", "LookDown"):
+            sign = 1.0 if name == "LookDown" else -1.0
+            agent["cameraHorizon"] = round(agent["cameraHorizon"] + sign * float(call.get("degrees", 30)), 3)
+            return ""
+        if name != "MoveAhead":
+            sign = 1.0 if name == "RotateRight" else -1.0
+            yaw = (agent["rotation"]["y"] + sign * float(call.get("degrees", 90))) % 360.0
+            agent["rotation"] = {"x": 0.0, "y": round(yaw, 3), "z": 0.0}
+            self._moved(call, agent)
+            return ""
+        yaw = math.radians(agent["rotation"]["y"])
+        step = float(call.get("moveMagnitude", 0.25))
+        pos = agent["position"]
+        x, z = round(pos["x"] + step * math.sin(yaw), 3), round(pos["z"] + step * math.cos(yaw), 3)
+        me = int(call.get("agentId", 0))
+        if not any(math.hypot(p["x"] - x, p["z"] - z) < 0.01 for p in self.reachable):
+            return f"Wall is blocking Agent {me} from moving 0"
+        for other in self.agents:
+            o = other["agent"]["position"]
+            if other is not meta and math.hypot(o["x"] - x, o["z"] - z) < 0.2:
+                return f"{other['agent']['name']} is blocking Agent {me} from moving 0"
+        agent["position"] = {"x": x, "y": pos["y"], "z": z}
+        self._moved(call, agent)
+        return ""
+
+    def _moved(self, call: dict[str, Any], agent: dict[str, Any]) -> None:
+        self.poses.append({"agentId": int(call.get("agentId", 0)), "x": agent["position"]["x"],
+                           "z": agent["position"]["z"], "yaw": agent["rotation"]["y"]})
+
     def _apply(self, call: dict[str, Any], meta: dict[str, Any]) -> str:
         name = call["action"]
         inv = meta["inventoryObjects"]
@@ -158,6 +198,8 @@ class UnityDouble:
             meta["agent"]["position"] = dict(call["position"])
             meta["agent"]["rotation"] = dict(call["rotation"])
             meta["agent"]["cameraHorizon"] = call["horizon"]
+        elif name in ("MoveAhead", "RotateLeft", "RotateRight", "LookUp", "LookDown"):
+            return self._move(name, call, meta)
         elif name == "PickupObject":
             assert target is not None
             if inv:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
+from typing import Protocol, cast
 
 from emboteam.config import RunConfig
 from emboteam.environments import ExecutionEnvironment, make_environment
@@ -34,6 +35,7 @@ from emboteam.pfg.scripted import scripted_action_lists
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.rules import apply_action, check_action
 from emboteam.sim.simulator import Simulator
+from emboteam.sim.traffic import Traffic
 from emboteam.task import EpisodeTask
 from emboteam.world.actions import Action
 from emboteam.world.goals import Goal
@@ -316,19 +318,28 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     })
 
 
+class _OnGrid(Protocol):
+    """An environment whose robots drive on the navigation grid."""
+
+    traffic: Traffic
+
+    def nav_record(self) -> dict[str, object]: ...
+
+
 def _motion_fields(env: object, fields: dict[str, object]) -> dict[str, object]:
     """The robots' recorded motion, checked by the independent trace checker, and the
     trace with its ``nav`` event (environments without a grid record nothing)."""
-    if not isinstance(env, Simulator):
+    if not isinstance(getattr(env, "traffic", None), Traffic):  # the simulator and AI2-THOR's have one
         return {}
-    record = env.nav_record()
+    grid_env = cast(_OnGrid, env)
+    record = grid_env.nav_record()
     check = check_motion(record)
     old = fields.get("trace", ())
     trace: tuple[TraceEvent, ...] = tuple(old) if isinstance(old, tuple) else ()
     end = max([ev.t for ev in trace], default=0.0)
     event = TraceEvent(t=end, kind="nav", data={**record, "vertex_conflicts": len(check.vertex),
                                                 "edge_conflicts": len(check.edge)})
-    tr = env.traffic
+    tr = grid_env.traffic
     return {"collisions": check.collisions, "nav_waits": tr.waits, "nav_replans": tr.replans,
             "path_seconds": round(tr.search_seconds, 4), "trace": (*trace, event)}
 

@@ -20,6 +20,15 @@ the same nodes in the same order:
   THOR skill) is declared in ``<TreeNodesModel>`` with its ports, and so is every step
   SubTree, which is what Groot2 needs to open and edit the file.
 
+Each step's GoToObject carries the grid path the simulator drives for it (the plan run
+once with avoidance, :mod:`emboteam.btc.drives`): the input port ``path`` lists the cells
+as ``x,z,yaw`` (metres, degrees; ``;``-separated) and ``moves`` the AI2-THOR agent actions
+(``MoveAhead``, ``RotateLeft``, ``RotateRight``, ``Wait:SECONDS`` where it waits for another
+robot), ending at the interaction pose facing the object. A GoToObject node implemented for
+a real AI2-THOR controller can step ``moves`` (or ``Teleport`` along ``path``); recovery
+re-approaches have no such port (they are planned when they happen). The ASCII export lists
+the same drives below the tree.
+
 The step-local scratch of the py_trees nodes (the pending fault, Pre's diagnosis and the
 object it names) appears as subtree-local entries ``{fault}``, ``{diagnosis}``,
 ``{culprit}``.
@@ -38,9 +47,10 @@ import py_trees
 
 from emboteam.btc.compiler import CompiledTree, compile_plan
 from emboteam.btc.config import BTConfig
+from emboteam.btc.drives import PlannedDrive, planned_drives
 from emboteam.btc.errors import ExportError
 from emboteam.btc.keys import ident
-from emboteam.btc.nodes import Leaf, Port
+from emboteam.btc.nodes import Act, Leaf, Port
 from emboteam.hp.plan import MergedPlan
 from emboteam.world.state import WorldState
 
@@ -80,9 +90,27 @@ def _xml_name(step_id: str) -> str:
     return f"Step_{ident(step_id)}"
 
 
+#: the ports a step's GoToObject gets for its drive
+PATH_PORT = "path"
+MOVES_PORT = "moves"
+_PATH_DOC = "the grid cells of the drive as x,z,yaw (m, degrees), ';'-separated"
+_MOVES_DOC = "the drive as AI2-THOR agent actions: MoveAhead RotateLeft RotateRight Wait:SECONDS"
+
+
+def _drive_ports(node: Leaf, scope: _Scope | None, drives: dict[str, PlannedDrive]) -> list[Port]:
+    """``path``/``moves`` for the core GoToObject of a step whose drive is known."""
+    if (scope is None or not isinstance(node, Act) or node.recovery is not None
+            or node.btcpp_id != "GoToObject" or scope.step_id not in drives):
+        return []
+    drive = drives[scope.step_id]
+    return [Port(PATH_PORT, drive.cells, description=_PATH_DOC),
+            Port(MOVES_PORT, drive.moves, description=_MOVES_DOC)]
+
+
 class _Writer:
-    def __init__(self, compiled: CompiledTree) -> None:
+    def __init__(self, compiled: CompiledTree, drives: dict[str, PlannedDrive] | None = None) -> None:
         self.c = compiled
+        self.drives = drives or {}
         self.models: dict[str, _Model] = {}
         self.subtrees: list[tuple[str, ET.Element, _Scope]] = []
         self.step_of = {node.id: sid for sid, node in compiled.steps.items()}
@@ -127,7 +155,7 @@ class _Writer:
             self._model(node_id, "Decorator", getattr(node, "DESCRIPTION", ""), ports)
         elif isinstance(node, Leaf):
             node_id = node.btcpp_id
-            ports = node.ports()
+            ports = node.ports() + _drive_ports(node, scope, self.drives)
             el = ET.Element(node_id, {"name": node.name})
             for p in ports:
                 el.set(p.name, self._value(p, scope))
@@ -187,10 +215,11 @@ def to_btcpp_xml(plan: MergedPlan, *, state: WorldState | None = None, config: B
                  main_tree: str = "MainTree") -> str:
     """The plan's behavior tree as BehaviorTree.CPP v4 XML (see the module docstring).
     ``state`` (the initial world) lets the compiler predict interaction spots for steps
-    without ``resources``."""
+    without ``resources``, and gives every GoToObject its grid path (``path``, ``moves``)."""
     compiled = _compiled(plan, state, config)
+    drives = planned_drives(plan, state) if state is not None else {}
     try:
-        doc = _Writer(compiled).document(main_tree)
+        doc = _Writer(compiled, drives).document(main_tree)
     finally:
         compiled.close()
     ET.indent(doc, space="  ")
@@ -207,12 +236,18 @@ def to_dot(plan: MergedPlan, *, state: WorldState | None = None, config: BTConfi
 
 
 def to_ascii(plan: MergedPlan, *, state: WorldState | None = None, config: BTConfig | None = None) -> str:
-    """The tree as indented text (py_trees' ASCII renderer)."""
+    """The tree as indented text (py_trees' ASCII renderer); with ``state``, followed by
+    each GoToObject step's grid path and agent actions."""
     compiled = _compiled(plan, state, config)
     try:
-        return str(py_trees.display.ascii_tree(compiled.root))
+        text = str(py_trees.display.ascii_tree(compiled.root))
     finally:
         compiled.close()
+    drives = planned_drives(plan, state) if state is not None else {}
+    if drives:
+        text = text.rstrip("\n") + "\n\ndrives (grid path, then AI2-THOR actions):\n" + "".join(
+            f"  {sid} {plan.step(sid).action}: {d.cells}\n    {d.moves}\n" for sid, d in drives.items())
+    return text
 
 
 def render(plan: MergedPlan, path: Path, *, fmt: str | None = None, state: WorldState | None = None,

@@ -171,10 +171,12 @@ def lower_bound(plan: MergedPlan, durations: dict[str, float]) -> float:
     return max([*finish.values(), *work.values(), 0.0])
 
 
-def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None) -> Timing:
+def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None, *,
+             sim: Simulator | None = None) -> Timing:
     """Execute ``plan`` from ``state`` (not modified). ``ok`` when every step succeeds and
-    ``goal`` (if given) holds at the end."""
-    sim = Simulator(load_scene(state.floor_plan), [], state=state)
+    ``goal`` (if given) holds at the end. ``sim``: run in this simulator (made from
+    ``state``; e.g. one with avoidance, whose paths the caller reads) instead of a new one."""
+    sim = sim or Simulator(load_scene(state.floor_plan), [], state=state)
     queues: dict[str, list[PlanStep]] = {r: plan.for_robot(r) for r in plan.robots}
     for s in plan.steps:
         queues.setdefault(s.robot, [])

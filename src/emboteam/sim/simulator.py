@@ -39,7 +39,7 @@ from emboteam.sim.rules import Failure, apply_action, check_action
 from emboteam.sim.traffic import Step, Traffic
 from emboteam.world.actions import Action, ActionOutcome, FailureReason, Skill
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.navgrid import GRID, NavGrid
+from emboteam.world.navgrid import NavGrid
 from emboteam.world.navigation import navigator
 from emboteam.world.poses import Pose
 from emboteam.world.robots import RobotProfile
@@ -356,14 +356,7 @@ class Simulator:
     def nav_record(self) -> dict[str, object]:
         """The robots' motion so far, for the trace (``nav`` event) and its checker: start
         cells, every MoveAhead begun before now, and the traffic counters."""
-        tr = self.traffic
-        return {
-            "floor_plan": self.scene.floor_plan, "grid": GRID, "avoidance": tr.avoid,
-            "starts": {r: [round(t, 6), c[0], c[1]] for r, (t, c) in sorted(tr.starts.items())},
-            "moves": [[m.robot, round(m.start, 6), round(m.end, 6), m.a[0], m.a[1], m.b[0], m.b[1]]
-                      for m in sorted(tr.moves, key=lambda m: (m.start, m.robot)) if m.start < self._now],
-            "waits": tr.waits, "replans": tr.replans, "yields": tr.yields,
-        }
+        return self.traffic.record(self.scene.floor_plan, self._now)
 
     @property
     def locks(self) -> dict[str, str]:

@@ -30,7 +30,7 @@ import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
-from emboteam.world.navgrid import STEPS, Cell, NavGrid
+from emboteam.world.navgrid import GRID, STEPS, Cell, NavGrid
 from emboteam.world.navigation import POSE_CHOICES, Navigator, cost_table
 from emboteam.world.poses import REACH, Pose
 
@@ -278,13 +278,13 @@ class Traffic:
     search_seconds: float = 0.0
 
     # ---- robots entering and standing --------------------------------------------------
-    def place(self, robot: str, cell: Cell, t: float) -> Cell:
+    def place(self, robot: str, cell: Cell, t: float, heading: int = 0) -> Cell:
         """Put a robot on the grid at ``t`` (start or join): on ``cell``, or the nearest
         cell free from ``t`` on when that one is taken."""
         if not self.res.free(cell, t, INF, robot):
             cell = self._free_cell_near(cell, t, robot, avoid=set()) or cell
         self.res.add(robot, cell, t, INF)
-        self.paths[robot] = [Step(t, cell, 0)]
+        self.paths[robot] = [Step(t, cell, heading)]
         self.starts[robot] = (t, cell)
         return cell
 
@@ -370,6 +370,30 @@ class Traffic:
             self.res.release_after(robot, t)
             self.res.add(robot, stop.cell, t, INF)
         return stop
+
+    def halt(self, robot: str, t: float, cell: Cell, heading: int) -> None:
+        """``robot``'s drive ended at ``t`` on ``cell`` (the world refused its next step):
+        it stands there from ``t`` on, and the rest of its plan is dropped."""
+        self.paths[robot] = [s for s in self.paths[robot] if s.t < t - EPS] + [Step(t, cell, heading)]
+        def done(m: Move) -> bool:  # moves that ended before t, or at t on the cell it is on
+            return m.robot != robot or m.end < t - EPS or (m.end <= t + EPS and m.b == cell)
+
+        self.moves = [m for m in self.moves if done(m)]
+        if self.avoid:
+            self.res.release_after(robot, t)
+            self.res.add(robot, cell, t, INF)
+
+    def record(self, floor_plan: str, now: float) -> dict[str, object]:
+        """The robots' motion up to ``now``, for the trace (``nav`` event) and its checker
+        (:mod:`emboteam.exec.nav_check`): start cells, every MoveAhead begun before now, and
+        the counters."""
+        return {
+            "floor_plan": floor_plan, "grid": GRID, "avoidance": self.avoid,
+            "starts": {r: [round(t, 6), c[0], c[1]] for r, (t, c) in sorted(self.starts.items())},
+            "moves": [[m.robot, round(m.start, 6), round(m.end, 6), m.a[0], m.a[1], m.b[0], m.b[1]]
+                      for m in sorted(self.moves, key=lambda m: (m.start, m.robot)) if m.start < now],
+            "waits": self.waits, "replans": self.replans, "yields": self.yields,
+        }
 
     def crossing(self, cell: Cell, t: float, robot: str) -> list[str]:
         """Other robots whose reserved future (after ``t``) passes through ``cell``."""

@@ -2,9 +2,15 @@
 ``ai2thor.controller.Controller``.
 
 Time is simulated as in the symbolic simulator: an action is checked when it starts,
-runs for its duration from our duration model (a drive: the length of AI2-THOR's shortest
-path at the robot's speed), and is carried out in AI2-THOR when it ends, so robots acting
-at once see each other's effects in the same order they would in the simulator. What the
+runs for its duration from our duration model, and is carried out in AI2-THOR when it
+ends, so robots acting at once see each other's effects in the same order they would in
+the simulator. Robots drive on the floor plan's navigation grid exactly as in the
+simulator: the same reservations and space-time search (:class:`~emboteam.sim.traffic.Traffic`,
+avoidance on), a blocked drive waiting and looking again every second; each step of the
+path (``MoveAhead``/``RotateLeft``/``RotateRight``, or ``Teleport`` to the next cell:
+:mod:`emboteam.thor.driving`) is sent when it ends, then the agent turns to face the
+object. Robots start on their grid cells (the task's start cells), teleported there
+before the episode. Unlike the simulator, robots in the way do not step aside on request. What the
 team model adds to AI2-THOR is checked before any controller call: a robot's skills, its
 mass capacity, the knife slicing needs (docs/world.md), and a robot that is down. Every
 other failure is AI2-THOR's own, read from ``lastActionSuccess`` and ``errorMessage``.
@@ -15,21 +21,33 @@ from __future__ import annotations
 
 import heapq
 import itertools
-from collections.abc import Sequence
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from emboteam.errors import UnknownObjectError, UnknownRobotError
-from emboteam.sim.durations import FAILED_ACTION_SECONDS, MIN_NAVIGATION_SECONDS, action_seconds
+from emboteam.sim.drives import DriveStep, drive_steps
+from emboteam.sim.durations import (
+    FAILED_ACTION_SECONDS,
+    MIN_NAVIGATION_SECONDS,
+    action_seconds,
+    agent_action_seconds,
+)
 from emboteam.sim.setup import StateChange
-from emboteam.sim.simulator import RobotBusyError
+from emboteam.sim.simulator import NAV_MAX_BLOCKED, NAV_RETRY_SECONDS, RobotBusyError
+from emboteam.sim.traffic import Traffic
 from emboteam.thor.convert import Member, world_state
-from emboteam.thor.errors import ThorTeamError
+from emboteam.thor.driving import ThorDriver, on_cell, step_mode
+from emboteam.thor.errors import ThorSetupError, ThorTeamError
 from emboteam.thor.ids import ThorIds
 from emboteam.thor.setup import apply_setup
-from emboteam.thor.skills import NavigationPlan, StepResult, ThorController, ThorSkills
+from emboteam.thor.skills import StepResult, ThorController, ThorSkills
 from emboteam.world.actions import Action, ActionOutcome, FailureReason, Skill
 from emboteam.world.catalogue import KNIVES
+from emboteam.world.navgrid import NavGrid, heading_of_rotation
+from emboteam.world.navigation import navigator
+from emboteam.world.poses import Pose
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -44,8 +62,24 @@ class _Pending:
     robot: str = field(compare=False)
     action: Action = field(compare=False)
     start: float = field(compare=False)
-    navigation: NavigationPlan | None = field(compare=False, default=None)
     failure: StepResult | None = field(compare=False, default=None)
+    #: a drive: its target poses, the point it faces at the end, how often it was blocked,
+    #: and whether it is waiting for a way (``end`` is then the time it looks again)
+    goals: tuple[Pose, ...] = field(compare=False, default=())
+    point: dict[str, float] | None = field(compare=False, default=None)
+    blocked: int = field(compare=False, default=0)
+    waiting: bool = field(compare=False, default=False)
+
+
+@dataclass(order=True, slots=True)
+class _Motion:
+    """One drive step, sent to AI2-THOR at ``t`` (when the step ends)."""
+
+    t: float
+    seq: int
+    robot: str = field(compare=False)
+    step: DriveStep = field(compare=False)
+    drive: _Pending = field(compare=False)
 
 
 def team_precheck(state: WorldState, robot: str, action: Action) -> StepResult | None:
@@ -81,19 +115,26 @@ class ThorEnvironment:
     """
 
     def __init__(self, controller: ThorController, scene: Scene, team: Sequence[RobotProfile], *,
-                 setup: Sequence[StateChange] = (), force_action: bool = True) -> None:
+                 setup: Sequence[StateChange] = (), force_action: bool = True,
+                 starts: Mapping[str, tuple[float, float]] | None = None, steps: str | None = None) -> None:
         self.controller = controller
         self.scene = scene
         self.ids = ThorIds(scene)
         self.skills = ThorSkills(controller, self.ids, force_action=force_action)
+        self.driver = ThorDriver(self.skills, step_mode(steps))
         self.team = [Member(p, i) for i, p in enumerate(team)]
+        self.traffic = Traffic(navigator(scene.floor_plan), avoid=True)
         self._now = 0.0
         self._queue: list[_Pending] = []
+        self._motion: list[_Motion] = []
         self._running: dict[str, _Pending] = {}
         self._seq = itertools.count()
         self._at: dict[str, str | None] = {}
         self._down: set[str] = set()
         self.outcomes: list[ActionOutcome] = []
+        for m in self.team:
+            start = (starts or {}).get(m.name) or scene.robot_start(m.agent_id)
+            self._place(m, start)
         self._state = self._read(None)
         if setup:
             apply_setup(self.skills, setup, self._refresh)
@@ -137,7 +178,10 @@ class ThorEnvironment:
         if len(self.team) >= agents:
             raise ThorTeamError(f"{profile.name} cannot join: AI2-THOR was started with {agents} agent(s) "
                                 f"and fixes agentCount at initialisation")
-        self.team.append(Member(profile, len(self.team)))
+        member = Member(profile, len(self.team))
+        self.team.append(member)
+        pos = self._agents()[member.agent_id]["agent"]["position"]
+        self._place(member, (float(pos["x"]), float(pos["z"])))
         self._refresh()
 
     def start(self, robot: str, action: Action) -> None:
@@ -145,63 +189,133 @@ class ThorEnvironment:
             raise UnknownRobotError(f"no robot {robot!r} in the team")
         if robot in self._running:
             raise RobotBusyError(f"{robot} is busy with {self._running[robot].action}")
-        state = self._state
-        failure = team_precheck(state, robot, action)
-        plan: NavigationPlan | None = None
-        duration = FAILED_ACTION_SECONDS
+        failure = team_precheck(self._state, robot, action)
         if failure is None and action.skill is Skill.GoToObject:
-            planned = self._plan_drive(robot, action.target)
-            if isinstance(planned, StepResult):
-                failure = planned
-            else:
-                plan = planned
-                speed = state.robots[robot].profile.speed
-                duration = max(MIN_NAVIGATION_SECONDS, plan.length / speed)
-        elif failure is None:
-            duration = action_seconds(action.skill)
-        pending = _Pending(self._now + duration, next(self._seq), robot, action, self._now, plan, failure)
-        self._running[robot] = pending
-        heapq.heappush(self._queue, pending)
+            failure = self._start_drive(robot, action)
+            if failure is None:
+                return
+        duration = action_seconds(action.skill) if failure is None else FAILED_ACTION_SECONDS
+        self._push(_Pending(self._now + duration, next(self._seq), robot, action, self._now, failure))
 
     def advance(self, until: float) -> list[ActionOutcome]:
         done: list[ActionOutcome] = []
-        while self._queue and self._queue[0].end <= until + 1e-9:
+        while True:
+            step_at = self._motion[0].t if self._motion else math.inf
+            end_at = self._queue[0].end if self._queue else math.inf
+            if min(step_at, end_at) > until + 1e-9:
+                break
+            self._now = max(self._now, min(step_at, end_at))
+            if step_at <= end_at:  # a step ending with an action goes first
+                self._send(heapq.heappop(self._motion))
+                continue
             pending = heapq.heappop(self._queue)
-            self._now = max(self._now, pending.end)
-            done.append(self._finish(pending))
+            if pending.waiting:
+                self._retry(pending)
+            else:
+                done.append(self._finish(pending))
         self._now = max(self._now, until)
         return done
 
     def pose(self, robot: str) -> tuple[float, float]:
-        """Where a robot is now for the trace's floor map: along a drive in progress, the
-        straight line from where it started to where it will stand (AI2-THOR itself only
-        moves the agent when the drive ends)."""
-        here = self._state.robots[robot].position
-        run = self._running.get(robot)
-        if run is None or run.navigation is None or run.end <= run.start:
-            return here
-        f = min(1.0, max(0.0, (self._now - run.start) / (run.end - run.start)))
-        dest = run.navigation.destination
-        return (here[0] + f * (float(dest["x"]) - here[0]), here[1] + f * (float(dest["z"]) - here[1]))
+        """Where a robot is now for the trace's floor map: along its grid path."""
+        if robot not in self.traffic.paths:
+            return self._state.robots[robot].position
+        return self.traffic.point(robot, self._now)
 
-    # ---- internals --------------------------------------------------------------------
+    def nav_record(self) -> dict[str, object]:
+        """The robots' motion so far, for the trace and its checker (as the simulator's)."""
+        return self.traffic.record(self.scene.floor_plan, self._now)
+
+    # ---- internals: the grid ----------------------------------------------------------
     def _agent_id(self, robot: str) -> int:
         return next(m.agent_id for m in self.team if m.name == robot)
 
-    def _pose(self, robot: str) -> dict[str, float]:
-        return dict(self._agents()[self._agent_id(robot)]["agent"]["position"])
+    def _agent(self, robot: str) -> Any:
+        return self._agents()[self._agent_id(robot)]
 
-    def _plan_drive(self, robot: str, target: str) -> NavigationPlan | StepResult:
-        o = self._state.objects[target]
+    def _place(self, member: Member, start: tuple[float, float]) -> None:
+        """Put an agent on its grid cell (the nearest free one to ``start``), teleporting it
+        there when AI2-THOR has it elsewhere or turned off the grid's headings."""
+        agent = self._agents()[member.agent_id]["agent"]
+        yaw = float(agent["rotation"]["y"])
+        heading = heading_of_rotation(yaw)
+        cell = self.traffic.place(member.name, self.traffic.nav.cell_of(start), self._now, heading)
+        if on_cell(agent["position"], cell) and abs(yaw - 90 * heading) % 360 < 0.5:
+            return
+        x, z = NavGrid.point(cell)
+        result, _ = self.skills.step(member.agent_id, "Teleport", position=dict(x=x, y=agent["position"]["y"], z=z),
+                                     rotation=dict(x=0.0, y=90.0 * heading, z=0.0),
+                                     horizon=float(agent.get("cameraHorizon", 0.0)), standing=True)
+        if not result.success:
+            raise ThorSetupError(f"cannot put {member.name} on its start cell ({x}, {z}): {result.message}")
+
+    def _start_drive(self, robot: str, action: Action) -> StepResult | None:
+        """Plan and launch a drive (or its wait for a way); a failure if it cannot start."""
+        o = self._state.objects[action.target]
         if o.gone:
             return StepResult(False, R.ALREADY_SLICED, f"{o.id} was sliced; its pieces remain")
         x, y, z = o.position
         if o.held_by is not None:
             x, z = self._state.robots[o.held_by].position
-        avoid = [self._pose(m.name) for m in self.team if m.name != robot]
-        avoid += [p.navigation.destination for p in self._running.values() if p.navigation is not None]
-        return self.skills.plan_navigation(self._agent_id(robot), self._pose(robot), dict(x=x, y=y, z=z), avoid)
+        goals = self.traffic.nav.poses_for((x, z))
+        if not goals:
+            return StepResult(False, R.NOT_REACHABLE, f"no cell of {self.scene.floor_plan}'s navigation grid "
+                              f"is within 1.5 m of {action.target}")
+        drive = _Pending(self._now, next(self._seq), robot, action, self._now, goals=goals,
+                         point=dict(x=x, y=y, z=z))
+        self._plan(drive)
+        return None
 
+    def _plan(self, drive: _Pending) -> None:
+        """Reserve the drive's path and queue its steps, or wait and look again."""
+        robot = drive.robot
+        dt = agent_action_seconds(self._state.robots[robot].profile.speed)
+        path = self.traffic.drive(robot, self._now, dt, drive.goals)
+        if path is None:
+            drive.blocked += 1
+            self.traffic.waits += 1
+            if drive.blocked > NAV_MAX_BLOCKED:
+                drive.failure = StepResult(False, R.NOT_REACHABLE,
+                                           f"{robot} found no way to {drive.action.target} around the other robots")
+                drive.waiting, drive.end = False, self._now
+            else:
+                drive.waiting, drive.end = True, self._now + NAV_RETRY_SECONDS
+            self._push(drive)
+            return
+        yaw = float(self._agent(robot)["agent"]["rotation"]["y"])
+        steps = drive_steps(path, start=self._now, heading_before=heading_of_rotation(yaw))
+        drive.waiting = False
+        drive.end = max(path[-1].t, drive.start + MIN_NAVIGATION_SECONDS, self._now)
+        for step in steps:
+            heapq.heappush(self._motion, _Motion(step.end, next(self._seq), robot, step, drive))
+        self._push(drive)
+
+    def _retry(self, drive: _Pending) -> None:
+        self.traffic.replans += 1
+        self._plan(drive)
+
+    def _send(self, motion: _Motion) -> None:
+        drive = motion.drive
+        if drive.failure is not None or self._running.get(motion.robot) is not drive:
+            return  # the drive already ended (a step before this one was refused)
+        result = self.driver.send(self._agent_id(motion.robot), self._agent(motion.robot), motion.step)
+        if result.success:
+            return
+        agent = self._agent(motion.robot)["agent"]
+        here = self.traffic.nav.grid.nearest((float(agent["position"]["x"]), float(agent["position"]["z"])))
+        self.traffic.halt(motion.robot, self._now, here, heading_of_rotation(float(agent["rotation"]["y"])))
+        drive.failure = StepResult(False, result.reason or R.NOT_REACHABLE,
+                                   f"AI2-THOR refused {motion.step.action} towards {drive.action.target}: "
+                                   f"{result.message}")
+        drive.end = self._now
+        heapq.heapify(self._queue)
+        self._refresh()
+
+    def _push(self, pending: _Pending) -> None:
+        self._running[pending.robot] = pending
+        heapq.heappush(self._queue, pending)
+
+    # ---- internals: ending actions ----------------------------------------------------
     def _finish(self, pending: _Pending) -> ActionOutcome:
         robot, action = pending.robot, pending.action
         del self._running[robot]
@@ -209,8 +323,8 @@ class ThorEnvironment:
         if result is None:
             agent = self._agent_id(robot)
             try:
-                if pending.navigation is not None:
-                    result = self.skills.arrive(agent, pending.navigation)
+                if pending.point is not None:
+                    result = self.driver.face(agent, self._agent(robot), pending.point)
                     if result.success:
                         self._at[robot] = action.target
                 else:
@@ -221,6 +335,8 @@ class ThorEnvironment:
             if result.success and action.skill in (Skill.SwitchOn, Skill.PutObject):
                 self.skills.run_water(agent, state)
                 self._refresh()
+        elif pending.point is not None:
+            self._refresh()
         outcome = ActionOutcome(robot=robot, action=action, start=pending.start, end=pending.end,
                                 success=result.success, reason=result.reason, message=result.message)
         self.outcomes.append(outcome)

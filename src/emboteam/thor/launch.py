@@ -140,7 +140,7 @@ def start_controller(plan: LaunchPlan, floor_plan: str, agent_count: int, *, wid
     timeout = float(os.environ.get("EMBOTEAM_THOR_START_TIMEOUT", START_TIMEOUT))
     kwargs: dict[str, Any] = dict(
         scene=floor_plan, agentCount=agent_count, gridSize=0.25, visibilityDistance=1.5,
-        # off: a drive ends with a Teleport facing the object, at any yaw, onto a grid position
+        # off: a drive ends facing the object at any yaw (thor/driving.py), between grid headings
         snapToGrid=False, width=width, height=height, server_start_timeout=timeout, **init,
     )
     if plan.platform == "CloudRendering":

@@ -47,7 +47,10 @@ def controller_for(floor_plan: str, agent_count: int) -> Any:
 def open_thor(scene: Scene, team: Sequence[RobotProfile], state: WorldState, *, spare_agents: int = 0,
               controller_factory: Callable[[str, int], Any] | None = None) -> ThorEnvironment:
     """A ThorEnvironment for ``team`` in ``scene``, brought into the symbolic ``state``
-    (the task's initial-state changes) and with ``spare_agents`` for robots that join."""
+    (the task's initial-state changes, its robots' start cells) and with ``spare_agents``
+    for robots that join."""
     factory = controller_factory or controller_for  # looked up now: tests stand in a Unity double
     controller = factory(scene.floor_plan, len(team) + spare_agents)
-    return ThorEnvironment(controller, scene, team, setup=changes_between(WorldState.from_scene(scene), state))
+    starts = {name: r.position for name, r in state.robots.items()}
+    return ThorEnvironment(controller, scene, team, setup=changes_between(WorldState.from_scene(scene), state),
+                           starts=starts)

@@ -1,13 +1,8 @@
 """Skills -> AI2-THOR controller actions, the way SMART-LLM and LaMMA-P drive AI2-THOR.
 
-Navigation (GoToObject) is planned when the skill starts and carried out when it ends:
-:meth:`ThorSkills.plan_navigation` picks the reachable grid position
-(``GetReachablePositions``) nearest the object that no other robot stands on or is headed
-to, and measures the drive with ``GetShortestPathToPoint``; :meth:`ThorSkills.arrive`
-then ``Teleport``s the agent there, facing the object. Teleporting instead of replaying
-MoveAhead/Rotate steps is what the peers' executors amount to (they loop grid moves to the
-same position) without hundreds of render steps per drive; the time the drive takes comes
-from the path length and the robot's speed (our duration model).
+Navigation (GoToObject) drives the simulator's grid paths step by step
+(:mod:`emboteam.thor.driving`); :func:`facing` gives the yaw and camera tilt that look at
+the object at the end.
 
 Interactions map one to one (SwitchOn -> ``ToggleObjectOn``, ...). ThrowObject puts the
 held object into the GarbageCan within reach (our model's meaning of "throw it away";
@@ -19,7 +14,6 @@ because AI2-THOR's water particles alone do not reliably change the metadata.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -29,12 +23,10 @@ from emboteam.thor.failures import failure_reason
 from emboteam.thor.ids import ThorIds
 from emboteam.world.actions import Action, FailureReason, Skill
 from emboteam.world.catalogue import WATER_SOURCES
-from emboteam.world.state import REACH, WorldState
+from emboteam.world.state import WorldState
 
 #: the agent's eye height above its position (m): the iTHOR agent's camera
 EYE_HEIGHT = 0.675
-#: two agents closer than this (m) would collide: one 0.25 m grid cell
-AGENT_CLEARANCE = 0.25
 #: force (N) PushObject/PullObject apply: enough to slide furniture a little
 PUSH_NEWTONS = 100.0
 
@@ -77,21 +69,8 @@ class StepResult:
     message: str = ""
 
 
-@dataclass(frozen=True, slots=True)
-class NavigationPlan:
-    destination: dict[str, float]
-    yaw: float
-    horizon: float
-    length: float
-
-
 def _hdist(a: Mapping[str, float], b: Mapping[str, float]) -> float:
     return math.hypot(float(a["x"]) - float(b["x"]), float(a["z"]) - float(b["z"]))
-
-
-def path_length(corners: Sequence[Mapping[str, float]]) -> float:
-    """Length (m, on the floor) of a path given by its corners."""
-    return sum(_hdist(a, b) for a, b in itertools.pairwise(corners))
 
 
 def facing(agent: Mapping[str, float], target: Mapping[str, float]) -> tuple[float, float]:
@@ -112,7 +91,6 @@ class ThorSkills:
         #: ``forceAction`` on interactions, as SMART-LLM and LaMMA-P pass it: the agent stands
         #: near the object but its camera need not frame it exactly
         self.force_action = force_action
-        self._reachable: list[dict[str, float]] | None = None
 
     # ---- low level --------------------------------------------------------------------
     def step(self, agent_id: int, action: str, skill: Skill | None = None, **args: Any) -> tuple[StepResult, Any]:
@@ -126,42 +104,6 @@ class ThorSkills:
             return StepResult(True), event
         message = str(meta.get("errorMessage") or f"{action} failed")
         return StepResult(False, failure_reason(message, skill), message), event
-
-    def reachable(self) -> list[dict[str, float]]:
-        """AI2-THOR's reachable grid positions (computed once: the scene's navmesh)."""
-        if self._reachable is None:
-            result, event = self.step(0, "GetReachablePositions")
-            self._reachable = list(event.metadata["actionReturn"] or []) if result.success and event else []
-        return self._reachable
-
-    # ---- navigation -------------------------------------------------------------------
-    def plan_navigation(self, agent_id: int, start: Mapping[str, float], target: Mapping[str, float],
-                        avoid: Sequence[Mapping[str, float]]) -> NavigationPlan | StepResult:
-        """Where to stand to reach ``target`` and how long the path there is, or why not."""
-        free = [p for p in self.reachable()
-                if _hdist(p, target) <= REACH and all(_hdist(p, q) >= AGENT_CLEARANCE for q in avoid)]
-        if not free:
-            return StepResult(False, FailureReason.NOT_REACHABLE,
-                              f"no free reachable position within {REACH} m of the object")
-        free.sort(key=lambda p: (_hdist(p, target), p["x"], p["z"]))
-        last = StepResult(False, FailureReason.NOT_REACHABLE, "no path")
-        for dest in free[:3]:
-            if _hdist(start, dest) < 1e-3:
-                yaw, horizon = facing(dest, target)
-                return NavigationPlan(dict(dest), yaw, horizon, 0.0)
-            result, event = self.step(agent_id, "GetShortestPathToPoint", Skill.GoToObject,
-                                      position=dict(start), target=dict(dest), allowedError=0.05)
-            if result.success and event is not None:
-                corners = event.metadata["actionReturn"]["corners"]
-                yaw, horizon = facing(dest, target)
-                return NavigationPlan(dict(dest), yaw, horizon, path_length(corners))
-            last = StepResult(False, FailureReason.NOT_REACHABLE, result.message)
-        return last
-
-    def arrive(self, agent_id: int, plan: NavigationPlan) -> StepResult:
-        result, _ = self.step(agent_id, "Teleport", Skill.GoToObject, position=plan.destination,
-                              rotation=dict(x=0.0, y=plan.yaw, z=0.0), horizon=plan.horizon, standing=True)
-        return result
 
     # ---- interactions -----------------------------------------------------------------
     def interact(self, agent_id: int, action: Action, state: WorldState, robot: str) -> StepResult:

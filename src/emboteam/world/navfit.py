@@ -3,9 +3,11 @@ only needs objects a robot can reach.
 
 The grid is AI2-THOR 2.1's (ALFRED), the objects AI2-THOR 5.x's: in some floor plans
 objects moved between versions and lie beyond the 1.5 m interaction distance of every
-reachable cell. Such objects are named per scene (``emboteam scene N``), and a task whose
-goal needs one is rejected before planning with :class:`UnreachableObjectError` instead
-of failing somewhere in execution.
+reachable cell. Where open floor leads to them, cells were added to the grid
+(``data/nav/added_cells.json``, :func:`emboteam.world.navgrid.load_grid`); the fit names
+those cells and why, and the objects still out of reach (``emboteam scene N``). A task whose
+goal needs one of those is rejected before planning with :class:`UnreachableObjectError`
+instead of failing somewhere in execution.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from functools import cache
 
 from emboteam.errors import EmboTeamError
 from emboteam.world.goals import Goal, ObjectRef
+from emboteam.world.navgrid import NavGrid
 from emboteam.world.navigation import alfred_key, navigator
 from emboteam.world.scene import Scene, load_scene
 
@@ -36,6 +39,8 @@ class NavFit:
     alfred_poses: int
     alfred_used: int
     starts: tuple[tuple[float, float], ...]
+    #: cells added for AI2-THOR 5.x objects: ((x, z) in metres, why), in cell order
+    added: tuple[tuple[tuple[float, float], str], ...] = ()
 
     @property
     def posed(self) -> int:
@@ -45,13 +50,18 @@ class NavFit:
         return {"floor_plan": self.floor_plan, "cells": self.cells, "dropped_cells": self.dropped_cells,
                 "objects": self.objects, "posed": self.posed, "unposed": list(self.unposed),
                 "alfred_openable_poses": self.alfred_poses, "alfred_poses_used": self.alfred_used,
-                "robot_starts": [list(p) for p in self.starts]}
+                "robot_starts": [list(p) for p in self.starts],
+                "added_cells": [{"point": list(p), "reason": why} for p, why in self.added]}
 
     def summary(self) -> str:
         text = (f"navigation grid: {self.cells} cells"
                 + (f" ({self.dropped_cells} cut-off cells left out)" if self.dropped_cells else "")
                 + f"; {self.posed}/{self.objects} objects have an interaction pose"
                 + f"; ALFRED openable poses used for {self.alfred_used}/{self.alfred_poses}")
+        if self.added:
+            added = sorted({o.split(" ")[-1] for _, why in self.added for o in why.split("; ")
+                            if o.startswith("within reach of")})
+            text += f"; {len(self.added)} cells added for AI2-THOR 5.x objects (to reach {', '.join(added)})"
         if self.unposed:
             text += f"; out of reach of every cell: {', '.join(self.unposed)}"
         return text
@@ -79,8 +89,9 @@ def nav_fit(floor_plan: str) -> NavFit:
         if alfred is not None and nav.grid.cell_at((alfred[0], alfred[1])) == pose.cell:
             used += 1
     starts = tuple(scene.robot_start(i) for i in range(4))
+    added = tuple((NavGrid.point(c), why) for c, why in sorted(nav.grid.added.items()))
     return NavFit(scene.floor_plan, len(nav.grid.cells), nav.grid.dropped, len(_needs_pose(scene)),
-                  tuple(unposed), len(nav.grid.openable), used, starts)
+                  tuple(unposed), len(nav.grid.openable), used, starts, added)
 
 
 def unposed_objects(floor_plan: str) -> frozenset[str]:

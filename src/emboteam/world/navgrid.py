@@ -48,6 +48,9 @@ class NavGrid:
     #: reachable cells left out because they are cut off from the main floor (islands of
     #: AI2-THOR 2.1's grid behind furniture): a robot there could never leave
     dropped: int = 0
+    #: cells added for AI2-THOR 5.x objects the 2.1 grid does not reach, with why
+    #: (``data/nav/added_cells.json``, derived by ``scripts/build_added_cells.py``)
+    added: dict[Cell, str] = field(default_factory=dict, hash=False, compare=False)
     _sorted: tuple[Cell, ...] = field(init=False, hash=False, compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -84,8 +87,8 @@ class NavGrid:
 
 
 @cache
-def load_grid(floor_plan: str) -> NavGrid:
-    """The navigation grid of ``floor_plan`` (``FloorPlan6``); cached."""
+def load_base_grid(floor_plan: str) -> NavGrid:
+    """ALFRED's grid of ``floor_plan`` as it is (AI2-THOR 2.1), its largest piece; cached."""
     try:
         blob = resources.files("emboteam.world.data").joinpath(f"nav/{floor_plan}.json.gz").read_bytes()
     except FileNotFoundError:
@@ -95,6 +98,27 @@ def load_grid(floor_plan: str) -> NavGrid:
     main = largest_component(cells)
     openable = {k: (float(v[0]), float(v[1]), int(v[2])) for k, v in raw["openable"].items()}
     return NavGrid(floor_plan, frozenset(main), openable, dropped=len(cells) - len(main))
+
+
+@cache
+def added_cells() -> dict[str, dict[Cell, str]]:
+    """Floor plan -> cells added for AI2-THOR 5.x objects -> why (see :class:`NavGrid`)."""
+    raw = json.loads(resources.files("emboteam.world.data").joinpath("nav/added_cells.json").read_text())
+    return {fp: {(int(c["cell"][0]), int(c["cell"][1])): str(c["reason"]) for c in cells}
+            for fp, cells in raw["scenes"].items()}
+
+
+@cache
+def load_grid(floor_plan: str) -> NavGrid:
+    """The navigation grid of ``floor_plan`` (``FloorPlan6``): ALFRED's, plus the cells added
+    for AI2-THOR 5.x (each joins the grid beside a kept cell or another added one); cached."""
+    base = load_base_grid(floor_plan)
+    added = {c: why for c, why in added_cells().get(floor_plan, {}).items() if c not in base.cells}
+    if not added:
+        return base
+    cells = largest_component(set(base.cells) | set(added))
+    return NavGrid(floor_plan, frozenset(cells), base.openable, dropped=base.dropped,
+                   added={c: why for c, why in added.items() if c in cells})
 
 
 def largest_component(cells: set[Cell]) -> set[Cell]:
