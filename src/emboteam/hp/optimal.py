@@ -19,9 +19,12 @@ call a grid-based navigation model replaces). Decided by the solver:
   at each spot (the order is the solver's) and on each object (a held one from its pickup
   to its release).
 
-Minimised: the makespan. The jobs keep the actions the plan gave them (a fridge one job
-opens stays opened by that job) and their places (an object another job moved is where the
-plan left it), so this is the optimum *for these actions in this causal order*: a tighter
+Minimised: the makespan. Redundant constraints give the bound its strength: each
+robot's load (its jobs, each with its cheapest way in) and its whole route (its jobs
+plus the drive on every arc of its circuit, in the LP with the circuits at
+``linearization_level=2``), both before the makespan. The jobs keep the actions the
+plan gave them (a fridge one job opens stays opened by that job) and their places (an
+object another job moved is where the plan left it), so this is the optimum *for these actions in this causal order*: a tighter
 reference than the resource-aware bound, exact where it proves optimality, and no bound
 on plans with other actions. Solved with one worker, a fixed
 seed and a *deterministic* time limit: the same answer on any machine.
