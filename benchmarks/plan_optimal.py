@@ -10,6 +10,7 @@ proven optimum (or / best bound), and the makespan / resource-aware bound.
 
     .venv/bin/python benchmarks/plan_optimal.py --seeds 0,1,2,3,4 --out /tmp/optimal.json
     .venv/bin/python benchmarks/plan_optimal.py --no-sweep          # MACE-THOR only
+    .venv/bin/python benchmarks/plan_optimal.py --no-suite --schedule optimal --robots 2,4,8 --conditions 8,16,24
 """
 
 from __future__ import annotations
@@ -108,6 +109,8 @@ def table(rows: Sequence[Row]) -> str:
 def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--seeds", default="0", help="goal seeds of the quick sweep")
+    ap.add_argument("--robots", default=",".join(map(str, QUICK_ROBOTS)), help="team sizes of the sweep")
+    ap.add_argument("--conditions", default=",".join(map(str, QUICK_CONDITIONS)), help="goals per sweep cell")
     ap.add_argument("--no-suite", action="store_true")
     ap.add_argument("--no-sweep", action="store_true")
     ap.add_argument("--schedule", choices=("fast", "optimal", "heuristic"), default="fast",
@@ -125,7 +128,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     cells: dict[int, list[Row]] = {}
     if not args.no_sweep:
         for seed in seeds:
-            cells[seed] = run(sweep_inputs(QUICK_ROBOTS, QUICK_CONDITIONS, [seed]), config, args.limit)
+            cells[seed] = run(sweep_inputs([int(x) for x in args.robots.split(",")],
+                                           [int(x) for x in args.conditions.split(",")], [seed]), config, args.limit)
     lines = [f"{started}, load {load0:.1f} before, {os.cpu_count()} cores; schedule {args.schedule}, CP-SAT limit "
              f"{args.limit:g} deterministic s"]
     if suite:

@@ -9,6 +9,7 @@ as the split (the rebuilt sequence keeps no dependency waits)."""
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
 
 from emboteam.hp import optimal
 from emboteam.hp.merge import SeqStep
@@ -34,17 +35,32 @@ FAST_ARCS = 400
 FAST_STEPS = 80
 
 
+@dataclass(frozen=True)
+class Budget:
+    """How one CP-SAT call of the stage searches (counted in deterministic time)."""
+
+    limit: float
+    max_arcs: int
+    #: ``linearization_level``: 2 puts the circuits and the route lengths into the LP
+    #: (the bound that proves the larger models); 1 is cheaper for a model of a few jobs
+    linearization: int = 2
+
+
+FAST = Budget(FAST_LIMIT, FAST_ARCS, linearization=1)
+OPTIMAL = Budget(OPTIMAL_LIMIT, OPTIMAL_ARCS)
+
+
 def schedule(ctx: Context, draft: Draft) -> Draft:
     """``schedule="optimal"``: the draft rescheduled as CP-SAT's best schedule says, or
     the draft itself."""
-    return _rescheduled(ctx, draft, OPTIMAL_LIMIT, OPTIMAL_ARCS)
+    return _rescheduled(ctx, draft, OPTIMAL)
 
 
 def schedule_small(ctx: Context, draft: Draft) -> Draft:
     """``schedule="fast"``: the same for a small model under a small budget."""
     if len(draft.plan.steps) > FAST_STEPS:
         return draft
-    return _rescheduled(ctx, draft, FAST_LIMIT, FAST_ARCS)
+    return _rescheduled(ctx, draft, FAST)
 
 
 #: rounds of the stage, each from the plan the last one made (the model lets nobody wait
@@ -53,20 +69,20 @@ def schedule_small(ctx: Context, draft: Draft) -> Draft:
 ROUNDS = 3
 
 
-def _rescheduled(ctx: Context, draft: Draft, limit: float, max_arcs: int) -> Draft:
+def _rescheduled(ctx: Context, draft: Draft, budget: Budget) -> Draft:
     for _ in range(ROUNDS):
-        better = _once(ctx, draft, limit, max_arcs)
+        better = _once(ctx, draft, budget)
         if better is draft:
             break
         draft = better
     return draft
 
 
-def _once(ctx: Context, draft: Draft, limit: float, max_arcs: int) -> Draft:
+def _once(ctx: Context, draft: Draft, budget: Budget) -> Draft:
     plan, seq = draft.plan, draft.record.sequence
     if not ctx.independent or len(seq) != len(plan.steps):
         return draft
-    ref = optimal.reference(plan, ctx.spec, ctx.start, limit, max_arcs)
+    ref = optimal.reference(plan, ctx.spec, ctx.start, budget.limit, budget.max_arcs, budget.linearization)
     if ref is None or not ref.robots or ref.makespan >= plan.makespan - 1e-6:
         return draft
     # a step's key: its own start (an operation) or that of the operation of its robot it
