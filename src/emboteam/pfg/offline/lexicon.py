@@ -200,6 +200,7 @@ class LexiconFile(Strict):
     ordinals: dict[str, int]
     sequence_markers: Words
     subordinators: dict[str, str]
+    conjunctions: dict[str, Literal["and", "or"]]
     filler_words: frozenset[str]
     common_words: frozenset[str]
     idioms: tuple[Rewrite, ...]
@@ -284,6 +285,8 @@ ORDINALS: dict[str, int] = _LEX.ordinals
 SEQUENCE_MARKERS: tuple[str, ...] = _LEX.sequence_markers
 #: subordinators: (word, relation); "after X" -> the main clause follows X
 SUBORDINATORS: dict[str, str] = _LEX.subordinators
+#: coordinating words and the coordination they make ("plus" joins as "and")
+CONJUNCTIONS: dict[str, str] = dict(_LEX.conjunctions)
 #: words that carry no content for the parser: politeness, discourse, hedges. Matched
 #: anywhere outside noun phrases and dropped. Also the words spelling correction must
 #: never "correct" into object names.

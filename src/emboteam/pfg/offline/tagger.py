@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import word_tables
@@ -168,6 +169,27 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
     return out, fixed
 
 
+def _same(words: frozenset[str]) -> dict[str, str]:
+    return {w: w for w in words}
+
+
+#: the readings a single word has by its table: the item's field and the table, word -> value
+_READINGS: tuple[tuple[str, dict[str, Any]], ...] = (
+    ("state", lx.STATES), ("prep", lx.PREPOSITIONS), ("particle", _same(lx.PARTICLES)),
+    ("number", lx.NUMBERS), ("quant", _same(lx.QUANTIFIERS)), ("pron", _same(lx.PRONOUNS)),
+    ("punct", _same(PUNCT)), ("liquid", _same(lx.LIQUIDS)), ("sub", lx.SUBORDINATORS),
+    ("conj", lx.CONJUNCTIONS), ("ordinal", lx.ORDINALS))
+#: the yes-or-no readings of a word: the item's field and its words
+_FLAGS = (("det", lx.DETERMINERS), ("neg", lx.NEGATIONS), ("copula", lx.COPULAS))
+
+
+def _collective(reading: NounReading) -> NounReading:
+    """"the cutlery": a collective noun is every piece of it, as a plural."""
+    if reading.phrase in lx.MASS_NOUNS and not reading.plural:
+        return NounReading(reading.concept, reading.phrase, True, reading.piece)
+    return reading
+
+
 def tag(text: str) -> list[Item]:
     """Items of an instruction, in order."""
     normal = " ".join(t.text for t in tokenize(text))
@@ -213,9 +235,7 @@ def tag(text: str) -> list[Item]:
             i += n
             continue
         if noun is not None and noun[0] > 1:
-            n, reading = noun
-            if reading.phrase in lx.MASS_NOUNS and not reading.plural:
-                reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
+            n, reading = noun[0], _collective(noun[1])
             phrase = " ".join(words[i:i + n])
             item = Item(phrase, noun=reading)
             recipe = lx.RECIPES.get(phrase) or lx.RECIPES.get(reading.phrase)
@@ -224,49 +244,19 @@ def tag(text: str) -> list[Item]:
             items.append(item)
             i += n
             continue
-        item = Item(w)
-        if i in fixed:
-            item.corrected_from = fixed[i]
-        if noun is not None:
-            reading = noun[1]
-            if reading.phrase in lx.MASS_NOUNS and not reading.plural:
-                reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
-            item.noun = reading
+        item = Item(w, corrected_from=fixed.get(i), noun=_collective(noun[1]) if noun else None)
         if w in lx.RECIPES:
             item.recipe = lx.RECIPES[w]
         vl = verb_lemma(w)
-        if vl is not None:
-            lemma, form = vl
-            sense = lx.VERBS.get(lemma)
-            if sense is not None:
-                item.verb = VerbReading(lemma, form, sense)
-        if w in lx.STATES:
-            item.state = lx.STATES[w]
-        if w in lx.PREPOSITIONS:
-            item.prep = lx.PREPOSITIONS[w]
-        if w in lx.PARTICLES:
-            item.particle = w
+        if vl is not None and vl[0] in lx.VERBS:
+            item.verb = VerbReading(vl[0], vl[1], lx.VERBS[vl[0]])
+        for name, table in _READINGS:
+            if w in table:
+                setattr(item, name, table[w])
+        for name, flagged in _FLAGS:
+            setattr(item, name, w in flagged)
         if w.isdigit():
             item.number = int(w)
-        elif w in lx.NUMBERS:
-            item.number = lx.NUMBERS[w]
-        item.det = w in lx.DETERMINERS
-        if w in lx.QUANTIFIERS:
-            item.quant = w
-        if w in lx.PRONOUNS:
-            item.pron = w
-        item.neg = w in lx.NEGATIONS
-        item.copula = w in lx.COPULAS
-        if w in PUNCT:
-            item.punct = w
-        if w in lx.LIQUIDS:
-            item.liquid = w
-        if w in lx.SUBORDINATORS:
-            item.sub = lx.SUBORDINATORS[w]
-        if w in ("and", "or", "plus", "nor"):
-            item.conj = "or" if w == "or" else "and"
-        if w in lx.ORDINALS:
-            item.ordinal = lx.ORDINALS[w]
         items.append(item)
         i += 1
     return _place_not_switch(items)
