@@ -140,3 +140,11 @@ def test_a_described_pattern_naming_an_unknown_piece_is_named(tmp_path: Path) ->
         data["described"]["used_for"][1] = "{descibed} with"
     with pytest.raises(KnowledgeDataError, match=r"^idioms\.json: described -> used_for\[1\]: no piece 'descibed'"):
         read(_broken(tmp_path, "idioms.json", change), IdiomsFile)
+
+
+def test_a_dish_of_a_type_the_catalogue_lacks_is_named(monkeypatch: pytest.MonkeyPatch) -> None:
+    from emboteam.pfg.offline import acts
+    monkeypatch.setitem(acts.DISHES, "stew", acts.Dish.model_validate(
+        {"served_in": "StewPot", "conditions": [{"predicate": "cooked"}]}))
+    with pytest.raises(KnowledgeDataError, match=r"^acts\.json: dishes -> 'stew': no object type 'StewPot'"):
+        acts._check_types()

@@ -58,6 +58,12 @@ class Dish(Strict):
         return (*self.each_of, *filter(None, (self.served_in, self.needs_type)))
 
 
+class _Tool(Strict):
+    act: lx.Act
+    #: what the thing it is used on must be (a catalogue property: "sliceable")
+    used_on: str
+
+
 class ActsFile(Strict):
     """``data/acts.json``."""
 
@@ -68,6 +74,8 @@ class ActsFile(Strict):
     dishes: dict[str, Dish]
     cookware: frozenset[str]
     stove_vessels: frozenset[str]
+    disposal: frozenset[str]
+    tools: dict[str, _Tool]
 
     @model_validator(mode="after")
     def _complete(self) -> ActsFile:
@@ -100,17 +108,24 @@ DISHES: dict[str, Dish] = _ACTS.dishes
 COOKWARE = _ACTS.cookware
 #: what boils or fries on a burner and stays there
 STOVE_VESSELS = _ACTS.stove_vessels
+#: containers no piece of furniture stands in ("on the counter in the bin"; "in the safe
+#: on the dresser" is where the safe is)
+DISPOSAL = _ACTS.disposal
+#: what a tool does to what it is used on ("use a knife on the bread")
+TOOLS = _ACTS.tools
 
 
 def _check_types() -> None:
-    """Every type a dish names is in the catalogue, and every recipe of the lexicon is a
+    """Every type named is in the catalogue, and every recipe of the lexicon is a
     dish (or toast, which :class:`~emboteam.pfg.offline.semantics.Semantics` makes by its
     own rule: it counts slices)."""
     catalogue = load_catalogue().types
-    for name, dish in DISHES.items():
-        unknown = [t for t in dish.types() if t not in catalogue]
+    named = [(f"dishes -> {name!r}", dish.types()) for name, dish in DISHES.items()]
+    named += [(table, tuple(getattr(_ACTS, table))) for table in ("cookware", "stove_vessels", "disposal", "tools")]
+    for entry, types in named:
+        unknown = [t for t in types if t not in catalogue]
         if unknown:
-            raise fail(_FILE, f"dishes -> {name!r}", f"no object type {unknown[0]!r} in the catalogue")
+            raise fail(_FILE, entry, f"no object type {unknown[0]!r} in the catalogue")
     for phrase, recipe in lx.RECIPES.items():
         if recipe not in DISHES and recipe != "toast":
             raise fail("lexicon.json", f"recipes -> {phrase!r}", f"no dish {recipe!r} in {_FILE}")

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pydantic import model_validator
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.acts import DISPOSAL, TOOLS
 from emboteam.pfg.offline.clauses import Clause, team_subject
 from emboteam.pfg.offline.constructions import (
     DURATION,
@@ -469,13 +470,7 @@ def _fixed_then_container(targets: list[Target], head: Head) -> bool:
         return False
     firsts = [x for x in first.noun.concept.types if x in cat.types]
     return bool(firsts) and not any(cat.type(x).has("pickupable") for x in firsts) \
-        and bool(set(head.noun.concept.types) & _DISPOSAL)
-
-
-#: containers no piece of furniture stands in ("on the counter in the bin"; "in the safe
-#: on the dresser" is where the safe is)
-_DISPOSAL = frozenset({"GarbageCan", "LaundryHamper", "Box", "SinkBasin", "Sink", "BathtubBasin", "Fridge",
-                       "Microwave", "Drawer"})
+        and bool(set(head.noun.concept.types) & DISPOSAL)
 
 
 def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
@@ -802,8 +797,6 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
                 frame.act = Act.SWITCH_ON if sub.particle == "on" else Act.SWITCH_OFF
             elif sub.act is Act.SWITCH and it.text in ("switched", "turned") and sub.state:
                 frame.act = Act.SWITCH_ON if sub.state[1] else Act.SWITCH_OFF
-            if frame.act is Act.SWITCH_ON and it.text == "lit":
-                frame.act = Act.SWITCH_ON
             j = end
         elif it.particle in ("up", "down") and (j + 1 >= n or not np_start(items[j + 1])) \
                 and any(t.head.noun is not None and "Blinds" in t.head.noun.concept.types
@@ -1081,15 +1074,6 @@ def _why_question(items: list[Item]) -> list[Item]:
     return [*items[2:end], items[1], *items[end:]]
 
 
-#: what a tool does to what it is used on
-_TOOL_ACTS = {"Knife": Act.SLICE, "ButterKnife": Act.SLICE, "DishSponge": Act.CLEAN, "Cloth": Act.CLEAN,
-              "ScrubBrush": Act.CLEAN}
-
-
-#: what a target must be for a tool's act
-_TOOL_TARGETS = {Act.SLICE: "sliceable", Act.CLEAN: "dirtyable"}
-
-
 def _tool_on(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
     """"use a knife on the bread": what the tool does, to what it is used on (not "use the
     knife on the counter", where the counter says which knife)."""
@@ -1097,17 +1081,17 @@ def _tool_on(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedC
         return None
     head, k = parse_np(items, 1)
     n = len(items)
-    act = _TOOL_ACTS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None else None
-    if head is None or act is None or not (k + 1 < n and items[k].prep == "on" and np_start(items[k + 1])):
+    tool = TOOLS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None else None
+    if head is None or tool is None or not (k + 1 < n and items[k].prep == "on" and np_start(items[k + 1])):
         return None
     target, _ = parse_np(items, k + 1)
     cat = load_catalogue()
     if target is None or target.noun is None or not any(
-            t in cat.types and cat.type(t).has(_TOOL_TARGETS[act]) for t in target.noun.concept.types):
+            t in cat.types and cat.type(t).has(tool.used_on) for t in target.noun.concept.types):
         return None
     head.role = "place"
     mentions.extend([head, target])
-    frame = Frame(act, "use", [Target(target)], text=" ".join(i.text for i in items))
+    frame = Frame(tool.act, "use", [Target(target)], text=" ".join(i.text for i in items))
     frame.instruments.append(head)
     return ParsedClause(clause, [frame], mentions, [])
 
