@@ -98,10 +98,6 @@ def _without_robot_words(items: list[Item]) -> list[Item]:
     return [x for k, x in enumerate(items) if k not in drop]
 
 
-def split_sentences(items: list[Item]) -> list[list[Item]]:
-    return [s for s, _ in _sentences(items)]
-
-
 def _sentences(items: list[Item]) -> list[tuple[list[Item], str | None]]:
     """The sentences, each with the punctuation that ends it."""
     out: list[tuple[list[Item], str | None]] = [([], None)]

@@ -104,10 +104,6 @@ class Concept:
     fallback: tuple[str, ...] = ()
     kind: str = "object"   # object | category | lights | lamps | room | liquid | anything | recipe
 
-    @property
-    def is_category(self) -> bool:
-        return self.kind == "category"
-
 
 
 def _obj(*types: str, fallback: tuple[str, ...] = ()) -> Concept:

@@ -44,14 +44,6 @@ class Token:
     text: str
     index: int
 
-    @property
-    def is_punct(self) -> bool:
-        return self.text in PUNCT
-
-    @property
-    def is_number(self) -> bool:
-        return self.text.isdigit()
-
 
 def split_camel(text: str) -> str:
     """``CounterTop`` -> ``Counter Top``, ``TVStand`` -> ``TV Stand``, ``robot2`` -> ``robot 2``."""
