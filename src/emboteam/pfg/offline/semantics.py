@@ -340,12 +340,7 @@ class Semantics:
         apple in it" only describes)."""
         if described or not drafts:
             return drafts
-        g = self._group
-        before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
-                  for c, held in self._contents(t, g, clause) for r, n in held.groups]
-        for d in drafts:
-            d.after = [a + len(before) for a in d.after] + list(range(len(before)))
-        return before + drafts
+        return then(self._filled_first(t, self._group, clause), drafts)
 
     def _state_of(self, t: Target, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
         """The drafts that give one object its state ("leave the fridge closed and the
@@ -521,8 +516,7 @@ class Semantics:
                 return self._make(frame, [said], clause)
         # "microwave a plate containing an egg": first the egg on the plate; "bring me a
         # chilled tomato on a plate": first the tomato cold
-        before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
-                  for c, held in self._contents(t, g, clause) for r, n in held.groups]
+        before = self._filled_first(t, g, clause)
         if t.head.recipe is not None and t.head.pron is None and one in (
                 Act.PLACE, Act.HOLD, Act.TRASH):
             # "put the toast on a plate", "bring me a coffee": the dish is made first,
@@ -540,9 +534,7 @@ class Semantics:
         if t.head.pron is not None and not t.dest and not frame.recipient and frame.verb in _CARRYING:
             for d in main:
                 d.carried = all(c.predicate is P.held for c in d.conditions)
-        for d in main:
-            d.after = [a + len(before) for a in d.after] + list(range(len(before)))
-        return before + main
+        return then(before, main)
 
     def _wanted(self, frame: Frame, act: Act, head: Head) -> list[tuple[Stat, bool]]:
         """States an object is asked *to have* rather than picked by: an indefinite noun
@@ -591,11 +583,14 @@ class Semantics:
             return None
         return Act.HOLD
 
-    def _contents(self, t: Target, g: int, clause: int) -> list[tuple[Ref, Ref]]:
+    def _filled_first(self, t: Target, g: int, clause: int) -> list[Draft]:
+        """What the object is to hold ("a plate containing an egg"), each put in it."""
         if not t.head.holds:
             return []
         container = self.ground(t.head, "receptacle", g, clause)
-        return [(container, self.ground(h, "hold", g, clause)) for h in t.head.holds]
+        held = [self.ground(h, "hold", g, clause) for h in t.head.holds]
+        return [self._draft([cond(P.inside, r, n, container.single())], h, container)
+                for h in held for r, n in h.groups]
 
     def _one(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """The drafts of one act on one object: the act is first made precise by the
@@ -677,10 +672,7 @@ class Semantics:
     def _shut_in(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
         """"Lock my keys in the safe": the keys go in, then the safe is shut."""
         placed = self._place(frame, t, g, clause)
-        shut = self._plain_act(frame, Act.CLOSE, Target(t.dest[0]), g, clause)
-        for d in shut:
-            d.after = [a + len(placed) for a in d.after] + list(range(len(placed)))
-        return placed + shut
+        return then(placed, self._plain_act(frame, Act.CLOSE, Target(t.dest[0]), g, clause))
 
     def _cut_pieces(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
         """"Cut two slices of bread (and put them on the plate)": the bread is what is cut,
@@ -1141,16 +1133,18 @@ class Semantics:
         liquid = frame.liquid
         for t in targets:
             liquid = t.head.liquid or t.head.contents or liquid
-            if t.dest:
-                for d in t.dest:
-                    ref = self.ground(d, "fill", self._group, clause)
-                    out.append(self._draft([cond(P.filled, r, n, liquid=liquid or "water")
-                                            for r, n in ref.groups], ref))
-            elif t.head.noun is not None:
-                ref = self.ground(t.head, "fill", self._group, clause)
+            for into in t.dest or ([t.head] if t.head.noun is not None else []):
+                ref = self.ground(into, "fill", self._group, clause)
                 out.append(self._draft([cond(P.filled, r, n, liquid=liquid or "water")
                                         for r, n in ref.groups], ref))
         return out
+
+
+def then(first: list[Draft], second: list[Draft]) -> list[Draft]:
+    """Two draft lists as one, each of the second after all of the first."""
+    for d in second:
+        d.after = [a + len(first) for a in d.after] + list(range(len(first)))
+    return [*first, *second]
 
 
 def concat(first: list[Draft], second: list[Draft]) -> list[Draft]:
