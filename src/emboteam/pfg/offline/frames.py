@@ -913,12 +913,9 @@ _PRO_VERBS = _W.set("pro_verbs")
 
 def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
                  flags: dict[str, bool]) -> ParsedClause:
-    # "... and so does the tomato", "the tomato does too": the act before, on this
-    if items and items[0].text in _PRO_VERBS and clause.link == "purpose":
-        heads = np_list(items[1:])
-        if heads:
-            mentions.extend(heads)
-            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    also = _pro_verb_clause(clause, items, mentions)
+    if also is not None:
+        return also
     if flags.get("also") and len(items) > 1 and items[-1].text in _PRO_VERBS:
         items = items[:-1]
     if clause.link in ("after", "before", "if", "by", "purpose", "while"):
@@ -928,6 +925,43 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
     if asked is not None:
         mentions.append(asked)
         return ParsedClause(clause, [], mentions, unknown_words(mentions))
+    items = _clause_proper(items, flags)
+    if not items:
+        return ParsedClause(clause, [], mentions, [])
+    items = causative_progressive(light_verb(items))
+    for reader in CLAUSE_READERS:
+        read = reader(clause, items, mentions, flags)
+        if read is not None:
+            return read
+    frames = _frames(clause, items, mentions, flags)
+    if isinstance(frames, ParsedClause):
+        return frames
+    timed = bool(DURATION.search(" ".join(x.text for x in items)))
+    for f in frames:
+        f.timed = timed
+        if f.act is Act.CAUSE and f.verb in _WANT:
+            f.report = False
+            f.wish = True
+        if flags.get("recipient"):
+            f.recipient = True
+        if f.report:
+            places_to_locations(f)
+    return ParsedClause(clause, frames, mentions, unknown_words(mentions))
+
+
+def _pro_verb_clause(clause: Clause, items: list[Item], mentions: list[Head]) -> ParsedClause | None:
+    """"... and so does the tomato", "the tomato does too": the act before, on this."""
+    if items and items[0].text in _PRO_VERBS and clause.link == "purpose":
+        heads = np_list(items[1:])
+        if heads:
+            mentions.extend(heads)
+            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    return None
+
+
+def _clause_proper(items: list[Item], flags: dict[str, bool]) -> list[Item]:
+    """The clause without what comes before its verb or subject: a rejected topic, a
+    leading negation (noted in ``flags``), "need to", a team member as subject, a modal."""
     # leading negation: "don't leave the lights on", "never turn on ..." ("nobody", "no
     # one" are subjects: "nobody closed the fridge" is read with its verb below)
     nobody = bool(items) and (items[0].text == "nobody" or (
@@ -951,94 +985,94 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
                                                "would", "to", "is", "needs", "has", "have") \
             and ((items[1].verb is not None and items[1].noun is None) or items[1].text == "to"):
         items = items[1:]
-    unknown: list[str] = []
-    frames: list[Frame] = []
-    if not items:
-        return ParsedClause(clause, [], mentions, unknown)
-    items = causative_progressive(light_verb(items))
-    if len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were"):
-        missing = absent_from(items[2:], clause.text)
-        if missing is not None:
-            return ParsedClause(clause, [missing], mentions, unknown_words(mentions))
-        # "there's a bottle of wine in the cupboard": introduces a referent and where it is
-        found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))
-        for f in found:
-            places_to_locations(f)
-        return ParsedClause(clause, [], mentions, unknown_words(mentions))
-    tool_use = _tool_on(items, clause, mentions)
-    if tool_use is not None:
-        return tool_use
+    return items
+
+
+def _there_is(clause: Clause, items: list[Item], mentions: list[Head],
+              flags: dict[str, bool]) -> ParsedClause | None:
+    """"there's a bottle of wine in the cupboard": introduces a referent and where it is
+    (or, "there's no milk in the fridge", says what is missing)."""
+    if not (len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were")):
+        return None
+    missing = absent_from(items[2:], clause.text)
+    if missing is not None:
+        return ParsedClause(clause, [missing], mentions, unknown_words(mentions))
+    found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))
+    for f in found:
+        places_to_locations(f)
+    return ParsedClause(clause, [], mentions, unknown_words(mentions))
+
+
+def _means_only(clause: Clause, items: list[Item], mentions: list[Head],
+                flags: dict[str, bool]) -> ParsedClause | None:
+    """"the microwave is fine": the clause only names the means."""
     means = instrument_clause(items, mentions)
-    if means is not None:
-        return ParsedClause(clause, [], mentions, [], means=means)
-    used = _use_to(items, clause, mentions)
-    if used is not None:
-        return used
+    return ParsedClause(clause, [], mentions, [], means=means) if means is not None else None
+
+
+def _frames(clause: Clause, items: list[Item], mentions: list[Head],
+            flags: dict[str, bool]) -> list[Frame] | ParsedClause:
+    """The frames of a clause by its shape: a person as subject, a verb first, else a
+    statement or wish about objects."""
     first = items[0]
-    human = first.text in _HUMAN_SUBJECTS and first.noun is None and not (
-        first.text in ("they", "them") and _things_they(items))
-    if human:
-        # "someone left the fridge open", "nobody needs the lights on", "i need X on Y"
-        if first.text in ("nobody", "no"):
-            flags["neg"] = not flags.get("neg", False)
-        j = _skip_aux(items, 1 if first.text != "no" else 2, flags)
-        wanted = items[j].verb if j < len(items) else None
-        if wanted is not None and wanted.lemma in _WANT \
-                and j + 1 < len(items) and items[j + 1].text != "to":
-            # "i need the alarm clock on the desk", "i want the tv on": a wish about objects
-            rest = with_as_and(items[j + 1:])
-            wish = dict(flags, directive=True, terse=True)
-            found = _state_frames(rest, mentions, wish)
-            if not found:
-                frame = _verb_frame([*items[:j + 1], *rest], j, flags, mentions)
-                frame.report = False
-                found = [frame]
-            frames.extend(found)
-        elif j < len(items) and items[j].verb is not None:
-            v = items[j]
-            assert v.verb is not None
-            frame = _verb_frame(items, j, flags, mentions)
-            before = {x.text for x in items[1:j]}
-            if first.text in ("i", "we") and ((before & {"was", "were"} and before & {"going", "gonna"})
-                                              or (flags.get("perfect") and not flags.get("modal"))):
-                # "I was going to bake": what did not happen; "I've left my phone on the
-                # bed": what was done
-                frame.report = frame.past = True
-            elif v.verb.lemma in _WANT:
-                frame.report = False
-            elif not flags.get("modal") and v.verb.form in ("ed", "ing", "s") and \
-                    clause.link not in ("if", "after", "before", "by"):
-                frame.report = True
-                frame.past = v.verb.form == "ed"
-            frames.append(frame)
-    elif first.verb is not None and (
+    if first.text in _HUMAN_SUBJECTS and first.noun is None and not (
+            first.text in ("they", "them") and _things_they(items)):
+        return _human_subject(clause, items, mentions, flags)
+    if first.verb is not None and (
             (first.verb.form in ("base", "ing") and (first.noun is None or _takes_object(items)))
             or (first.verb.form == "s" and (clause.robot is not None or flags.get("subject")))
             or (first.noun is None and first.state is None and first.verb.form != "s")):
-        frames.append(_verb_frame(items, 0, flags, mentions))
-    else:
-        terse = not any(i.copula for i in items)
-        flags["terse"] = terse
-        if terse:
-            flags["directive"] = True
-        wished = noun_phrase_wish(items, mentions)
-        frames.extend([wished] if wished is not None else _state_frames(items, mentions, flags))
-        if not frames and flags.get("also"):
-            heads = np_list(items)
-            if heads:
-                mentions.extend(h for h in heads if h not in mentions)
-                return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
-    timed = bool(DURATION.search(" ".join(x.text for x in items)))
-    for f in frames:
-        f.timed = timed
-        if f.act is Act.CAUSE and f.verb in _WANT:
-            f.report = False
-            f.wish = True
-        if flags.get("recipient"):
-            f.recipient = True
-        if f.report:
-            places_to_locations(f)
-    return ParsedClause(clause, frames, mentions, unknown_words(mentions))
+        return [_verb_frame(items, 0, flags, mentions)]
+    terse = not any(i.copula for i in items)
+    flags["terse"] = terse
+    if terse:
+        flags["directive"] = True
+    wished = noun_phrase_wish(items, mentions)
+    frames = [wished] if wished is not None else _state_frames(items, mentions, flags)
+    if not frames and flags.get("also"):
+        heads = np_list(items)
+        if heads:
+            mentions.extend(h for h in heads if h not in mentions)
+            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    return frames
+
+
+def _human_subject(clause: Clause, items: list[Item], mentions: list[Head],
+                   flags: dict[str, bool]) -> list[Frame]:
+    """"someone left the fridge open", "nobody needs the lights on", "i need X on Y"."""
+    first = items[0]
+    if first.text in ("nobody", "no"):
+        flags["neg"] = not flags.get("neg", False)
+    j = _skip_aux(items, 1 if first.text != "no" else 2, flags)
+    wanted = items[j].verb if j < len(items) else None
+    if wanted is not None and wanted.lemma in _WANT \
+            and j + 1 < len(items) and items[j + 1].text != "to":
+        # "i need the alarm clock on the desk", "i want the tv on": a wish about objects
+        rest = with_as_and(items[j + 1:])
+        found = _state_frames(rest, mentions, dict(flags, directive=True, terse=True))
+        if not found:
+            frame = _verb_frame([*items[:j + 1], *rest], j, flags, mentions)
+            frame.report = False
+            found = [frame]
+        return found
+    if not (j < len(items) and items[j].verb is not None):
+        return []
+    v = items[j].verb
+    assert v is not None
+    frame = _verb_frame(items, j, flags, mentions)
+    before = {x.text for x in items[1:j]}
+    if first.text in ("i", "we") and ((before & {"was", "were"} and before & {"going", "gonna"})
+                                      or (flags.get("perfect") and not flags.get("modal"))):
+        # "I was going to bake": what did not happen; "I've left my phone on the
+        # bed": what was done
+        frame.report = frame.past = True
+    elif v.lemma in _WANT:
+        frame.report = False
+    elif not flags.get("modal") and v.form in ("ed", "ing", "s") and \
+            clause.link not in ("if", "after", "before", "by"):
+        frame.report = True
+        frame.past = v.form == "ed"
+    return [frame]
 
 
 def _without_rejected_topic(items: list[Item]) -> list[Item]:
@@ -1074,7 +1108,8 @@ def _why_question(items: list[Item]) -> list[Item]:
     return [*items[2:end], items[1], *items[end:]]
 
 
-def _tool_on(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
+def _tool_on(clause: Clause, items: list[Item], mentions: list[Head],
+             flags: dict[str, bool]) -> ParsedClause | None:
     """"use a knife on the bread": what the tool does, to what it is used on (not "use the
     knife on the counter", where the counter says which knife)."""
     if items[0].text not in ("use", "using") or items[0].noun is not None:
@@ -1112,7 +1147,8 @@ def _things_they(items: list[Item]) -> bool:
                for k, it in enumerate(items[1:5], 1))
 
 
-def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
+def _use_to(clause: Clause, items: list[Item], mentions: list[Head],
+            flags: dict[str, bool]) -> ParsedClause | None:
     """"use the stove to fry the egg", "using the microwave, heat the soup": the act of the
     rest of the clause, with the named appliance as its means."""
     if items[0].text not in ("use", "using") or items[0].noun is not None:
@@ -1131,6 +1167,13 @@ def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedCl
         f.means = f.means or head
     inner.mentions.insert(0, head)
     return inner
+
+#: readers of clause shapes tried before the grammar proper, in order: the first that
+#: reads the clause decides
+CLAUSE_READERS: tuple[Callable[[Clause, list[Item], list[Head], dict[str, bool]], ParsedClause | None], ...] = (
+    _there_is, _tool_on, _means_only, _use_to,
+)
+
 
 def _takes_object(items: list[Item]) -> bool:
     from emboteam.pfg.offline.clauses import verb_here
