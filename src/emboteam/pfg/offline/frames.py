@@ -674,10 +674,172 @@ def _bare_in(items: list[Item], k: int) -> bool:
         and all(w in _BARE_IN for w in words)
 
 
+def _subject_list(items: list[Item], j: int, mentions: list[Head]) -> tuple[list[Target], int]:
+    """The coordinated subjects at ``j`` ("the laptop, the lamp and the TV") and the index
+    after them."""
+    n = len(items)
+    subjects: list[Target] = []
+    while j < n:
+        head, k = parse_np(items, j)
+        if head is None:
+            break
+        mentions.append(head)
+        if subjects and head.noun is not None:
+            fix_ellipsis(subjects[-1].head, head)
+        subjects.append(Target(head))
+        j = k
+        # "the bread on the counter and the egg on the table need to go ...": a place
+        # inside a list of subjects that a predicate follows describes its subject
+        if j + 1 < n and items[j].prep in MODIFIER_PREPS and np_start(items[j + 1]) \
+                and predicate_at(items, list_end(items, j)) \
+                and not _state_word_at(items, list_end(items, j)):
+            land, m = parse_np(items, j + 1)
+            if land is not None and m < n and (items[m].conj == "and" or items[m].punct == ","):
+                land.role = "place"
+                mentions.append(land)
+                head.location.append((str(items[j].prep), land))
+                j = m
+        if j < n and (items[j].conj == "and" or items[j].punct == ",") and j + 1 < n \
+                and np_start(items[j + 1]) and (items[j + 1].verb is None or (
+                    # "lamp and light off": a noun that could be a verb, before its state
+                    items[j + 1].noun is not None and j + 2 < n
+                    and (items[j + 2].state is not None or items[j + 2].particle is not None))):
+            j += 1
+            continue
+        break
+    return subjects, j
+
+
+@dataclass
+class _Statement:
+    """A clause of subjects and their predicates being read: the frames so far, and those
+    that only say where things come from (``sources``)."""
+
+    items: list[Item]
+    mentions: list[Head]
+    frames: list[Frame] = field(default_factory=list)
+    sources: list[Frame] = field(default_factory=list)
+
+
+#: a predicate rule's decision: the index after the predicate, whether its frame is kept,
+#: whether another subject may follow; None: not this rule
+_Read = tuple[int, bool, bool]
+
+
+def _state_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                     local: dict[str, bool]) -> _Read | None:
+    """"the fridge closed", "the book should be open on the desk" (and placed there)."""
+    items, n, it = st.items, len(st.items), st.items[j]
+    pp_here = it.prep is not None and j + 1 < n and np_start(items[j + 1])
+    if it.state is None or pp_here or (it.verb is not None and it.verb.sense.act is Act.GO) or not (
+            it.verb is None or it.verb.form != "ed" or it.text in lx.STATES):
+        return None
+    frame.state = it.state
+    rest = [Target(t.head) for t in subjects]
+    j = _parse_tail_until_next(items, j + 1, frame, rest, st.mentions)    # "with coffee in it", "in the sink"
+    placed = [t for t in rest if t.dest]
+    if placed and not frame.report:
+        st.frames.append(Frame(Act.PLACE, "put", placed, text=frame.text))
+    return j, True, True
+
+
+def _posture_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                       local: dict[str, bool]) -> _Read | None:
+    """"the fork and spoon sitting in the sink, ...": where they are, no request."""
+    it = st.items[j]
+    if not (position_participle(it) and it.verb is not None and it.verb.form == "ing" and not local.get("modal")):
+        return None
+    sub = _verb_frame(st.items[j:], 0, {"neg": frame.negated}, st.mentions, subjects)
+    for t in subjects:
+        for d in (x for tt in sub.targets for x in tt.dest):
+            d.role = "place"
+            t.head.location.append(("in", d))
+    return len(st.items), False, False
+
+
+def _verb_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                    local: dict[str, bool]) -> _Read | None:
+    """A participle or a verb of going: "the bread needs to be sliced", "the fork goes in
+    the drawer", "the potato won't cook itself"."""
+    items, it = st.items, st.items[j]
+    if it.verb is None or not (it.verb.form in ("ed", "ing") or it.verb.sense.act is Act.GO or (
+            it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS))):
+        return None
+    sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, st.mentions, subjects)
+    for t in sub.targets:
+        if t.head.pron in _REFLEXIVE or "by" in t.head.text:
+            frame.negated = False
+    sub.targets = [t for t in sub.targets if t.head.pron not in _REFLEXIVE]
+    if any(x.text in _REFLEXIVE for x in items[j:]) or "by themselves" in sub.text or "by itself" in sub.text:
+        frame.negated = False
+        frame.report = False
+    frame.targets = sub.targets
+    dest = next((t for t in sub.targets if t.dest), None)
+    for name in ("act", "verb", "particle", "liquid", "means", "state"):
+        setattr(frame, name, getattr(sub, name))
+    if sub.act is Act.GO and dest is None and _bare_in(items, j + 1):
+        # "open the fridge; the apple goes in": in the one just named
+        there = Head(text="it", pron="it", role="dest")
+        st.mentions.append(there)
+        frame.act, frame.report = Act.PLACE, False
+        for t in subjects:
+            t.dest, t.prep = [there], "in"
+    elif sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
+        frame.act = None         # "the toaster stays": leave it as it is
+    elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
+        frame.act = Act.PLACE if sub.act is Act.GO else sub.act
+        frame.report = False
+        for t in subjects:
+            if dest is not None:
+                t.dest, t.prep = dest.dest, dest.prep
+            elif sub.targets and sub.targets[0].dest:
+                t.dest, t.prep = sub.targets[0].dest, sub.targets[0].prep
+    if sub.act is Act.SWITCH and sub.particle in ("on", "off"):
+        frame.act = Act.SWITCH_ON if sub.particle == "on" else Act.SWITCH_OFF
+    elif sub.act is Act.SWITCH and it.text in ("switched", "turned") and sub.state:
+        frame.act = Act.SWITCH_ON if sub.state[1] else Act.SWITCH_OFF
+    return len(items), True, True
+
+
+def _blinds_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                      local: dict[str, bool]) -> _Read | None:
+    """"blinds down": closed; "blinds up": open."""
+    items, it = st.items, st.items[j]
+    if it.particle in ("up", "down") and (j + 1 >= len(items) or not np_start(items[j + 1])) \
+            and any(t.head.noun is not None and "Blinds" in t.head.noun.concept.types for t in subjects):
+        frame.state = (Stat.OPEN, it.particle == "up")
+        return j + 1, True, True
+    return None
+
+
+def _place_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                     local: dict[str, bool]) -> _Read | None:
+    """"lights off", "bread on plate", "the loo roll off the floor (and onto the holder)"."""
+    items, it = st.items, st.items[j]
+    if it.prep is None and it.particle not in ("on", "off"):
+        return None
+    if it.particle in ("on", "off") and (j + 1 >= len(items) or not np_start(items[j + 1])):
+        frame.state = (Stat.SWITCH, it.particle == "on")
+        return j + 1, True, True
+    frame.act = Act.PLACE
+    j = _parse_tail_until_next(items, j, frame, subjects, st.mentions)
+    if frame.report and not any(t.dest for t in subjects):
+        frame.act = None
+    elif it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
+        st.sources.append(frame)
+    return j, True, True
+
+
+#: what may follow the subjects, in order: the first rule that applies reads the predicate;
+#: none: the frame as it is ends the statement
+PREDICATE_RULES: tuple[Callable[[_Statement, int, Frame, list[Target], dict[str, bool]], _Read | None], ...] = (
+    _state_predicate, _posture_predicate, _verb_predicate, _blinds_predicate, _place_predicate,
+)
+
+
 def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool]) -> list[Frame]:
-    """``NP [aux] predicate (, NP [aux] predicate)*``"""
-    frames: list[Frame] = []
-    sources: list[Frame] = []
+    """``NP [aux] predicate (, NP [aux] predicate)*`` (:data:`PREDICATE_RULES`)."""
+    st = _Statement(items, mentions)
     j = 0
     n = len(items)
     while j < n and (items[j].text in ("could", "can", "would", "will", "should", "must", "may")
@@ -686,35 +848,7 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             flags["modal"] = True
         j += 1
     while j < n:
-        subjects: list[Target] = []
-        while j < n:
-            head, k = parse_np(items, j)
-            if head is None:
-                break
-            mentions.append(head)
-            if subjects and head.noun is not None:
-                fix_ellipsis(subjects[-1].head, head)
-            subjects.append(Target(head))
-            j = k
-            # "the bread on the counter and the egg on the table need to go ...": a place
-            # inside a list of subjects that a predicate follows describes its subject
-            if j + 1 < n and items[j].prep in MODIFIER_PREPS and np_start(items[j + 1]) \
-                    and predicate_at(items, list_end(items, j)) \
-                    and not _state_word_at(items, list_end(items, j)):
-                land, m = parse_np(items, j + 1)
-                if land is not None and m < n and (items[m].conj == "and" or items[m].punct == ","):
-                    land.role = "place"
-                    mentions.append(land)
-                    head.location.append((str(items[j].prep), land))
-                    j = m
-            if j < n and (items[j].conj == "and" or items[j].punct == ",") and j + 1 < n \
-                    and np_start(items[j + 1]) and (items[j + 1].verb is None or (
-                        # "lamp and light off": a noun that could be a verb, before its state
-                        items[j + 1].noun is not None and j + 2 < n
-                        and (items[j + 2].state is not None or items[j + 2].particle is not None))):
-                j += 1
-                continue
-            break
+        subjects, j = _subject_list(items, j, mentions)
         if not subjects:
             break
         k_subj = j
@@ -726,99 +860,18 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
         j = _skip_aux(items, j, local)
         if j >= n:
             break
-        it = items[j]
         frame = Frame(None, "", targets=subjects, negated=local.get("neg", False),
                       too=local.get("too", False), text=" ".join(x.text for x in items))
         frame.report = not local.get("modal", False) and not flags.get("directive", False) \
             and any((x.copula and x.text in ("is", "are", "was", "were", "am", "been"))
                     or x.text in ("has", "have") for x in items[k_subj:j]) \
             and not local.get("terse", False)
-        is_participle = it.verb is not None and (it.verb.form in ("ed", "ing") or (
-            it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS)))
-        pp_here = it.prep is not None and j + 1 < n and np_start(items[j + 1])
-        if it.state is not None and not pp_here and not (
-                it.verb is not None and it.verb.sense.act is Act.GO) and (
-                it.verb is None or it.verb.form != "ed" or it.text in lx.STATES):
-            frame.state = it.state
-            j += 1
-            # "with coffee in it", "in the sink"; "the book should be open on the desk":
-            # and placed there
-            rest = [Target(t.head) for t in subjects]
-            j = _parse_tail_until_next(items, j, frame, rest, mentions)
-            placed = [t for t in rest if t.dest]
-            if placed and not frame.report:
-                frames.append(Frame(Act.PLACE, "put", placed, text=frame.text))
-        elif position_participle(it) and it.verb is not None and it.verb.form == "ing" and not local.get("modal"):
-            # "the fork and spoon sitting in the sink, ...": where they are, no request
-            sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
-            for t in subjects:
-                for d in (x for tt in sub.targets for x in tt.dest):
-                    d.role = "place"
-                    t.head.location.append(("in", d))
-            j = len(items)
+        j, kept, more_subjects = next((r for rule in PREDICATE_RULES
+                                       if (r := rule(st, j, frame, subjects, local)) is not None), (j, True, False))
+        if kept:
+            st.frames.append(frame)
+        if not more_subjects:
             break
-        elif it.verb is not None and (is_participle or it.verb.sense.act is Act.GO):
-            sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
-            end = len(items)
-            for t in sub.targets:
-                if t.head.pron in _REFLEXIVE or "by" in t.head.text:
-                    frame.negated = False
-            sub.targets = [t for t in sub.targets if t.head.pron not in _REFLEXIVE]
-            if any(x.text in _REFLEXIVE for x in items[j:]) or "by themselves" in sub.text \
-                    or "by itself" in sub.text:
-                frame.negated = False
-                frame.report = False
-            frame.targets = sub.targets
-            dest = next((t for t in sub.targets if t.dest), None)
-            frame.act = sub.act
-            frame.verb = sub.verb
-            frame.particle = sub.particle
-            frame.liquid = sub.liquid
-            frame.means = sub.means
-            frame.state = sub.state
-            if sub.act is Act.GO and dest is None and _bare_in(items, j + 1):
-                # "open the fridge; the apple goes in": in the one just named
-                there = Head(text="it", pron="it", role="dest")
-                mentions.append(there)
-                frame.act, frame.report = Act.PLACE, False
-                for t in subjects:
-                    t.dest, t.prep = [there], "in"
-            elif sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
-                frame.act = None         # "the toaster stays": leave it as it is
-            elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
-                frame.act = Act.PLACE if sub.act is Act.GO else sub.act
-                frame.report = False
-                for t in subjects:
-                    if dest is not None:
-                        t.dest, t.prep = dest.dest, dest.prep
-                    elif sub.targets and sub.targets[0].dest:
-                        t.dest, t.prep = sub.targets[0].dest, sub.targets[0].prep
-            if sub.act is Act.SWITCH and sub.particle in ("on", "off"):
-                frame.act = Act.SWITCH_ON if sub.particle == "on" else Act.SWITCH_OFF
-            elif sub.act is Act.SWITCH and it.text in ("switched", "turned") and sub.state:
-                frame.act = Act.SWITCH_ON if sub.state[1] else Act.SWITCH_OFF
-            j = end
-        elif it.particle in ("up", "down") and (j + 1 >= n or not np_start(items[j + 1])) \
-                and any(t.head.noun is not None and "Blinds" in t.head.noun.concept.types
-                        for t in subjects):
-            frame.state = (Stat.OPEN, it.particle == "up")     # "blinds down": closed
-            j += 1
-        elif it.prep is not None or it.particle in ("on", "off"):
-            if it.particle in ("on", "off") and (j + 1 >= n or not np_start(items[j + 1])):
-                frame.state = (Stat.SWITCH, it.particle == "on")
-                j += 1
-            else:
-                frame.act = Act.PLACE
-                rest = subjects
-                j = _parse_tail_until_next(items, j, frame, rest, mentions)
-                if frame.report and not any(t.dest for t in subjects):
-                    frame.act = None
-                elif it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
-                    sources.append(frame)
-        else:
-            frames.append(frame)
-            break
-        frames.append(frame)
         # "the laptop shut and the desk lamp off": another subject and predicate
         while j < n and (items[j].conj is not None or items[j].punct is not None):
             j += 1
@@ -830,12 +883,13 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             more = _state_frames([*items[:k_subj], *items[j:]], [], dict(flags))
             mentions.extend(h for f in more for t in f.targets for h in (t.head, *t.dest)
                             if h not in mentions)
-            frames.extend(more)
+            st.frames.extend(more)
             break
     # "loo roll off the floor and onto the holder": where it comes from, when a later
     # predicate says where it goes
-    moved = any(f.act is Act.PLACE and any(t.dest for t in f.targets) for f in frames)
-    return [f for f in frames if (f.act is not None or f.state is not None) and not (moved and f in sources)]
+    moved = any(f.act is Act.PLACE and any(t.dest for t in f.targets) for f in st.frames)
+    return [f for f in st.frames if (f.act is not None or f.state is not None)
+            and not (moved and f in st.sources)]
 
 
 def _after_modifiers(items: list[Item], k: int) -> int:
