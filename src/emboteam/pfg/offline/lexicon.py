@@ -334,7 +334,6 @@ def nouns() -> dict[str, Concept]:
         spaced = split_camel(name).lower()
         for key in (spaced, spaced.replace(" ", "")):
             out.setdefault(key, _obj(name))
-    out.setdefault("tv stand", _obj("TVStand"))
     _add_compound_heads(out, cat.types, source)
     return out
 
