@@ -439,6 +439,8 @@ class Semantics:
         return Draft(conditions, describe(conditions), frozenset(ents), intermediate=intermediate)
 
     def _act(self, frame: Frame, act: Act, clause: int) -> list[Draft]:
+        """The drafts of an act on the frame's objects: acts that need none (dim the room,
+        water the plant), dishes and pouring, an elided object, then each object."""
         targets = self._targets(frame)
         g = self._group
         if act in (Act.DIM, Act.BRIGHTEN) and not targets:
@@ -449,32 +451,16 @@ class Semantics:
             return self._make(frame, targets, clause)
         if act is Act.POUR:
             return self._pour(frame, targets, clause)
-        if act is Act.CAUSE and not (frame.wish or frame.ready or frame.recipient
-                                     or frame.verb == "get") and not any(
-                t.dest or t.head.recipe or t.head.contents or (t.head.liquid and t.head.noun is None)
-                for t in targets):
+        if act is Act.CAUSE and _nothing_asked(frame, targets):
             for t in targets:      # "keep the apple": nothing asked of it
                 self.note(t.head, clause)
             return []
         if not targets and self.history and act is not Act.CAUSE and (
                 act not in (Act.PLACE, Act.GO) or frame.means is not None):
-            # "wash the apple and put in the fridge", "the bread needs to be sliced and put
-            # on a plate", "the vases - all four - go in the box": the object is elided, it
-            # is the one just acted on
-            last = next((m for m in reversed(self.history) if m.role == "object"), None)
-            word = "them" if last is not None and last.ref.plural else "it"
-            elided = Head(text=word, pron=word)
-            if act is Act.GO:
-                act = Act.PLACE
-            place = [frame.means] if act is Act.PLACE and frame.means is not None else []
-            if place:
-                place[0].role = "dest"
-                frame.means = None
-            targets = [Target(elided, place, "in" if place else None)]
+            act, targets = self._elided_object(frame, act)
         if not targets:
             if act in (Act.SWITCH_OFF, Act.SWITCH_ON) and frame.verb in ("dim", "kill"):
-                ref = self.g.light_sources()
-                return self._each(P.switched_off, ref)
+                return self._each(P.switched_off, self.g.light_sources())
             # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
                                     f"{past_participle(frame.verb)}?", phrase=frame.text, vague=True)
@@ -482,6 +468,10 @@ class Semantics:
             act = Act.PLACE if any(t.dest for t in targets) else act
             if act is Act.GO:
                 return []
+        return self._per_object(frame, act, targets, g, clause)
+
+    def _per_object(self, frame: Frame, act: Act, targets: list[Target], g: int, clause: int) -> list[Draft]:
+        """The act on each object in turn."""
         # "put the book on the bed and the pillow too": a later object without a place
         # goes where the one before it went
         for prev, t in itertools.pairwise(targets):
@@ -500,6 +490,19 @@ class Semantics:
             raise failed[0]
         self.skipped.extend(failed)
         return out
+
+    def _elided_object(self, frame: Frame, act: Act) -> tuple[Act, list[Target]]:
+        """"wash the apple and put in the fridge", "the bread needs to be sliced and put on
+        a plate", "the vases - all four - go in the box": the object is elided, it is the
+        one just acted on (a place said as the means is where it goes)."""
+        last = next((m for m in reversed(self.history) if m.role == "object"), None)
+        word = "them" if last is not None and last.ref.plural else "it"
+        act = Act.PLACE if act is Act.GO else act
+        place = [frame.means] if act is Act.PLACE and frame.means is not None else []
+        if place:
+            place[0].role = "dest"
+            frame.means = None
+        return act, [Target(Head(text=word, pron=word), place, "in" if place else None)]
 
     def _target(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """The drafts of one object of an act: what it must be first (its wanted states,
@@ -1169,6 +1172,13 @@ def _noun(phrase: str) -> NounReading:
 #: states that "everything" can be brought to: off, closed (the opposite would switch on
 #: every faucet and burner, open every cabinet: no household reading)
 _ALL_OF = frozenset({(Stat.SWITCH, False), (Stat.OPEN, False)})
+
+
+def _nothing_asked(frame: Frame, targets: list[Target]) -> bool:
+    """"keep the apple", "have the bread": a causative verb with no wish, place, dish or
+    drink asks nothing of its objects."""
+    return not (frame.wish or frame.ready or frame.recipient or frame.verb == "get") and not any(
+        t.dest or t.head.recipe or t.head.contents or (t.head.liquid and t.head.noun is None) for t in targets)
 
 
 def _is_everything(head: Head) -> bool:
