@@ -13,6 +13,7 @@ import pytest
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.acts import ActsFile
+from emboteam.pfg.offline.constructions import ConstructionsFile
 from emboteam.pfg.offline.frames import PreambleFile
 from emboteam.pfg.offline.idioms import IdiomsFile
 from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, WordsFile, WordTables, read
@@ -31,7 +32,8 @@ def _broken(tmp_path: Path, name: str, change: Any) -> Path:
 
 @pytest.mark.parametrize(("name", "schema"), [("lexicon.json", LexiconFile), ("idioms.json", IdiomsFile),
                                               ("text.json", TextFile), ("words.json", WordsFile),
-                                              ("preamble.json", PreambleFile), ("acts.json", ActsFile)])
+                                              ("preamble.json", PreambleFile), ("acts.json", ActsFile),
+                                              ("constructions.json", ConstructionsFile)])
 def test_every_shipped_knowledge_file_passes_its_schema(name: str, schema: Any) -> None:
     read(DATA_DIR / name, schema)
 
@@ -148,3 +150,10 @@ def test_a_dish_of_a_type_the_catalogue_lacks_is_named(monkeypatch: pytest.Monke
         {"served_in": "StewPot", "conditions": [{"predicate": "cooked"}]}))
     with pytest.raises(KnowledgeDataError, match=r"^acts\.json: dishes -> 'stew': no object type 'StewPot'"):
         acts._check_types()
+
+
+def test_a_light_act_that_is_no_act_names_the_table(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        data["light_acts"].append("scrubb")
+    with pytest.raises(KnowledgeDataError, match=r"^constructions\.json: light_acts"):
+        read(_broken(tmp_path, "constructions.json", change), ConstructionsFile)

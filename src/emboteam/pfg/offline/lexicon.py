@@ -93,7 +93,6 @@ class VerbSense:
     weak: bool = False
 
 
-
 @dataclass(frozen=True, slots=True)
 class Concept:
     """What a noun names: object types (in order of preference), with fallbacks for
@@ -103,7 +102,6 @@ class Concept:
     types: tuple[str, ...] = ()
     fallback: tuple[str, ...] = ()
     kind: str = "object"   # object | category | lights | lamps | room | liquid | anything | recipe
-
 
 
 def _obj(*types: str, fallback: tuple[str, ...] = ()) -> Concept:

@@ -53,8 +53,6 @@ def split_camel(text: str) -> str:
     return text
 
 
-
-
 _ARROW = r"\s*(?:->|=>|\u2192|\u27f6)\s*"
 
 
@@ -71,8 +69,6 @@ def _arrows(text: str) -> str:
 #: a word broken off by a dash and a hedge ("crack- well, just put the egg in"): a
 #: self-correction, read as "I mean" (offline/corrections.py)
 _BROKEN_OFF = re.compile(r"\b([A-Za-z]+)-\s+(?:well|actually|er|erm|um|hmm),?\s+(?:just\s+)?")
-
-
 
 
 def normalize(text: str) -> str:
