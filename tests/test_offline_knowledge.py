@@ -12,6 +12,8 @@ import pytest
 
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.acts import ActsFile
+from emboteam.pfg.offline.constructions import ConstructionsFile
 from emboteam.pfg.offline.frames import PreambleFile
 from emboteam.pfg.offline.idioms import IdiomsFile
 from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, WordsFile, WordTables, read
@@ -30,7 +32,8 @@ def _broken(tmp_path: Path, name: str, change: Any) -> Path:
 
 @pytest.mark.parametrize(("name", "schema"), [("lexicon.json", LexiconFile), ("idioms.json", IdiomsFile),
                                               ("text.json", TextFile), ("words.json", WordsFile),
-                                              ("preamble.json", PreambleFile)])
+                                              ("preamble.json", PreambleFile), ("acts.json", ActsFile),
+                                              ("constructions.json", ConstructionsFile)])
 def test_every_shipped_knowledge_file_passes_its_schema(name: str, schema: Any) -> None:
     read(DATA_DIR / name, schema)
 
@@ -118,3 +121,39 @@ def test_a_noun_of_a_type_the_catalogue_lacks_is_named(monkeypatch: pytest.Monke
             lx.nouns()
     finally:
         lx.nouns.cache_clear()
+
+
+def test_a_dish_with_an_unknown_goal_names_the_dish(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        data["dishes"]["coffee"]["conditions"][1]["predicate"] = "warm"
+    with pytest.raises(KnowledgeDataError, match=r"^acts\.json: dishes -> 'coffee' -> 'conditions'\[1\].*'predicate'"):
+        read(_broken(tmp_path, "acts.json", change), ActsFile)
+
+
+def test_a_state_without_a_rule_is_named(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        del data["states"]["toasted"]
+    with pytest.raises(KnowledgeDataError, match=r"^acts\.json: states: no rule for 'toasted'"):
+        read(_broken(tmp_path, "acts.json", change), ActsFile)
+
+
+def test_a_described_pattern_naming_an_unknown_piece_is_named(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        data["described"]["used_for"][1] = "{descibed} with"
+    with pytest.raises(KnowledgeDataError, match=r"^idioms\.json: described -> used_for\[1\]: no piece 'descibed'"):
+        read(_broken(tmp_path, "idioms.json", change), IdiomsFile)
+
+
+def test_a_dish_of_a_type_the_catalogue_lacks_is_named(monkeypatch: pytest.MonkeyPatch) -> None:
+    from emboteam.pfg.offline import acts
+    monkeypatch.setitem(acts.DISHES, "stew", acts.Dish.model_validate(
+        {"served_in": "StewPot", "conditions": [{"predicate": "cooked"}]}))
+    with pytest.raises(KnowledgeDataError, match=r"^acts\.json: dishes -> 'stew': no object type 'StewPot'"):
+        acts._check_types()
+
+
+def test_a_light_act_that_is_no_act_names_the_table(tmp_path: Path) -> None:
+    def change(data: dict[str, Any]) -> None:
+        data["light_acts"].append("scrubb")
+    with pytest.raises(KnowledgeDataError, match=r"^constructions\.json: light_acts"):
+        read(_broken(tmp_path, "constructions.json", change), ConstructionsFile)

@@ -9,7 +9,9 @@ clauses, "slice the apple and the tomato" is one).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import word_tables
@@ -96,10 +98,6 @@ def _without_robot_words(items: list[Item]) -> list[Item]:
             drop.add(m)
             m -= 1
     return [x for k, x in enumerate(items) if k not in drop]
-
-
-def split_sentences(items: list[Item]) -> list[list[Item]]:
-    return [s for s, _ in _sentences(items)]
 
 
 def _sentences(items: list[Item]) -> list[tuple[list[Item], str | None]]:
@@ -419,183 +417,234 @@ def _after_commas(items: list[Item], j: int) -> int:
     return j
 
 
+class _Cut(NamedTuple):
+    """A boundary rule's decision: the link of the clause that starts (None: no boundary
+    after all), how many items the boundary takes, and whether the new clause is "only"
+    ("..., only the floor lamp")."""
+
+    link: str | None
+    skip: int = 0
+    only: bool = False
+
+
+def _content(items: list[Item]) -> bool:
+    return any(x.is_content() for x in items)
+
+
+def _numbered_item(sentence: list[Item], j: int) -> bool:
+    """"three things: 1) the wine goes in the fridge, 2) the phone on the counter": a
+    number between punctuation numbers an item of a list."""
+    return sentence[j].number is not None and (j == 0 or sentence[j - 1].punct is not None) \
+        and j + 1 < len(sentence) and sentence[j + 1].punct is not None
+
+
+def _ordinal_step(sentence: list[Item], j: int) -> bool:
+    """"first open the fridge, second take out the egg, third close it": an ordinal before
+    a verb numbers the steps of a list."""
+    it = sentence[j]
+    return it.seq is None and it.text in _LIST_ORDINALS and (j == 0 or not sentence[j - 1].det) \
+        and verb_here(sentence, _after_commas(sentence, j + 1))
+
+
+def _sequence_marker(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    if sentence[j].seq is not None:
+        return _Cut(THEN, 1)
+    if _ordinal_step(sentence, j):
+        return _Cut(THEN, _after_commas(sentence, j + 1) - j)
+    return None
+
+
+def _person_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"when I come back I want the light off": the main clause after a subordinate one,
+    without a comma between them."""
+    it = sentence[j]
+    if current.link not in (AND, THEN) and it.text in _HUMAN and j + 1 < len(sentence) \
+            and (sentence[j + 1].verb is not None or sentence[j + 1].copula) \
+            and any(x.verb is not None or x.particle is not None for x in current.items):
+        return _Cut(AND)
+    return None
+
+
+def _persons_act_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"before you go put the apple in the fridge", "while you're at it switch the TV off":
+    a person's act, then the request."""
+    it, items = sentence[j], current.items
+    if current.link not in (AND, THEN) and len(items) >= 2 and items[0].text in _HUMAN \
+            and any((x.verb is not None and x.noun is None) or x.particle is not None
+                    or (x.copula and k + 1 < len(items)) for k, x in enumerate(items[1:], 1)) \
+            and it.verb is not None and verb_here(sentence, j) \
+            and items[-1].text not in ("have", "has", "had", "ve", "to") \
+            and not any(x.verb is not None and x.verb.lemma in _WISH_VERBS for x in items) \
+            and (it.noun is None or items[-1].pron is not None):
+        return _Cut(AND)
+    return None
+
+
+def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"once it's sliced stick a couple of the slices in the fridge", "once the mug's full
+    switch the coffee maker off": the state, then the request."""
+    it, items = sentence[j], current.items
+    if current.link not in (AND, THEN) and len(items) >= 3 \
+            and ((items[0].pron in ("it", "they", "that") and items[1].copula) or (
+                _skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
+            and (items[-1].state is not None or items[-1].particle is not None or items[-1].text in _READY) \
+            and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
+            and it.verb.form == "base" and verb_here(sentence, j):
+        return _Cut(AND)
+    return None
+
+
+def _robot_named(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    return _Cut(AND) if sentence[j].robot is not None and _content(current.items) else None
+
+
+def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"bring me the book from the desk put it on the bed": a run-on request; "the remote
+    is on the tv stand can you put it on the sofa": a run-on statement, then the request."""
+    it, items, n = sentence[j], current.items, len(sentence)
+    if it.verb is not None and it.noun is None and it.verb.form == "base" and j + 1 < n \
+            and (sentence[j + 1].pron in ("it", "them") or (
+                sentence[j + 1].det and items and items[0].verb is not None
+                and items[0].noun is None and it.text in _RUN_ON_VERBS)) \
+            and items and items[-1].noun is not None \
+            and any(x.verb is not None and x.noun is None for x in items):
+        return _Cut(AND)
+    if it.text in ("can", "could", "would", "will") and j + 1 < n \
+            and sentence[j + 1].text in ("you", "someone", "somebody", "anyone") \
+            and _content(items) and any(x.copula or x.verb is not None for x in items):
+        return _Cut(AND)
+    return None
+
+
+def _coordination(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """A comma, "and", "but", "plus", "as well as": a boundary when what follows starts a
+    clause of its own (:func:`_starts_new`)."""
+    it = sentence[j]
+    if not (it.text == "as well as" or ((it.text in (",", "and", "but", "plus") or it.punct == ",")
+                                        and j + 1 < len(sentence))):
+        return None
+    k = j + 1
+    while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")
+                                 or _sentence_adverb(sentence[k])):
+        k += 1
+    comma = any(sentence[x].punct == "," for x in range(j, k))
+    if k + 1 < len(sentence) and sentence[k].text in ("only", "just") \
+            and any(x.neg for x in current.items) and sentence[k + 1].det:
+        # "don't turn off the desk lamp, only the floor lamp": the act, not negated, on
+        # what follows
+        return _Cut(AND, k + 1 - j, only=True)
+    if k < len(sentence) and _starts_new(sentence, k, current.items, comma):
+        return _Cut(AND, k - j)
+    if _also_item(sentence, k) and _content(current.items):
+        return _Cut(AND, k - j)     # "the egg in the fridge, and the lettuce too": the act before, on it
+    if comma and k + 1 < len(sentence) and sentence[k].prep == "with" \
+            and _with_a_place(sentence, k + 1) and _has_predicate(current.items):
+        return _Cut(AND, k + 1 - j)     # "..., with the remote on the sofa": and the remote on the sofa
+    return _Cut(None, 1)
+
+
+def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"after", "before", "when", "if", "by" + gerund, "so that", "to" (a purpose)."""
+    it = sentence[j]
+    if it.sub is None:
+        return None
+    nxt = sentence[j + 1] if j + 1 < len(sentence) else None
+    is_sub = it.sub != "by" or (nxt is not None and nxt.verb is not None and nxt.verb.form == "ing")
+    if it.text == "as" and nxt is not None and nxt.text in ("to", "well", "soon"):
+        is_sub = nxt.text != "well"
+    if it.text == "to" and j > 0 and sentence[j - 1].text in _TO_INFINITIVE_HEADS:
+        is_sub = False      # "I was going to bake": an infinitive, no purpose
+    skip = 2 if it.text == "so" and nxt is not None and nxt.text == "that" else 1
+    link = it.sub if is_sub else None
+    if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
+            and (nxt.noun is None or _next_is_object(sentence, j + 1)):
+        link = THEN     # "... and after close the box": afterwards
+    if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
+            and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
+        link = AND      # "so I was going to bake": what happened, no purpose
+    return _Cut(link, skip)
+
+
+def _run_on_states(sentence: list[Item], j: int, current: Clause) -> bool:
+    """"soap in the sink tap running light off": states typed without commas, each after
+    its own subject."""
+    it = sentence[j]
+    return j > 1 and ((sentence[j - 1].text in _RUN_ON_STATES and sentence[j - 2].verb is None
+                       and not sentence[j - 2].det)
+                      or (sentence[j - 1].noun is not None and _ends_with_place(current.items))) \
+        and (it.det or it.noun is not None) and _state_item_here(sentence, j) and _content(current.items)
+
+
+#: the rules that say whether a clause starts at an item, in order: the first that applies
+#: decides (its link may be None: no boundary after all)
+BOUNDARY_RULES: tuple[Callable[[list[Item], int, Clause], _Cut | None], ...] = (
+    _sequence_marker, _person_then_request, _persons_act_then_request, _state_then_request,
+    _robot_named, _run_on_request, _coordination, _subordinator,
+)
+
+
+def _boundary(sentence: list[Item], j: int, current: Clause) -> _Cut:
+    cut = next((c for rule in BOUNDARY_RULES if (c := rule(sentence, j, current)) is not None), _Cut(None, 1))
+    if cut.link is None and _run_on_states(sentence, j, current):
+        return _Cut(AND)
+    return cut
+
+
 def segment(items: list[Item]) -> list[Clause]:
-    """Clauses in textual order."""
+    """Clauses in textual order (:data:`BOUNDARY_RULES` say where each starts)."""
     clauses: list[Clause] = []
     robot: tuple[str, int] | None = None
     for s_index, (sentence, end) in enumerate(_sentences(items)):
-        sentence_robot: tuple[str, int] | None = None
         current = Clause([], AND, None, s_index, initial=True)
         first_in_sentence = True
-
-        def close(c: Clause) -> None:
-            if c.items:
-                clauses.append(c)
-
         j = 0
-        only_next = False
         while j < len(sentence):
-            it = sentence[j]
-            boundary: str | None = None
-            skip = 1
-            if it.number is not None and (j == 0 or sentence[j - 1].punct is not None) \
-                    and j + 1 < len(sentence) and sentence[j + 1].punct is not None:
-                # "three things: 1) the wine goes in the fridge, 2) the phone on the counter":
-                # a number between punctuation numbers an item of a list
-                if any(x.is_content() for x in current.items):
-                    close(current)
+            if _numbered_item(sentence, j):
+                if _content(current.items):
+                    clauses.append(current)
                     current = Clause([], AND, None, s_index, initial=False)
                 j += 2
                 continue
-            if it.seq is not None:
-                boundary = THEN
-            elif it.text in _LIST_ORDINALS and (j == 0 or not sentence[j - 1].det) \
-                    and verb_here(sentence, _after_commas(sentence, j + 1)):
-                # "first open the fridge, second take out the egg, third close it": an
-                # ordinal before a verb numbers the steps of a list
-                skip = _after_commas(sentence, j + 1) - j
-                if not any(x.is_content() for x in current.items):
-                    j += skip
-                    continue
-                boundary = THEN
-            elif current.link not in (AND, THEN) and it.text in _HUMAN and j + 1 < len(sentence) \
-                    and (sentence[j + 1].verb is not None or sentence[j + 1].copula) \
-                    and any(x.verb is not None or x.particle is not None for x in current.items):
-                # "when I come back I want the light off": the main clause after a
-                # subordinate one, without a comma between them
-                boundary = AND
-                skip = 0
-            elif current.link not in (AND, THEN) and len(current.items) >= 2 \
-                    and current.items[0].text in _HUMAN \
-                    and any((x.verb is not None and x.noun is None) or x.particle is not None
-                            or (x.copula and k + 1 < len(current.items))
-                            for k, x in enumerate(current.items[1:], 1)) \
-                    and it.verb is not None and verb_here(sentence, j) \
-                    and current.items[-1].text not in ("have", "has", "had", "ve", "to") \
-                    and not any(x.verb is not None and x.verb.lemma in _WISH_VERBS for x in current.items) \
-                    and (it.noun is None or current.items[-1].pron is not None):
-                # "before you go put the apple in the fridge", "while you're at it switch
-                # the TV off": a person's act, then the request
-                boundary = AND
-                skip = 0
-            elif current.link not in (AND, THEN) and len(current.items) >= 3 \
-                    and ((current.items[0].pron in ("it", "they", "that") and current.items[1].copula) or (
-                        # "once the mug's full switch the coffee maker off"
-                        _skip_np(current.items, 0) == len(current.items) - 2 and current.items[-2].copula)) \
-                    and (current.items[-1].state is not None or current.items[-1].particle is not None
-                         or current.items[-1].text in _READY) \
-                    and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
-                    and it.verb.form == "base" and verb_here(sentence, j):
-                # "once it's sliced stick a couple of the slices in the fridge": the state, then
-                # the request
-                boundary = AND
-                skip = 0
-            elif it.robot is not None and current.items and any(x.is_content() for x in current.items):
-                boundary = AND
-                skip = 0
-            elif it.verb is not None and it.noun is None and it.verb.form == "base" and j + 1 < len(sentence) \
-                    and (sentence[j + 1].pron in ("it", "them") or (
-                        sentence[j + 1].det and current.items and current.items[0].verb is not None
-                        and current.items[0].noun is None and it.text in _RUN_ON_VERBS)) \
-                    and current.items and current.items[-1].noun is not None \
-                    and any(x.verb is not None and x.noun is None for x in current.items):
-                # "bring me the book from the desk put it on the bed": a run-on request
-                boundary = AND
-                skip = 0
-            elif it.text in ("can", "could", "would", "will") and j + 1 < len(sentence) \
-                    and sentence[j + 1].text in ("you", "someone", "somebody", "anyone") \
-                    and any(x.is_content() for x in current.items) \
-                    and any(x.copula or x.verb is not None for x in current.items):
-                # "the remote is on the tv stand can you put it on the sofa": a run-on
-                # statement, then the request
-                boundary = AND
-                skip = 0
-            elif it.text == "as well as" or ((it.text in (",", "and", "but", "plus")
-                                             or it.punct == ",") and j + 1 < len(sentence)):
-                k = j + 1
-                while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")
-                                             or _sentence_adverb(sentence[k])):
-                    k += 1
-                comma = any(sentence[x].punct == "," for x in range(j, k))
-                if k + 1 < len(sentence) and sentence[k].text in ("only", "just") \
-                        and any(x.neg for x in current.items) and sentence[k + 1].det:
-                    # "don't turn off the desk lamp, only the floor lamp": the act, not
-                    # negated, on what follows
-                    boundary = AND
-                    skip = k + 1 - j
-                    only_next = True
-                elif k < len(sentence) and _starts_new(sentence, k, current.items, comma):
-                    boundary = AND
-                    skip = k - j
-                elif _also_item(sentence, k) and any(x.is_content() for x in current.items):
-                    # "the egg in the fridge, and the lettuce too": the act before, on it
-                    boundary = AND
-                    skip = k - j
-                elif comma and k + 1 < len(sentence) and sentence[k].prep == "with" \
-                        and _with_a_place(sentence, k + 1) and _has_predicate(current.items):
-                    # "..., with the remote on the sofa": and the remote on the sofa
-                    boundary = AND
-                    skip = k + 1 - j
-            elif (it.sub is not None and j > 0) or (it.sub is not None and j == 0):
-                nxt = sentence[j + 1] if j + 1 < len(sentence) else None
-                is_sub = it.sub != "by" or (nxt is not None and nxt.verb is not None
-                                            and nxt.verb.form == "ing")
-                if it.text == "as" and nxt is not None and nxt.text in ("to", "well", "soon"):
-                    is_sub = nxt.text != "well"
-                if it.text == "to" and j > 0 and sentence[j - 1].text in _TO_INFINITIVE_HEADS:
-                    is_sub = False      # "I was going to bake": an infinitive, no purpose
-                if it.text == "so" and nxt is not None and nxt.text in ("that",):
-                    skip = 2
-                if is_sub:
-                    boundary = it.sub
-                if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
-                        and (nxt.noun is None or _next_is_object(sentence, j + 1)):
-                    boundary = THEN     # "... and after close the box": afterwards
-                if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
-                        and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
-                    boundary = AND      # "so I was going to bake": what happened, no purpose
-            if boundary is None and j > 1 and ((
-                    sentence[j - 1].text in _RUN_ON_STATES and sentence[j - 2].verb is None
-                    and not sentence[j - 2].det) or (
-                    sentence[j - 1].noun is not None and _ends_with_place(current.items))) \
-                    and (it.det or it.noun is not None) \
-                    and _state_item_here(sentence, j) and any(x.is_content() for x in current.items):
-                # "soap in the sink tap running light off": states typed without commas,
-                # each after its own subject
-                boundary = AND
-                skip = 0
-            if boundary is None:
-                current.items.append(it)
+            if _ordinal_step(sentence, j) and not _content(current.items):
+                j = _after_commas(sentence, j + 1)
+                continue
+            cut = _boundary(sentence, j, current)
+            if cut.link is None:
+                current.items.append(sentence[j])
                 j += 1
                 continue
-            if not current.items and boundary == AND:
-                boundary = current.link     # ", and then ,": keep the stronger link
-            close(current)
+            link = current.link if not current.items and cut.link == AND else cut.link  # ", and then ,"
             if current.items:
+                clauses.append(current)
                 first_in_sentence = False
-            current = Clause([], boundary, None, s_index, initial=first_in_sentence)
-            if only_next:
+            current = Clause([], link, None, s_index, initial=first_in_sentence)
+            if cut.only:
                 current.extra["only"] = "1"
-                only_next = False
-            j += skip
+            j += cut.skip
         if end == ":":
             current.extra["colon"] = "1"     # "Bed: pillow and teddy": a label for what follows
         if end == "?":
             for c in [*(c for c in clauses if c.sentence == s_index), current]:
                 c.extra["question"] = "1"
-        close(current)
-        # robots: "robot 2, open the box" addresses its clause and the rest of the sentence;
-        # a clause that is only a robot name ("Robot 1:") addresses everything until the
-        # next robot is named
-        for c in clauses:
-            if c.sentence != s_index:
-                continue
-            named = [x.robot for x in c.items if x.robot is not None]
-            if named:
-                sentence_robot = named[-1]
-                c.items = _without_robot_words(c.items)
-                if not any(x.is_content() for x in c.items):
-                    robot = sentence_robot
-            c.robot = sentence_robot if sentence_robot is not None else robot
-        del first_in_sentence
+        if current.items:
+            clauses.append(current)
+        robot = _address(clauses, s_index, robot)
     return [c for c in clauses if c.items]
+
+
+def _address(clauses: list[Clause], s_index: int, robot: tuple[str, int] | None) -> tuple[str, int] | None:
+    """"robot 2, open the box" addresses its clause and the rest of the sentence; a clause
+    that is only a robot name ("Robot 1:") addresses everything until the next robot is
+    named. Returns the robot addressed from here on."""
+    sentence_robot: tuple[str, int] | None = None
+    for c in clauses:
+        if c.sentence != s_index:
+            continue
+        named = [x.robot for x in c.items if x.robot is not None]
+        if named:
+            sentence_robot = named[-1]
+            c.items = _without_robot_words(c.items)
+            if not _content(c.items):
+                robot = sentence_robot
+        c.robot = sentence_robot if sentence_robot is not None else robot
+    return robot

@@ -10,18 +10,33 @@ from __future__ import annotations
 import re
 from dataclasses import replace
 
+from pydantic import field_validator
+
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.knowledge import Rewrite, Strict, load, word_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
 
 Act = lx.Act
 
+
+class ConstructionsFile(Strict):
+    """``data/constructions.json``."""
+
+    about: str = ""
+    duration: str
+    light_acts: frozenset[Act]
+
+    @field_validator("duration")
+    @classmethod
+    def _compiles(cls, value: str) -> str:
+        return Rewrite(pattern=value, replace="").pattern
+
+
+_DATA = load("constructions.json", ConstructionsFile)
 #: "for a couple of minutes", "for a bit": the act lasts (a loaded appliance is run)
-DURATION = re.compile(r"\bfor (?:a |an |about |around |roughly |just |another |a few |a couple of |"
-                       r"a little |\d+ |one |two |three |five |ten |twenty |thirty |few )*"
-                       r"(?:bit|while|minute|minutes|second|seconds|min|mins|sec|secs)\b")
+DURATION = re.compile(_DATA.duration)
 
 
 def with_as_and(items: list[Item]) -> list[Item]:
@@ -56,8 +71,7 @@ _BEFORE_VERBAL_NOUN = _W.set("before_verbal_noun")
 #: what may stand between the means and its approval ("the microwave is totally fine")
 _BEFORE_INSTRUMENT_OK = _W.set("before_instrument_ok")
 #: acts a noun can name in "give X a rinse", "the pan could do with a scrub"
-_LIGHT_ACTS = frozenset({Act.CLEAN, Act.HEAT, Act.MICROWAVE, Act.COOK, Act.TOAST, Act.COOL,
-                         Act.SLICE, Act.WATER})
+_LIGHT_ACTS = _DATA.light_acts
 
 
 def instrument_clause(items: list[Item], mentions: list[Head]) -> Head | None:

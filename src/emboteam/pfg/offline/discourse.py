@@ -22,6 +22,8 @@ _names = ref_types
 _W = word_tables("discourse")
 #: words that make "one" another instance of the kind just named ("a fresh one", "a new one")
 OTHER_WORDS = _W.set("other_words")
+#: pronouns of several things: "them" is the last coordinated objects
+_PLURAL_PRONOUNS = _W.set("plural_pronouns")
 
 
 @dataclass
@@ -101,86 +103,90 @@ class Discourse:
                 raise self.unresolved[-1]
             raise OfflineParseError(f"{head.label()!r} refers to nothing mentioned before",
                                     phrase=head.label())
-        if head.pron in ("one", "it", "them", "ones") and OTHER_WORDS & set(head.text.split()):
-            other = self._another_one(head, need, prefer)
-            if other is not None:
-                return other
-        plural = head.pron in ("them", "they", "these", "those", "themselves", "ones")
-        if head.piece and head.pron in ("it", "them"):
-            return self._pieces_of(head, prefer)
-        if head.piece and head.pron is None:
-            # "the slices": pieces of the last thing that can be cut (of each of the things
-            # cut together: "slice the apple and the tomato, put the slices in a bowl")
-            for m in reversed(self.history):
-                if any(self.cat.slice_product(t) for t in m.ref.type_names()):
-                    cut = [x for x in self.history if x.group == m.group and x.role == "object"
-                           and any(self.cat.slice_product(t) for t in x.ref.type_names())]
-                    wholes = list(dict.fromkeys(t for x in cut or [m] for r, _ in x.ref.groups
-                                                for t in _names(r)
-                                                if self.cat.slice_product(t) is not None))
-                    if len(wholes) > 1 and head.count is None:
-                        groups = tuple((ObjectRef(types=(p[0],)), 1) for t in wholes
-                                       if (p := self.cat.slice_product(t)) is not None)
-                        return Ref(head.label(), groups, True)
-                    product = [self.cat.slice_product(t) for t in m.ref.type_names()]
-                    types = tuple(p[0] for p in product if p is not None)
-                    n = head.count or 1
-                    return Ref(head.label(), ((ObjectRef(types=types), n),), n > 1)
-        if need in ("open", "switch"):
-            # "put the books in the drawer and close it", "put the mug in the coffee machine
-            # and switch it on": where things just went - unless something named after it
-            # can do it ("..., the laptop's been left open so shut it")
-            for m in reversed(self.history):
-                if m.role == "dest":
-                    if self.fits(m.ref, need):
-                        return m.ref
-                    break
-                if m.role == "object" and m.head.pron is None and m.head.noun is not None and self.fits(m.ref, need):
-                    return m.ref
-        if not plural and head.pron == "it":
-            # a chain of "it"s keeps its referent ("pack the pens into the box, close it, and
-            # put it on the shelf": the box both times), as long as it fits the verb
-            last = next((x for x in reversed(self.history) if x.role == "object"), None)
-            if last is not None and last.head.pron == "it" and self.fits(last.ref, need):
-                return last.ref
-        if plural:
-            # the last coordinated objects ("the fork and the spoon ... them", "all three"),
-            # not the place they went to
-            # (named objects, not an earlier "they" that a verb's need narrowed: "the fork
-            # and spoon ... they're clean ... they can go in a drawer")
-            # "they" skips singular things named since ("my phone and my keys ... on the desk
-            # next to the laptop. They go in the safe"): the last plural or coordinated objects
-            m = next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None and (
-                x.ref.plural or sum(1 for y in self.history if y.group == x.group and y.role == "object"
-                                    and y.head.pron is None) > 1)), None) \
-                or next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None),
-                        next((x for x in reversed(self.history) if x.role == "object"), self.history[-1]))
-            group = [x for x in self.history if x.group == m.group and x.head.pron is None
-                     and x.role == "object" and self.fits(x.ref, need)]
-            if len(group) < 2 and (head.quant == "both" or "both" in head.text.split()):
-                # "the lettuce is in the sink and the tomato's on a plate. Both of those ...":
-                # the last two things named, across clauses
-                pair: list[Mention] = []
-                for x in reversed(self.history):
-                    if x.role == "object" and x.head.pron is None and self.fits(x.ref, need) \
-                            and all(x.ref.groups != y.ref.groups for y in pair):
-                        pair.append(x)
-                    if len(pair) == 2:
-                        return Ref(head.label(), tuple(g for y in reversed(pair) for g in y.ref.groups), True)
-            if len(group) > 1:
-                return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
-            if m.ref.plural and self.fits(m.ref, need):
+        for rule in (self._another_one, self._pieces_of, self._slices, self._where_things_went,
+                     self._it_again, self._last_group, self._coordinated_place, self._place_pronoun,
+                     self._by_role, self._last_that_fits, self._whole_of_pieces, self._named_before):
+            ref = rule(head, need, prefer)
+            if ref is not None:
+                return ref
+        if self.unresolved:
+            raise self.unresolved[-1]
+        raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+
+    def _slices(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """"the slices": pieces of the last thing that can be cut (of each of the things cut
+        together: "slice the apple and the tomato, put the slices in a bowl")."""
+        if not head.piece or head.pron is not None:
+            return None
+        for m in reversed(self.history):
+            if any(self.cat.slice_product(t) for t in m.ref.type_names()):
+                cut = [x for x in self.history if x.group == m.group and x.role == "object"
+                       and any(self.cat.slice_product(t) for t in x.ref.type_names())]
+                wholes = list(dict.fromkeys(t for x in cut or [m] for r, _ in x.ref.groups
+                                            for t in _names(r)
+                                            if self.cat.slice_product(t) is not None))
+                if len(wholes) > 1 and head.count is None:
+                    groups = tuple((ObjectRef(types=(p[0],)), 1) for t in wholes
+                                   if (p := self.cat.slice_product(t)) is not None)
+                    return Ref(head.label(), groups, True)
+                product = [self.cat.slice_product(t) for t in m.ref.type_names()]
+                types = tuple(p[0] for p in product if p is not None)
+                n = head.count or 1
+                return Ref(head.label(), ((ObjectRef(types=types), n),), n > 1)
+        return None
+
+    def _where_things_went(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """"put the books in the drawer and close it", "put the mug in the coffee machine and
+        switch it on": where things just went - unless something named after it can do it
+        ("..., the laptop's been left open so shut it")."""
+        if need not in ("open", "switch"):
+            return None
+        for m in reversed(self.history):
+            if m.role == "dest":
+                return m.ref if self.fits(m.ref, need) else None
+            if m.role == "object" and m.head.pron is None and m.head.noun is not None and self.fits(m.ref, need):
                 return m.ref
-        if not plural and head.pron == "it":
-            coordinated = self._coordinated_place(need)
-            if coordinated is not None:
-                return coordinated
-        if prefer != "object":
-            place = self._place_pronoun(need)
-            if place is not None:
-                return place
-        # what the last clauses acted on before where they put it ("put the lettuce in the
-        # fridge after washing it": the lettuce), unless only a place fits ("close it")
+        return None
+
+    def _it_again(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """A chain of "it"s keeps its referent ("pack the pens into the box, close it, and
+        put it on the shelf": the box both times), as long as it fits the verb."""
+        if head.pron != "it":
+            return None
+        last = next((x for x in reversed(self.history) if x.role == "object"), None)
+        return last.ref if last is not None and last.head.pron == "it" and self.fits(last.ref, need) else None
+
+    def _last_group(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """"them", "all three": the last coordinated objects ("the fork and the spoon ...
+        them"), not the place they went to; named objects, not an earlier "they" that a
+        verb's need narrowed. "they" skips singular things named since ("my phone and my
+        keys ... on the desk next to the laptop. They go in the safe")."""
+        if head.pron not in _PLURAL_PRONOUNS:
+            return None
+        m = next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None and (
+            x.ref.plural or sum(1 for y in self.history if y.group == x.group and y.role == "object"
+                                and y.head.pron is None) > 1)), None) \
+            or next((x for x in reversed(self.history) if x.role == "object" and x.head.pron is None),
+                    next((x for x in reversed(self.history) if x.role == "object"), self.history[-1]))
+        group = [x for x in self.history if x.group == m.group and x.head.pron is None
+                 and x.role == "object" and self.fits(x.ref, need)]
+        if len(group) < 2 and (head.quant == "both" or "both" in head.text.split()):
+            # "the lettuce is in the sink and the tomato's on a plate. Both of those ...":
+            # the last two things named, across clauses
+            pair: list[Mention] = []
+            for x in reversed(self.history):
+                if x.role == "object" and x.head.pron is None and self.fits(x.ref, need) \
+                        and all(x.ref.groups != y.ref.groups for y in pair):
+                    pair.append(x)
+                if len(pair) == 2:
+                    return Ref(head.label(), tuple(g for y in reversed(pair) for g in y.ref.groups), True)
+        if len(group) > 1:
+            return Ref(head.label(), tuple(g for x in group for g in x.ref.groups), True)
+        return m.ref if m.ref.plural and self.fits(m.ref, need) else None
+
+    def _by_role(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """What the last clauses acted on before where they put it ("put the lettuce in the
+        fridge after washing it": the lettuce), unless only a place fits ("close it")."""
         order = ("object", "place") if prefer == "object" else ("place", "object")
         for role in order:
             for m in reversed(self.history):
@@ -193,29 +199,33 @@ class Discourse:
                     if role != order[0]:    # not what the verb prefers: maybe a guess
                         self._doubt_unless_alone(m.ref, need)
                     return m.ref
+        return None
+
+    def _last_that_fits(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """The last resort: the last thing mentioned that can do what the verb asks."""
         for m in reversed(self.history):
             if self.fits(m.ref, need):
-                self._doubt_unless_alone(m.ref, need)    # the last resort
+                self._doubt_unless_alone(m.ref, need)
                 return m.ref
-        whole = self._whole_of_pieces(need)
-        if whole is not None:
-            return whole
+        return None
+
+    def _named_before(self, head: Head, need: str | None, prefer: str) -> Ref | None:
+        """"is the stove on? turn it off": the stove mentioned as such, switched by what
+        switches it (its knobs), as the grounder reads "turn the stove off"."""
         for m in reversed(self.history):
-            # "is the stove on? turn it off": the stove mentioned as such, switched by what
-            # switches it (its knobs), as the grounder reads "turn the stove off"
             if m.head.noun is not None and m.head.pron is None and need is not None:
                 try:
                     return self.g.ground(m.head, need)
                 except OfflineParseError:
                     continue
-        if self.unresolved:
-            raise self.unresolved[-1]
-        raise OfflineParseError(f"cannot tell what {head.label()!r} refers to", phrase=head.label())
+        return None
 
-    def _coordinated_place(self, need: str | None) -> Ref | None:
+    def _coordinated_place(self, head: Head, need: str | None, prefer: str) -> Ref | None:
         """"Put the potato and the tomato on it (a plate), leave it on the counter": "it"
         is not one of two things acted on together (that would be "them"), but where they
         went."""
+        if head.pron != "it":
+            return None
         last = next((x for x in reversed(self.history) if x.role == "object"), None)
         if last is None:
             return None
@@ -225,7 +235,7 @@ class Discourse:
         dest = next((x for x in reversed(self.history) if x.group == last.group and x.role == "dest"), None)
         return dest.ref if dest is not None and self.fits(dest.ref, need) else None
 
-    def _whole_of_pieces(self, need: str | None) -> Ref | None:
+    def _whole_of_pieces(self, head: Head, need: str | None, prefer: str) -> Ref | None:
         """"Three slices of apple on the plate - cut it first": the whole the last pieces
         come from, when only it can do what the verb asks."""
         for m in reversed(self.history):
@@ -237,6 +247,8 @@ class Discourse:
     def _another_one(self, head: Head, need: str | None, prefer: str) -> Ref | None:
         """"The loo roll on the floor goes in the bin and a fresh one on the holder": the
         same kind, another instance than the one just singled out."""
+        if head.pron not in ("one", "it", "them", "ones") or not OTHER_WORDS & set(head.text.split()):
+            return None
         same = self.resolve(replace(head, text=head.pron or ""), need, prefer)
         other = self._another_instance(same)
         if other is None and len(same.groups) == 1 and same.groups[0][0].id is None:
@@ -246,8 +258,10 @@ class Discourse:
             return Ref(head.label(), ((same.groups[0][0], n),), n > 1)
         return other
 
-    def _pieces_of(self, head: Head, prefer: str) -> Ref:
+    def _pieces_of(self, head: Head, need: str | None, prefer: str) -> Ref | None:
         """"Cut it up and put two pieces of it in the bowl": the pieces of what "it" is."""
+        if not head.piece or head.pron not in ("it", "them"):
+            return None
         of = replace(head, piece=False, count=None)
         try:        # pieces come from something that can be cut ("a slice off it": the loaf)
             whole = self.resolve(of, "slice", prefer)
@@ -260,10 +274,13 @@ class Discourse:
         n = head.count or 1
         return Ref(head.label(), ((ObjectRef(types=kinds), n),), n > 1)
 
-    def _place_pronoun(self, need: str | None) -> Ref | None:
+    def _place_pronoun(self, head: Head, need: str | None, prefer: str) -> Ref | None:
         """"See the box on the table? Put the watch in it." (the thing described, not the
         landmark); "open a drawer and put the keys in it" (the last thing named that can
-        take them, when it was acted on): else None, and the usual order decides."""
+        take them, when it was acted on), when a place is preferred: else None, and the
+        usual order decides."""
+        if prefer == "object":
+            return None
         described = self._described_place(need)
         if described is not None:
             return described

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pydantic import model_validator
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.acts import DISPOSAL, TOOLS
 from emboteam.pfg.offline.clauses import Clause, team_subject
 from emboteam.pfg.offline.constructions import (
     DURATION,
@@ -469,13 +470,7 @@ def _fixed_then_container(targets: list[Target], head: Head) -> bool:
         return False
     firsts = [x for x in first.noun.concept.types if x in cat.types]
     return bool(firsts) and not any(cat.type(x).has("pickupable") for x in firsts) \
-        and bool(set(head.noun.concept.types) & _DISPOSAL)
-
-
-#: containers no piece of furniture stands in ("on the counter in the bin"; "in the safe
-#: on the dresser" is where the safe is)
-_DISPOSAL = frozenset({"GarbageCan", "LaundryHamper", "Box", "SinkBasin", "Sink", "BathtubBasin", "Fridge",
-                       "Microwave", "Drawer"})
+        and bool(set(head.noun.concept.types) & DISPOSAL)
 
 
 def _destination(s: _Tail, head: Head, prep: str, at: int) -> None:
@@ -679,10 +674,172 @@ def _bare_in(items: list[Item], k: int) -> bool:
         and all(w in _BARE_IN for w in words)
 
 
+def _subject_list(items: list[Item], j: int, mentions: list[Head]) -> tuple[list[Target], int]:
+    """The coordinated subjects at ``j`` ("the laptop, the lamp and the TV") and the index
+    after them."""
+    n = len(items)
+    subjects: list[Target] = []
+    while j < n:
+        head, k = parse_np(items, j)
+        if head is None:
+            break
+        mentions.append(head)
+        if subjects and head.noun is not None:
+            fix_ellipsis(subjects[-1].head, head)
+        subjects.append(Target(head))
+        j = k
+        # "the bread on the counter and the egg on the table need to go ...": a place
+        # inside a list of subjects that a predicate follows describes its subject
+        if j + 1 < n and items[j].prep in MODIFIER_PREPS and np_start(items[j + 1]) \
+                and predicate_at(items, list_end(items, j)) \
+                and not _state_word_at(items, list_end(items, j)):
+            land, m = parse_np(items, j + 1)
+            if land is not None and m < n and (items[m].conj == "and" or items[m].punct == ","):
+                land.role = "place"
+                mentions.append(land)
+                head.location.append((str(items[j].prep), land))
+                j = m
+        if j < n and (items[j].conj == "and" or items[j].punct == ",") and j + 1 < n \
+                and np_start(items[j + 1]) and (items[j + 1].verb is None or (
+                    # "lamp and light off": a noun that could be a verb, before its state
+                    items[j + 1].noun is not None and j + 2 < n
+                    and (items[j + 2].state is not None or items[j + 2].particle is not None))):
+            j += 1
+            continue
+        break
+    return subjects, j
+
+
+@dataclass
+class _Statement:
+    """A clause of subjects and their predicates being read: the frames so far, and those
+    that only say where things come from (``sources``)."""
+
+    items: list[Item]
+    mentions: list[Head]
+    frames: list[Frame] = field(default_factory=list)
+    sources: list[Frame] = field(default_factory=list)
+
+
+#: a predicate rule's decision: the index after the predicate, whether its frame is kept,
+#: whether another subject may follow; None: not this rule
+_Read = tuple[int, bool, bool]
+
+
+def _state_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                     local: dict[str, bool]) -> _Read | None:
+    """"the fridge closed", "the book should be open on the desk" (and placed there)."""
+    items, n, it = st.items, len(st.items), st.items[j]
+    pp_here = it.prep is not None and j + 1 < n and np_start(items[j + 1])
+    if it.state is None or pp_here or (it.verb is not None and it.verb.sense.act is Act.GO) or not (
+            it.verb is None or it.verb.form != "ed" or it.text in lx.STATES):
+        return None
+    frame.state = it.state
+    rest = [Target(t.head) for t in subjects]
+    j = _parse_tail_until_next(items, j + 1, frame, rest, st.mentions)    # "with coffee in it", "in the sink"
+    placed = [t for t in rest if t.dest]
+    if placed and not frame.report:
+        st.frames.append(Frame(Act.PLACE, "put", placed, text=frame.text))
+    return j, True, True
+
+
+def _posture_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                       local: dict[str, bool]) -> _Read | None:
+    """"the fork and spoon sitting in the sink, ...": where they are, no request."""
+    it = st.items[j]
+    if not (position_participle(it) and it.verb is not None and it.verb.form == "ing" and not local.get("modal")):
+        return None
+    sub = _verb_frame(st.items[j:], 0, {"neg": frame.negated}, st.mentions, subjects)
+    for t in subjects:
+        for d in (x for tt in sub.targets for x in tt.dest):
+            d.role = "place"
+            t.head.location.append(("in", d))
+    return len(st.items), False, False
+
+
+def _verb_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                    local: dict[str, bool]) -> _Read | None:
+    """A participle or a verb of going: "the bread needs to be sliced", "the fork goes in
+    the drawer", "the potato won't cook itself"."""
+    items, it = st.items, st.items[j]
+    if it.verb is None or not (it.verb.form in ("ed", "ing") or it.verb.sense.act is Act.GO or (
+            it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS))):
+        return None
+    sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, st.mentions, subjects)
+    for t in sub.targets:
+        if t.head.pron in _REFLEXIVE or "by" in t.head.text:
+            frame.negated = False
+    sub.targets = [t for t in sub.targets if t.head.pron not in _REFLEXIVE]
+    if any(x.text in _REFLEXIVE for x in items[j:]) or "by themselves" in sub.text or "by itself" in sub.text:
+        frame.negated = False
+        frame.report = False
+    frame.targets = sub.targets
+    dest = next((t for t in sub.targets if t.dest), None)
+    for name in ("act", "verb", "particle", "liquid", "means", "state"):
+        setattr(frame, name, getattr(sub, name))
+    if sub.act is Act.GO and dest is None and _bare_in(items, j + 1):
+        # "open the fridge; the apple goes in": in the one just named
+        there = Head(text="it", pron="it", role="dest")
+        st.mentions.append(there)
+        frame.act, frame.report = Act.PLACE, False
+        for t in subjects:
+            t.dest, t.prep = [there], "in"
+    elif sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
+        frame.act = None         # "the toaster stays": leave it as it is
+    elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
+        frame.act = Act.PLACE if sub.act is Act.GO else sub.act
+        frame.report = False
+        for t in subjects:
+            if dest is not None:
+                t.dest, t.prep = dest.dest, dest.prep
+            elif sub.targets and sub.targets[0].dest:
+                t.dest, t.prep = sub.targets[0].dest, sub.targets[0].prep
+    if sub.act is Act.SWITCH and sub.particle in ("on", "off"):
+        frame.act = Act.SWITCH_ON if sub.particle == "on" else Act.SWITCH_OFF
+    elif sub.act is Act.SWITCH and it.text in ("switched", "turned") and sub.state:
+        frame.act = Act.SWITCH_ON if sub.state[1] else Act.SWITCH_OFF
+    return len(items), True, True
+
+
+def _blinds_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                      local: dict[str, bool]) -> _Read | None:
+    """"blinds down": closed; "blinds up": open."""
+    items, it = st.items, st.items[j]
+    if it.particle in ("up", "down") and (j + 1 >= len(items) or not np_start(items[j + 1])) \
+            and any(t.head.noun is not None and "Blinds" in t.head.noun.concept.types for t in subjects):
+        frame.state = (Stat.OPEN, it.particle == "up")
+        return j + 1, True, True
+    return None
+
+
+def _place_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
+                     local: dict[str, bool]) -> _Read | None:
+    """"lights off", "bread on plate", "the loo roll off the floor (and onto the holder)"."""
+    items, it = st.items, st.items[j]
+    if it.prep is None and it.particle not in ("on", "off"):
+        return None
+    if it.particle in ("on", "off") and (j + 1 >= len(items) or not np_start(items[j + 1])):
+        frame.state = (Stat.SWITCH, it.particle == "on")
+        return j + 1, True, True
+    frame.act = Act.PLACE
+    j = _parse_tail_until_next(items, j, frame, subjects, st.mentions)
+    if frame.report and not any(t.dest for t in subjects):
+        frame.act = None
+    elif it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
+        st.sources.append(frame)
+    return j, True, True
+
+
+#: what may follow the subjects, in order: the first rule that applies reads the predicate;
+#: none: the frame as it is ends the statement
+PREDICATE_RULES: tuple[Callable[[_Statement, int, Frame, list[Target], dict[str, bool]], _Read | None], ...] = (
+    _state_predicate, _posture_predicate, _verb_predicate, _blinds_predicate, _place_predicate,
+)
+
+
 def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool]) -> list[Frame]:
-    """``NP [aux] predicate (, NP [aux] predicate)*``"""
-    frames: list[Frame] = []
-    sources: list[Frame] = []
+    """``NP [aux] predicate (, NP [aux] predicate)*`` (:data:`PREDICATE_RULES`)."""
+    st = _Statement(items, mentions)
     j = 0
     n = len(items)
     while j < n and (items[j].text in ("could", "can", "would", "will", "should", "must", "may")
@@ -691,35 +848,7 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             flags["modal"] = True
         j += 1
     while j < n:
-        subjects: list[Target] = []
-        while j < n:
-            head, k = parse_np(items, j)
-            if head is None:
-                break
-            mentions.append(head)
-            if subjects and head.noun is not None:
-                fix_ellipsis(subjects[-1].head, head)
-            subjects.append(Target(head))
-            j = k
-            # "the bread on the counter and the egg on the table need to go ...": a place
-            # inside a list of subjects that a predicate follows describes its subject
-            if j + 1 < n and items[j].prep in MODIFIER_PREPS and np_start(items[j + 1]) \
-                    and predicate_at(items, list_end(items, j)) \
-                    and not _state_word_at(items, list_end(items, j)):
-                land, m = parse_np(items, j + 1)
-                if land is not None and m < n and (items[m].conj == "and" or items[m].punct == ","):
-                    land.role = "place"
-                    mentions.append(land)
-                    head.location.append((str(items[j].prep), land))
-                    j = m
-            if j < n and (items[j].conj == "and" or items[j].punct == ",") and j + 1 < n \
-                    and np_start(items[j + 1]) and (items[j + 1].verb is None or (
-                        # "lamp and light off": a noun that could be a verb, before its state
-                        items[j + 1].noun is not None and j + 2 < n
-                        and (items[j + 2].state is not None or items[j + 2].particle is not None))):
-                j += 1
-                continue
-            break
+        subjects, j = _subject_list(items, j, mentions)
         if not subjects:
             break
         k_subj = j
@@ -731,101 +860,18 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
         j = _skip_aux(items, j, local)
         if j >= n:
             break
-        it = items[j]
         frame = Frame(None, "", targets=subjects, negated=local.get("neg", False),
                       too=local.get("too", False), text=" ".join(x.text for x in items))
         frame.report = not local.get("modal", False) and not flags.get("directive", False) \
             and any((x.copula and x.text in ("is", "are", "was", "were", "am", "been"))
                     or x.text in ("has", "have") for x in items[k_subj:j]) \
             and not local.get("terse", False)
-        is_participle = it.verb is not None and (it.verb.form in ("ed", "ing") or (
-            it.verb.form == "base" and (local.get("modal") or it.text in lx.IRREGULAR_VERBS)))
-        pp_here = it.prep is not None and j + 1 < n and np_start(items[j + 1])
-        if it.state is not None and not pp_here and not (
-                it.verb is not None and it.verb.sense.act is Act.GO) and (
-                it.verb is None or it.verb.form != "ed" or it.text in lx.STATES):
-            frame.state = it.state
-            j += 1
-            # "with coffee in it", "in the sink"; "the book should be open on the desk":
-            # and placed there
-            rest = [Target(t.head) for t in subjects]
-            j = _parse_tail_until_next(items, j, frame, rest, mentions)
-            placed = [t for t in rest if t.dest]
-            if placed and not frame.report:
-                frames.append(Frame(Act.PLACE, "put", placed, text=frame.text))
-        elif position_participle(it) and it.verb is not None and it.verb.form == "ing" and not local.get("modal"):
-            # "the fork and spoon sitting in the sink, ...": where they are, no request
-            sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
-            for t in subjects:
-                for d in (x for tt in sub.targets for x in tt.dest):
-                    d.role = "place"
-                    t.head.location.append(("in", d))
-            j = len(items)
+        j, kept, more_subjects = next((r for rule in PREDICATE_RULES
+                                       if (r := rule(st, j, frame, subjects, local)) is not None), (j, True, False))
+        if kept:
+            st.frames.append(frame)
+        if not more_subjects:
             break
-        elif it.verb is not None and (is_participle or it.verb.sense.act is Act.GO):
-            sub = _verb_frame(items[j:], 0, {"neg": frame.negated}, mentions, subjects)
-            end = len(items)
-            for t in sub.targets:
-                if t.head.pron in _REFLEXIVE or "by" in t.head.text:
-                    frame.negated = False
-            sub.targets = [t for t in sub.targets if t.head.pron not in _REFLEXIVE]
-            if any(x.text in _REFLEXIVE for x in items[j:]) or "by themselves" in sub.text \
-                    or "by itself" in sub.text:
-                frame.negated = False
-                frame.report = False
-            frame.targets = sub.targets
-            dest = next((t for t in sub.targets if t.dest), None)
-            frame.act = sub.act
-            frame.verb = sub.verb
-            frame.particle = sub.particle
-            frame.liquid = sub.liquid
-            frame.means = sub.means
-            frame.state = sub.state
-            if sub.act is Act.GO and dest is None and _bare_in(items, j + 1):
-                # "open the fridge; the apple goes in": in the one just named
-                there = Head(text="it", pron="it", role="dest")
-                mentions.append(there)
-                frame.act, frame.report = Act.PLACE, False
-                for t in subjects:
-                    t.dest, t.prep = [there], "in"
-            elif sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
-                frame.act = None         # "the toaster stays": leave it as it is
-            elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
-                frame.act = Act.PLACE if sub.act is Act.GO else sub.act
-                frame.report = False
-                for t in subjects:
-                    if dest is not None:
-                        t.dest, t.prep = dest.dest, dest.prep
-                    elif sub.targets and sub.targets[0].dest:
-                        t.dest, t.prep = sub.targets[0].dest, sub.targets[0].prep
-            if sub.act is Act.SWITCH and sub.particle in ("on", "off"):
-                frame.act = Act.SWITCH_ON if sub.particle == "on" else Act.SWITCH_OFF
-            elif sub.act is Act.SWITCH and it.text in ("switched", "turned") and sub.state:
-                frame.act = Act.SWITCH_ON if sub.state[1] else Act.SWITCH_OFF
-            if frame.act is Act.SWITCH_ON and it.text == "lit":
-                frame.act = Act.SWITCH_ON
-            j = end
-        elif it.particle in ("up", "down") and (j + 1 >= n or not np_start(items[j + 1])) \
-                and any(t.head.noun is not None and "Blinds" in t.head.noun.concept.types
-                        for t in subjects):
-            frame.state = (Stat.OPEN, it.particle == "up")     # "blinds down": closed
-            j += 1
-        elif it.prep is not None or it.particle in ("on", "off"):
-            if it.particle in ("on", "off") and (j + 1 >= n or not np_start(items[j + 1])):
-                frame.state = (Stat.SWITCH, it.particle == "on")
-                j += 1
-            else:
-                frame.act = Act.PLACE
-                rest = subjects
-                j = _parse_tail_until_next(items, j, frame, rest, mentions)
-                if frame.report and not any(t.dest for t in subjects):
-                    frame.act = None
-                elif it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
-                    sources.append(frame)
-        else:
-            frames.append(frame)
-            break
-        frames.append(frame)
         # "the laptop shut and the desk lamp off": another subject and predicate
         while j < n and (items[j].conj is not None or items[j].punct is not None):
             j += 1
@@ -837,12 +883,13 @@ def _state_frames(items: list[Item], mentions: list[Head], flags: dict[str, bool
             more = _state_frames([*items[:k_subj], *items[j:]], [], dict(flags))
             mentions.extend(h for f in more for t in f.targets for h in (t.head, *t.dest)
                             if h not in mentions)
-            frames.extend(more)
+            st.frames.extend(more)
             break
     # "loo roll off the floor and onto the holder": where it comes from, when a later
     # predicate says where it goes
-    moved = any(f.act is Act.PLACE and any(t.dest for t in f.targets) for f in frames)
-    return [f for f in frames if (f.act is not None or f.state is not None) and not (moved and f in sources)]
+    moved = any(f.act is Act.PLACE and any(t.dest for t in f.targets) for f in st.frames)
+    return [f for f in st.frames if (f.act is not None or f.state is not None)
+            and not (moved and f in st.sources)]
 
 
 def _after_modifiers(items: list[Item], k: int) -> int:
@@ -920,12 +967,9 @@ _PRO_VERBS = _W.set("pro_verbs")
 
 def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
                  flags: dict[str, bool]) -> ParsedClause:
-    # "... and so does the tomato", "the tomato does too": the act before, on this
-    if items and items[0].text in _PRO_VERBS and clause.link == "purpose":
-        heads = np_list(items[1:])
-        if heads:
-            mentions.extend(heads)
-            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    also = _pro_verb_clause(clause, items, mentions)
+    if also is not None:
+        return also
     if flags.get("also") and len(items) > 1 and items[-1].text in _PRO_VERBS:
         items = items[:-1]
     if clause.link in ("after", "before", "if", "by", "purpose", "while"):
@@ -935,6 +979,43 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
     if asked is not None:
         mentions.append(asked)
         return ParsedClause(clause, [], mentions, unknown_words(mentions))
+    items = _clause_proper(items, flags)
+    if not items:
+        return ParsedClause(clause, [], mentions, [])
+    items = causative_progressive(light_verb(items))
+    for reader in CLAUSE_READERS:
+        read = reader(clause, items, mentions, flags)
+        if read is not None:
+            return read
+    frames = _frames(clause, items, mentions, flags)
+    if isinstance(frames, ParsedClause):
+        return frames
+    timed = bool(DURATION.search(" ".join(x.text for x in items)))
+    for f in frames:
+        f.timed = timed
+        if f.act is Act.CAUSE and f.verb in _WANT:
+            f.report = False
+            f.wish = True
+        if flags.get("recipient"):
+            f.recipient = True
+        if f.report:
+            places_to_locations(f)
+    return ParsedClause(clause, frames, mentions, unknown_words(mentions))
+
+
+def _pro_verb_clause(clause: Clause, items: list[Item], mentions: list[Head]) -> ParsedClause | None:
+    """"... and so does the tomato", "the tomato does too": the act before, on this."""
+    if items and items[0].text in _PRO_VERBS and clause.link == "purpose":
+        heads = np_list(items[1:])
+        if heads:
+            mentions.extend(heads)
+            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    return None
+
+
+def _clause_proper(items: list[Item], flags: dict[str, bool]) -> list[Item]:
+    """The clause without what comes before its verb or subject: a rejected topic, a
+    leading negation (noted in ``flags``), "need to", a team member as subject, a modal."""
     # leading negation: "don't leave the lights on", "never turn on ..." ("nobody", "no
     # one" are subjects: "nobody closed the fridge" is read with its verb below)
     nobody = bool(items) and (items[0].text == "nobody" or (
@@ -958,94 +1039,94 @@ def _parse_items(clause: Clause, items: list[Item], mentions: list[Head],
                                                "would", "to", "is", "needs", "has", "have") \
             and ((items[1].verb is not None and items[1].noun is None) or items[1].text == "to"):
         items = items[1:]
-    unknown: list[str] = []
-    frames: list[Frame] = []
-    if not items:
-        return ParsedClause(clause, [], mentions, unknown)
-    items = causative_progressive(light_verb(items))
-    if len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were"):
-        missing = absent_from(items[2:], clause.text)
-        if missing is not None:
-            return ParsedClause(clause, [missing], mentions, unknown_words(mentions))
-        # "there's a bottle of wine in the cupboard": introduces a referent and where it is
-        found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))
-        for f in found:
-            places_to_locations(f)
-        return ParsedClause(clause, [], mentions, unknown_words(mentions))
-    tool_use = _tool_on(items, clause, mentions)
-    if tool_use is not None:
-        return tool_use
+    return items
+
+
+def _there_is(clause: Clause, items: list[Item], mentions: list[Head],
+              flags: dict[str, bool]) -> ParsedClause | None:
+    """"there's a bottle of wine in the cupboard": introduces a referent and where it is
+    (or, "there's no milk in the fridge", says what is missing)."""
+    if not (len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were")):
+        return None
+    missing = absent_from(items[2:], clause.text)
+    if missing is not None:
+        return ParsedClause(clause, [missing], mentions, unknown_words(mentions))
+    found = _state_frames(items[2:], mentions, dict(flags, directive=True, terse=True))
+    for f in found:
+        places_to_locations(f)
+    return ParsedClause(clause, [], mentions, unknown_words(mentions))
+
+
+def _means_only(clause: Clause, items: list[Item], mentions: list[Head],
+                flags: dict[str, bool]) -> ParsedClause | None:
+    """"the microwave is fine": the clause only names the means."""
     means = instrument_clause(items, mentions)
-    if means is not None:
-        return ParsedClause(clause, [], mentions, [], means=means)
-    used = _use_to(items, clause, mentions)
-    if used is not None:
-        return used
+    return ParsedClause(clause, [], mentions, [], means=means) if means is not None else None
+
+
+def _frames(clause: Clause, items: list[Item], mentions: list[Head],
+            flags: dict[str, bool]) -> list[Frame] | ParsedClause:
+    """The frames of a clause by its shape: a person as subject, a verb first, else a
+    statement or wish about objects."""
     first = items[0]
-    human = first.text in _HUMAN_SUBJECTS and first.noun is None and not (
-        first.text in ("they", "them") and _things_they(items))
-    if human:
-        # "someone left the fridge open", "nobody needs the lights on", "i need X on Y"
-        if first.text in ("nobody", "no"):
-            flags["neg"] = not flags.get("neg", False)
-        j = _skip_aux(items, 1 if first.text != "no" else 2, flags)
-        wanted = items[j].verb if j < len(items) else None
-        if wanted is not None and wanted.lemma in _WANT \
-                and j + 1 < len(items) and items[j + 1].text != "to":
-            # "i need the alarm clock on the desk", "i want the tv on": a wish about objects
-            rest = with_as_and(items[j + 1:])
-            wish = dict(flags, directive=True, terse=True)
-            found = _state_frames(rest, mentions, wish)
-            if not found:
-                frame = _verb_frame([*items[:j + 1], *rest], j, flags, mentions)
-                frame.report = False
-                found = [frame]
-            frames.extend(found)
-        elif j < len(items) and items[j].verb is not None:
-            v = items[j]
-            assert v.verb is not None
-            frame = _verb_frame(items, j, flags, mentions)
-            before = {x.text for x in items[1:j]}
-            if first.text in ("i", "we") and ((before & {"was", "were"} and before & {"going", "gonna"})
-                                              or (flags.get("perfect") and not flags.get("modal"))):
-                # "I was going to bake": what did not happen; "I've left my phone on the
-                # bed": what was done
-                frame.report = frame.past = True
-            elif v.verb.lemma in _WANT:
-                frame.report = False
-            elif not flags.get("modal") and v.verb.form in ("ed", "ing", "s") and \
-                    clause.link not in ("if", "after", "before", "by"):
-                frame.report = True
-                frame.past = v.verb.form == "ed"
-            frames.append(frame)
-    elif first.verb is not None and (
+    if first.text in _HUMAN_SUBJECTS and first.noun is None and not (
+            first.text in ("they", "them") and _things_they(items)):
+        return _human_subject(clause, items, mentions, flags)
+    if first.verb is not None and (
             (first.verb.form in ("base", "ing") and (first.noun is None or _takes_object(items)))
             or (first.verb.form == "s" and (clause.robot is not None or flags.get("subject")))
             or (first.noun is None and first.state is None and first.verb.form != "s")):
-        frames.append(_verb_frame(items, 0, flags, mentions))
-    else:
-        terse = not any(i.copula for i in items)
-        flags["terse"] = terse
-        if terse:
-            flags["directive"] = True
-        wished = noun_phrase_wish(items, mentions)
-        frames.extend([wished] if wished is not None else _state_frames(items, mentions, flags))
-        if not frames and flags.get("also"):
-            heads = np_list(items)
-            if heads:
-                mentions.extend(h for h in heads if h not in mentions)
-                return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
-    timed = bool(DURATION.search(" ".join(x.text for x in items)))
-    for f in frames:
-        f.timed = timed
-        if f.act is Act.CAUSE and f.verb in _WANT:
-            f.report = False
-            f.wish = True
-        if flags.get("recipient"):
-            f.recipient = True
-        if f.report:
-            places_to_locations(f)
-    return ParsedClause(clause, frames, mentions, unknown_words(mentions))
+        return [_verb_frame(items, 0, flags, mentions)]
+    terse = not any(i.copula for i in items)
+    flags["terse"] = terse
+    if terse:
+        flags["directive"] = True
+    wished = noun_phrase_wish(items, mentions)
+    frames = [wished] if wished is not None else _state_frames(items, mentions, flags)
+    if not frames and flags.get("also"):
+        heads = np_list(items)
+        if heads:
+            mentions.extend(h for h in heads if h not in mentions)
+            return ParsedClause(clause, [], mentions, unknown_words(mentions), also=heads)
+    return frames
+
+
+def _human_subject(clause: Clause, items: list[Item], mentions: list[Head],
+                   flags: dict[str, bool]) -> list[Frame]:
+    """"someone left the fridge open", "nobody needs the lights on", "i need X on Y"."""
+    first = items[0]
+    if first.text in ("nobody", "no"):
+        flags["neg"] = not flags.get("neg", False)
+    j = _skip_aux(items, 1 if first.text != "no" else 2, flags)
+    wanted = items[j].verb if j < len(items) else None
+    if wanted is not None and wanted.lemma in _WANT \
+            and j + 1 < len(items) and items[j + 1].text != "to":
+        # "i need the alarm clock on the desk", "i want the tv on": a wish about objects
+        rest = with_as_and(items[j + 1:])
+        found = _state_frames(rest, mentions, dict(flags, directive=True, terse=True))
+        if not found:
+            frame = _verb_frame([*items[:j + 1], *rest], j, flags, mentions)
+            frame.report = False
+            found = [frame]
+        return found
+    if not (j < len(items) and items[j].verb is not None):
+        return []
+    v = items[j].verb
+    assert v is not None
+    frame = _verb_frame(items, j, flags, mentions)
+    before = {x.text for x in items[1:j]}
+    if first.text in ("i", "we") and ((before & {"was", "were"} and before & {"going", "gonna"})
+                                      or (flags.get("perfect") and not flags.get("modal"))):
+        # "I was going to bake": what did not happen; "I've left my phone on the
+        # bed": what was done
+        frame.report = frame.past = True
+    elif v.lemma in _WANT:
+        frame.report = False
+    elif not flags.get("modal") and v.form in ("ed", "ing", "s") and \
+            clause.link not in ("if", "after", "before", "by"):
+        frame.report = True
+        frame.past = v.form == "ed"
+    return [frame]
 
 
 def _without_rejected_topic(items: list[Item]) -> list[Item]:
@@ -1081,33 +1162,25 @@ def _why_question(items: list[Item]) -> list[Item]:
     return [*items[2:end], items[1], *items[end:]]
 
 
-#: what a tool does to what it is used on
-_TOOL_ACTS = {"Knife": Act.SLICE, "ButterKnife": Act.SLICE, "DishSponge": Act.CLEAN, "Cloth": Act.CLEAN,
-              "ScrubBrush": Act.CLEAN}
-
-
-#: what a target must be for a tool's act
-_TOOL_TARGETS = {Act.SLICE: "sliceable", Act.CLEAN: "dirtyable"}
-
-
-def _tool_on(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
+def _tool_on(clause: Clause, items: list[Item], mentions: list[Head],
+             flags: dict[str, bool]) -> ParsedClause | None:
     """"use a knife on the bread": what the tool does, to what it is used on (not "use the
     knife on the counter", where the counter says which knife)."""
     if items[0].text not in ("use", "using") or items[0].noun is not None:
         return None
     head, k = parse_np(items, 1)
     n = len(items)
-    act = _TOOL_ACTS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None else None
-    if head is None or act is None or not (k + 1 < n and items[k].prep == "on" and np_start(items[k + 1])):
+    tool = TOOLS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None else None
+    if head is None or tool is None or not (k + 1 < n and items[k].prep == "on" and np_start(items[k + 1])):
         return None
     target, _ = parse_np(items, k + 1)
     cat = load_catalogue()
     if target is None or target.noun is None or not any(
-            t in cat.types and cat.type(t).has(_TOOL_TARGETS[act]) for t in target.noun.concept.types):
+            t in cat.types and cat.type(t).has(tool.used_on) for t in target.noun.concept.types):
         return None
     head.role = "place"
     mentions.extend([head, target])
-    frame = Frame(act, "use", [Target(target)], text=" ".join(i.text for i in items))
+    frame = Frame(tool.act, "use", [Target(target)], text=" ".join(i.text for i in items))
     frame.instruments.append(head)
     return ParsedClause(clause, [frame], mentions, [])
 
@@ -1128,7 +1201,8 @@ def _things_they(items: list[Item]) -> bool:
                for k, it in enumerate(items[1:5], 1))
 
 
-def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedClause | None:
+def _use_to(clause: Clause, items: list[Item], mentions: list[Head],
+            flags: dict[str, bool]) -> ParsedClause | None:
     """"use the stove to fry the egg", "using the microwave, heat the soup": the act of the
     rest of the clause, with the named appliance as its means."""
     if items[0].text not in ("use", "using") or items[0].noun is not None:
@@ -1147,6 +1221,13 @@ def _use_to(items: list[Item], clause: Clause, mentions: list[Head]) -> ParsedCl
         f.means = f.means or head
     inner.mentions.insert(0, head)
     return inner
+
+#: readers of clause shapes tried before the grammar proper, in order: the first that
+#: reads the clause decides
+CLAUSE_READERS: tuple[Callable[[Clause, list[Item], list[Head], dict[str, bool]], ParsedClause | None], ...] = (
+    _there_is, _tool_on, _means_only, _use_to,
+)
+
 
 def _takes_object(items: list[Item]) -> bool:
     from emboteam.pfg.offline.clauses import verb_here

@@ -11,7 +11,21 @@ from __future__ import annotations
 
 import re
 
+from pydantic import model_validator
+
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, apply_rewrites, compile_rewrites, load
+
+_PIECE = re.compile(r"\{([a-z_]+)\}")
+
+
+class _Described(Strict):
+    """Things named by where they are, what they hold or what they are for: patterns
+    written with named pieces (``{posture}``)."""
+
+    relative_place: str
+    participle_place: str
+    kept_in: tuple[str, str]
+    used_for: tuple[str, str]
 
 
 class IdiomsFile(Strict):
@@ -31,6 +45,31 @@ class IdiomsFile(Strict):
     #: what a thing is known by holding ("the thing we keep valuables in"): what is kept ->
     #: the container the lexicon knows
     kept_in: dict[str, str]
+    #: regular expressions the patterns of ``described`` name as ``{name}``
+    pieces: dict[str, str]
+    described: _Described
+
+    def expand(self, pattern: str) -> str:
+        """The pattern with its pieces filled in; ``{kept}`` and ``{used}`` are the keys of
+        ``kept_in`` and ``tool_for``, longest first."""
+        pieces = {**self.pieces, "kept": _alternatives(self.kept_in), "used": _alternatives(self.tool_for)}
+        return _PIECE.sub(lambda m: pieces[m.group(1)], pattern)
+
+    @model_validator(mode="after")
+    def _patterns_compile(self) -> IdiomsFile:
+        known = {*self.pieces, "kept", "used"}
+        for name, value in self.described:
+            for k, pattern in enumerate((value,) if isinstance(value, str) else value):
+                where = f"described -> {name}" + ("" if isinstance(value, str) else f"[{k}]")
+                unknown = [p for p in _PIECE.findall(pattern) if p not in known]
+                if unknown:
+                    raise ValueError(f"{where}: no piece {unknown[0]!r} (pieces: {', '.join(sorted(known))})")
+                Rewrite(pattern=self.expand(pattern), replace="")
+        return self
+
+
+def _alternatives(table: dict[str, str]) -> str:
+    return "|".join(sorted(table, key=len, reverse=True))
 
 
 _DATA = load("idioms.json", IdiomsFile)
@@ -43,15 +82,11 @@ KEPT_IN = _DATA.kept_in
 _RESULT_WORDS = _DATA.result_words
 _WISH_WORDS = _DATA.wish_words
 
-_POSTURE = r"(?:lying|laying|sitting|standing|resting|perched|sat|stood|hanging)"
-#: places a thing can go onto or into: after a relative clause they become "from"
-_ON_IN = r"(?:on top of|on|in|inside|over on|out on|down on|up on)"
-_BESIDE = r"(?:next to|by|near|under|beside|behind|at)"
-_DET = r"(?:the|a|an|my|your|his|her|our|their|this|that|one)"
-_RELATIVE_PLACE = re.compile(
-    r"(,\s*)?\b(?:that|which) (?:is|are|was|were) (?:(?:still|currently|now|just|already) )?(?:" + _POSTURE + r" )?"
-    r"(" + _ON_IN + "|" + _BESIDE + r") ((?:" + _DET + r" )?[a-z][^,.;:!?]{0,60})(\s*,\s*(?=[a-z]))?")
-_PARTICIPLE_PLACE = re.compile(r"\b(\w+) " + _POSTURE + r" (" + _ON_IN + "|" + _BESIDE + r") (?=" + _DET + r"\b)")
+_ON_IN = _DATA.expand("{on_in}")
+_RELATIVE_PLACE, _PARTICIPLE_PLACE = (re.compile(_DATA.expand(p)) for p in (
+    _DATA.described.relative_place, _DATA.described.participle_place))
+_KEPT_IN = tuple(re.compile(_DATA.expand(p)) for p in _DATA.described.kept_in)
+_USED_FOR = tuple(re.compile(_DATA.expand(p)) for p in _DATA.described.used_for)
 
 
 def _where_things_are(text: str) -> str:
@@ -81,39 +116,24 @@ def _where_things_are(text: str) -> str:
     return _PARTICIPLE_PLACE.sub(participle, text)
 
 
-_DESCRIBED = r"(?:the|that|this|a) (?:thing|thingy|tool|gadget|device|whatsit|doodah|doohickey|one|stuff)"
-_PERSON_USE = r"(?: (?:that |which )?(?:you|we|i|u|people) (?:use|need|want|have)?)?"
-_KEPT = "|".join(sorted(KEPT_IN, key=len, reverse=True))
-_HOLDER = r"(?:thing|thingy|box|place|one|spot|container|cupboard|unit)"
-
-
 def _described_by_contents(text: str) -> str:
     """"in the thing we keep valuables in", "where we keep the dirty laundry": the
     container what it holds names (:data:`KEPT_IN`)."""
     def name(m: re.Match[str]) -> str:
         return f"the {KEPT_IN[m.group(1)]}"
 
-    text = re.sub(r"\b(?:the|that|this) " + _HOLDER + r" (?:that |which |where )?(?:we|i|you|u|they) "
-                  r"(?:keep|store|put|lock|stash|hide)(?: (?:the|our|my|all the|all our|any))? (" + _KEPT
-                  + r")(?: in| into| away in)?\b", name, text)
-    return re.sub(r"\b(?:in |into )?where (?:we|i|you|u|they) (?:keep|store|put|lock|stash|hide)"
-                  r"(?: (?:the|our|my|all the|all our|any))? (" + _KEPT + r")\b",
-                  lambda m: f"in {name(m)}", text)
+    text = _KEPT_IN[0].sub(name, text)
+    return _KEPT_IN[1].sub(lambda m: f"in {name(m)}", text)
 
 
 def _described_by_use(text: str) -> str:
     """"the thing for unblocking the loo", "the thing you cut bread with", "the tool to
     flip pancakes": the object the use names (:data:`TOOL_FOR`)."""
-    verbs = "|".join(sorted(TOOL_FOR, key=len, reverse=True))
-
     def name(m: re.Match[str]) -> str:
         verb = m.group(1)
         return f"the {TOOL_FOR.get(verb) or TOOL_FOR.get(verb.rstrip('s'), verb)}"
 
-    text = re.sub(_DESCRIBED + _PERSON_USE + r" (?:for|to) (" + verbs + r")(?:ing)?\b"
-                  r"(?: (?:the|a|an|some|my|your|our) [a-z]+| [a-z]+s)?(?: with)?", name, text)
-    return re.sub(_DESCRIBED + r" (?:that |which )?(?:you|we|i|u) (" + verbs + r")s?\b(?: [a-z]+){0,3}? with\b",
-                  name, text)
+    return _USED_FOR[1].sub(name, _USED_FOR[0].sub(name, text))
 
 
 def spoken(text: str) -> str:

@@ -93,7 +93,6 @@ class VerbSense:
     weak: bool = False
 
 
-
 @dataclass(frozen=True, slots=True)
 class Concept:
     """What a noun names: object types (in order of preference), with fallbacks for
@@ -103,11 +102,6 @@ class Concept:
     types: tuple[str, ...] = ()
     fallback: tuple[str, ...] = ()
     kind: str = "object"   # object | category | lights | lamps | room | liquid | anything | recipe
-
-    @property
-    def is_category(self) -> bool:
-        return self.kind == "category"
-
 
 
 def _obj(*types: str, fallback: tuple[str, ...] = ()) -> Concept:
@@ -200,6 +194,7 @@ class LexiconFile(Strict):
     ordinals: dict[str, int]
     sequence_markers: Words
     subordinators: dict[str, str]
+    conjunctions: dict[str, Literal["and", "or"]]
     filler_words: frozenset[str]
     common_words: frozenset[str]
     idioms: tuple[Rewrite, ...]
@@ -284,6 +279,8 @@ ORDINALS: dict[str, int] = _LEX.ordinals
 SEQUENCE_MARKERS: tuple[str, ...] = _LEX.sequence_markers
 #: subordinators: (word, relation); "after X" -> the main clause follows X
 SUBORDINATORS: dict[str, str] = _LEX.subordinators
+#: coordinating words and the coordination they make ("plus" joins as "and")
+CONJUNCTIONS: dict[str, str] = dict(_LEX.conjunctions)
 #: words that carry no content for the parser: politeness, discourse, hedges. Matched
 #: anywhere outside noun phrases and dropped. Also the words spelling correction must
 #: never "correct" into object names.
@@ -335,7 +332,6 @@ def nouns() -> dict[str, Concept]:
         spaced = split_camel(name).lower()
         for key in (spaced, spaced.replace(" ", "")):
             out.setdefault(key, _obj(name))
-    out.setdefault("tv stand", _obj("TVStand"))
     _add_compound_heads(out, cat.types, source)
     return out
 

@@ -144,9 +144,6 @@ def np_start(it: Item) -> bool:
                 or is_piece_word(it) or it.ordinal is not None)
 
 
-_HUMAN_OBJECTS = _W.set("human_objects")
-
-
 @dataclass
 class _NP:
     """A noun phrase being read: the words, where the reader is, what it found so far."""

@@ -17,12 +17,25 @@ from dataclasses import dataclass, field, replace
 
 from emboteam.pfg.inflection import past_participle
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.acts import (
+    ACT_NEEDS,
+    ACT_PREDICATE,
+    COOKWARE,
+    DESCRIBE,
+    DISHES,
+    STAT_NEEDS,
+    STAT_PREDICATE,
+    STOVE_VESSELS,
+    WISHED_NEEDS,
+    Dish,
+)
 from emboteam.pfg.offline.discourse import OTHER_WORDS, Discourse, Mention
 from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, Ref, ref_types
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target
 from emboteam.pfg.offline.tagger import NounReading
+from emboteam.pfg.offline.text import split_camel
 from emboteam.world.catalogue import BREWERS, load_catalogue
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.state import ObjectState
@@ -59,53 +72,16 @@ _W = word_tables("semantics")
 #: verbs of carrying: with a pronoun and no place, who carries what is placed elsewhere
 _CARRYING = _W.set("carrying")
 
-#: which capability a role needs, for grounding and for choosing a pronoun's antecedent
-ACT_NEEDS: dict[Act, str | None] = {
-    Act.PLACE: "hold", Act.TRASH: "hold", Act.HOLD: "hold", Act.SLICE: "slice",
-    Act.BREAK: "break", Act.OPEN: "open", Act.CLOSE: "open", Act.SWITCH_ON: "switch",
-    Act.SWITCH_OFF: "switch", Act.TOGGLE: "switch", Act.WATCH: "switch", Act.HEAT: "hold",
-    Act.MICROWAVE: "hold", Act.COOK: "cook", Act.TOAST: "cook", Act.COOL: "hold",
-    Act.CLEAN: None, Act.DIRTY: "dirty", Act.FILL: "fill", Act.WATER: "fill",
-    Act.POUR: None, Act.DIM: "switch", Act.BRIGHTEN: "switch",
-}
-
-STAT_NEEDS: dict[Stat, str | None] = {
-    Stat.SWITCH: "switch", Stat.OPEN: "open", Stat.HOT: None, Stat.COLD: None,
-    Stat.COOKED: "cook", Stat.CLEAN: None, Stat.SLICED: "slice", Stat.BROKEN: "break",
-    Stat.FILLED: "fill", Stat.HELD: "hold", Stat.BRIGHT: None, Stat.TOASTED: None,
-}
-
 _VERBS_TO_HAND = _W.set("verbs_to_hand")
 _VERBS_TO_BIN = _W.set("verbs_to_bin")
 
-#: acts that are one state of their object
-_PLAIN_ACTS: dict[Act, Predicate] = {
-    Act.SLICE: P.sliced, Act.BREAK: P.broken, Act.OPEN: P.open, Act.CLOSE: P.closed,
-    Act.SWITCH_ON: P.switched_on, Act.SWITCH_OFF: P.switched_off,
-    Act.COOL: P.cold, Act.DIRTY: P.dirty, Act.HOLD: P.held,
-    Act.DIM: P.switched_off, Act.BRIGHTEN: P.switched_on,
-}
-
-_PHRASES: dict[Predicate, str] = {
-    P.sliced: "slice {s}", P.broken: "break {s}", P.switched_on: "switch on {s}",
-    P.switched_off: "switch off {s}", P.open: "open {s}", P.closed: "close {s}",
-    P.hot: "heat {s}", P.cold: "chill {s}", P.cooked: "cook {s}", P.clean: "clean {s}",
-    P.dirty: "make {s} dirty", P.held: "pick up {s}", P.filled: "fill {s}",
-}
-
 
 def describe(conditions: list[Condition]) -> str:
-    """A short imperative description of what the conditions ask for."""
-    parts = []
-    for c in conditions:
-        subj = f"{c.count} x {c.subject}" if c.count > 1 else str(c.subject)
-        if c.predicate is P.inside:
-            parts.append(f"put {subj} in/on {c.receptacle}")
-        elif c.predicate is P.filled:
-            parts.append(f"fill {subj} with {c.liquid or 'liquid'}")
-        else:
-            parts.append(_PHRASES[c.predicate].format(s=subj))
-    return "; ".join(parts)
+    """A short imperative description of what the conditions ask for (``acts.json``,
+    ``describe``)."""
+    return "; ".join(DESCRIBE[c.predicate].format(
+        s=f"{c.count} x {c.subject}" if c.count > 1 else str(c.subject), r=c.receptacle,
+        liquid=c.liquid or "liquid") for c in conditions)
 
 
 def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef | None = None,
@@ -117,9 +93,6 @@ def cond(pred: Predicate, ref: ObjectRef, count: int = 1, receptacle: ObjectRef 
 #: verbs that discard alone ("chuck it") but move to a place when one is said
 _THROWING = _W.set("throwing")
 
-
-#: things whose temperature is a tool's, not food's ("the pan's hot" is a warning)
-_COOKWARE = frozenset({"Pan", "Pot", "Kettle", "Toaster", "CoffeeMachine", "Microwave"})
 
 #: cooking verbs that happen in a pan: the food ends up in it
 _PAN_VERBS = _W.set("pan_verbs")
@@ -139,7 +112,7 @@ class Semantics:
         self.skipped: list[OfflineParseError] = []
         #: what each act asks of one object (acts not here: :meth:`_plain_act`)
         self._act_rules: dict[Act, Callable[[Frame, Act, Target, int, int], list[Draft]]] = {
-            Act.PLACE: self._place_act, Act.TRASH: self._trash_act, Act.WATCH: self._watch_act,
+            Act.PLACE: self._place_act, Act.TRASH: self._trash_act,
             Act.CLEAN: self._clean_act, Act.TOAST: self._toast_act, Act.HEAT: self._heat_act,
             Act.MICROWAVE: self._heat_act, Act.COOK: self._heat_act, Act.FILL: self._fill_act,
             Act.WATER: self._fill_act, Act.TOGGLE: self._toggle_act,
@@ -367,12 +340,7 @@ class Semantics:
         apple in it" only describes)."""
         if described or not drafts:
             return drafts
-        g = self._group
-        before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
-                  for c, held in self._contents(t, g, clause) for r, n in held.groups]
-        for d in drafts:
-            d.after = [a + len(before) for a in d.after] + list(range(len(before)))
-        return before + drafts
+        return then(self._filled_first(t, self._group, clause), drafts)
 
     def _state_of(self, t: Target, state: tuple[Stat, bool], flip: bool, clause: int) -> list[Draft]:
         """The drafts that give one object its state ("leave the fridge closed and the
@@ -407,7 +375,7 @@ class Semantics:
         if head.noun is None and head.recipe is not None:
             # "I want my coffee hot": the dish, then the state of what it is served in
             out += self._recipe(head.recipe, clause, head)
-            pred = _stat_predicate(stat, positive)
+            pred = STAT_PREDICATE.get((stat, positive))
             if pred is not None:
                 out += self._each(pred, self.history[-1].ref)
             return out
@@ -423,7 +391,7 @@ class Semantics:
             ref = self.discourse.resolve(head, "fill")
         else:
             ref = self.ground(head, STAT_NEEDS[stat], self._group, clause)
-        pred = _stat_predicate(stat, positive)
+        pred = STAT_PREDICATE.get((stat, positive))
         if pred is None:
             return out
         liquid = "water" if pred is P.filled else None
@@ -471,6 +439,8 @@ class Semantics:
         return Draft(conditions, describe(conditions), frozenset(ents), intermediate=intermediate)
 
     def _act(self, frame: Frame, act: Act, clause: int) -> list[Draft]:
+        """The drafts of an act on the frame's objects: acts that need none (dim the room,
+        water the plant), dishes and pouring, an elided object, then each object."""
         targets = self._targets(frame)
         g = self._group
         if act in (Act.DIM, Act.BRIGHTEN) and not targets:
@@ -481,32 +451,16 @@ class Semantics:
             return self._make(frame, targets, clause)
         if act is Act.POUR:
             return self._pour(frame, targets, clause)
-        if act is Act.CAUSE and not (frame.wish or frame.ready or frame.recipient
-                                     or frame.verb == "get") and not any(
-                t.dest or t.head.recipe or t.head.contents or (t.head.liquid and t.head.noun is None)
-                for t in targets):
+        if act is Act.CAUSE and _nothing_asked(frame, targets):
             for t in targets:      # "keep the apple": nothing asked of it
                 self.note(t.head, clause)
             return []
         if not targets and self.history and act is not Act.CAUSE and (
                 act not in (Act.PLACE, Act.GO) or frame.means is not None):
-            # "wash the apple and put in the fridge", "the bread needs to be sliced and put
-            # on a plate", "the vases - all four - go in the box": the object is elided, it
-            # is the one just acted on
-            last = next((m for m in reversed(self.history) if m.role == "object"), None)
-            word = "them" if last is not None and last.ref.plural else "it"
-            elided = Head(text=word, pron=word)
-            if act is Act.GO:
-                act = Act.PLACE
-            place = [frame.means] if act is Act.PLACE and frame.means is not None else []
-            if place:
-                place[0].role = "dest"
-                frame.means = None
-            targets = [Target(elided, place, "in" if place else None)]
+            act, targets = self._elided_object(frame, act)
         if not targets:
             if act in (Act.SWITCH_OFF, Act.SWITCH_ON) and frame.verb in ("dim", "kill"):
-                ref = self.g.light_sources()
-                return self._each(P.switched_off, ref)
+                return self._each(P.switched_off, self.g.light_sources())
             # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
                                     f"{past_participle(frame.verb)}?", phrase=frame.text, vague=True)
@@ -514,6 +468,10 @@ class Semantics:
             act = Act.PLACE if any(t.dest for t in targets) else act
             if act is Act.GO:
                 return []
+        return self._per_object(frame, act, targets, g, clause)
+
+    def _per_object(self, frame: Frame, act: Act, targets: list[Target], g: int, clause: int) -> list[Draft]:
+        """The act on each object in turn."""
         # "put the book on the bed and the pillow too": a later object without a place
         # goes where the one before it went
         for prev, t in itertools.pairwise(targets):
@@ -533,6 +491,19 @@ class Semantics:
         self.skipped.extend(failed)
         return out
 
+    def _elided_object(self, frame: Frame, act: Act) -> tuple[Act, list[Target]]:
+        """"wash the apple and put in the fridge", "the bread needs to be sliced and put on
+        a plate", "the vases - all four - go in the box": the object is elided, it is the
+        one just acted on (a place said as the means is where it goes)."""
+        last = next((m for m in reversed(self.history) if m.role == "object"), None)
+        word = "them" if last is not None and last.ref.plural else "it"
+        act = Act.PLACE if act is Act.GO else act
+        place = [frame.means] if act is Act.PLACE and frame.means is not None else []
+        if place:
+            place[0].role = "dest"
+            frame.means = None
+        return act, [Target(Head(text=word, pron=word), place, "in" if place else None)]
+
     def _target(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """The drafts of one object of an act: what it must be first (its wanted states,
         its contents, the dish it is), then the act itself."""
@@ -548,8 +519,7 @@ class Semantics:
                 return self._make(frame, [said], clause)
         # "microwave a plate containing an egg": first the egg on the plate; "bring me a
         # chilled tomato on a plate": first the tomato cold
-        before = [self._draft([cond(P.inside, r, n, c.single())], held, c)
-                  for c, held in self._contents(t, g, clause) for r, n in held.groups]
+        before = self._filled_first(t, g, clause)
         if t.head.recipe is not None and t.head.pron is None and one in (
                 Act.PLACE, Act.HOLD, Act.TRASH):
             # "put the toast on a plate", "bring me a coffee": the dish is made first,
@@ -567,9 +537,7 @@ class Semantics:
         if t.head.pron is not None and not t.dest and not frame.recipient and frame.verb in _CARRYING:
             for d in main:
                 d.carried = all(c.predicate is P.held for c in d.conditions)
-        for d in main:
-            d.after = [a + len(before) for a in d.after] + list(range(len(before)))
-        return before + main
+        return then(before, main)
 
     def _wanted(self, frame: Frame, act: Act, head: Head) -> list[tuple[Stat, bool]]:
         """States an object is asked *to have* rather than picked by: an indefinite noun
@@ -581,13 +549,12 @@ class Semantics:
         if not (frame.wish or frame.ready or frame.recipient
                 or act in (Act.PLACE, Act.HOLD, Act.CAUSE, Act.MAKE)):
             return []
-        need = {Stat.CLEAN: "dirty", Stat.COOKED: "cook", Stat.FILLED: "fill"}
         out: list[tuple[Stat, bool]] = []
         for stat, positive in head.filters:
             if stat not in DESIRABLE or not positive:
                 continue
             try:
-                types = self.g.candidate_types(replace(head, filters=[]), need.get(stat))
+                types = self.g.candidate_types(replace(head, filters=[]), WISHED_NEEDS[stat])
             except GroundingError:
                 continue       # "a clean apple": an apple is never dirty, nothing to ask
             if types:
@@ -619,11 +586,14 @@ class Semantics:
             return None
         return Act.HOLD
 
-    def _contents(self, t: Target, g: int, clause: int) -> list[tuple[Ref, Ref]]:
+    def _filled_first(self, t: Target, g: int, clause: int) -> list[Draft]:
+        """What the object is to hold ("a plate containing an egg"), each put in it."""
         if not t.head.holds:
             return []
         container = self.ground(t.head, "receptacle", g, clause)
-        return [(container, self.ground(h, "hold", g, clause)) for h in t.head.holds]
+        held = [self.ground(h, "hold", g, clause) for h in t.head.holds]
+        return [self._draft([cond(P.inside, r, n, container.single())], h, container)
+                for h in held for r, n in h.groups]
 
     def _one(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """The drafts of one act on one object: the act is first made precise by the
@@ -691,7 +661,7 @@ class Semantics:
         else:
             return head.recipe is not None
         types = [x for x in names if x in self.cat.types]
-        return bool(types) and all(self.cat.type(x).has("pickupable") and x not in _COOKWARE for x in types)
+        return bool(types) and all(self.cat.type(x).has("pickupable") and x not in COOKWARE for x in types)
 
     def _switched_not_opened(self, head: Head) -> bool:
         """Does the phrase name only things that switch and none that open (a lamp, the
@@ -705,10 +675,7 @@ class Semantics:
     def _shut_in(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
         """"Lock my keys in the safe": the keys go in, then the safe is shut."""
         placed = self._place(frame, t, g, clause)
-        shut = self._plain_act(frame, Act.CLOSE, Target(t.dest[0]), g, clause)
-        for d in shut:
-            d.after = [a + len(placed) for a in d.after] + list(range(len(placed)))
-        return placed + shut
+        return then(placed, self._plain_act(frame, Act.CLOSE, Target(t.dest[0]), g, clause))
 
     def _cut_pieces(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft]:
         """"Cut two slices of bread (and put them on the plate)": the bread is what is cut,
@@ -833,9 +800,6 @@ class Semantics:
         can = self.g.types_ref(("GarbageCan",), "garbage can")
         return self._each(P.inside, obj, can, receptacle=can.single())
 
-    def _watch_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
-        return self._each(P.switched_on, self.ground(t.head, "switch", g, clause))
-
     def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         in_sink = any(d.noun is not None and {"SinkBasin", "Sink"} & set(d.noun.concept.types) for d in t.dest)
         return self._clean(t.head, g, clause, in_sink=in_sink)
@@ -900,7 +864,7 @@ class Semantics:
 
     def _plain_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """An act that is one state of its object (slice, open, switch off, chill, ...)."""
-        pred = _PLAIN_ACTS.get(act)
+        pred = ACT_PREDICATE.get(act)
         if pred is None:
             return []
         return self._each(pred, self.ground(t.head, ACT_NEEDS.get(act), g, clause))
@@ -983,7 +947,7 @@ class Semantics:
         """A pot, kettle or pan that boils or fries does it on a burner, and stays there
         (else a planner may heat it elsewhere and leave it in the sink)."""
         names = _names(vessel)
-        if not self.g.has_type("StoveBurner") or not names or not all(x in ("Pot", "Kettle", "Pan") for x in names):
+        if not self.g.has_type("StoveBurner") or not names or not all(x in STOVE_VESSELS for x in names):
             return []
         return [cond(P.inside, vessel, 1, ObjectRef(types=("StoveBurner",)))]
 
@@ -1135,13 +1099,6 @@ class Semantics:
         """The goal of a dish with a clear household reading; what it is served in (the
         mug of coffee, the toast slices, the egg) becomes the antecedent of "it"/"them"."""
         g = self.g
-        if recipe == "coffee":
-            mug = g.types_ref(("Mug",), "mug")
-            if not g.has_type("CoffeeMachine"):
-                raise GroundingError(f"{g.scene.floor_plan} has no coffee machine", phrase="coffee")
-            self.history.append(Mention(mug, Head(text="mug"), clause, self._group))
-            return [self._draft([cond(P.filled, mug.single(), liquid="coffee"),
-                                 cond(P.hot, mug.single())], mug)]
         if recipe == "toast":
             # toast is cooked bread slices: "two slices of toast" are two of them
             bread = g.types_ref(("Bread",), "bread")
@@ -1155,37 +1112,42 @@ class Semantics:
             cooked = self._draft([done], bread)
             cooked.after = [0]
             return [self._draft([cond(P.sliced, bread.single())], bread), cooked]
-        if recipe == "salad":
-            out = []
-            for t in ("Lettuce", "Tomato"):
-                if g.has_type(t):
-                    ref = g.types_ref((t,), t.lower())
-                    out.append(self._draft([cond(P.sliced, ref.single())], ref))
-            if not out:
-                raise GroundingError(f"{g.scene.floor_plan} has nothing to make a salad with",
-                                     phrase="salad")
-            return out
-        if recipe in ("egg", "potato"):
-            ref = g.types_ref((recipe.capitalize(),), recipe)
-            self.history.append(Mention(ref, Head(text=recipe), clause, self._group))
-            return [self._draft([cond(P.cooked, ref.single())], ref)]
-        raise OfflineParseError(f"no recipe for {recipe!r}", phrase=recipe)
+        dish = DISHES[recipe]
+        if dish.each_of:      # a salad: what the scene has of its ingredients
+            refs = [g.types_ref((t,), t.lower()) for t in dish.each_of if g.has_type(t)]
+            if not refs:
+                raise GroundingError(f"{g.scene.floor_plan} has nothing to make a {recipe} with", phrase=recipe)
+            return [self._draft(self._dish_goals(dish, ref), ref) for ref in refs]
+        assert dish.served_in is not None
+        word = split_camel(dish.served_in).lower()
+        served = g.types_ref((dish.served_in,), word)
+        if dish.needs_type is not None and not g.has_type(dish.needs_type):
+            raise GroundingError(f"{g.scene.floor_plan} has no {split_camel(dish.needs_type).lower()}",
+                                 phrase=recipe)
+        self.history.append(Mention(served, Head(text=word), clause, self._group))
+        return [self._draft(self._dish_goals(dish, served), served)]
+
+    @staticmethod
+    def _dish_goals(dish: Dish, ref: Ref) -> list[Condition]:
+        return [cond(goal.predicate, ref.single(), liquid=goal.liquid) for goal in dish.conditions]
 
     def _pour(self, frame: Frame, targets: list[Target], clause: int) -> list[Draft]:
         out: list[Draft] = []
         liquid = frame.liquid
         for t in targets:
             liquid = t.head.liquid or t.head.contents or liquid
-            if t.dest:
-                for d in t.dest:
-                    ref = self.ground(d, "fill", self._group, clause)
-                    out.append(self._draft([cond(P.filled, r, n, liquid=liquid or "water")
-                                            for r, n in ref.groups], ref))
-            elif t.head.noun is not None:
-                ref = self.ground(t.head, "fill", self._group, clause)
+            for into in t.dest or ([t.head] if t.head.noun is not None else []):
+                ref = self.ground(into, "fill", self._group, clause)
                 out.append(self._draft([cond(P.filled, r, n, liquid=liquid or "water")
                                         for r, n in ref.groups], ref))
         return out
+
+
+def then(first: list[Draft], second: list[Draft]) -> list[Draft]:
+    """Two draft lists as one, each of the second after all of the first."""
+    for d in second:
+        d.after = [a + len(first) for a in d.after] + list(range(len(first)))
+    return [*first, *second]
 
 
 def concat(first: list[Draft], second: list[Draft]) -> list[Draft]:
@@ -1212,18 +1174,14 @@ def _noun(phrase: str) -> NounReading:
 _ALL_OF = frozenset({(Stat.SWITCH, False), (Stat.OPEN, False)})
 
 
+def _nothing_asked(frame: Frame, targets: list[Target]) -> bool:
+    """"keep the apple", "have the bread": a causative verb with no wish, place, dish or
+    drink asks nothing of its objects."""
+    return not (frame.wish or frame.ready or frame.recipient or frame.verb == "get") and not any(
+        t.dest or t.head.recipe or t.head.contents or (t.head.liquid and t.head.noun is None) for t in targets)
+
+
 def _is_everything(head: Head) -> bool:
     """"everything", "all the things" without a place ("everything on the table" is the
     things there)."""
     return head.noun is not None and head.noun.concept.kind == "anything" and not head.location
-
-
-def _stat_predicate(stat: Stat, positive: bool) -> Predicate | None:
-    table: dict[tuple[Stat, bool], Predicate] = {
-        (Stat.SWITCH, True): P.switched_on, (Stat.SWITCH, False): P.switched_off,
-        (Stat.OPEN, True): P.open, (Stat.OPEN, False): P.closed, (Stat.HOT, True): P.hot,
-        (Stat.COLD, True): P.cold, (Stat.COOKED, True): P.cooked, (Stat.CLEAN, True): P.clean,
-        (Stat.CLEAN, False): P.dirty, (Stat.SLICED, True): P.sliced,
-        (Stat.BROKEN, True): P.broken, (Stat.FILLED, True): P.filled, (Stat.HELD, True): P.held,
-    }
-    return table.get((stat, positive))

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import word_tables
@@ -168,6 +169,27 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
     return out, fixed
 
 
+def _same(words: frozenset[str]) -> dict[str, str]:
+    return {w: w for w in words}
+
+
+#: the readings a single word has by its table: the item's field and the table, word -> value
+_READINGS: tuple[tuple[str, dict[str, Any]], ...] = (
+    ("state", lx.STATES), ("prep", lx.PREPOSITIONS), ("particle", _same(lx.PARTICLES)),
+    ("number", lx.NUMBERS), ("quant", _same(lx.QUANTIFIERS)), ("pron", _same(lx.PRONOUNS)),
+    ("punct", _same(PUNCT)), ("liquid", _same(lx.LIQUIDS)), ("sub", lx.SUBORDINATORS),
+    ("conj", lx.CONJUNCTIONS), ("ordinal", lx.ORDINALS))
+#: the yes-or-no readings of a word: the item's field and its words
+_FLAGS = (("det", lx.DETERMINERS), ("neg", lx.NEGATIONS), ("copula", lx.COPULAS))
+
+
+def _collective(reading: NounReading) -> NounReading:
+    """"the cutlery": a collective noun is every piece of it, as a plural."""
+    if reading.phrase in lx.MASS_NOUNS and not reading.plural:
+        return NounReading(reading.concept, reading.phrase, True, reading.piece)
+    return reading
+
+
 def tag(text: str) -> list[Item]:
     """Items of an instruction, in order."""
     normal = " ".join(t.text for t in tokenize(text))
@@ -177,99 +199,62 @@ def tag(text: str) -> list[Item]:
     items: list[Item] = []
     i = 0
     while i < len(words):
-        w = words[i]
-        # robot names: "robot 2", "robot two", "the second robot"
-        if w in lx.ROBOT_WORDS and i + 1 < len(words):
-            nxt = words[i + 1]
-            k = 2 if nxt in ("number", "no", "nr") and i + 2 < len(words) else 1
-            nxt = words[i + k] if i + k < len(words) else ""
-            num = int(nxt) if nxt.isdigit() else lx.NUMBERS.get(nxt) if nxt in (
-                "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten") else None
-            if num is not None:
-                items.append(Item(f"robot {num}", robot=("number", num)))
-                i += k + 1
-                continue
-        if w in lx.ORDINALS and i + 1 < len(words) and words[i + 1] in ("robot", "bot", "agent"):
-            items.append(Item(f"{w} robot", robot=("ordinal", lx.ORDINALS[w])))
-            i += 2
-            continue
         noun = _noun_at(words, i)
-        prep = _multi(words, i, {p: p for p in lx.PREPOSITIONS if " " in p})
-        if prep is not None and (noun is None or prep[0] >= noun[0]):
-            n, phrase = prep
-            items.append(Item(phrase, prep=lx.PREPOSITIONS[phrase]))
-            i += n
-            continue
-        sub = _multi(words, i, {s: s for s in lx.SUBORDINATORS if " " in s}, (3, 2))
-        if sub is not None:
-            n, phrase = sub
-            items.append(Item(phrase, sub=lx.SUBORDINATORS[phrase]))
-            i += n
-            continue
-        seq = _multi(words, i, lx.SEQUENCE_MARKERS, (4, 3, 2, 1))
-        if seq is not None and seq[1] != "after":
-            n, phrase = seq
-            items.append(Item(phrase, seq=phrase))
-            i += n
-            continue
-        if noun is not None and noun[0] > 1:
-            n, reading = noun
-            if reading.phrase in lx.MASS_NOUNS and not reading.plural:
-                reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
-            phrase = " ".join(words[i:i + n])
-            item = Item(phrase, noun=reading)
-            recipe = lx.RECIPES.get(phrase) or lx.RECIPES.get(reading.phrase)
-            if recipe is not None:
-                item.recipe = recipe
-            items.append(item)
-            i += n
-            continue
-        item = Item(w)
-        if i in fixed:
-            item.corrected_from = fixed[i]
-        if noun is not None:
-            reading = noun[1]
-            if reading.phrase in lx.MASS_NOUNS and not reading.plural:
-                reading = NounReading(reading.concept, reading.phrase, True, reading.piece)
-            item.noun = reading
-        if w in lx.RECIPES:
-            item.recipe = lx.RECIPES[w]
-        vl = verb_lemma(w)
-        if vl is not None:
-            lemma, form = vl
-            sense = lx.VERBS.get(lemma)
-            if sense is not None:
-                item.verb = VerbReading(lemma, form, sense)
-        if w in lx.STATES:
-            item.state = lx.STATES[w]
-        if w in lx.PREPOSITIONS:
-            item.prep = lx.PREPOSITIONS[w]
-        if w in lx.PARTICLES:
-            item.particle = w
-        if w.isdigit():
-            item.number = int(w)
-        elif w in lx.NUMBERS:
-            item.number = lx.NUMBERS[w]
-        item.det = w in lx.DETERMINERS
-        if w in lx.QUANTIFIERS:
-            item.quant = w
-        if w in lx.PRONOUNS:
-            item.pron = w
-        item.neg = w in lx.NEGATIONS
-        item.copula = w in lx.COPULAS
-        if w in PUNCT:
-            item.punct = w
-        if w in lx.LIQUIDS:
-            item.liquid = w
-        if w in lx.SUBORDINATORS:
-            item.sub = lx.SUBORDINATORS[w]
-        if w in ("and", "or", "plus", "nor"):
-            item.conj = "or" if w == "or" else "and"
-        if w in lx.ORDINALS:
-            item.ordinal = lx.ORDINALS[w]
+        item, n = _robot_at(words, i) or _unit_at(words, i, noun) or (_word(words[i], fixed.get(i), noun), 1)
         items.append(item)
-        i += 1
+        i += n
     return _place_not_switch(items)
+
+
+def _robot_at(words: list[str], i: int) -> tuple[Item, int] | None:
+    """A robot's name at ``i``: "robot 2", "robot number two", "the second robot"."""
+    w = words[i]
+    if w in lx.ROBOT_WORDS and i + 1 < len(words):
+        k = 2 if words[i + 1] in ("number", "no", "nr") and i + 2 < len(words) else 1
+        nxt = words[i + k] if i + k < len(words) else ""
+        num = int(nxt) if nxt.isdigit() else lx.NUMBERS.get(nxt) if nxt in (
+            "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten") else None
+        if num is not None:
+            return Item(f"robot {num}", robot=("number", num)), k + 1
+    if w in lx.ORDINALS and i + 1 < len(words) and words[i + 1] in ("robot", "bot", "agent"):
+        return Item(f"{w} robot", robot=("ordinal", lx.ORDINALS[w])), 2
+    return None
+
+
+def _unit_at(words: list[str], i: int, noun: tuple[int, NounReading] | None) -> tuple[Item, int] | None:
+    """A unit of several words at ``i``: a preposition ("on top of", unless a longer noun
+    starts there), a subordinator, a sequence marker ("after that"), a noun phrase."""
+    prep = _multi(words, i, {p: p for p in lx.PREPOSITIONS if " " in p})
+    if prep is not None and (noun is None or prep[0] >= noun[0]):
+        return Item(prep[1], prep=lx.PREPOSITIONS[prep[1]]), prep[0]
+    sub = _multi(words, i, {s: s for s in lx.SUBORDINATORS if " " in s}, (3, 2))
+    if sub is not None:
+        return Item(sub[1], sub=lx.SUBORDINATORS[sub[1]]), sub[0]
+    seq = _multi(words, i, lx.SEQUENCE_MARKERS, (4, 3, 2, 1))
+    if seq is not None and seq[1] != "after":
+        return Item(seq[1], seq=seq[1]), seq[0]
+    if noun is not None and noun[0] > 1:
+        n, reading = noun[0], _collective(noun[1])
+        phrase = " ".join(words[i:i + n])
+        return Item(phrase, noun=reading, recipe=lx.RECIPES.get(phrase) or lx.RECIPES.get(reading.phrase)), n
+    return None
+
+
+def _word(w: str, corrected_from: str | None, noun: tuple[int, NounReading] | None) -> Item:
+    """One word with every reading the lexicon gives it."""
+    item = Item(w, corrected_from=corrected_from, noun=_collective(noun[1]) if noun else None,
+                recipe=lx.RECIPES.get(w))
+    vl = verb_lemma(w)
+    if vl is not None and vl[0] in lx.VERBS:
+        item.verb = VerbReading(vl[0], vl[1], lx.VERBS[vl[0]])
+    for name, table in _READINGS:
+        if w in table:
+            setattr(item, name, table[w])
+    for name, flagged in _FLAGS:
+        setattr(item, name, w in flagged)
+    if w.isdigit():
+        item.number = int(w)
+    return item
 
 
 def _place_not_switch(items: list[Item]) -> list[Item]:

@@ -44,14 +44,6 @@ class Token:
     text: str
     index: int
 
-    @property
-    def is_punct(self) -> bool:
-        return self.text in PUNCT
-
-    @property
-    def is_number(self) -> bool:
-        return self.text.isdigit()
-
 
 def split_camel(text: str) -> str:
     """``CounterTop`` -> ``Counter Top``, ``TVStand`` -> ``TV Stand``, ``robot2`` -> ``robot 2``."""
@@ -59,8 +51,6 @@ def split_camel(text: str) -> str:
     text = re.sub(r"(?<=[A-Z])(?=[A-Z][a-rt-z]|[A-Z]s[a-z])", " ", text)   # not "CDs"
     text = re.sub(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?=[A-Za-z])", " ", text)
     return text
-
-
 
 
 _ARROW = r"\s*(?:->|=>|\u2192|\u27f6)\s*"
@@ -79,8 +69,6 @@ def _arrows(text: str) -> str:
 #: a word broken off by a dash and a hedge ("crack- well, just put the egg in"): a
 #: self-correction, read as "I mean" (offline/corrections.py)
 _BROKEN_OFF = re.compile(r"\b([A-Za-z]+)-\s+(?:well|actually|er|erm|um|hmm),?\s+(?:just\s+)?")
-
-
 
 
 def normalize(text: str) -> str:
