@@ -124,6 +124,10 @@ def test_dot_and_ascii() -> None:
     text = to_ascii(plan)
     assert "team" in text.splitlines()[0]
     assert "robot1.2 OpenObject(Fridge_1)" in text and "Pre|Recover" in text
+    assert "drives" not in text  # without the initial state there are no drives to show
+    drives = to_ascii(plan, state=fresh_state("FloorPlan1", "1,2")).split("drives (grid path")[1]
+    gotos = [s for s in plan.steps if s.action.skill.value == "GoToObject"]
+    assert all(f"{s.id} {s.action}:" in drives for s in gotos) and "MoveAhead" in drives
 
 
 def test_render_needs_graphviz(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
