@@ -6,6 +6,7 @@ verb particles, politeness, self-corrections; and robustness (no crash on any in
 
 from __future__ import annotations
 
+import contextlib
 from typing import Any
 
 import pytest
@@ -507,6 +508,14 @@ def test_any_word_salad_gives_a_spec_or_a_typed_error(words: list[str], fp: int)
         assert str(exc) and "\n" not in str(exc)
     else:
         assert spec.subtasks
+
+
+@pytest.mark.parametrize("text", ["use everything", "use all the things on the table"])
+def test_use_with_no_tool_type_gives_a_spec_or_a_typed_error(text: str) -> None:
+    # a word salad once found it: "use" before a noun of no object type ("everything")
+    # raised an IndexError where a tool was looked up
+    with contextlib.suppress(EmboTeamError):
+        assert run(text).spec.subtasks
 
 
 # ---- pronoun chains -------------------------------------------------------------------------

@@ -1170,7 +1170,9 @@ def _tool_on(clause: Clause, items: list[Item], mentions: list[Head],
         return None
     head, k = parse_np(items, 1)
     n = len(items)
-    tool = TOOLS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None else None
+    # ("use everything": a word of no type names no tool)
+    tool = TOOLS.get(head.noun.concept.types[0]) if head is not None and head.noun is not None \
+        and head.noun.concept.types else None
     if head is None or tool is None or not (k + 1 < n and items[k].prep == "on" and np_start(items[k + 1])):
         return None
     target, _ = parse_np(items, k + 1)
