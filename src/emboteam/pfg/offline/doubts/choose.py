@@ -6,12 +6,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import partial
 
 from emboteam.pfg.candidates import Candidate, Doubt
 from emboteam.pfg.offline.discourse import Mention
 from emboteam.pfg.offline.doubts import find_doubts
 from emboteam.pfg.offline.doubts.check import FeasibilityCheck
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.coverage import coverage
 from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 from emboteam.pfg.offline.doubts.unexplained import unexplained_spans
 from emboteam.pfg.offline.tagger import Item
@@ -38,7 +40,7 @@ def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldSta
     priors = priors or load_priors()
     doubts = find_doubts(ctx, priors)
     check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
-    ranked = rank(spec, doubts, priors, check)
+    ranked = rank(spec, doubts, priors, check, partial(coverage, ctx))
     # the team check for the candidates that may run or be offered (the best and the close ones)
     best = ranked[0].score
     ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))

@@ -6,12 +6,15 @@ by "+", a participle in a verbless list, a split or misspelled name). Its altern
 leave it (chatter, as read), or give it the end state its neighbours ask for: the goal
 before it or after it carried over ("the apple in the fridge, the egg too"), a state word
 or verb of its own stretch ("the mug washed"), a place named after it ("bowl + plate in
-the sink").
+the sink"), or, when none of these says it, the goals the scene allows for the thing
+by what it affords (:mod:`.affordances`: the switch or open state it is not in, a place
+named near it).
 """
 
 from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
+from emboteam.pfg.offline.doubts import affordances
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.explained import explanation
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
@@ -68,6 +71,7 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         for label, c in (("carry_previous", prev), ("carry_next", nxt)):
             if c is not None:
                 proposals.append((label, with_subject(c, thing)))
+        proposals += affordances.proposals(ctx, k, thing)
         choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
         seen: set[str] = set()
         for label, c in proposals:
