@@ -42,6 +42,8 @@ class _Place(BaseModel):
     label: str
     reach: int = Field(7, ge=1, le=30)
     most: int = Field(2, ge=1, le=5)
+    #: a place counts as a destination only after one of these (within two words)
+    preps: list[str] = Field(default_factory=list)
 
 
 class Affordances(BaseModel):
@@ -76,12 +78,22 @@ def _flip(ctx: DoubtContext, type_: str, attr: str, yes: Predicate, no: Predicat
     return None
 
 
-def _places_near(ctx: DoubtContext, k: int, thing: str, reach: int) -> list[str]:
-    """Receptacles named within ``reach`` words of position ``k``, nearest first (after
-    it before before it at the same distance)."""
+def _places_near(ctx: DoubtContext, k: int, thing: str, place: _Place) -> list[str]:
+    """Receptacles named as destinations (after a placing preposition) within ``reach``
+    words of position ``k``, nearest first (after it before before it at the same
+    distance)."""
+    def destination(m: int) -> bool:
+        return any(i.prep in place.preps or i.text in place.preps for i in ctx.items[max(0, m - 3):m])
     near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, types in ctx.mentions()
-            if m != k and abs(m - k) <= reach and types[0] != thing and "receptacle" in _props(types[0])]
+            if m != k and abs(m - k) <= place.reach and types[0] != thing and "receptacle" in _props(types[0])
+            and destination(m)]
     return list(dict.fromkeys(t for _, t in sorted(near)))
+
+
+def _already(ctx: DoubtContext, thing: str, place: str) -> bool:
+    """Whether every object of the type is in the place already (a goal that asks nothing)."""
+    objs = list(ctx.state.of_type(thing))
+    return bool(objs) and all(any(ctx.state.obj(a).type == place for a in ctx.state.ancestors(o.id)) for o in objs)
 
 
 def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Condition]]:
@@ -91,7 +103,8 @@ def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Conditio
     out: list[tuple[str, Condition]] = []
     if data.place.property in props:
         out += [(data.place.label, placed(thing, p))
-                for p in _places_near(ctx, k, thing, data.place.reach)[:data.place.most]]
+                for p in _places_near(ctx, k, thing, data.place)[:data.place.most]
+                if not _already(ctx, thing, p)]
     if data.switch.property in props and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
                                                      Predicate.switched_off)) is not None:
         out.append((data.switch.label, one_object(p, thing)))

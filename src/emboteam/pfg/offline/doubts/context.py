@@ -45,6 +45,9 @@ class DoubtContext:
     scene: Scene
     state: WorldState
     history: Sequence[Mention] = ()
+    #: the conditions of the reading's intermediate steps ("rinse the tomato": in the sink,
+    #: the tap on): their things are accounted for too
+    steps: tuple[Condition, ...] = ()
 
     @cached_property
     def scene_types(self) -> frozenset[str]:
@@ -88,7 +91,7 @@ class DoubtContext:
 
     @cached_property
     def _goal_types(self) -> frozenset[str]:
-        return frozenset(t for c in self.goals for t in condition_types(c))
+        return frozenset(t for c in (*self.goals, *self.steps) for t in condition_types(c))
 
     def goal_types(self) -> frozenset[str]:
         return self._goal_types

@@ -28,17 +28,20 @@ CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scr
 #: the counter: ...", "the floor is covered in stuff")
 CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
                          "clutter", "cluttered", "cluttering", "clean", "empty"})
+#: the explanation of a mention the person negated or excluded
+NEGATED = "negated or excluded"
 #: how far back (in words) an excluder or a place preposition reaches
 _REACH = 4
 
 
-def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...]) -> str | None:
+def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool = True) -> str | None:
     """Why the mention at ``k`` needs no goal of its own, or None when nothing explains
-    it. A mention whose thing is in a goal is explained by that goal."""
-    if set(types) & ctx.goal_types():
-        return "in a goal"
+    it. A mention whose thing is in a goal is explained by that goal (unless ``goals`` is
+    false: then only the words explain it)."""
     item = ctx.items[k]
-    if item.noun is not None and item.noun.concept.kind in ("lights", "lamps") and any(
+    if goals and set(types) & ctx.goal_types():
+        return "in a goal"
+    if goals and item.noun is not None and item.noun.concept.kind in ("lights", "lamps") and any(
             ref_types(c.subject) & {"LightSwitch", "DeskLamp", "FloorLamp"} for c in ctx.goals):
         return "in a goal"
     start, _ = ctx.clause_bounds(k)
@@ -49,7 +52,7 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...]) -> str | None
             ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):
         return "the place of a chore"
     if any(i.neg or i.text in EXCLUDERS for i in before):
-        return "negated or excluded"
+        return NEGATED
     if any(i.text in CONDITIONS or i.sub is not None for i in ctx.items[start:k]):
         return "a condition"
     if any(i.text in CORRECTIONS for i in ctx.items[k + 1:k + 1 + 2 * _REACH]):

@@ -24,12 +24,13 @@ from emboteam.world.goals import Condition, Predicate
 KIND = "unexplained_mention"
 
 
-def unexplained_spans(ctx: DoubtContext) -> list[tuple[int, str, tuple[str, ...]]]:
-    """(position, words, scene types) of each mention nothing explains, one per thing."""
+def unexplained_spans(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[tuple[int, str, tuple[str, ...]]]:
+    """(position, words, scene types) of each mention nothing explains (explanations in
+    ``unless`` do not count), one per thing."""
     out: list[tuple[int, str, tuple[str, ...]]] = []
     seen: set[str] = set()
     for k, item, types in ctx.mentions():
-        if types[0] in seen or explanation(ctx, k, types) is not None:
+        if types[0] in seen or explanation(ctx, k, types) not in (None, *unless):
             continue
         seen.add(types[0])
         out.append((k, item.text, types))
@@ -62,9 +63,9 @@ def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
     return out
 
 
-def doubts(ctx: DoubtContext) -> list[Doubt]:
+def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doubt]:
     out = []
-    for k, words, types in unexplained_spans(ctx):
+    for k, words, types in unexplained_spans(ctx, unless):
         thing = types[0]
         proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
         prev, nxt = _neighbour_goals(ctx, k)
