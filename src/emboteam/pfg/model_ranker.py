@@ -15,7 +15,7 @@ so this module does not depend on the reader's class.
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Generic, Protocol, TypeVar
 
@@ -107,7 +107,7 @@ def close_count(priors: Sequence[float], margin: float) -> int:
 
 
 def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruction: str, margin: float,
-           weight: float, max_scored: int = MAX_SCORED) -> Reranking[C]:
+           weight: float, max_scored: int = MAX_SCORED, tail: Sequence[C] = ()) -> Reranking[C]:
     """``candidates`` (best first by prior) re-ranked where the prior is unsure.
 
     The leading candidates within ``margin`` of the first (at most ``max_scored``) are
@@ -119,7 +119,7 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
     n = min(close_count(priors, margin), max_scored)
     if n < 2 or len({c.sentence for c in candidates[:n]}) < 2:  # one sentence: nothing to tell apart
         ranked = tuple(Ranked(c, p, None, p) for c, p in zip(candidates, priors, strict=True))
-        return Reranking(ranked, scored=False, overturned=False)
+        return Reranking((*ranked, *_unscored(tail)), scored=False, overturned=False)
     close = list(candidates[:n])
     response = client.score(ScoreRequest(objects=objects, instruction=instruction,
                                          candidates=tuple(c.sentence for c in close)))
@@ -128,14 +128,34 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
     # stable: equal combined scores keep the prior's order
     scored.sort(key=lambda r: -r.combined)
     rest = [Ranked(c, p, None, p) for c, p in zip(candidates[n:], priors[n:], strict=True)]
-    return Reranking((*scored, *rest), scored=True, overturned=scored[0].candidate is not candidates[0],
-                     response=response)
+    return Reranking((*scored, *rest, *_unscored(tail)), scored=True,
+                     overturned=scored[0].candidate is not candidates[0], response=response)
+
+
+def _unscored(candidates: Sequence[C]) -> tuple[Ranked[C], ...]:
+    return tuple(Ranked(c, float(c.score), None, float(c.score)) for c in candidates)
 
 
 def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene, instruction: str,
-                    margin: float = DEFAULT_MARGIN, weight: float = DEFAULT_WEIGHT) -> Reranking[C]:
+                    margin: float = DEFAULT_MARGIN, weight: float = DEFAULT_WEIGHT,
+                    prior_only: Callable[[C], bool] | None = None) -> Reranking[C]:
     """:func:`rerank` with the objects summary of ``scene`` for the instruction and the
-    candidates' sentences: the one call a front end makes."""
+    candidates' sentences: the one call a front end makes. Candidates ``prior_only``
+    marks (readings that settle a doubt the model is known to judge no better than
+    chance) are not scored: they keep their place by the prior, and when the first is
+    one, nothing is asked."""
+    if prior_only is not None:
+        if candidates and prior_only(candidates[0]):
+            return rerank(candidates[:1], client=client, objects="", instruction=instruction, margin=margin,
+                          weight=weight, tail=candidates[1:])
+        scored = [c for c in candidates if not prior_only(c)]
+        rest = [c for c in candidates if prior_only(c)]
+        return _rerank_scene(scored, rest, client, scene, instruction, margin, weight)
+    return _rerank_scene(list(candidates), [], client, scene, instruction, margin, weight)
+
+
+def _rerank_scene(candidates: Sequence[C], tail: Sequence[C], client: LLMClient, scene: Scene, instruction: str,
+                  margin: float, weight: float) -> Reranking[C]:
     objects = objects_summary(scene, (instruction, *(c.sentence for c in candidates)))
     return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
-                  weight=weight)
+                  weight=weight, tail=tail)

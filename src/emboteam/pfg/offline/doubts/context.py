@@ -67,10 +67,15 @@ class DoubtContext:
 
     @cached_property
     def _mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
-        return [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+        from emboteam.pfg.offline.doubts.sound_alike import heard
+
+        read = [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+        misheard = [(k, self.items[k], types) for k, types in heard(self.items, self.scene_types)]
+        return sorted(read + misheard, key=lambda m: m[0])
 
     def mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
-        """(position, word, scene types) of every word that names a thing of the scene."""
+        """(position, word, scene types) of every word that names a thing of the scene,
+        also a misheard, split or texted name the tagger could not read (:mod:`.sound_alike`)."""
         return self._mentions
 
     def clause_bounds(self, k: int) -> tuple[int, int]:
