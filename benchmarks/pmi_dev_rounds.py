@@ -42,7 +42,7 @@ MARGINS = (0.5, 1.0, 1.5, 2.0, 2.5)
 WEIGHTS = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0)
 
 
-def records(client: LLMClient) -> list[dict[str, Any]]:
+def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
     """One record per development task the reader read: priors, and for the close ones
     the PMI of each scored candidate and whether it meets the ground truth."""
     from fit_reading_priors import (  # a script beside this one (benchmarks/ is on sys.path)
@@ -52,7 +52,8 @@ def records(client: LLMClient) -> list[dict[str, Any]]:
     reader = OfflineFrontend()
     kinds = frozenset(load_priors().prior_only_kinds)
     out: list[dict[str, Any]] = []
-    rounds = sorted((p for p in DATA.glob("blind_r*/dev") if int(p.parent.name.removeprefix("blind_r")) < FIRST_HELD_OUT),
+    rounds = sorted((p for p in DATA.glob("blind_r*/dev")
+                     if since <= int(p.parent.name.removeprefix("blind_r")) < FIRST_HELD_OUT),
                     key=lambda p: int(p.parent.name.removeprefix("blind_r")))
     for folder in rounds:
         for task in import_smart_llm(folder).tasks:
@@ -116,6 +117,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--replay", action="store_true", help="scores from the committed cassette")
     ap.add_argument("--out", type=Path, required=True, help="records and the grid, as JSON")
     ap.add_argument("--model", type=Path, help="GGUF file (default: the Qwen 0.5B model)")
+    ap.add_argument("--since", type=int, default=0, help="only development rounds from this number on")
     args = ap.parse_args(argv)
     try:
         if args.replay:
@@ -124,7 +126,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             from emboteam.llm.local_model import fetch_model
 
             client = make_client(f"llamacpp:{args.model or fetch_model()}", timeout=600, record_dir=CASSETTE)
-        rows = records(client)
+        rows = records(client, args.since)
     except EmboTeamError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

@@ -34,6 +34,19 @@ NEGATED = "negated or excluded"
 _REACH = 4
 
 
+def _after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
+    """Whether the mention at ``k`` is the object of a preposition: one stands before it
+    within reach, with no verb, state word or conjunction between ("to the box", not
+    "to an open the blinds": a preposition governs its noun phrase, not past a verb)."""
+    for j in range(k - 1, max(start, k - _REACH) - 1, -1):
+        item = ctx.items[j]
+        if item.prep is not None and item.noun is None:
+            return True
+        if item.verb is not None or item.state is not None or item.conj is not None:
+            return False
+    return False
+
+
 def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool = True) -> str | None:
     """Why the mention at ``k`` needs no goal of its own, or None when nothing explains
     it. A mention whose thing is in a goal is explained by that goal (unless ``goals`` is
@@ -46,7 +59,7 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool =
         return "in a goal"
     start, _ = ctx.clause_bounds(k)
     before = ctx.items[max(start, k - _REACH):k]
-    if any(i.prep is not None for i in before if i.noun is None):
+    if _after_preposition(ctx, k, start):
         return "a place or landmark"
     if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
             ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):

@@ -59,14 +59,16 @@ def _limit(n: int) -> int:
 
 
 @cache
-def _sounds(scene_types: frozenset[str]) -> tuple[tuple[str, tuple[str, ...]], ...]:
-    """(sound, scene types) of every noun phrase naming a type of the scene."""
-    out = []
+def _sounds(scene_types: frozenset[str]) -> dict[str, tuple[tuple[str, tuple[str, ...]], ...]]:
+    """(sound, scene types) of every noun phrase naming a type of the scene, by the sound's
+    first letter (a misheard name keeps its first sound: the index keeps the reader
+    within its time budget)."""
+    out: dict[str, list[tuple[str, tuple[str, ...]]]] = {}
     for phrase, concept in nouns().items():
         types = tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in scene_types)
-        if types and len(sound(phrase)) >= 3:
-            out.append((sound(phrase), types))
-    return tuple(out)
+        if types and len(said := sound(phrase)) >= 3:
+            out.setdefault(said[0], []).append((said, types))
+    return {k: tuple(v) for k, v in out.items()}
 
 
 def _unread(item: Item) -> bool:
@@ -104,7 +106,9 @@ def _closest(said: str, scene_types: frozenset[str], limit: int | None = None) -
         return None
     limit = _limit(len(said)) if limit is None else limit
     best: tuple[int, tuple[str, ...]] | None = None
-    for s, types in _sounds(scene_types):
+    for s, types in _sounds(scene_types).get(said[0], ()):
+        if abs(len(s) - len(said)) > limit:
+            continue
         d = edit_distance(said, s, limit + 1)
         if d <= limit and (best is None or d < best[0]):
             best = (d, types)
