@@ -23,12 +23,14 @@ from emboteam.llm.client import LLMClient
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.world.scene import Scene
 
-#: chosen on the development rounds (benchmarks/pmi_dev_rounds.py, 2026-12-06, read25's
-#: priors of that day): candidates within 1 of the first log-prior are close (87 of 1,269
-#: tasks); a PMI nat counts as one prior nat (top-1 1,128 -> 1,133; the model overturned
-#: the prior 19 times, 6 to a right reading from a wrong one, once the other way). Refit
-#: when the priors change.
-DEFAULT_MARGIN = 1.0
+#: chosen on the development rounds r30-r41 (benchmarks/pmi_dev_rounds.py --since 30,
+#: 2026-12-06 09:48 UTC, read25b's priors with the coverage feature; readings settling a
+#: correction or exclusion never scored): of margins 0.5-2.5 and weights 0-3, margin 2
+#: and weight 1 gave the best top-1 (325 -> 328 of 394 tasks) with the fewest calls
+#: (0.19 per task; the model overturned the prior 32 times, 7 from a wrong reading to a
+#: right one, 4 the other way; benchmarks/pmi_dev/results_since30.json). Refit when the
+#: priors change.
+DEFAULT_MARGIN = 2.0
 DEFAULT_WEIGHT = 1.0
 
 #: how many candidates the model scores at most (the prompt is shared; each candidate
