@@ -24,7 +24,7 @@ from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.world.scene import Scene
 
 #: chosen on the development rounds r30-r41 (benchmarks/pmi_dev_rounds.py --since 30,
-#: 2026-12-06 09:48 UTC, read25b's priors with the coverage feature; readings settling a
+#: 2026-12-06 09:48 UTC, the reader of read25b at 4fccb0f; readings settling a
 #: correction or exclusion never scored): of margins 0.5-2.5 and weights 0-3, margin 2
 #: and weight 1 gave the best top-1 (325 -> 328 of 394 tasks) with the fewest calls
 #: (0.19 per task; the model overturned the prior 32 times, 7 from a wrong reading to a
