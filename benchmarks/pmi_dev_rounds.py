@@ -30,40 +30,46 @@ from emboteam.errors import EmboTeamError
 from emboteam.llm.client import LLMClient, make_client
 from emboteam.pfg.model_ranker import close_count, rerank_in_scene
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.evaluate import goal_keys
-from emboteam.world.scene import load_scene
+from emboteam.pfg.offline.doubts.priors import load_priors
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
 OUT = ROOT / "benchmarks" / "pmi_dev"
 CASSETTE = OUT / "cassette"
 #: candidates within this much of the first are scored (the grid's widest margin)
-WIDEST = 1.0
-MARGINS = (0.25, 0.5, 1.0)
-WEIGHTS = (0.0, 0.1, 0.25, 0.5, 1.0, 2.0)
+WIDEST = 2.5
+MARGINS = (0.5, 1.0, 1.5, 2.0, 2.5)
+WEIGHTS = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0)
 
 
-def records(client: LLMClient) -> list[dict[str, Any]]:
+def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
     """One record per development task the reader read: priors, and for the close ones
     the PMI of each scored candidate and whether it meets the ground truth."""
-    from fit_reading_priors import satisfies  # a script beside this one (benchmarks/ is on sys.path)
+    from fit_reading_priors import (  # a script beside this one (benchmarks/ is on sys.path)
+        FIRST_HELD_OUT,
+        task_case,
+    )
     reader = OfflineFrontend()
+    kinds = frozenset(load_priors().prior_only_kinds)
     out: list[dict[str, Any]] = []
-    rounds = sorted(DATA.glob("blind_r*/dev"), key=lambda p: int(p.parent.name.removeprefix("blind_r")))
+    rounds = sorted((p for p in DATA.glob("blind_r*/dev")
+                     if since <= int(p.parent.name.removeprefix("blind_r")) < FIRST_HELD_OUT),
+                    key=lambda p: int(p.parent.name.removeprefix("blind_r")))
     for folder in rounds:
         for task in import_smart_llm(folder).tasks:
             if task.ground_truth is None:
                 continue
-            scene = load_scene(task.floor_plan)
-            truth = goal_keys(task.ground_truth.conditions, scene)
+            case = task_case(folder.parent.name, task)
+            scene = case.scene
             try:
-                reading = reader.parse(task.instruction, scene, task.initial_state(), task.team())
+                reading = reader.parse(task.instruction, scene, case.state, case.team)
             except EmboTeamError:
                 continue
             cands = reading.candidates
             row: dict[str, Any] = {"round": folder.parent.name, "instruction": task.instruction,
                                    "priors": [round(c.score, 4) for c in cands],
-                                   "right": [bool(satisfies(goal_keys(c.goals, scene), truth)) for c in cands],
+                                   "right": [bool(case.right(c.goals)) for c in cands],
+                                   "prior_only": [any(r.kind in kinds for r in c.resolves) for c in cands],
                                    "pmi": None}
             if close_count([c.score for c in cands], WIDEST) >= 2:
                 start = time.process_time()
@@ -87,12 +93,15 @@ def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float) -> dic
         if not priors:
             continue
         prior_top1 += right[0]
-        n = min(close_count(priors, margin), 5)
-        if n < 2 or r["pmi"] is None:
+        only = r.get("prior_only") or [False] * len(priors)
+        # as the hybrid front end does: readings settling a prior-only doubt are never
+        # scored, and none is when the first is one
+        close = [i for i in range(len(priors)) if priors[0] - priors[i] <= margin and not only[i]][:5]
+        if only[0] or len(close) < 2 or r["pmi"] is None or any(r["pmi"][i] is None for i in close):
             top1 += right[0]
             continue
         calls += 1
-        scored = [(priors[i] + weight * (r["pmi"][i] or 0.0), -i) for i in range(n)]
+        scored = [(priors[i] + weight * r["pmi"][i], -i) for i in close]
         best = -max(scored)[1]
         top1 += right[best]
         if best != 0:
@@ -108,6 +117,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--replay", action="store_true", help="scores from the committed cassette")
     ap.add_argument("--out", type=Path, required=True, help="records and the grid, as JSON")
     ap.add_argument("--model", type=Path, help="GGUF file (default: the Qwen 0.5B model)")
+    ap.add_argument("--since", type=int, default=0, help="only development rounds from this number on")
     args = ap.parse_args(argv)
     try:
         if args.replay:
@@ -116,7 +126,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             from emboteam.llm.local_model import fetch_model
 
             client = make_client(f"llamacpp:{args.model or fetch_model()}", timeout=600, record_dir=CASSETTE)
-        rows = records(client)
+        rows = records(client, args.since)
     except EmboTeamError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

@@ -104,17 +104,21 @@ def test_job_keys_of_existing_configurations_do_not_change() -> None:
 def test_hybrid_episode_calls_the_llm_only_for_a_doubtful_reading() -> None:
     tasks = {t.id: t for t in load_mace_thor()}
     with ScriptedServer("openai", []) as srv:  # any call would be answered with an error
-        sure = run_episode(tasks["fp1-toast"], RunConfig(frontend="hybrid", llm=srv.spec(), llm_timeout=5))
+        sure = run_episode(tasks["fp1-fridge-apple-tomato"], RunConfig(frontend="hybrid", llm=srv.spec(), llm_timeout=5))
     assert sure.success and sure.llm_calls == 0 and srv.requests == []
-    with ScriptedServer("openai", [Reply.answer({"ok": True, "subtasks": []}, input_tokens=900,
+    # the reading's close candidates are first offered for scoring: this server has no
+    # completions endpoint (404: no log-probabilities), so the reading stands and is reviewed
+    with ScriptedServer("openai", [Reply.error(404, message="no completions"),
+                                   Reply.answer({"ok": True, "subtasks": []}, input_tokens=900,
                                                 output_tokens=9)]) as srv:
         # an unread span (H1's contract: the parser acts on the rest and notes it) next to a
         # scene noun the reading leaves out is doubt (emboteam.pfg.doubt; an unread span
         # alone is not enough any more: measured, docs/llm.md "The doubt detector")
         task = Instruction.typed("Put the apple in the fridge, then frobnicate the tomato.", "FloorPlan1", "1,2")
         doubtful = run_episode(task, RunConfig(frontend="hybrid", llm=srv.spec(), llm_timeout=5))
-    assert len(srv.requests) == 1 and doubtful.llm_calls == 1 and doubtful.tokens == 909
-    assert "Draft by the offline parser" in srv.requests[0]["messages"][-1]["content"]
+    reviews = [r for r in srv.requests if "messages" in r]
+    assert len(reviews) == 1 and doubtful.llm_calls == 1 and doubtful.tokens == 909
+    assert "Draft by the offline parser" in reviews[0]["messages"][-1]["content"]
 
 
 def test_llm_when_without_frontend_means_hybrid_on_the_command_line(tmp_path: Path) -> None:
@@ -124,7 +128,7 @@ def test_llm_when_without_frontend_means_hybrid_on_the_command_line(tmp_path: Pa
     from emboteam.llm.cassette import Cassette
 
     Cassette(tmp_path / "empty").open_for_recording("nothing")  # a cassette with no answers
-    result = CliRunner().invoke(app, ["run", "mace-thor/fp1-toast", "--llm", f"replay:{tmp_path / 'empty'}",
+    result = CliRunner().invoke(app, ["run", "mace-thor/fp1-fridge-apple-tomato", "--llm", f"replay:{tmp_path / 'empty'}",
                                       "--llm-when", "doubt", "--out", str(tmp_path / "run"), "--json"])
     summary = json.loads(result.stdout.strip().splitlines()[-1])
     episode = json.loads((tmp_path / "run" / "episode.json").read_text())

@@ -315,7 +315,10 @@ FRONTEND_HELP = ("oracle (ground-truth goals) | offline (embedded parser; the de
                  "LLM reviews its reading: see --llm-when)")
 LLM_WHEN_HELP = ("selects the hybrid front end. always: the LLM reviews every reading (1 call a task, SR "
                  "ceiling 0.976) | doubt: only readings the doubt detector flags (about 0.2 calls a task, "
-                 "ceiling 0.974; a wrong reading it misses stands). Ceilings: docs/llm.md")
+                 "ceiling 0.974; a wrong reading it misses stands) | close: the model only scores the offline "
+                 "reader's close readings (PMI, needs log-probabilities: llamacpp, openai completions), "
+                 "never reviews; for a small local model whose review says ok to everything. Ceilings: "
+                 "docs/llm.md")
 FRONTENDS_CLI = ("oracle", "offline", "hybrid", "llm")
 
 
@@ -395,8 +398,8 @@ def _run_config(mode: str, frontend: str, llm: str | None, **kw: Any) -> RunConf
         raise EmboTeamError(f"unknown mode {mode!r}; modes: {', '.join(MODES)}")
     if frontend not in FRONTENDS_CLI:
         raise EmboTeamError(f"unknown front end {frontend!r}: {', '.join(FRONTENDS_CLI)}")
-    if kw.get("llm_when", "doubt") not in ("doubt", "always"):
-        raise EmboTeamError(f"--llm-when takes doubt or always, not {kw['llm_when']!r}")
+    if kw.get("llm_when", "doubt") not in ("doubt", "always", "close"):
+        raise EmboTeamError(f"--llm-when takes doubt, always or close, not {kw['llm_when']!r}")
     return RunConfig(mode=mode, frontend=frontend, llm=llm, **kw)
 
 

@@ -18,7 +18,7 @@ from emboteam.sim.faults import FaultConfig
 Mode = Literal["full", "no-pfg-hp", "no-hp", "no-btc", "no-avoidance", "smart-llm", "lamma-p"]
 Frontend = Literal["oracle", "offline", "llm", "hybrid"]
 #: when the hybrid front end asks the LLM: only for a doubtful offline reading, or always
-LLMWhen = Literal["doubt", "always"]
+LLMWhen = Literal["doubt", "always", "close"]
 #: where episodes execute: the symbolic simulator, or a live AI2-THOR (emboteam.thor)
 EnvName = Literal["sim", "ai2thor"]
 
@@ -45,7 +45,8 @@ class RunConfig(BaseModel):
                           "offline reader's close readings, or to answer an LLM front end's clarification "
                           "(no terminal: the best reading with a note; an LLM's question ends the episode)")
     llm_when: LLMWhen = Field("doubt", description="hybrid front end: ask the LLM only when the offline "
-                              "reading is in doubt, or always")
+                              "reading is in doubt, or always; close: the LLM only scores "
+                              "the offline reader's close readings (PMI), never reviews")
     planner_input: PlannerInput = Field("sas", description="what Fast Downward reads: our own SAS task "
                                         "(search binary only) or PDDL (driver and translator)")
     schedule: Literal["fast", "optimal"] = Field("fast", description="fast: the planner's own stages; optimal: "

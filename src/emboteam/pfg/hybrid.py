@@ -3,7 +3,9 @@
 1. The offline parser reads the instruction (milliseconds, no call).
 2. ``when="doubt"``: a reading the doubt detector does not flag
    (:func:`emboteam.pfg.doubt.needs_review`) is used as it is; ``when="always"`` asks
-   the LLM every time.
+   the LLM every time; ``when="close"`` never reviews: the model only scores the close
+   readings (below), and a parser error stands (for a small local model, whose review
+   answers "ok" to everything and whose written specs are rarely right).
 3. Review: the LLM sees the draft (in the answer form of :mod:`emboteam.pfg.schema`), the
    parser's notes and the conditions it was unsure of, and answers ``ok`` or the whole
    corrected decomposition, validated like the LLM front end's answers (schema, scene,
@@ -40,6 +42,7 @@ from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
 from emboteam.pfg.model_ranker import DEFAULT_MARGIN, DEFAULT_WEIGHT, Reranking, rerank_in_scene
+from emboteam.pfg.offline.doubts.priors import load_priors
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.schema import taskspec_from_answer, taskspec_to_answer
@@ -50,7 +53,7 @@ from emboteam.world.state import WorldState
 
 log = logging.getLogger(__name__)
 
-LLMWhen = Literal["doubt", "always"]
+LLMWhen = Literal["doubt", "always", "close"]
 
 #: what a parse function returns: a Reading, or the parser's older ParseResult (spec and
 #: notes as strings), adapted by :func:`as_reading`
@@ -124,6 +127,8 @@ class HybridFrontend:
         try:
             draft = as_reading(self.parse(instruction, scene, state, team))
         except OfflineParseError as exc:
+            if self.when == "close":
+                raise       # the model only scores readings: nothing to score
             hint = (f"An offline parser could not read this instruction: {exc}. "
                     "Decompose what the user asks for.")
             spec = self.llm.decompose(instruction, scene, state, team, validate=validate, hint=hint,
@@ -131,7 +136,7 @@ class HybridFrontend:
             return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
                                              f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
         draft = self.rank_close_candidates(draft, instruction, scene)
-        if self.when == "doubt" and not needs_review(draft, instruction, state):
+        if self.when == "close" or (self.when == "doubt" and not needs_review(draft, instruction, state)):
             return draft
         return self.review(draft, instruction, scene, state, team, validate=validate)
 
@@ -144,8 +149,10 @@ class HybridFrontend:
         if len(draft.candidates) < 2 or self.rank_weight <= 0:
             return draft
         try:
+            kinds = frozenset(load_priors().prior_only_kinds)
             ranking = rerank_in_scene(draft.candidates, client=self.client, scene=scene, instruction=instruction,
-                                      margin=self.rank_margin, weight=self.rank_weight)
+                                      margin=self.rank_margin, weight=self.rank_weight,
+                                      prior_only=lambda c: any(r.kind in kinds for r in c.resolves))
         except LLMScoringUnsupported:
             return draft
         self.last_ranking = ranking

@@ -15,7 +15,7 @@ so this module does not depend on the reader's class.
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Generic, Protocol, TypeVar
 
@@ -23,12 +23,14 @@ from emboteam.llm.client import LLMClient
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.world.scene import Scene
 
-#: chosen on the development rounds (benchmarks/pmi_dev_rounds.py, 2026-12-06, read25's
-#: priors of that day): candidates within 1 of the first log-prior are close (87 of 1,269
-#: tasks); a PMI nat counts as one prior nat (top-1 1,128 -> 1,133; the model overturned
-#: the prior 19 times, 6 to a right reading from a wrong one, once the other way). Refit
-#: when the priors change.
-DEFAULT_MARGIN = 1.0
+#: chosen on the development rounds r30-r41 (benchmarks/pmi_dev_rounds.py --since 30,
+#: 2026-12-06 09:48 UTC, the reader of read25b at 4fccb0f; readings settling a
+#: correction or exclusion never scored): of margins 0.5-2.5 and weights 0-3, margin 2
+#: and weight 1 gave the best top-1 (325 -> 328 of 394 tasks) with the fewest calls
+#: (0.19 per task; the model overturned the prior 32 times, 7 from a wrong reading to a
+#: right one, 4 the other way; benchmarks/pmi_dev/results_since30.json). Refit when the
+#: priors change.
+DEFAULT_MARGIN = 2.0
 DEFAULT_WEIGHT = 1.0
 
 #: how many candidates the model scores at most (the prompt is shared; each candidate
@@ -107,7 +109,7 @@ def close_count(priors: Sequence[float], margin: float) -> int:
 
 
 def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruction: str, margin: float,
-           weight: float, max_scored: int = MAX_SCORED) -> Reranking[C]:
+           weight: float, max_scored: int = MAX_SCORED, tail: Sequence[C] = ()) -> Reranking[C]:
     """``candidates`` (best first by prior) re-ranked where the prior is unsure.
 
     The leading candidates within ``margin`` of the first (at most ``max_scored``) are
@@ -119,7 +121,7 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
     n = min(close_count(priors, margin), max_scored)
     if n < 2 or len({c.sentence for c in candidates[:n]}) < 2:  # one sentence: nothing to tell apart
         ranked = tuple(Ranked(c, p, None, p) for c, p in zip(candidates, priors, strict=True))
-        return Reranking(ranked, scored=False, overturned=False)
+        return Reranking((*ranked, *_unscored(tail)), scored=False, overturned=False)
     close = list(candidates[:n])
     response = client.score(ScoreRequest(objects=objects, instruction=instruction,
                                          candidates=tuple(c.sentence for c in close)))
@@ -128,14 +130,34 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
     # stable: equal combined scores keep the prior's order
     scored.sort(key=lambda r: -r.combined)
     rest = [Ranked(c, p, None, p) for c, p in zip(candidates[n:], priors[n:], strict=True)]
-    return Reranking((*scored, *rest), scored=True, overturned=scored[0].candidate is not candidates[0],
-                     response=response)
+    return Reranking((*scored, *rest, *_unscored(tail)), scored=True,
+                     overturned=scored[0].candidate is not candidates[0], response=response)
+
+
+def _unscored(candidates: Sequence[C]) -> tuple[Ranked[C], ...]:
+    return tuple(Ranked(c, float(c.score), None, float(c.score)) for c in candidates)
 
 
 def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene, instruction: str,
-                    margin: float = DEFAULT_MARGIN, weight: float = DEFAULT_WEIGHT) -> Reranking[C]:
+                    margin: float = DEFAULT_MARGIN, weight: float = DEFAULT_WEIGHT,
+                    prior_only: Callable[[C], bool] | None = None) -> Reranking[C]:
     """:func:`rerank` with the objects summary of ``scene`` for the instruction and the
-    candidates' sentences: the one call a front end makes."""
+    candidates' sentences: the one call a front end makes. Candidates ``prior_only``
+    marks (readings that settle a doubt the model is known to judge no better than
+    chance) are not scored: they keep their place by the prior, and when the first is
+    one, nothing is asked."""
+    if prior_only is not None:
+        if candidates and prior_only(candidates[0]):
+            return rerank(candidates[:1], client=client, objects="", instruction=instruction, margin=margin,
+                          weight=weight, tail=candidates[1:])
+        scored = [c for c in candidates if not prior_only(c)]
+        rest = [c for c in candidates if prior_only(c)]
+        return _rerank_scene(scored, rest, client, scene, instruction, margin, weight)
+    return _rerank_scene(list(candidates), [], client, scene, instruction, margin, weight)
+
+
+def _rerank_scene(candidates: Sequence[C], tail: Sequence[C], client: LLMClient, scene: Scene, instruction: str,
+                  margin: float, weight: float) -> Reranking[C]:
     objects = objects_summary(scene, (instruction, *(c.sentence for c in candidates)))
     return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
-                  weight=weight)
+                  weight=weight, tail=tail)

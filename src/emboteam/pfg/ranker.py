@@ -35,10 +35,11 @@ class _Factor:
     logp: tuple[float, ...]         # log-prior of each choice, by choice index
 
 
-def _factor(doubt: Doubt, priors: Priors) -> _Factor:
+def _factor(doubt: Doubt, priors: Priors, gain: Callable[[Choice], float] | None = None) -> _Factor:
     raw = [priors.prior(doubt.kind, c.label) for c in doubt.choices]
     total = sum(raw)
-    logp = tuple(math.log(p / total) for p in raw)
+    logp = tuple(math.log(p / total) + (gain(c) if gain is not None else 0.0) for p, c in zip(raw, doubt.choices,
+                                                                                               strict=True))
     # ties keep the reading as read first (index 0), then the rule's own order
     order = tuple(sorted(range(len(raw)), key=lambda i: (-logp[i], i)))
     return _Factor(doubt, order, logp)
@@ -82,12 +83,32 @@ def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...]) -> TaskSpec | None:
     return spec.model_copy(update={"subtasks": tuple(kept)})
 
 
+def coverage_gain(base: tuple[Condition, ...], coverage: Callable[[Sequence[Condition]], int] | None,
+                  weight: float) -> Callable[[Choice], float] | None:
+    """A choice's coverage feature: ``weight`` times how many more instruction words the
+    goal accounts for with that choice made alone (the combination adds them up)."""
+    if coverage is None or weight == 0:
+        return None
+    here = coverage(base)
+
+    def gain(choice: Choice) -> float:
+        if choice.as_read:
+            return 0.0
+        goals = apply_choices(base, [choice])
+        return 0.0 if goals is None else weight * (coverage(goals) - here)
+    return gain
+
+
 def rank(spec: TaskSpec, doubts: Sequence[Doubt], priors: Priors,
-         feasible: Callable[[tuple[Condition, ...]], bool]) -> tuple[Candidate, ...]:
+         feasible: Callable[[tuple[Condition, ...]], bool],
+         coverage: Callable[[Sequence[Condition]], int] | None = None) -> tuple[Candidate, ...]:
     """The candidates, best first (at most ``priors.max_candidates``); the reader's own
-    reading is always one of them."""
+    reading is always one of them. A candidate's score is the sum of its choices'
+    log-priors plus, with ``coverage``, ``priors.coverage_weight`` per instruction word it
+    accounts for beyond the reading as read."""
     base = tuple(spec.goal().conditions)
-    factors = [_factor(d, priors) for d in doubts]
+    gain = coverage_gain(base, coverage, priors.coverage_weight)
+    factors = [_factor(d, priors, gain) for d in doubts]
     base_score = sum(f.logp[0] for f in factors)
     start = tuple(0 for _ in factors)    # position in each factor's order
     heap: list[tuple[float, tuple[int, ...]]] = [(-_score(factors, start), start)]

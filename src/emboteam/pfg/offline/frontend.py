@@ -31,6 +31,7 @@ from emboteam.pfg.offline.clause_passes import (
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import (
+    ContradictoryInstruction,
     check_consistent,
     check_placements,
     narrow_choices,
@@ -45,7 +46,7 @@ from emboteam.pfg.offline.constructions import (
 from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
-from emboteam.pfg.offline.doubts.choose import choices
+from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.priors import Priors
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
@@ -55,7 +56,7 @@ from emboteam.pfg.offline.draft_passes import (
     drop_self_placements,
     drop_superseded_placements,
 )
-from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
+from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.knowledge import word_tables
@@ -244,6 +245,24 @@ class OfflineFrontend:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
         tagged = tag(text)     # as said, self-corrections and all: what the points of doubt read
+        try:
+            return self._read(text, tagged, scene, state, team)
+        except ContradictoryInstruction:
+            raise
+        except OfflineParseError as exc:
+            if isinstance(exc, GroundingError) and not isinstance(exc, IncapableError):
+                raise       # "the pineapple", "two bottles" (only one): what the scene lacks
+            found = from_mentions_choices(text, tagged, scene, state, team, self.priors)
+            if found is None:
+                raise
+            spec, made = found
+            note = ReadingNote(text, f"read from the things it names ({exc.message})", "assumed")
+            unsure = tuple(str(c) for c in spec.goal().conditions)
+            return Reading(spec, (note,), unsure, candidates=made.candidates, doubts=made.doubts)
+
+    def _read(self, text: str, tagged: list[Item], scene: Scene, state: WorldState,
+              team: Sequence[RobotProfile]) -> Reading:
+        """The grammar's reading (raises when it finds nothing to act on)."""
         items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tagged)))))
         clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))

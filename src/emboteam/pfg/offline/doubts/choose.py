@@ -12,6 +12,8 @@ from emboteam.pfg.offline.discourse import Mention
 from emboteam.pfg.offline.doubts import find_doubts
 from emboteam.pfg.offline.doubts.check import FeasibilityCheck
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.coverage import Coverage
+from emboteam.pfg.offline.doubts.from_mentions import from_mentions
 from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 from emboteam.pfg.offline.doubts.unexplained import unexplained_spans
 from emboteam.pfg.offline.tagger import Item
@@ -34,12 +36,30 @@ def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldSta
     """The candidates of a reading (best first, the reader's own among them) and the
     words of each mention nothing explains."""
     ctx = DoubtContext(items=items, goals=tuple(spec.goal().conditions), scene=scene, state=state,
-                       history=history)
+                       history=history, steps=tuple(c for s in spec.subtasks if not s.final for c in s.goal))
     priors = priors or load_priors()
     doubts = find_doubts(ctx, priors)
     check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
-    ranked = rank(spec, doubts, priors, check)
+    ranked = rank(spec, doubts, priors, check, Coverage(ctx))
     # the team check for the candidates that may run or be offered (the best and the close ones)
     best = ranked[0].score
     ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))
     return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(ctx)), tuple(doubts))
+
+
+def from_mentions_choices(text: str, items: Sequence[Item], scene: Scene, state: WorldState,
+                          team: Sequence[RobotProfile], priors: Priors | None = None) -> tuple[TaskSpec, Choices] | None:
+    """When the reader found nothing to act on: the reading that gives each unexplained
+    mention its likeliest goal (:mod:`.from_mentions`) and its candidates; None when the
+    mentions propose nothing feasible."""
+    priors = priors or load_priors()
+    ctx = DoubtContext(items=items, goals=(), scene=scene, state=state)
+    check = FeasibilityCheck(scene, state, team)
+    made = from_mentions(ctx, priors, lambda g: check(g) and check.team_can(g), Coverage(ctx), text)
+    if made is None:
+        return None
+    spec, doubts = made
+    ranked = rank(spec, doubts, priors, check, Coverage(ctx))
+    best = ranked[0].score
+    ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))
+    return ranked[0].spec, Choices(ranked, (), tuple(doubts))

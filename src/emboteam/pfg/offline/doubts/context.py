@@ -45,6 +45,9 @@ class DoubtContext:
     scene: Scene
     state: WorldState
     history: Sequence[Mention] = ()
+    #: the conditions of the reading's intermediate steps ("rinse the tomato": in the sink,
+    #: the tap on): their things are accounted for too
+    steps: tuple[Condition, ...] = ()
 
     @cached_property
     def scene_types(self) -> frozenset[str]:
@@ -64,10 +67,15 @@ class DoubtContext:
 
     @cached_property
     def _mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
-        return [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+        from emboteam.pfg.offline.doubts.sound_alike import heard
+
+        read = [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+        misheard = [(k, self.items[k], types) for k, types in heard(self.items, self.scene_types)]
+        return sorted(read + misheard, key=lambda m: m[0])
 
     def mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
-        """(position, word, scene types) of every word that names a thing of the scene."""
+        """(position, word, scene types) of every word that names a thing of the scene,
+        also a misheard, split or texted name the tagger could not read (:mod:`.sound_alike`)."""
         return self._mentions
 
     def clause_bounds(self, k: int) -> tuple[int, int]:
@@ -88,7 +96,7 @@ class DoubtContext:
 
     @cached_property
     def _goal_types(self) -> frozenset[str]:
-        return frozenset(t for c in self.goals for t in condition_types(c))
+        return frozenset(t for c in (*self.goals, *self.steps) for t in condition_types(c))
 
     def goal_types(self) -> frozenset[str]:
         return self._goal_types

@@ -28,28 +28,44 @@ CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scr
 #: the counter: ...", "the floor is covered in stuff")
 CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
                          "clutter", "cluttered", "cluttering", "clean", "empty"})
+#: the explanation of a mention the person negated or excluded
+NEGATED = "negated or excluded"
 #: how far back (in words) an excluder or a place preposition reaches
 _REACH = 4
 
 
-def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...]) -> str | None:
+def _after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
+    """Whether the mention at ``k`` is the object of a preposition: one stands before it
+    within reach, with no verb, state word or conjunction between ("to the box", not
+    "to an open the blinds": a preposition governs its noun phrase, not past a verb)."""
+    for j in range(k - 1, max(start, k - _REACH) - 1, -1):
+        item = ctx.items[j]
+        if item.prep is not None and item.noun is None:
+            return True
+        if item.verb is not None or item.state is not None or item.conj is not None:
+            return False
+    return False
+
+
+def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool = True) -> str | None:
     """Why the mention at ``k`` needs no goal of its own, or None when nothing explains
-    it. A mention whose thing is in a goal is explained by that goal."""
-    if set(types) & ctx.goal_types():
-        return "in a goal"
+    it. A mention whose thing is in a goal is explained by that goal (unless ``goals`` is
+    false: then only the words explain it)."""
     item = ctx.items[k]
-    if item.noun is not None and item.noun.concept.kind in ("lights", "lamps") and any(
+    if goals and set(types) & ctx.goal_types():
+        return "in a goal"
+    if goals and item.noun is not None and item.noun.concept.kind in ("lights", "lamps") and any(
             ref_types(c.subject) & {"LightSwitch", "DeskLamp", "FloorLamp"} for c in ctx.goals):
         return "in a goal"
     start, _ = ctx.clause_bounds(k)
     before = ctx.items[max(start, k - _REACH):k]
-    if any(i.prep is not None for i in before if i.noun is None):
+    if _after_preposition(ctx, k, start):
         return "a place or landmark"
     if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
             ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):
         return "the place of a chore"
     if any(i.neg or i.text in EXCLUDERS for i in before):
-        return "negated or excluded"
+        return NEGATED
     if any(i.text in CONDITIONS or i.sub is not None for i in ctx.items[start:k]):
         return "a condition"
     if any(i.text in CORRECTIONS for i in ctx.items[k + 1:k + 1 + 2 * _REACH]):

@@ -6,12 +6,15 @@ by "+", a participle in a verbless list, a split or misspelled name). Its altern
 leave it (chatter, as read), or give it the end state its neighbours ask for: the goal
 before it or after it carried over ("the apple in the fridge, the egg too"), a state word
 or verb of its own stretch ("the mug washed"), a place named after it ("bowl + plate in
-the sink").
+the sink"), or, when none of these says it, the goals the scene allows for the thing
+by what it affords (:mod:`.affordances`: the switch or open state it is not in, a place
+named near it).
 """
 
 from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
+from emboteam.pfg.offline.doubts import affordances
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.explained import explanation
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
@@ -21,12 +24,13 @@ from emboteam.world.goals import Condition, Predicate
 KIND = "unexplained_mention"
 
 
-def unexplained_spans(ctx: DoubtContext) -> list[tuple[int, str, tuple[str, ...]]]:
-    """(position, words, scene types) of each mention nothing explains, one per thing."""
+def unexplained_spans(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[tuple[int, str, tuple[str, ...]]]:
+    """(position, words, scene types) of each mention nothing explains (explanations in
+    ``unless`` do not count), one per thing."""
     out: list[tuple[int, str, tuple[str, ...]]] = []
     seen: set[str] = set()
     for k, item, types in ctx.mentions():
-        if types[0] in seen or explanation(ctx, k, types) is not None:
+        if types[0] in seen or explanation(ctx, k, types) not in (None, *unless):
             continue
         seen.add(types[0])
         out.append((k, item.text, types))
@@ -59,15 +63,16 @@ def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
     return out
 
 
-def doubts(ctx: DoubtContext) -> list[Doubt]:
+def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doubt]:
     out = []
-    for k, words, types in unexplained_spans(ctx):
+    for k, words, types in unexplained_spans(ctx, unless):
         thing = types[0]
         proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
         prev, nxt = _neighbour_goals(ctx, k)
         for label, c in (("carry_previous", prev), ("carry_next", nxt)):
             if c is not None:
                 proposals.append((label, with_subject(c, thing)))
+        proposals += affordances.proposals(ctx, k, thing)
         choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
         seen: set[str] = set()
         for label, c in proposals:

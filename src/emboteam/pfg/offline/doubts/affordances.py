@@ -1,0 +1,114 @@
+"""The goals the scene allows for a thing, by what it affords: what an unexplained
+mention proposes when no word of its own stretch says what to do with it.
+
+- a thing that switches: the switch state it is not in now (all of its type off -> on);
+- a thing that opens (not a container, whose opening is a means): the state it is not in;
+- a thing that is picked up: placed in one of the places named near it (within ``reach``
+  words, nearest first, at most ``most``), the destinations the instruction mentions.
+
+Which property proposes what is data (``affordances.json``, checked at load).
+"""
+
+from __future__ import annotations
+
+import json
+from functools import cache
+from pathlib import Path
+
+from pydantic import BaseModel, Field, ValidationError
+
+from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.priors import PriorsError
+from emboteam.pfg.offline.doubts.wants import one_object, placed
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import Condition, Predicate
+
+AFFORDANCES_FILE = Path(__file__).with_name("affordances.json")
+
+
+class _Switch(BaseModel):
+    property: str
+    label: str
+
+
+class _Open(BaseModel):
+    property: str
+    label: str
+    not_with: list[str] = Field(default_factory=list)
+
+
+class _Place(BaseModel):
+    property: str
+    label: str
+    reach: int = Field(7, ge=1, le=30)
+    most: int = Field(2, ge=1, le=5)
+    #: a place counts as a destination only after one of these (within two words)
+    preps: list[str] = Field(default_factory=list)
+
+
+class Affordances(BaseModel):
+    about: str = ""
+    switch: _Switch
+    open: _Open
+    place: _Place
+
+
+@cache
+def load_affordances(path: Path = AFFORDANCES_FILE) -> Affordances:
+    try:
+        return Affordances.model_validate(json.loads(path.read_text()))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise PriorsError(f"{path}: cannot read the affordances: {exc}") from None
+    except ValidationError as exc:
+        first = exc.errors()[0]
+        raise PriorsError(f"{path}: entry {'.'.join(str(x) for x in first['loc'])}: {first['msg']}") from None
+
+
+def _props(type_: str) -> frozenset[str]:
+    return frozenset(load_catalogue().type(type_).properties)
+
+
+def _flip(ctx: DoubtContext, type_: str, attr: str, yes: Predicate, no: Predicate) -> Predicate | None:
+    """The state of ``attr`` every object of the type is not in now (None when mixed)."""
+    now = {getattr(o, attr) for o in ctx.state.of_type(type_)}
+    if now == {False}:
+        return yes
+    if now == {True}:
+        return no
+    return None
+
+
+def _places_near(ctx: DoubtContext, k: int, thing: str, place: _Place) -> list[str]:
+    """Receptacles named as destinations (after a placing preposition) within ``reach``
+    words of position ``k``, nearest first (after it before before it at the same
+    distance)."""
+    def destination(m: int) -> bool:
+        return any(i.prep in place.preps or i.text in place.preps for i in ctx.items[max(0, m - 3):m])
+    near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, types in ctx.mentions()
+            if m != k and abs(m - k) <= place.reach and types[0] != thing and "receptacle" in _props(types[0])
+            and destination(m)]
+    return list(dict.fromkeys(t for _, t in sorted(near)))
+
+
+def _already(ctx: DoubtContext, thing: str, place: str) -> bool:
+    """Whether every object of the type is in the place already (a goal that asks nothing)."""
+    objs = list(ctx.state.of_type(thing))
+    return bool(objs) and all(any(ctx.state.obj(a).type == place for a in ctx.state.ancestors(o.id)) for o in objs)
+
+
+def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Condition]]:
+    """(label, goal) the scene allows for the thing named at ``k``."""
+    data = load_affordances()
+    props = _props(thing)
+    out: list[tuple[str, Condition]] = []
+    if data.place.property in props:
+        out += [(data.place.label, placed(thing, p))
+                for p in _places_near(ctx, k, thing, data.place)[:data.place.most]
+                if not _already(ctx, thing, p)]
+    if data.switch.property in props and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
+                                                     Predicate.switched_off)) is not None:
+        out.append((data.switch.label, one_object(p, thing)))
+    if data.open.property in props and not props & set(data.open.not_with) and (
+            p := _flip(ctx, thing, "is_open", Predicate.open, Predicate.closed)) is not None:
+        out.append((data.open.label, one_object(p, thing)))
+    return out

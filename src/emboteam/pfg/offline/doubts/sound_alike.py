@@ -1,0 +1,115 @@
+"""Mentions the tagger could not read: a misheard, split or texted name ("the sync",
+"the so far", "the to motto", "hang it on the hold her", "the desk lump").
+
+A run of one or two words, at least one of them unread by the tagger (no noun, verb,
+state, preposition ... reading), joined without spaces and rewritten to how it sounds
+(``sound_alike.json``), that is within a small edit distance of a noun phrase of a scene
+type (also rewritten) is a mention of that type. A single word that is common English
+("far", "her") counts alone only when it sounds exactly like the thing ("sync"). The points of doubt
+then treat it like any other mention (an unexplained one proposes its goals).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Sequence
+from functools import cache
+from pathlib import Path
+
+from pydantic import BaseModel, ValidationError
+
+from emboteam.pfg.offline.doubts.priors import PriorsError
+from emboteam.pfg.offline.lexicon import nouns
+from emboteam.pfg.offline.morphology import edit_distance, is_english_word
+from emboteam.pfg.offline.tagger import Item
+
+SOUND_FILE = Path(__file__).with_name("sound_alike.json")
+
+
+class SoundAlike(BaseModel):
+    about: str = ""
+    rewrites: list[tuple[str, str]]
+    max_join: int = 2
+    distance: dict[str, int]
+
+
+@cache
+def load_sound_alike(path: Path = SOUND_FILE) -> SoundAlike:
+    try:
+        return SoundAlike.model_validate(json.loads(path.read_text()))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise PriorsError(f"{path}: cannot read the sound-alike rules: {exc}") from None
+    except ValidationError as exc:
+        first = exc.errors()[0]
+        raise PriorsError(f"{path}: entry {'.'.join(str(x) for x in first['loc'])}: {first['msg']}") from None
+
+
+def sound(text: str) -> str:
+    """The letters of ``text`` as they sound (rewrites applied, doubled letters single)."""
+    out = re.sub(r"[^a-z]", "", text.lower())
+    for a, b in load_sound_alike().rewrites:
+        out = out.replace(a, b)
+    return re.sub(r"(.)\1+", r"\1", out)
+
+
+def _limit(n: int) -> int:
+    d = load_sound_alike().distance
+    return d["below_5"] if n < 5 else d["below_8"] if n < 8 else d["longer"]
+
+
+@cache
+def _sounds(scene_types: frozenset[str]) -> dict[str, tuple[tuple[str, tuple[str, ...]], ...]]:
+    """(sound, scene types) of every noun phrase naming a type of the scene, by the sound's
+    first letter (a misheard name keeps its first sound: the index keeps the reader
+    within its time budget)."""
+    out: dict[str, list[tuple[str, tuple[str, ...]]]] = {}
+    for phrase, concept in nouns().items():
+        types = tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in scene_types)
+        if types and len(said := sound(phrase)) >= 3:
+            out.setdefault(said[0], []).append((said, types))
+    return {k: tuple(v) for k, v in out.items()}
+
+
+def _unread(item: Item) -> bool:
+    return not (item.is_content() or item.prep or item.pron or item.det or item.punct or item.conj or item.seq
+                or item.sub or item.quant or item.number is not None or item.neg or item.copula)
+
+
+def heard(items: Sequence[Item], scene_types: frozenset[str]) -> list[tuple[int, tuple[str, ...]]]:
+    """(position, scene types) of each run of words that sounds like a scene thing."""
+    out: list[tuple[int, tuple[str, ...]]] = []
+    taken: set[int] = set()
+    for k, item in enumerate(items):
+        if not _unread(item) or k in taken:
+            continue
+        runs = [(k - 1, k + 1), (k, k + 2), (k, k + 1)]    # with the word before, after, alone
+        for lo, hi in runs:
+            if lo < 0 or hi > len(items) or hi - lo > load_sound_alike().max_join or taken & set(range(lo, hi)):
+                continue
+            words = [i.text for i in items[lo:hi]]
+            if any(items[j].det or items[j].punct for j in range(lo, hi)):
+                continue
+            # a common English word alone only when it sounds exactly like the thing ("sync")
+            exact = hi - lo == 1 and is_english_word(words[0])
+            said = sound("".join(words))
+            match = _closest(said, scene_types, 0 if exact else None)
+            if match is not None:
+                out.append((k, match))
+                taken |= set(range(lo, hi))
+                break
+    return out
+
+
+def _closest(said: str, scene_types: frozenset[str], limit: int | None = None) -> tuple[str, ...] | None:
+    if len(said) < 3:
+        return None
+    limit = _limit(len(said)) if limit is None else limit
+    best: tuple[int, tuple[str, ...]] | None = None
+    for s, types in _sounds(scene_types).get(said[0], ()):
+        if abs(len(s) - len(said)) > limit:
+            continue
+        d = edit_distance(said, s, limit + 1)
+        if d <= limit and (best is None or d < best[0]):
+            best = (d, types)
+    return best[1] if best is not None else None
