@@ -145,7 +145,7 @@ class Simulator:
         self.state.robots[profile.name] = RobotState(profile.name, profile, pos)
         self._place(profile.name)
         self.events.append(SimEvent(t=self._now, kind="join", detail=profile.name))
-        self.disturbances.append((self._now, "join", profile.name, self.state.copy()))
+        self.disturbances.append((self._now, "join", profile.name, self._snapshot()))
 
     def start(self, robot: str, action: Action) -> None:
         if robot not in self.state.robots:
@@ -230,6 +230,15 @@ class Simulator:
         self._launch(run)
 
     def _blocked(self, run: _Running) -> None:
+        walls = self.traffic.walled_off(run.robot, self._now, run.goals)
+        if walls:  # waiting cannot help: broken robots stand in the only way, for good
+            self._running.pop(run.robot, None)
+            run.end = self._now
+            run.failure = Failure(FailureReason.NOT_REACHABLE,
+                                  f"{', '.join(walls)} broke down in the only way from {run.robot} to "
+                                  f"{run.action.target}")
+            self._launch(run)
+            return
         run.blocked += 1
         self.traffic.waits += 1
         self._running[run.robot] = run
@@ -349,6 +358,24 @@ class Simulator:
             return self.state.robots[robot].position
         return self.traffic.point(robot, self._now)
 
+    def _snapshot(self) -> WorldState:
+        """The state now, for the disturbance record (the benchmark's ceiling plans from
+        it): a robot in the middle of a drive stands on the grid cell it has reached, not
+        where its drive began (the state moves it only when the drive ends)."""
+        snap = self.state.copy()
+        for name, run in self._running.items():
+            r = snap.robots.get(name)
+            if r is None or r.down or not run.goals or name not in self.traffic.paths:
+                continue
+            here = NavGrid.point(self.traffic.cell(name, self._now).cell)
+            if here != r.position:
+                r.position = here
+                if r.at is not None and r.at in snap.objects and not snap.in_reach(name, r.at):
+                    r.at = None
+                if r.holding is not None:
+                    snap.attach_to_robot(r.holding, name)
+        return snap
+
     def running(self, robot: str) -> Action | None:
         run = self._running.get(robot)
         return run.action if run else None
@@ -453,7 +480,7 @@ class Simulator:
             self.state.move_object(held, floors[0].id if floors else None,
                                    position=(r.position[0], 0.0, r.position[1]))
             self.events.append(SimEvent(t=self._now, kind="drop", detail=f"{robot} dropped {held}"))
-        self.disturbances.append((self._now, "breakdown", robot, self.state.copy()))
+        self.disturbances.append((self._now, "breakdown", robot, self._snapshot()))
         if run is None:
             return None
         if run.spot is not None and self._locks.get(run.spot) == robot:
@@ -509,7 +536,7 @@ class Simulator:
         closed = self.state.enclosing_closed(o.id)
         self.events.append(SimEvent(t=self._now, kind="moved",
                                     detail=f"{o.id} -> {to}" + (f" (closed {closed})" if closed else "")))
-        self.disturbances.append((self._now, "moved", f"{o.id} -> {to}", self.state.copy()))
+        self.disturbances.append((self._now, "moved", f"{o.id} -> {to}", self._snapshot()))
 
     def _draw_moved(self, move: ObjectMove) -> str | None:
         """The object a ``random`` move takes: one of the candidates that exists now, lies
