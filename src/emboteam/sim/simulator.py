@@ -105,6 +105,8 @@ class Simulator:
         self._now = 0.0
         for name in sorted(self.state.robots, key=lambda n: self.state.robots[n].down, reverse=True):
             self._place(name)
+            if self.state.robots[name].down:
+                self.traffic.stop(name, self._now)  # broken before the run: a wall from the start
         self._running: dict[str, _Running] = {}
         self._locks: dict[str, str] = {}
         self._queue: list[_Scheduled] = []
