@@ -518,18 +518,9 @@ class Simulator:
                 or (move.to is not None and move.to not in self.state.objects)):
             self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=oid or "nothing movable"))
             return
-        cat = load_catalogue()
         to = move.to
         if to is None:
-            options = sorted(
-                r.id for r in self.state.objects.values()
-                if r.has("receptacle") and r.id != o.id and r.id != o.parent and not r.gone
-                and r.held_by is None and cat.can_place(o.type, r.type)
-                and (move.into_closed or r.type not in cat.must_be_open or r.is_open)
-                # not the bowl in a shut fridge, unless the mover may open things
-                and (move.into_closed or self.state.enclosing_closed(r.id) is None)
-                and o.id not in self.state.ancestors(r.id)
-            )
+            options = self._move_destinations(o.id, into_closed=move.into_closed)
             if not options:
                 self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=f"{o.id}: nowhere to put it"))
                 return
@@ -539,6 +530,33 @@ class Simulator:
         self.events.append(SimEvent(t=self._now, kind="moved",
                                     detail=f"{o.id} -> {to}" + (f" (closed {closed})" if closed else "")))
         self.disturbances.append((self._now, "moved", f"{o.id} -> {to}", self._snapshot()))
+
+    def _move_destinations(self, oid: str, *, into_closed: bool) -> list[str]:
+        """Where a person may put ``oid``: receptacles it fits in, closed ones only with
+        ``into_closed``, and only places the team left can get it back from (as a person
+        tidying a home does): within reach of a grid cell no broken robot walls off, and
+        shut inside something only when a working robot can open it."""
+        cat = load_catalogue()
+        o = self.state.objects[oid]
+        working = [r for r in self.state.robots.values() if not r.down]
+        opener = any(Skill.OpenObject in r.profile.skills for r in working)
+        cells: set[tuple[int, int]] | None = None
+        if self.traffic.down:
+            cells = set().union(*(self.traffic.open_cells(r.name, self._now) for r in working
+                                  if r.name in self.traffic.paths))
+        out = []
+        for r in self.state.objects.values():
+            if (not r.has("receptacle") or r.id in (o.id, o.parent) or r.gone or r.held_by is not None
+                    or not cat.can_place(o.type, r.type) or o.id in self.state.ancestors(r.id)):
+                continue
+            # shut after the move: a closed receptacle, or inside one (the bowl in a shut fridge)
+            shut = (r.type in cat.must_be_open and not r.is_open) or self.state.enclosing_closed(r.id) is not None
+            if shut and not (into_closed and opener):
+                continue
+            poses = self.traffic.nav.poses_for((r.position[0], r.position[2]))
+            if poses and (cells is None or any(p.cell in cells for p in poses)):
+                out.append(r.id)
+        return sorted(out)
 
     def _draw_moved(self, move: ObjectMove) -> str | None:
         """The object a ``random`` move takes: one of the candidates that exists now, lies
