@@ -27,9 +27,11 @@ from emboteam.sim.disturbances import (
     parse_when,
     resolve,
 )
-from emboteam.sim.faults import MessageFaults
+from emboteam.sim.faults import FaultConfig, MessageFaults, ObjectMove
+from emboteam.sim.simulator import Simulator
 from emboteam.world.goals import Goal
 from emboteam.world.robots import parse_team, robot_profile
+from emboteam.world.scene import load_scene
 from test_btc_plans import fridge_handoff, team_sim
 
 # ---- parsing ---------------------------------------------------------------------------
@@ -276,3 +278,57 @@ def test_baselines_run_under_the_same_disturbance(mode: str) -> None:
     # the same robot breaks down at the same time in every mode
     assert other.disturbance.events[0].detail == full.disturbance.events[0].detail
     assert other.disturbance.events[0].t == pytest.approx(full.disturbance.events[0].t)
+
+
+# ---- where a random move puts things ------------------------------------------------------
+
+def _moved_to(team: str, draws: int = 12) -> list[str]:
+    """Where ``draws`` random moves of FloorPlan209's newspaper put it (each in a fresh
+    simulator, keyed apart by ``draw``), as the ``moved`` events say."""
+    details = []
+    for i in range(draws):
+        move = ObjectMove(object="Newspaper_1", at=1.0, into_closed=True, draw=f"t|{i}")
+        sim = Simulator(load_scene("FloorPlan209"), parse_team(team.split(",")),
+                        faults=FaultConfig(moves=(move,)), avoidance=True)
+        sim.advance(2.0)
+        details += [e.detail for e in sim.events if e.kind == "moved"]
+    return details
+
+
+def test_a_random_move_shuts_things_away_only_from_a_team_that_can_open() -> None:
+    """fp209-floor-clutter's team (robots 25 and 24) cannot open anything: the newspaper
+    was put in a drawer and the task became unsavable by the disturbance generator's
+    doing. A person tidying puts things where they can be got back."""
+    no_opener = _moved_to("25,24")
+    assert len(no_opener) == 12 and not any("(closed" in d for d in no_opener), no_opener
+    assert any("(closed" in d for d in _moved_to("25,1"))  # robot1 opens: drawers are fair game
+
+
+def test_moved_objects_of_the_former_unsavable_draws_are_found_again() -> None:
+    for task, seed in (("mace-thor/fp209-floor-clutter", 0), ("mace-thor/fp21-cup-of-water", 2),
+                       ("mace-thor/fp414-rinse-cloth", 1)):
+        ep = _episode(task, seed, moves=["random@0.5"])
+        d = ep.disturbance
+        assert d is not None and d.events and d.events[0].kind == "moved"
+        assert d.savable and ep.success, (task, seed, ep.error)
+
+
+def test_a_random_move_puts_nothing_behind_a_broken_robot() -> None:
+    """FloorPlan5 with robot2 broken down in its one-cell doorway: the counters behind it
+    are out of robot1's reach, so a person moving the apple puts it on robot1's side."""
+    from test_sim_traffic import _doorway
+
+    state, _door, robot1_side = _doorway()
+    state.robots["robot2"].down = True
+    places = []
+    for i in range(12):
+        move = ObjectMove(object="Apple_1", at=1.0, into_closed=True, draw=f"t|{i}")
+        sim = Simulator(load_scene("FloorPlan5"), parse_team(["1", "2"]), state=state,
+                        faults=FaultConfig(moves=(move,)), avoidance=True)
+        sim.advance(2.0)
+        places += [sim.state.objects["Apple_1"].parent for e in sim.events if e.kind == "moved"]
+    assert len(places) == 12
+    nav = sim.traffic.nav
+    for place in places:
+        p = sim.state.objects[place].position
+        assert any(pose.cell in robot1_side for pose in nav.poses_for((p[0], p[2]))), place

@@ -7,7 +7,7 @@ import itertools
 
 from emboteam.exec.nav_check import check_motion
 from emboteam.sim import Breakdown, FaultConfig, Simulator
-from emboteam.sim.simulator import NAV_MAX_BLOCKED, NAV_RETRY_SECONDS
+from emboteam.sim.simulator import NAV_RETRY_SECONDS
 from emboteam.sim.traffic import INF, Reservations, Step, intervals
 from emboteam.world import Action, FailureReason, WorldState, load_scene, parse_team
 from emboteam.world.actions import Skill as S
@@ -113,15 +113,31 @@ def test_an_idle_robot_parked_in_the_doorway_steps_aside() -> None:
 
 
 def test_a_broken_robot_in_the_doorway_walls_the_way_off_with_a_typed_failure() -> None:
-    """A broken robot never moves: a drive that needs its cell waits, then fails
-    ``not_reachable`` (the behavior tree or a replan takes over) instead of hanging."""
-    state, door, _ = _doorway()
+    """A broken robot never moves: a drive to a target whose every pose lies behind it
+    fails ``not_reachable`` at once, naming it (waiting could never help), instead of
+    waiting out its retries or hanging."""
+    state, door, other_side = _doorway()
+    state.robots["robot2"].down = True
+    sim = Simulator(load_scene("FloorPlan5"), parse_team("1,2"), state=state, avoidance=True)
+    egg = sim.state.objects["Egg_1"]
+    assert all(p.cell not in other_side for p in sim.traffic.nav.poses_for((egg.position[0], egg.position[2])))
+    out = sim.execute("robot1", Action(skill=S.GoToObject, target="Egg_1"))
+    assert not out.success and out.reason is FailureReason.NOT_REACHABLE
+    assert "robot2 broke down" in out.message
+    assert out.end - out.start < NAV_RETRY_SECONDS
+    assert sim.traffic.cell("robot2", sim.now).cell == door
+
+
+def test_a_drive_past_a_broken_robot_ends_at_a_pose_on_its_own_side() -> None:
+    """The apple is within reach from cells on both sides of the doorway: with a broken
+    robot in it, the drive ends at a pose it can reach instead of waiting for the door."""
+    state, _door, other_side = _doorway()
     state.robots["robot2"].down = True
     sim = Simulator(load_scene("FloorPlan5"), parse_team("1,2"), state=state, avoidance=True)
     out = sim.execute("robot1", Action(skill=S.GoToObject, target="Apple_1"))
-    assert not out.success and out.reason is FailureReason.NOT_REACHABLE
-    assert out.end - out.start <= NAV_RETRY_SECONDS * (NAV_MAX_BLOCKED + 2)
-    assert sim.traffic.cell("robot2", sim.now).cell == door
+    assert out.success, out
+    assert sim.traffic.nav.grid.cell_at(sim.state.robots["robot1"].position) in other_side
+    assert sim.state.in_reach("robot1", "Apple_1")
 
 
 def test_a_broken_robot_is_an_obstacle_and_others_replan_around_it() -> None:

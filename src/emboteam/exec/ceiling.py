@@ -24,6 +24,7 @@ from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceEvent, DisturbanceOutcome
 from emboteam.exec.executor import UNREACHABLE_ERRORS, UnsavableTaskError
 from emboteam.exec.result import ExecutionResult
+from emboteam.exec.walled import check_not_walled_off
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner
 from emboteam.pddl.errors import PlanningError
@@ -92,6 +93,7 @@ def _ceiling(goal: Goal, state: WorldState, planner: HybridPlanner) -> tuple[boo
     if not left:
         return False, f"{UnsavableTaskError.__name__}: no robot is left working", left
     try:
+        check_not_walled_off(goal, state, left)
         plan = planner.plan_goal(goal, state)
     except UNREACHABLE_ERRORS as exc:
         return False, f"{UnsavableTaskError.__name__}: {type(exc).__name__}: {exc}", left

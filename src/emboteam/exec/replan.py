@@ -12,6 +12,7 @@ from collections.abc import Callable, Sequence
 from typing import Protocol
 
 from emboteam.errors import EmboTeamError
+from emboteam.exec.walled import check_not_walled_off
 from emboteam.hp.decompose import decompose_goal
 from emboteam.hp.plan import MergedPlan
 from emboteam.pfg.taskspec import TaskSpec
@@ -57,10 +58,12 @@ class PlannerReplanner:
         self.planner = planner
 
     def __call__(self, state: WorldState, goal: Goal, robots: Sequence[str]) -> MergedPlan:
+        check_not_walled_off(goal, state, robots)  # the planner's drive costs ignore broken robots
         return self.planner.plan_goal(goal, restrict_team(state, robots))
 
     def giving_work_to(self, state: WorldState, goal: Goal, robots: Sequence[str],
                        newcomers: Sequence[str]) -> MergedPlan:
+        check_not_walled_off(goal, state, robots)
         team = restrict_team(state, robots)
         plain = self.planner.plan_goal(goal, team)
         idle = [r for r in newcomers if r in team.robots and not plain.for_robot(r)]

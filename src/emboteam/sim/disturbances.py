@@ -126,8 +126,8 @@ class JoinSpec(BaseModel):
 
 class MoveSpec(BaseModel):
     """``random@0.5``: at half the nominal makespan someone moves an object the plan uses
-    (drawn by the seed among those not held at that moment) to a random valid place, closed
-    receptacles included; ``Apple_1@20s``: that object, at 20 s."""
+    (drawn by the seed among those not held at that moment) to a random valid place the team
+    left can get it back from (closed receptacles only when a working robot can open them); ``Apple_1@20s``: that object, at 20 s."""
 
     model_config = ConfigDict(frozen=True)
 

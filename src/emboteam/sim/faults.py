@@ -28,7 +28,8 @@ class ObjectMove(BaseModel):
     ``object`` None: the object is drawn when the move happens, among ``candidates`` that
     exist then and are not held (a benchmark's ``--moves random@…``). ``into_closed``: the
     random place may be inside a closed receptacle (the person opens it, puts the object
-    in and shuts it again). ``draw`` keys the random choices, so two moves at one time
+    in and shuts it again) when a working robot of the team can open it; a random place
+    is always within reach of a cell no broken robot walls off. ``draw`` keys the random choices, so two moves at one time
     still draw independently."""
 
     model_config = ConfigDict(frozen=True)

@@ -105,6 +105,8 @@ class Simulator:
         self._now = 0.0
         for name in sorted(self.state.robots, key=lambda n: self.state.robots[n].down, reverse=True):
             self._place(name)
+            if self.state.robots[name].down:
+                self.traffic.stop(name, self._now)  # broken before the run: a wall from the start
         self._running: dict[str, _Running] = {}
         self._locks: dict[str, str] = {}
         self._queue: list[_Scheduled] = []
@@ -145,7 +147,7 @@ class Simulator:
         self.state.robots[profile.name] = RobotState(profile.name, profile, pos)
         self._place(profile.name)
         self.events.append(SimEvent(t=self._now, kind="join", detail=profile.name))
-        self.disturbances.append((self._now, "join", profile.name, self.state.copy()))
+        self.disturbances.append((self._now, "join", profile.name, self._snapshot()))
 
     def start(self, robot: str, action: Action) -> None:
         if robot not in self.state.robots:
@@ -230,6 +232,15 @@ class Simulator:
         self._launch(run)
 
     def _blocked(self, run: _Running) -> None:
+        walls = self.traffic.walled_off(run.robot, self._now, run.goals)
+        if walls:  # waiting cannot help: broken robots stand in the only way, for good
+            self._running.pop(run.robot, None)
+            run.end = self._now
+            run.failure = Failure(FailureReason.NOT_REACHABLE,
+                                  f"{', '.join(walls)} broke down in the only way from {run.robot} to "
+                                  f"{run.action.target}")
+            self._launch(run)
+            return
         run.blocked += 1
         self.traffic.waits += 1
         self._running[run.robot] = run
@@ -349,6 +360,24 @@ class Simulator:
             return self.state.robots[robot].position
         return self.traffic.point(robot, self._now)
 
+    def _snapshot(self) -> WorldState:
+        """The state now, for the disturbance record (the benchmark's ceiling plans from
+        it): a robot in the middle of a drive stands on the grid cell it has reached, not
+        where its drive began (the state moves it only when the drive ends)."""
+        snap = self.state.copy()
+        for name, run in self._running.items():
+            r = snap.robots.get(name)
+            if r is None or r.down or not run.goals or name not in self.traffic.paths:
+                continue
+            here = NavGrid.point(self.traffic.cell(name, self._now).cell)
+            if here != r.position:
+                r.position = here
+                if r.at is not None and r.at in snap.objects and not snap.in_reach(name, r.at):
+                    r.at = None
+                if r.holding is not None:
+                    snap.attach_to_robot(r.holding, name)
+        return snap
+
     def running(self, robot: str) -> Action | None:
         run = self._running.get(robot)
         return run.action if run else None
@@ -453,7 +482,7 @@ class Simulator:
             self.state.move_object(held, floors[0].id if floors else None,
                                    position=(r.position[0], 0.0, r.position[1]))
             self.events.append(SimEvent(t=self._now, kind="drop", detail=f"{robot} dropped {held}"))
-        self.disturbances.append((self._now, "breakdown", robot, self.state.copy()))
+        self.disturbances.append((self._now, "breakdown", robot, self._snapshot()))
         if run is None:
             return None
         if run.spot is not None and self._locks.get(run.spot) == robot:
@@ -489,18 +518,9 @@ class Simulator:
                 or (move.to is not None and move.to not in self.state.objects)):
             self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=oid or "nothing movable"))
             return
-        cat = load_catalogue()
         to = move.to
         if to is None:
-            options = sorted(
-                r.id for r in self.state.objects.values()
-                if r.has("receptacle") and r.id != o.id and r.id != o.parent and not r.gone
-                and r.held_by is None and cat.can_place(o.type, r.type)
-                and (move.into_closed or r.type not in cat.must_be_open or r.is_open)
-                # not the bowl in a shut fridge, unless the mover may open things
-                and (move.into_closed or self.state.enclosing_closed(r.id) is None)
-                and o.id not in self.state.ancestors(r.id)
-            )
+            options = self._move_destinations(o.id, into_closed=move.into_closed)
             if not options:
                 self.events.append(SimEvent(t=self._now, kind="move-skipped", detail=f"{o.id}: nowhere to put it"))
                 return
@@ -509,7 +529,34 @@ class Simulator:
         closed = self.state.enclosing_closed(o.id)
         self.events.append(SimEvent(t=self._now, kind="moved",
                                     detail=f"{o.id} -> {to}" + (f" (closed {closed})" if closed else "")))
-        self.disturbances.append((self._now, "moved", f"{o.id} -> {to}", self.state.copy()))
+        self.disturbances.append((self._now, "moved", f"{o.id} -> {to}", self._snapshot()))
+
+    def _move_destinations(self, oid: str, *, into_closed: bool) -> list[str]:
+        """Where a person may put ``oid``: receptacles it fits in, closed ones only with
+        ``into_closed``, and only places the team left can get it back from (as a person
+        tidying a home does): within reach of a grid cell no broken robot walls off, and
+        shut inside something only when a working robot can open it."""
+        cat = load_catalogue()
+        o = self.state.objects[oid]
+        working = [r for r in self.state.robots.values() if not r.down]
+        opener = any(Skill.OpenObject in r.profile.skills for r in working)
+        cells: set[tuple[int, int]] | None = None
+        if self.traffic.down:
+            cells = set().union(*(self.traffic.open_cells(r.name, self._now) for r in working
+                                  if r.name in self.traffic.paths))
+        out = []
+        for r in self.state.objects.values():
+            if (not r.has("receptacle") or r.id in (o.id, o.parent) or r.gone or r.held_by is not None
+                    or not cat.can_place(o.type, r.type) or o.id in self.state.ancestors(r.id)):
+                continue
+            # shut after the move: a closed receptacle, or inside one (the bowl in a shut fridge)
+            shut = (r.type in cat.must_be_open and not r.is_open) or self.state.enclosing_closed(r.id) is not None
+            if shut and not (into_closed and opener):
+                continue
+            poses = self.traffic.nav.poses_for((r.position[0], r.position[2]))
+            if poses and (cells is None or any(p.cell in cells for p in poses)):
+                out.append(r.id)
+        return sorted(out)
 
     def _draw_moved(self, move: ObjectMove) -> str | None:
         """The object a ``random`` move takes: one of the candidates that exists now, lies

@@ -274,6 +274,8 @@ class Traffic:
     waits: int = 0
     replans: int = 0
     yields: int = 0
+    #: robots that broke down: their cells are walls for good
+    down: dict[str, Cell] = field(default_factory=dict)
     #: seconds spent searching (the cost of path planning, reported with the episode)
     search_seconds: float = 0.0
 
@@ -335,9 +337,34 @@ class Traffic:
 
     def _usable(self, goals: Sequence[Pose], t: float, robot: str) -> list[Pose]:
         """Goal poses a robot can end at and stay: no other robot holds the cell from ``t``
-        on (parked there, or passing through later). None usable: the drive is blocked for
-        now (searching in time towards a cell it could never keep would only burn time)."""
+        on (parked there, or passing through later), and no broken robot walls it off. None
+        usable: the drive is blocked for now (searching in time towards a cell it could
+        never keep would only burn time)."""
+        if self.down:
+            open_cells = self.open_cells(robot, t)
+            goals = [g for g in goals if g.cell in open_cells]
         return [g for g in goals if self.res.free(g.cell, t, INF, robot)][:POSE_CHOICES]
+
+    def open_cells(self, robot: str, t: float) -> set[Cell]:
+        """Cells ``robot`` can ever reach from where it is at ``t``: every cell but the
+        broken robots' (the others move or make way in time)."""
+        walls = set(self.down.values())
+        start = self.paths[robot][-1].cell if self.end_time(robot) > t else self.cell(robot, t).cell
+        seen = {start}
+        stack = [start]
+        while stack:
+            for n in self.nav.grid.neighbours(stack.pop()):
+                if n not in seen and n not in walls:
+                    seen.add(n)
+                    stack.append(n)
+        return seen
+
+    def walled_off(self, robot: str, t: float, goals: Sequence[Pose]) -> list[str]:
+        """The broken robots that wall ``robot`` off from every pose of ``goals`` for good
+        (empty: some pose can still be reached, perhaps once others make way)."""
+        if not self.down or any(g.cell in self.open_cells(robot, t) for g in goals):
+            return []
+        return sorted(self.down)
 
     def _commit(self, robot: str, t0: float, path: list[Step]) -> None:
         """Make ``path`` (starting at ``t0``) the robot's plan from ``t0`` on."""
@@ -369,6 +396,7 @@ class Traffic:
         if self.avoid:
             self.res.release_after(robot, t)
             self.res.add(robot, stop.cell, t, INF)
+            self.down[robot] = stop.cell
         return stop
 
     def halt(self, robot: str, t: float, cell: Cell, heading: int) -> None:
