@@ -571,7 +571,8 @@ def bench(
                                    "as run has it), random@30% (a second unit of a team member's profile, at "
                                    "30% of the nominal makespan) (repeatable)"),
     moves: list[str] = typer.Option([], "--moves", help="WHAT@WHEN: someone moves an object the plan uses "
-                                    "to a random valid place (closed receptacles too), e.g. random@0.5, "
+                                    "to a random valid place the team can get it back from (shut in a "
+                                    "receptacle only when a working robot can open it), e.g. random@0.5, "
                                     "Apple_1@20s (a floor plan without it: not applicable) (repeatable)"),
     msg_loss: float = typer.Option(0.0, "--msg-loss", help="probability that a blackboard lock release is "
                                    "lost (the lock's lease then times out)"),

@@ -117,9 +117,10 @@ def understand(ctx: EpisodeContext, notes: list[str] | None = None,
         hybrid = HybridFrontend(llm, offline_frontend().parse, when=cfg.llm_when,
                                 llm=LLMFrontend(llm, repair_rounds=1, avoid_set=example_set(task)), review_rounds=1,
                                 clarify=ctx.clarify)
-        return hybrid.decompose(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
-    reading = offline_frontend().parse(*args)
-    if cfg.clarify:
+        reading = hybrid.read(*args, validate=lambda spec: _plans(planner, spec, ctx.state))
+    else:
+        reading = offline_frontend().parse(*args)
+    if cfg.clarify and cfg.frontend != "hybrid":
         import sys
 
         from emboteam.pfg.clarify import settle
