@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -99,6 +100,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     for suite in args.suites:
         recorded = data["runs"].get(suite, {}).get("rows", {})
         rows: dict[str, dict[str, Any]] = {}
+        if not args.replay:
+            # a live run records afresh: a call the cassette already held would be answered
+            # from it and counted as no call at all
+            shutil.rmtree(cassette(suite), ignore_errors=True)
+            cassette(suite).mkdir(parents=True)
         for task in tasks_of(suite):
             if args.replay:
                 want = recorded.get(task.id)
@@ -108,7 +114,6 @@ def main(argv: Sequence[str] | None = None) -> int:
                 diffs += [f"{suite} {task.id} {m}: recorded {want[m]!r}, replayed {got[m]!r}"
                           for m in METRICS if got[m] != want[m]]
                 continue
-            cassette(suite).mkdir(parents=True, exist_ok=True)
             row = run_task(task, f"llamacpp:{MODEL}", cassette(suite))
             row["offline_success"] = offline_success(task)
             rows[task.id] = row

@@ -157,3 +157,22 @@ def test_a_light_act_that_is_no_act_names_the_table(tmp_path: Path) -> None:
         data["light_acts"].append("scrubb")
     with pytest.raises(KnowledgeDataError, match=r"^constructions\.json: light_acts"):
         read(_broken(tmp_path, "constructions.json", change), ConstructionsFile)
+
+
+def test_the_doubts_data_files_are_checked_by_their_schema_and_name_the_entry(tmp_path: Path) -> None:
+    """The affordances and sound-alike tables of the points of doubt are knowledge files too:
+    a wrong value is refused at load, naming the file and the entry."""
+    from emboteam.pfg.offline.doubts.affordances import AFFORDANCES_FILE, load_affordances
+    from emboteam.pfg.offline.doubts.sound_alike import SOUND_FILE, load_sound_alike
+
+    assert load_affordances().place and load_sound_alike().rewrites
+    sound = json.loads(SOUND_FILE.read_text())
+    sound["max_join"] = "two"
+    (tmp_path / "sound_alike.json").write_text(json.dumps(sound))
+    with pytest.raises(KnowledgeDataError, match=r"^sound_alike\.json: max_join"):
+        load_sound_alike(tmp_path / "sound_alike.json")
+    afford = json.loads(AFFORDANCES_FILE.read_text())
+    del afford["switch"]
+    (tmp_path / "affordances.json").write_text(json.dumps(afford))
+    with pytest.raises(KnowledgeDataError, match=r"^affordances\.json: .*switch"):
+        load_affordances(tmp_path / "affordances.json")

@@ -11,15 +11,14 @@ Which property proposes what is data (``affordances.json``, checked at load).
 
 from __future__ import annotations
 
-import json
 from functools import cache
 from pathlib import Path
 
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import BaseModel, Field
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
-from emboteam.pfg.offline.doubts.priors import PriorsError
 from emboteam.pfg.offline.doubts.wants import one_object, placed
+from emboteam.pfg.offline.knowledge import read
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, Predicate
 
@@ -55,13 +54,9 @@ class Affordances(BaseModel):
 
 @cache
 def load_affordances(path: Path = AFFORDANCES_FILE) -> Affordances:
-    try:
-        return Affordances.model_validate(json.loads(path.read_text()))
-    except (OSError, json.JSONDecodeError) as exc:
-        raise PriorsError(f"{path}: cannot read the affordances: {exc}") from None
-    except ValidationError as exc:
-        first = exc.errors()[0]
-        raise PriorsError(f"{path}: entry {'.'.join(str(x) for x in first['loc'])}: {first['msg']}") from None
+    """The affordances file, checked by its schema at load (a malformed entry is a
+    :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
+    return read(path, Affordances)
 
 
 def _props(type_: str) -> frozenset[str]:

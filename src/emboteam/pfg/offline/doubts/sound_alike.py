@@ -11,15 +11,14 @@ then treat it like any other mention (an unexplained one proposes its goals).
 
 from __future__ import annotations
 
-import json
 import re
 from collections.abc import Sequence
 from functools import cache
 from pathlib import Path
 
-from pydantic import BaseModel, ValidationError
+from pydantic import BaseModel
 
-from emboteam.pfg.offline.doubts.priors import PriorsError
+from emboteam.pfg.offline.knowledge import read
 from emboteam.pfg.offline.lexicon import nouns
 from emboteam.pfg.offline.morphology import edit_distance, is_english_word
 from emboteam.pfg.offline.tagger import Item
@@ -36,13 +35,9 @@ class SoundAlike(BaseModel):
 
 @cache
 def load_sound_alike(path: Path = SOUND_FILE) -> SoundAlike:
-    try:
-        return SoundAlike.model_validate(json.loads(path.read_text()))
-    except (OSError, json.JSONDecodeError) as exc:
-        raise PriorsError(f"{path}: cannot read the sound-alike rules: {exc}") from None
-    except ValidationError as exc:
-        first = exc.errors()[0]
-        raise PriorsError(f"{path}: entry {'.'.join(str(x) for x in first['loc'])}: {first['msg']}") from None
+    """The sound-alike rules file, checked by its schema at load (a malformed entry is a
+    :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
+    return read(path, SoundAlike)
 
 
 def sound(text: str) -> str:
