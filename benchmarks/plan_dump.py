@@ -17,24 +17,20 @@ from __future__ import annotations
 
 import argparse
 import json
-import random
 import sys
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from emboteam.errors import EmboTeamError
-from emboteam.hp.goalgen import random_conditions
+from emboteam.hp.goalgen import sweep_cell
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
-from emboteam.pfg.taskspec import Subtask, TaskSpec
-from emboteam.world.goals import Goal
-from emboteam.world.robots import parse_team
+from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 
 #: as benchmarks/plan_latency.py's sweep (profiles cycled; --quick cells)
-SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
 QUICK_ROBOTS = (2, 8, 32)
 QUICK_CONDITIONS = (8, 32, 128)
 SCENES = ("FloorPlan1", "FloorPlan201")
@@ -52,13 +48,8 @@ def mace_thor_inputs() -> Iterator[tuple[str, TaskSpec, WorldState]]:
 
 
 def sweep_input(scene: str, robots: int, conditions: int, seed: int) -> tuple[str, TaskSpec, WorldState]:
-    """One sweep cell: a team of ``robots`` and ``conditions`` random consistent goals."""
-    team = parse_team([SWEEP_PROFILES[i % len(SWEEP_PROFILES)] for i in range(robots)])
-    state = WorldState.from_scene(load_scene(scene), team)
-    conds = random_conditions(state, conditions, random.Random(seed))
-    goal = Goal(conditions=tuple(conds))
-    spec = TaskSpec(instruction=str(goal), subtasks=tuple(
-        Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
+    """One sweep cell, named: a team of ``robots`` and ``conditions`` random consistent goals."""
+    spec, state = sweep_cell(scene, robots, conditions, seed)
     return f"{scene} {robots}x{conditions} seed {seed}", spec, state
 
 

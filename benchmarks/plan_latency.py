@@ -26,7 +26,6 @@ import argparse
 import json
 import os
 import platform
-import random
 import resource
 import statistics
 import sys
@@ -40,15 +39,14 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from rich.table import Table
 
 from emboteam.errors import EmboTeamError
-from emboteam.hp.goalgen import random_conditions
+from emboteam.hp.goalgen import sweep_cell
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import ResourceBound, resource_bound, simulate
 from emboteam.pddl.problem import planning_state
 from emboteam.pddl.runner import PlannerInput
-from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.goals import Goal
-from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 
@@ -56,8 +54,6 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs" / "planning.md"
 START, END = "<!-- results:start -->", "<!-- results:end -->"
 
-#: profiles of sweep teams, cycled: mostly capable, mixed strengths and skills
-SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
 LAMMA_P = "astar(hmax())"
 
 
@@ -199,15 +195,10 @@ def sweep(progress: Progress, scenes: Sequence[str], robots: Sequence[int], cond
     job = progress.add_task("scaling sweep", total=len(cells))
     rows: list[Row] = []
     for scene, n, k in cells:
-        team = parse_team([SWEEP_PROFILES[i % len(SWEEP_PROFILES)] for i in range(n)])
-        state = WorldState.from_scene(load_scene(scene), team)
-        conds = random_conditions(state, k, random.Random(seed))
-        goal = Goal(conditions=tuple(conds))
-        spec = TaskSpec(instruction=str(goal), subtasks=tuple(
-            Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
+        spec, state = sweep_cell(scene, n, k, seed)
         run = measure(ours, spec, state, check=False)
         base = measure(lamma_p, spec, state, check=True) if with_base else None
-        rows.append(Row(f"{scene} {n}x{k}", scene, n, len(conds), k, run, base))
+        rows.append(Row(f"{scene} {n}x{k}", scene, n, len(spec.subtasks), k, run, base))
         progress.advance(job)
     return rows
 

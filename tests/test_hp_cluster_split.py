@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import random
-
 from emboteam.hp.cluster_split import (
     SplitTarget,
     blocks,
@@ -12,19 +10,14 @@ from emboteam.hp.cluster_split import (
     find_target,
     partitions,
 )
-from emboteam.hp.goalgen import random_conditions
+from emboteam.hp.goalgen import sweep_cell
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
-from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.actions import Action, Skill
-from emboteam.world.goals import Goal
-from emboteam.world.robots import parse_team
-from emboteam.world.scene import load_scene
-from emboteam.world.state import WorldState
 
 #: the profiles the latency sweep cycles through (benchmarks/plan_latency.py)
-SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
+
 
 
 def _step(robot: str, k: int, subtask: str, start: float, end: float) -> PlanStep:
@@ -67,19 +60,10 @@ def test_a_cluster_longer_than_the_bound_is_split_with_the_robot_that_ends_first
     assert find_target(plan, cluster, lambda r, _: False) is None  # nobody to help
 
 
-def _sweep_cell(scene: str, robots: int, conditions: int, seed: int = 0) -> tuple[TaskSpec, WorldState]:
-    team = parse_team([SWEEP_PROFILES[i % len(SWEEP_PROFILES)] for i in range(robots)])
-    state = WorldState.from_scene(load_scene(scene), team)
-    conds = random_conditions(state, conditions, random.Random(seed))
-    spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
-        Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
-    return spec, state
-
-
 def test_the_split_plan_is_kept_only_when_shorter_and_the_goal_holds() -> None:
     # FloorPlan1, 32 robots x 32 conditions: one robot's cluster of four subtasks (26.9 s)
     # against a bound of 17.7 s; its pot and lettuce parted between it and a helper: 19.7 s
-    spec, state = _sweep_cell("FloorPlan1", 32, 32)
+    spec, state = sweep_cell("FloorPlan1", 32, 32)
     off = HybridPlanner(PlannerConfig(split_clusters=False, spot_order=False)).plan(spec, state)
     on = HybridPlanner(PlannerConfig(split_clusters=True, spot_order=False)).plan(spec, state)
     note = next(n for n in on.notes if ": split between " in n)
@@ -97,7 +81,7 @@ def test_the_split_plan_is_kept_only_when_shorter_and_the_goal_holds() -> None:
 def test_a_split_that_is_not_shorter_is_not_kept() -> None:
     # FloorPlan201, 16 robots x 8 conditions: open the book and put it on the shelf; parted
     # between two robots it takes longer (one must wait for the other), so the plan stays
-    spec, state = _sweep_cell("FloorPlan201", 16, 8)
+    spec, state = sweep_cell("FloorPlan201", 16, 8)
     off = HybridPlanner(PlannerConfig(split_clusters=False, spot_order=False)).plan(spec, state)
     on = HybridPlanner(PlannerConfig(split_clusters=True, spot_order=False)).plan(spec, state)
     assert on.planner_calls > off.planner_calls  # it was tried
@@ -132,7 +116,7 @@ def test_things_put_in_a_box_that_is_moved_are_parted_among_robots() -> None:
     # FloorPlan201, 8 robots x 8 conditions, seed 1: a pencil, a book and a statue in a box,
     # the box on a side table, 24.2 s for one robot; the robot carries the box while three
     # helpers fetch the things and put them in it at the side table
-    spec, state = _sweep_cell("FloorPlan201", 8, 8, seed=1)
+    spec, state = sweep_cell("FloorPlan201", 8, 8, seed=1)
     off = HybridPlanner(PlannerConfig(split_containers=False)).plan(spec, state)
     on = HybridPlanner(PlannerConfig(split_containers=True)).plan(spec, state)
     note = next(n for n in on.notes if ": parted among " in n)

@@ -14,6 +14,7 @@ from __future__ import annotations
 import random
 from collections.abc import Sequence
 
+from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.catalogue import (
     BREWERS,
     COLD_SOURCES,
@@ -22,7 +23,9 @@ from emboteam.world.catalogue import (
     WATER_SOURCES,
     load_catalogue,
 )
-from emboteam.world.goals import Condition, ObjectRef, Predicate
+from emboteam.world.goals import Condition, Goal, ObjectRef, Predicate
+from emboteam.world.robots import parse_team
+from emboteam.world.scene import load_scene
 from emboteam.world.state import ObjectState, WorldState
 
 #: predicate -> the aspect of its subject it fixes
@@ -132,3 +135,25 @@ def random_conditions(state: WorldState, n: int, rng: random.Random, *, max_mass
         taken.setdefault(oid, {})[ASPECT[cond.predicate]] = cond
         out.append(cond)
     return out
+
+
+#: the scaling sweep's teams cycle through these profiles (all-rounders and specialists),
+#: so a team of N robots is the same in every benchmark and test that builds one
+SWEEP_PROFILES = (1, 2, 3, 4, 9, 6, 19, 14)
+
+
+def goal_cell(scene: str, profiles: Sequence[int], conditions: int, seed: int = 0) -> tuple[TaskSpec, WorldState]:
+    """A planner input: the team ``profiles`` in ``scene`` and ``conditions`` random
+    consistent conditions drawn from ``seed``, one subtask per condition."""
+    team = parse_team(list(profiles))
+    state = WorldState.from_scene(load_scene(scene), team)
+    conds = random_conditions(state, conditions, random.Random(seed))
+    spec = TaskSpec(instruction=str(Goal(conditions=tuple(conds))), subtasks=tuple(
+        Subtask(id=f"c{i}", description=str(c), goal=(c,)) for i, c in enumerate(conds, 1)))
+    return spec, state
+
+
+def sweep_cell(scene: str, robots: int, conditions: int, seed: int = 0) -> tuple[TaskSpec, WorldState]:
+    """One cell of the scaling sweep (benchmarks/plan_latency.py): ``robots`` robots cycling
+    through :data:`SWEEP_PROFILES`."""
+    return goal_cell(scene, [SWEEP_PROFILES[i % len(SWEEP_PROFILES)] for i in range(robots)], conditions, seed)
