@@ -110,6 +110,9 @@ def main() -> None:
     ap.add_argument("--skip-run", action="store_true", help="only rebuild the section from --out")
     ap.add_argument("--only", action="append", choices=sorted(SETTINGS), help="run only these disturbances")
     args = ap.parse_args()
+    # `emboteam bench --out` refuses a missing parent folder (a typo should not scatter
+    # results); this script owns --out, so it makes the folder its runs go into.
+    args.out.mkdir(parents=True, exist_ok=True)
     if not args.skip_run:
         for name in args.only or SETTINGS:
             run(name, args.out, args.workers)
