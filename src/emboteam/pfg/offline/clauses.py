@@ -15,6 +15,7 @@ from typing import NamedTuple
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import first_rule, pattern_tables
 from emboteam.pfg.offline.tagger import Item
 
 #: how a clause attaches to the one before it
@@ -40,6 +41,12 @@ class Clause:
 
 _SENTENCE_END = frozenset(".!?;:")
 _W = word_tables("clauses")
+_P = pattern_tables("clauses")
+#: what starts a new clause after a comma or "and" (more in :func:`_starts_new`)
+_NEW_CLAUSE = _P.table("new_clause")
+#: what follows a subject when it has a predicate of its own: which kind
+_SUBJECT_PREDICATE = _P.table("subject_predicate")
+_ADVERB_THEN_PLACE, _LEFT_IN_A_STATE = _P.pattern("adverb_then_place"), _P.pattern("left_in_a_state")
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
@@ -174,9 +181,6 @@ def _has_predicate(items: list[Item]) -> bool:
         last.state is not None and last.prep is None)
 
 
-#: adverbs between a person and the verb: "I still need", "we really want"
-_SUBJECT_ADVERBS = _W.set("subject_adverbs")
-
 #: verbs that start a run-on request after a complete one ("turn off the light put the
 #: book on the table")
 _RUN_ON_VERBS = _W.set("run_on_verbs")
@@ -191,16 +195,8 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     far; ``comma``: a comma came before (a new subject needs one: "I need the tomato and
     the lettuce sliced" is one clause, "turn the TV off, the lights too" two)."""
     it = items[j]
-    if it.seq is not None or it.robot is not None:
+    if any(rule.at(items, j) and (comma or rule.then != "after_comma") for rule in _NEW_CLAUSE):
         return True
-    if (it.sub is not None and it.sub != "purpose") or it.text == "so":
-        return True
-    if it.text in _HUMAN:
-        v = j + 1
-        while v < len(items) and items[v].text in _SUBJECT_ADVERBS:
-            v += 1      # "..., I still need the pencil"
-        if v < len(items) and (items[v].verb is not None or items[v].copula):
-            return True
     if it.state is not None and it.prep is None and (it.verb is not None or it.text in ("open", "shut", "clean"))\
             and (j + 1 == len(items) or items[j + 1].punct is not None) and current \
             and (current[-1].state is not None or current[-1].particle is not None) \
@@ -210,8 +206,6 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
             and (j + 1 == len(items) or items[j + 1].punct is not None or items[j + 1].conj is not None) \
             and current and current[-1].noun is not None:
         return True     # "the laptop goes on the dresser, closed, ...": the state of what was placed
-    if it.text == "there" and j + 1 < len(items) and items[j + 1].text in ("is", "are", "s", "was", "were"):
-        return True     # "I'm not asking for miracles, but there are two rags on the floor"
     k = team_subject(items, j)
     if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
         return True     # ", the other should put ...", "while another turns off ..."
@@ -219,18 +213,10 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
             and items[j + 1].verb is None and items[j + 1].prep is None and items[j + 1].text.endswith("s") \
             and len(items[j + 1].text) > 3 and items[j + 1].text not in lx.vocabulary():
         return True     # "..., it glares on the screen": a clause of its own with a verb we do not know
-    if it.text in ("do", "please") and j + 2 < len(items) and items[j + 1].neg and items[j + 2].verb is not None:
-        return True     # "..., and don't leave the fridge door open": a prohibition of its own
-    if comma and it.text in ("can", "could", "would", "will", "should") and j + 2 < len(items) \
-            and (items[j + 1].pron is not None or items[j + 1].det or items[j + 1].text in _HUMAN):
-        return True     # "I've left my phone on the bed, can it go on the desk?"
     if it.verb is not None and it.verb.form == "s" and it.noun is None and current \
             and any(x.verb is not None and x.verb.form == "s" and x.noun is None for x in current) \
             and _next_is_object(items, j):
         return True     # "robot 1 closes it and turns off the light": the same subject's next act
-    if it.text in ("use", "using") and j + 1 < len(items) and (items[j + 1].det
-                                                              or items[j + 1].noun is not None):
-        return True     # "fry the egg - use the pan on the stove"
     asked = current is not None and bool(current) and current[0].text in ("could", "can", "would", "will", "should", "may", "might")
     kind = subject_here(items, j, asked)
     if kind == "state" and comma and _ends_with_place(current or []):
@@ -304,8 +290,7 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         # a subject: noun phrases with where they are, coordinated ("my phone off the desk
         # and the keys that are lying on the other desk should go ...")
         k = _skip_relative(items, k)
-        if k + 1 < n and items[k].text in ("up", "down", "over", "back") and items[k + 1].prep is not None:
-            k += 1
+        k += 1 if _ADVERB_THEN_PLACE.at(items, k) else 0
         while k + 1 < n and items[k].prep in _SUBJECT_PLACES and _skip_np(items, k + 1) > k + 1:
             k = _skip_np(items, k + 1)
         if k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
@@ -314,28 +299,11 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         break
     if k >= n:
         return None
-    if k + 1 < n and items[k].text in ("left", "kept", "still", "now", "all") and (
-            items[k + 1].state is not None or items[k + 1].particle in ("on", "off")):
-        k += 1      # "... and the shower door left open"
+    k += 1 if _LEFT_IN_A_STATE.at(items, k) else 0
     it = items[k]
-    end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None \
-        or items[k + 1].sub is not None   # "... closed once they're in", "... left open so it dries"
-    if it.copula and it.text != "to":
-        return "copula"
-    if it.text in ("have", "has") and k + 1 < n and (items[k + 1].text in ("both", "all", "already", "just")
-                                                      or items[k + 1].verb is not None):
-        return "copula"     # a perfect: "... have both gone off", "... has been left on"
-    if it.verb is not None and it.verb.form == "ed" and it.noun is None and k + 1 < n and (
-            items[k + 1].prep in ("in", "on", "into", "onto", "to", "over to", "inside")
-            or (items[k + 1].particle is not None and k + 2 < n and items[k + 2].prep is not None)):
-        return "state"      # "..., and the tissues moved over to the dresser": a thing and its wished place
-    if it.verb is not None and it.verb.form == "ed" and it.noun is None and k + 1 < n \
-            and items[k + 1].particle in ("on", "off", "up", "down") and (
-                k + 2 >= n or items[k + 2].punct is not None or items[k + 2].conj is not None):
-        return "state"      # "..., and the light switched off"
-    if end and (it.particle in ("on", "off", "up", "down") or (
-            it.state is not None and it.prep is None)):
-        return "state"
+    predicate = first_rule(_SUBJECT_PREDICATE, items, k)
+    if predicate is not None:
+        return predicate.then
     plural = items[j].text in ("they", "these", "those", "both", "all") or any(
         x.conj == "and" or (x.noun is not None and x.noun.plural) for x in items[j:k])
     if it.verb is not None and (it.verb.form == "s" or ((plural or asked) and it.verb.form == "base")) \

@@ -38,6 +38,7 @@ from emboteam.pfg.offline.constructions import (
     with_as_and,
 )
 from emboteam.pfg.offline.knowledge import Strict, load, word_tables
+from emboteam.pfg.offline.patterns import first_rule, pattern_tables
 from emboteam.pfg.offline.phrases import (
     MODIFIER_PREPS,
     Frame,
@@ -98,6 +99,7 @@ class PreambleFile(Strict):
 # --- preamble: politeness, hedges and framing that carry no content -------------------
 _PREAMBLE, _TRAILING, _WISH, _ASK_FOR = load("preamble.json", PreambleFile).compiled()
 _W = word_tables("frames")
+_P = pattern_tables("frames")
 #: words dropped anywhere outside noun phrases
 _MID_FILLERS = _W.set("mid_fillers")
 
@@ -173,61 +175,22 @@ _WANT = _W.set("want")
 _REFLEXIVE = _W.set("reflexive")
 
 
-#: irregular past participles after "have" ("I've left it", "it has gone")
-_IRREGULAR_PARTICIPLES = _W.set("irregular_participles")
-
-
-#: "would look nicer on": a wished place
-_LOOKS = _W.set("looks")
-#: adverbs, hedges and auxiliaries between a subject and its state ("is still nicely warm")
-_BEFORE_STATE = _W.set("before_state")
-#: "should end up sliced", "winds up on the plate": as "be"
-_END_UP = _W.set("end_up")
-
-
-def _participle(it: Item) -> bool:
-    """Is the word a past participle (a perfect after "have"), not an infinitive ("have to")?"""
-    return it.verb is not None and it.noun is None and (
-        it.verb.form == "ed" or it.text in _IRREGULAR_PARTICIPLES)
+#: what may stand between a subject and its predicate, and what each means
+_AUX_RULES = _P.table("aux")
 
 
 def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
-    """Skip copulas, modals, negation and adverbs before a predicate, noting them."""
+    """Skip copulas, modals, negation and adverbs before a predicate, noting them in
+    ``frame_flags`` (the rules of ``patterns.json``, ``frames -> aux``)."""
     while j < len(items):
-        it = items[j]
-        t = it.text
-        nxt_item = items[j + 1] if j + 1 < len(items) else None
-        if it.verb is not None and it.verb.lemma in _WANT and nxt_item is not None and \
-                nxt_item.text not in ("to", "be") and (nxt_item.verb is None or nxt_item.det):
-            break      # "i need the potato cooked": the wish itself
-        if it.neg:
-            frame_flags["neg"] = not frame_flags.get("neg", False)
-        elif t in ("has", "have", "had", "ve") and j + 1 < len(items) and _participle(items[j + 1]) \
-                and not (j > 0 and items[j - 1].text in ("should", "must", "could", "would", "might")):
-            frame_flags["perfect"] = True     # "I've left my phone on the bed": what was done
-        elif (t in lx.MODALS and it.verb is None) or t in ("should", "must", "ought", "can",
-                                                          "could", "would", "will", "shall",
-                                                          "might", "may") or (t in ("needs", "need", "has", "have", "had", "wants", "want") and j + 1 < len(items) and \
-                (items[j + 1].text in ("to", "be") or items[j + 1].verb is not None)):
-            frame_flags["modal"] = True
-        elif t == "too":
-            frame_flags["too"] = True
-        elif t in ("going", "gonna") and j + 1 < len(items) and items[j + 1].text == "to":
-            frame_flags["modal"] = True
-        elif t == "to" and not (nxt_item is not None and (nxt_item.text == "be" or nxt_item.verb)):
-            break      # "towel to towel holder": a place, not an infinitive
-        elif it.copula or t in _BEFORE_STATE:
-            pass
-        elif t in ("look", "looks") and j + 2 < len(items) and items[j + 1].text in _LOOKS \
-                and items[j + 2].prep in ("on", "in"):
-            frame_flags["modal"] = True
-            j += 1      # "the vase would look nicer on the side table": where it should be
-        elif t in _END_UP and j + 2 < len(items) and items[j + 1].text == "up" \
-                and items[j + 2].state is not None and items[j + 2].prep is None:
-            j += 1      # "should end up sliced (and on a plate)": as "be"
-        else:
+        rule = first_rule(_AUX_RULES, items, j)
+        if rule is None or rule.then == "stop":
             break
-        j += 1
+        if rule.then == "neg":
+            frame_flags["neg"] = not frame_flags.get("neg", False)
+        elif rule.then:
+            frame_flags[rule.then] = True
+        j += rule.advance
     return j
 
 
@@ -1013,21 +976,22 @@ def _pro_verb_clause(clause: Clause, items: list[Item], mentions: list[Head]) ->
     return None
 
 
+_NOBODY, _LEADING_NEGATION, _NEED_TO, _MODAL_BEFORE_VERB, _THERE_IS = (_P.pattern(name) for name in (
+    "nobody", "leading_negation", "need_to", "modal_before_verb", "there_is"))
+
+
 def _clause_proper(items: list[Item], flags: dict[str, bool]) -> list[Item]:
     """The clause without what comes before its verb or subject: a rejected topic, a
     leading negation (noted in ``flags``), "need to", a team member as subject, a modal."""
     # leading negation: "don't leave the lights on", "never turn on ..." ("nobody", "no
     # one" are subjects: "nobody closed the fridge" is read with its verb below)
-    nobody = bool(items) and (items[0].text == "nobody" or (
-        items[0].text == "no" and len(items) > 1 and items[1].text == "one"))
+    nobody = _NOBODY.at(items)
     items = _without_rejected_topic(items)
-    while items and not nobody and (items[0].neg or (items[0].text in ("do", "does", "did")
-                                    and len(items) > 1 and items[1].neg)):
+    while not nobody and _LEADING_NEGATION.at(items):
         if items[0].neg:
             flags["neg"] = not flags.get("neg", False)
         items = items[1:]
-    if items and items[0].text == "need" and len(items) > 1 and items[1].text == "to":
-        items = items[2:]
+    items = items[_NEED_TO.end(items) or 0:]
     # "one of you slices the bread", "the other should open the fridge": the team
     # member is left to the planner, the verb is the act
     k = team_subject(items, 0)
@@ -1035,9 +999,7 @@ def _clause_proper(items: list[Item], flags: dict[str, bool]) -> list[Item]:
         items = items[k:]
         flags["subject"] = True
     # "(robot 1) should slice ...", "(robot 2) will open ...": a modal before a verb
-    while len(items) > 1 and items[0].text in ("should", "must", "will", "can", "shall", "could",
-                                               "would", "to", "is", "needs", "has", "have") \
-            and ((items[1].verb is not None and items[1].noun is None) or items[1].text == "to"):
+    while _MODAL_BEFORE_VERB.at(items):
         items = items[1:]
     return items
 
@@ -1046,7 +1008,7 @@ def _there_is(clause: Clause, items: list[Item], mentions: list[Head],
               flags: dict[str, bool]) -> ParsedClause | None:
     """"there's a bottle of wine in the cupboard": introduces a referent and where it is
     (or, "there's no milk in the fridge", says what is missing)."""
-    if not (len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were")):
+    if not _THERE_IS.at(items):
         return None
     missing = absent_from(items[2:], clause.text)
     if missing is not None:

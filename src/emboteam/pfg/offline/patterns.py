@@ -1,0 +1,234 @@
+"""Token patterns as data: the word sequences the grammar tests for ("there is", "do not"
++ verb, "why is/are", "a modal before a verb") are lists of token constraints in
+``data/patterns.json``, as spaCy's Matcher patterns are (``{"LOWER": {"IN": [...]}}``,
+``{"OP": "?"}``), interpreted here.
+
+Written by hand rather than with spaCy's Matcher: the tokens are the tagger's
+:class:`~emboteam.pfg.offline.tagger.Item` (a word with every reading it can have: noun,
+verb form, preposition, state ...), which spaCy would need as custom extensions on a
+``Doc`` built per clause, and the patterns are tested at one position many times per
+instruction, where building a ``Doc`` would cost more than the whole parse (under 5 ms).
+The interpreter is 60 lines; the constraints are spaCy's names where spaCy has one.
+
+A pattern name has one or several alternative patterns (spaCy's ``Matcher.add(key,
+[p1, p2])``); the first that matches at the position decides.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.knowledge import KnowledgeDataError, Strict, WordTables, load, word_tables
+from emboteam.pfg.offline.tagger import Item
+
+
+class Words(Strict):
+    """``{"IN": [...]}`` or ``{"NOT_IN": [...]}``: the item has the reading (a verb, a
+    preposition ...) and its value is (not) among the words. A list may be ``"@table"``: the
+    module's word table of that name in ``words.json``, or ``"@lexicon.name"``."""
+
+    IN: tuple[str, ...] | str | None = None
+    NOT_IN: tuple[str, ...] | str | None = None
+
+
+#: a reading: present (true), absent (false), or its value among words
+Reading = bool | Words | None
+
+class Token(Strict):
+    """One token's constraints (all must hold); ``OP`` as in spaCy: ``?`` optional, ``*``
+    any number, ``+`` one or more, ``!`` not this; ``END``: no token left (zero width)."""
+
+    LOWER: str | Words | None = None
+    DET: bool | None = None
+    NEG: bool | None = None
+    COPULA: bool | None = None
+    NOUN: Reading = None
+    VERB: Reading = None
+    PRON: Reading = None
+    PREP: Reading = None
+    PARTICLE: Reading = None
+    STATE: Reading = None
+    PUNCT: Reading = None
+    CONJ: Reading = None
+    NUMBER: Reading = None
+    SEQ: Reading = None
+    SUB: Reading = None
+    ROBOT: Reading = None
+    QUANT: Reading = None
+    VERB_FORM: str | Words | None = None
+    VERB_LEMMA: str | Words | None = None
+    OP: Literal["?", "*", "+", "!"] | None = None
+    END: bool | None = None
+
+
+class Pattern(Strict):
+    """Alternative token sequences; in a rule table also what a match decides (``then``),
+    how many items it takes (``advance``) and a word that may not come just before it
+    (``not_after``)."""
+
+    why: str = ""
+    patterns: tuple[tuple[Token, ...], ...]
+    then: str = ""
+    advance: int = 1
+    not_after: Words | None = None
+
+    @model_validator(mode="after")
+    def _not_empty(self) -> Pattern:
+        if not self.patterns or any(not p for p in self.patterns):
+            raise ValueError("a pattern needs at least one token")
+        return self
+
+
+class ModulePatterns(Strict):
+    """A module's named patterns and its rule tables (ordered: the first rule that
+    matches decides)."""
+
+    patterns: dict[str, Pattern] = Field(default_factory=dict)
+    rules: dict[str, tuple[Pattern, ...]] = Field(default_factory=dict)
+
+
+class PatternsFile(Strict):
+    """``data/patterns.json``: token patterns and rule tables by module."""
+
+    about: str = ""
+    modules: dict[str, ModulePatterns]
+
+
+def _words(value: str | Words, tables: WordTables) -> tuple[frozenset[str], bool]:
+    """The word set of a constraint and whether it must hold (IN) or not (NOT_IN)."""
+    if isinstance(value, str):
+        return frozenset((value,)), True
+    raw, inside = (value.IN, True) if value.IN is not None else (value.NOT_IN or (), False)
+    if isinstance(raw, str) and raw.startswith("@lexicon."):
+        return frozenset(getattr(lx, raw.removeprefix("@lexicon.").upper())), inside
+    if isinstance(raw, str):
+        return tables.set(raw.removeprefix("@")), inside
+    return frozenset(raw), inside
+
+
+#: a compiled constraint: (what it tests, the words or None, whether it must hold)
+_Test = tuple[str, frozenset[str] | None, bool]
+
+
+def _compile(token: Token, tables: WordTables) -> tuple[_Test, ...]:
+    tests: list[_Test] = []
+    for name, value in token:
+        if value is None or name in ("OP", "END"):
+            continue
+        if isinstance(value, bool):
+            tests.append((name.lower(), None, value))
+        else:
+            words, inside = _words(value, tables)
+            tests.append((name.lower(), words, inside))
+    return tuple(tests)
+
+
+def _value(item: Item, attr: str) -> object:
+    if attr == "lower":
+        return item.text
+    if attr in ("verb_form", "verb_lemma"):
+        verb = item.verb
+        return None if verb is None else verb.form if attr == "verb_form" else verb.lemma
+    return getattr(item, attr)
+
+
+def _holds(item: Item, tests: tuple[_Test, ...]) -> bool:
+    for attr, words, inside in tests:
+        value = _value(item, attr)
+        if words is None:
+            present = bool(value) if attr in ("det", "neg", "copula") else value is not None
+            if present is not inside:
+                return False
+        elif value is None or (value in words) is not inside:
+            return False
+    return True
+
+
+class Compiled:
+    """One alternative, ready to match: each token's tests, its OP and whether it is END."""
+
+    def __init__(self, tokens: tuple[Token, ...], tables: WordTables) -> None:
+        self.steps = tuple((_compile(t, tables), t.OP, bool(t.END)) for t in tokens)
+
+    def end(self, items: list[Item], j: int) -> int | None:
+        """The index after the match at ``items[j]``, or None. ``?``, ``*`` and ``+`` take
+        every item they can and never give one back (a possessive quantifier): the grammar's
+        word tests look ahead that way."""
+        n = len(items)
+        for tests, op, at_end in self.steps:
+            if at_end:
+                if j != n:
+                    return None
+            elif op in ("*", "+"):
+                start = j
+                while j < n and _holds(items[j], tests):
+                    j += 1
+                if op == "+" and j == start:
+                    return None
+            elif op == "?":
+                j += 1 if j < n and _holds(items[j], tests) else 0
+            elif j >= n or _holds(items[j], tests) is (op == "!"):
+                return None
+            else:
+                j += 1
+        return j
+
+
+class Rule:
+    """A compiled pattern and what a match decides."""
+
+    def __init__(self, pattern: Pattern, tables: WordTables) -> None:
+        self.alternatives = tuple(Compiled(p, tables) for p in pattern.patterns)
+        self.then, self.advance = pattern.then, pattern.advance
+        self.not_after = _words(pattern.not_after, tables) if pattern.not_after is not None else None
+
+    def end(self, items: list[Item], j: int = 0) -> int | None:
+        """The index after the first alternative that matches at ``items[j]``, or None."""
+        if self.not_after is not None and j > 0 and (items[j - 1].text in self.not_after[0]) is self.not_after[1]:
+            return None
+        return next((e for p in self.alternatives if (e := p.end(items, j)) is not None), None)
+
+    def at(self, items: list[Item], j: int = 0) -> bool:
+        return self.end(items, j) is not None
+
+
+class PatternTables:
+    """The patterns and rule tables of one module; one the module asks for and the file
+    lacks is a :class:`KnowledgeDataError` at import, as is a ``@table`` the words file
+    lacks."""
+
+    FILE = "patterns.json"
+
+    def __init__(self, module: str) -> None:
+        self.module = module
+        words = word_tables(module)
+        data = load(self.FILE, PatternsFile).modules.get(module, ModulePatterns())
+        self.patterns = {name: Rule(p, words) for name, p in data.patterns.items()}
+        self.rules = {name: tuple(Rule(p, words) for p in table) for name, table in data.rules.items()}
+
+    def _missing(self, kind: str, name: str) -> KnowledgeDataError:
+        return KnowledgeDataError(self.FILE, f"modules -> {self.module!r} -> {kind} -> {name!r}",
+                                  f"missing: the module {self.module} needs it")
+
+    def pattern(self, name: str) -> Rule:
+        if name not in self.patterns:
+            raise self._missing("patterns", name)
+        return self.patterns[name]
+
+    def table(self, name: str) -> tuple[Rule, ...]:
+        if name not in self.rules:
+            raise self._missing("rules", name)
+        return self.rules[name]
+
+
+
+def first_rule(table: tuple[Rule, ...], items: list[Item], j: int) -> Rule | None:
+    """The first rule of ``table`` that matches at ``items[j]``."""
+    return next((r for r in table if r.end(items, j) is not None), None)
+
+
+def pattern_tables(module: str) -> PatternTables:
+    return PatternTables(module)
