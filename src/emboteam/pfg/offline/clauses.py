@@ -46,7 +46,10 @@ _P = pattern_tables("clauses")
 _NEW_CLAUSE = _P.table("new_clause")
 #: what follows a subject when it has a predicate of its own: which kind
 _SUBJECT_PREDICATE = _P.table("subject_predicate")
-_ADVERB_THEN_PLACE, _LEFT_IN_A_STATE = _P.pattern("adverb_then_place"), _P.pattern("left_in_a_state")
+(_ADVERB_THEN_PLACE, _LEFT_IN_A_STATE, _QUESTION_MODALS, _MAKE_SURE, _TOO_AT_END, _MODAL_PREDICATE,
+ _ASK_SOMEONE, _COORDINATOR, _ONLY_THE, _SO_I_WAS) = (_P.pattern(name) for name in (
+    "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
+    "ask_someone", "coordinator", "only_the", "so_i_was"))
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
@@ -163,13 +166,8 @@ def _has_predicate(items: list[Item]) -> bool:
     need to go in the fridge) has not: the next subject shares the predicate."""
     if not items:
         return False
-    words = [x.text for x in items]
-    for wish in (["please", "make", "sure"], ["make", "sure"], ["please", "ensure"], ["ensure"]):
-        if words[:len(wish)] == wish:
-            items = items[len(wish):]     # "make sure the fridge and the microwave are closed"
-            break
-    while items and items[0].text in ("could", "can", "would", "will", "should", "may", "might"):
-        items = items[1:]     # "could my phone off the coffee table (and the keys go ...)": a question
+    items = items[_MAKE_SURE.end(items) or 0:]
+    items = items[_QUESTION_MODALS.end(items) or 0:]
     if not items:
         return False
     last = items[-1]
@@ -217,7 +215,7 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
             and any(x.verb is not None and x.verb.form == "s" and x.noun is None for x in current) \
             and _next_is_object(items, j):
         return True     # "robot 1 closes it and turns off the light": the same subject's next act
-    asked = current is not None and bool(current) and current[0].text in ("could", "can", "would", "will", "should", "may", "might")
+    asked = current is not None and _QUESTION_MODALS.at(current)
     kind = subject_here(items, j, asked)
     if kind == "state" and comma and _ends_with_place(current or []):
         return True     # "candle in the box, box shut, lamp on": terse items, each complete
@@ -312,7 +310,7 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         return "verb"       # "and the fork goes in the drawer", ", they both go in the fridge"
     while k < n and items[k].text in ("both", "all", "each"):
         k += 1      # "they both want to go in the basket"
-    if k < n and _modal_predicate(items, k) and items[j].text not in ("that", "which", "who"):
+    if k < n and _MODAL_PREDICATE.at(items, k) and items[j].text not in ("that", "which", "who"):
         return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None
 
@@ -328,15 +326,7 @@ def _also_item(items: list[Item], j: int) -> bool:
         m = _skip_np(items, m + 1)      # "and the spray bottle on the toilet too"
         if m >= n:
             return False
-    if items[m].text in ("too", "also"):
-        m += 1
-    elif items[m].text == "as" and m + 1 < n and items[m + 1].text == "well":
-        m += 2
-    elif items[m].text == "as well":
-        m += 1
-    else:
-        return False
-    return m >= n or items[m].punct is not None or items[m].sub is not None or items[m].conj is not None
+    return _TOO_AT_END.at(items, m)
 
 
 def _with_a_place(items: list[Item], j: int) -> bool:
@@ -362,15 +352,6 @@ _RUN_ON_STATES = _W.set("run_on_states")
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")
 _SUBJECT_PLACES = _W.set("subject_places")
-
-#: words that open a predicate of a new subject: "should go", "wants to go", "can come out"
-_SUBJECT_MODALS = _W.set("subject_modals")
-
-
-def _modal_predicate(items: list[Item], k: int) -> bool:
-    return items[k].text in _SUBJECT_MODALS and k + 1 < len(items) and (
-        items[k + 1].verb is not None or items[k + 1].text in ("to", "be", "really", "also", "probably"))
-
 
 def _sentence_adverb(it: Item) -> bool:
     """"..., but honestly the egg has gone off": an adverb that comments on the clause
@@ -477,9 +458,7 @@ def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | Non
             and items and items[-1].noun is not None \
             and any(x.verb is not None and x.noun is None for x in items):
         return _Cut(AND)
-    if it.text in ("can", "could", "would", "will") and j + 1 < n \
-            and sentence[j + 1].text in ("you", "someone", "somebody", "anyone") \
-            and _content(items) and any(x.copula or x.verb is not None for x in items):
+    if _ASK_SOMEONE.at(sentence, j) and _content(items) and any(x.copula or x.verb is not None for x in items):
         return _Cut(AND)
     return None
 
@@ -487,17 +466,14 @@ def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | Non
 def _coordination(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """A comma, "and", "but", "plus", "as well as": a boundary when what follows starts a
     clause of its own (:func:`_starts_new`)."""
-    it = sentence[j]
-    if not (it.text == "as well as" or ((it.text in (",", "and", "but", "plus") or it.punct == ",")
-                                        and j + 1 < len(sentence))):
+    if not _COORDINATOR.at(sentence, j):
         return None
     k = j + 1
     while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")
                                  or _sentence_adverb(sentence[k])):
         k += 1
     comma = any(sentence[x].punct == "," for x in range(j, k))
-    if k + 1 < len(sentence) and sentence[k].text in ("only", "just") \
-            and any(x.neg for x in current.items) and sentence[k + 1].det:
+    if _ONLY_THE.at(sentence, k) and any(x.neg for x in current.items):
         # "don't turn off the desk lamp, only the floor lamp": the act, not negated, on
         # what follows
         return _Cut(AND, k + 1 - j, only=True)
@@ -527,8 +503,7 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
             and (nxt.noun is None or _next_is_object(sentence, j + 1)):
         link = THEN     # "... and after close the box": afterwards
-    if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
-            and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
+    if _SO_I_WAS.at(sentence, j):
         link = AND      # "so I was going to bake": what happened, no purpose
     return _Cut(link, skip)
 
