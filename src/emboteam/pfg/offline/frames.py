@@ -100,9 +100,6 @@ class PreambleFile(Strict):
 _PREAMBLE, _TRAILING, _WISH, _ASK_FOR = load("preamble.json", PreambleFile).compiled()
 _W = word_tables("frames")
 _P = pattern_tables("frames")
-#: words dropped anywhere outside noun phrases
-_MID_FILLERS = _W.set("mid_fillers")
-
 
 #: sentence adverbs and hesitations that may come before the verb ("maybe throw the CD
 #: away", "um, like, wash the mug", "honestly just close it")
@@ -217,6 +214,9 @@ class _Tail:
         return self.items[self.j + k] if self.j + k < len(self.items) else None
 
 
+_SEPARATOR, _FILLER_OR_RECIPIENT, _REJECTION, _SWITCHED_STATE, _IN_IT, _INSIDE_AT_END = (
+    _P.pattern(name) for name in ("separator", "filler_or_recipient", "rejection", "switched_state", "in_it",
+                                  "inside_at_end"))
 #: a tail rule's decision: the words were read (go on), the tail ended, None: not this rule
 _GO, _END = "go", "end"
 TailRule = Callable[[_Tail], str | None]
@@ -225,11 +225,9 @@ TailRule = Callable[[_Tail], str | None]
 def _separator(s: _Tail) -> str | None:
     """Conjunctions and punctuation; "the apple or the tomato": alternatives of the last
     object."""
-    it = s.it
-    if not (it.conj is not None or it.punct is not None
-            or it.text in ("as well as", "along with", "together with")):
+    if not _SEPARATOR.at(s.items, s.j):
         return None
-    if it.conj == "or" and s.pending:
+    if s.it.conj == "or" and s.pending:
         head, k = parse_np(s.items, s.j + 1)
         if head is not None:
             s.mentions.append(head)
@@ -244,8 +242,7 @@ def _filler_or_recipient(s: _Tail) -> str | None:
     """"please", "back", "away" (kept as the particle: "put it back"), and "me", "us",
     "here": the object ends up with the person."""
     it = s.it
-    if not ((it.text in _MID_FILLERS and it.noun is None and it.verb is None and it.prep is None
-             and it.state is None) or it.text in ("me", "us", "here", "there", "him", "her")):
+    if not _FILLER_OR_RECIPIENT.at(s.items, s.j):
         return None
     if it.text in ("me", "us", "here", "him", "her"):
         s.frame.recipient = True
@@ -278,11 +275,11 @@ def _containing(s: _Tail) -> str | None:
 def _rejected_alternative(s: _Tail) -> str | None:
     """"on the holder, not on the counter", "the tomato, not the apple", "but not the CD",
     "instead of the cup", "except (for) the apple": neither object nor mention."""
-    it, nxt, items, n = s.it, s.at(1), s.items, len(s.items)
-    if not (it.neg or it.text == "except" or (it.text in ("instead", "apart")
-                                               and nxt is not None and nxt.text in ("of", "from"))):
+    it, items, n = s.it, s.items, len(s.items)
+    after = _REJECTION.end(items, s.j)
+    if after is None:
         return None
-    s.j += 1 if it.neg or it.text == "except" else 2
+    s.j = after
     if s.j < n and items[s.j].text == "for":
         s.j += 1
     if s.j < n and items[s.j].prep is not None:
@@ -386,15 +383,14 @@ def _inside_the_one_named(s: _Tail, prep: str) -> None:
 
 def _holding(s: _Tail, head: Head) -> bool:
     """"the bowl with the apple in it": what the last object holds (then True)."""
-    items, j, n = s.items, s.j, len(s.items)
+    items, j = s.items, s.j
     if not s.pending or (head.liquid is not None and head.noun is None):
         return False
-    if j + 1 < n and items[j].prep in ("in", "on", "inside") and items[j + 1].pron in ("it", "them"):
+    if _IN_IT.at(items, j):
         s.pending[-1].head.holds.append(head)
         s.j += 2
         return True
-    if j < n and items[j].text == "inside" and (j + 1 == n or items[j + 1].punct is not None
-                                                or items[j + 1].conj is not None):
+    if _INSIDE_AT_END.at(items, j):
         s.pending[-1].head.holds.append(head)      # "with the apple inside"
         s.j += 1
         return True
@@ -549,9 +545,8 @@ def _object(s: _Tail) -> str | None:
 def _switched_state(s: _Tail) -> str | None:
     """"get the fridge closed and the light switched off": "switched/turned on/off" after
     an object is that object's state."""
-    it, nxt = s.it, s.at(1)
-    if it.verb is None or it.verb.form != "ed" or it.verb.lemma not in ("switch", "turn") \
-            or nxt is None or nxt.particle not in ("on", "off") or not s.pending:
+    nxt = s.at(1)
+    if not _SWITCHED_STATE.at(s.items, s.j) or nxt is None or not s.pending:
         return None
     t = s.pending[-1]
     if t.state is not None or t.particle is not None:

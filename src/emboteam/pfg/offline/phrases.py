@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item, NounReading
 from emboteam.world.catalogue import load_catalogue
 
@@ -175,22 +176,14 @@ class _NP:
 #: what a noun-phrase rule decides: the word belongs to the phrase (go on), the phrase
 #: ended, or (None) the rule does not apply
 _NEXT, _STOP = "next", "stop"
+_ENDS_PHRASE = pattern_tables("phrases").pattern("ends_phrase")
 NPRule = Callable[[_NP], str | None]
 
 
 def _ends_phrase(s: _NP) -> str | None:
     """Punctuation, a conjunction, a sequence word, a robot, "containing", a negation, a
     copula, "instead of", "except": the phrase ends before them."""
-    it, nxt = s.it, s.nxt
-    if it.punct is not None or it.conj is not None or it.seq is not None or it.robot is not None \
-            or it.text in lx.CONTAINING:
-        return _STOP
-    if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
-        return _STOP
-    if it.text == "except" or (it.text in ("instead", "apart") and nxt is not None
-                               and nxt.text in ("of", "from")):
-        return _STOP      # "the mug instead of the cup": a rejected alternative follows
-    return None
+    return _STOP if _ENDS_PHRASE.at(s.items, s.j) else None
 
 
 def _measure_of(s: _NP) -> str | None:
