@@ -9,9 +9,11 @@ everything downstream sees the corrected instruction only.
 from __future__ import annotations
 
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item
 
 _W = word_tables("corrections")
+_CALLED_OFF = pattern_tables("corrections").pattern("called_off")
 #: marker word sequences; a bare "no"/"sorry" is a marker only between punctuation
 _MARKERS = _W.phrases("markers")
 _BREAK = frozenset(".!?;:,")
@@ -78,8 +80,7 @@ def apply_corrections(items: list[Item]) -> list[Item]:
             continue
         head = fix[0]
         cut: int | None = None
-        if len(fix) > 1 and head.text in ("do", "dont") and fix[1].neg \
-                and (len(fix) == 2 or fix[2].punct is not None or fix[2].text in ("just", "only", "instead")):
+        if _CALLED_OFF.at(fix):
             # "turn on the faucet - no wait, don't, just switch off the light": the act
             # before is called off, what follows stands
             cut = max((i + 1 for i, x in enumerate(before) if x.punct in _BREAK), default=0)
