@@ -8,7 +8,8 @@ Written by hand rather than with spaCy's Matcher: the tokens are the tagger's
 verb form, preposition, state ...), which spaCy would need as custom extensions on a
 ``Doc`` built per clause, and the patterns are tested at one position many times per
 instruction, where building a ``Doc`` would cost more than the whole parse (under 5 ms).
-The interpreter is 60 lines; the constraints are spaCy's names where spaCy has one.
+The interpreter is a few dozen lines; the constraints are spaCy's names where spaCy
+has one (``LOWER``, ``OP``, ``IN``, ``NOT_IN``), the tagger's readings otherwise.
 
 A pattern name has one or several alternative patterns (spaCy's ``Matcher.add(key,
 [p1, p2])``); the first that matches at the position decides.
@@ -36,6 +37,7 @@ class Words(Strict):
 
 #: a reading: present (true), absent (false), or its value among words
 Reading = bool | Words | None
+
 
 class Token(Strict):
     """One token's constraints (all must hold); ``OP`` as in spaCy: ``?`` optional, ``*``
@@ -103,7 +105,10 @@ def _words(value: str | Words, tables: WordTables) -> tuple[frozenset[str], bool
         return frozenset((value,)), True
     raw, inside = (value.IN, True) if value.IN is not None else (value.NOT_IN or (), False)
     if isinstance(raw, str) and raw.startswith("@lexicon."):
-        return frozenset(getattr(lx, raw.removeprefix("@lexicon.").upper())), inside
+        name = raw.removeprefix("@lexicon.").upper()
+        if not isinstance(getattr(lx, name, None), frozenset | tuple | dict):
+            raise KnowledgeDataError(PatternTables.FILE, raw, "the lexicon has no such word list")
+        return frozenset(getattr(lx, name)), inside
     if isinstance(raw, str):
         return tables.set(raw.removeprefix("@")), inside
     return frozenset(raw), inside
@@ -222,7 +227,6 @@ class PatternTables:
         if name not in self.rules:
             raise self._missing("rules", name)
         return self.rules[name]
-
 
 
 def first_rule(table: tuple[Rule, ...], items: list[Item], j: int) -> Rule | None:
