@@ -47,9 +47,11 @@ _NEW_CLAUSE = _P.table("new_clause")
 #: what follows a subject when it has a predicate of its own: which kind
 _SUBJECT_PREDICATE = _P.table("subject_predicate")
 (_ADVERB_THEN_PLACE, _LEFT_IN_A_STATE, _QUESTION_MODALS, _MAKE_SURE, _TOO_AT_END, _MODAL_PREDICATE,
- _ASK_SOMEONE, _COORDINATOR, _ONLY_THE, _SO_I_WAS) = (_P.pattern(name) for name in (
-    "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
-    "ask_someone", "coordinator", "only_the", "so_i_was"))
+ _ASK_SOMEONE, _COORDINATOR, _ONLY_THE, _SO_I_WAS, _DESCRIBED_MEMBER, _PLACE_NOT_STATE, _RUN_ON_STATE) = (
+    _P.pattern(name) for name in (
+        "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
+        "ask_someone", "coordinator", "only_the", "so_i_was", "described_member", "place_not_state",
+        "run_on_state"))
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
@@ -143,22 +145,12 @@ def team_subject(items: list[Item], j: int) -> int:
     for words in TEAM_SUBJECTS:
         if tuple(x.text for x in items[j:j + len(words)]) == words:
             return j + len(words)
-    if j < len(items) and items[j].text in ("the", "a", "whichever", "any"):
-        # "the strong robot", "the strongest robot": a member described by its build
-        k = j + 1
-        while k < len(items) and k - j <= 3 and items[k].noun is None and items[k].verb is None \
-                and items[k].punct is None and items[k].text not in _ROBOT_HEADS:
-            k += 1
-        if k > j + 1 and k < len(items) and items[k].text in _ROBOT_HEADS:
-            return k + 1
-    return j
+    return _DESCRIBED_MEMBER.end(items, j) or j     # "the strong robot": described by its build
 
 
 #: "I'd like my phone brought over": the verb after the object is the wished state
 _WISH_VERBS = _W.set("wish_verbs")
 
-#: nouns that name a team member
-_ROBOT_HEADS = _W.set("robot_heads")
 
 
 def _has_predicate(items: list[Item]) -> bool:
@@ -340,11 +332,7 @@ def _state_item_here(items: list[Item], j: int) -> bool:
     k = _skip_np(items, j)
     if k == j or k >= len(items):
         return False
-    it = items[k]
-    if it.prep is not None and k + 1 < len(items) and (items[k + 1].det or items[k + 1].noun is not None
-                                                       or items[k + 1].pron):
-        return False    # "the little one on the desk": a place, not a state
-    return it.text in _RUN_ON_STATES or it.particle in ("on", "off") or (it.state is not None and it.prep is None)
+    return not _PLACE_NOT_STATE.at(items, k) and _RUN_ON_STATE.at(items, k)
 
 
 #: states that end a "thing state" item of a run-on list (not "on": it is also a place)
