@@ -157,6 +157,11 @@ class Compiled:
 
     def __init__(self, tokens: tuple[Token, ...], tables: WordTables) -> None:
         self.steps = tuple((_compile(t, tables), t.OP, bool(t.END)) for t in tokens)
+        tests, op, at_end = self.steps[0]
+        #: the words the first item must be one of (None: any), to refuse most positions at once
+        self.first: frozenset[str] | None = next(
+            (words for attr, words, inside in tests if attr == "lower" and inside and words is not None
+             and op is None and not at_end), None)
 
     def end(self, items: list[Item], j: int) -> int | None:
         """The index after the match at ``items[j]``, or None. ``?``, ``*`` and ``+`` take
@@ -194,7 +199,9 @@ class Rule:
         """The index after the first alternative that matches at ``items[j]``, or None."""
         if self.not_after is not None and j > 0 and (items[j - 1].text in self.not_after[0]) is self.not_after[1]:
             return None
-        return next((e for p in self.alternatives if (e := p.end(items, j)) is not None), None)
+        word = items[j].text if j < len(items) else None
+        return next((e for p in self.alternatives if (p.first is None or word in p.first)
+                     and (e := p.end(items, j)) is not None), None)
 
     def at(self, items: list[Item], j: int = 0) -> bool:
         return self.end(items, j) is not None
