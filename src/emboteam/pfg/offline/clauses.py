@@ -56,26 +56,12 @@ _SUBJECT_PREDICATE = _P.table("subject_predicate")
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
 _VERB_CUES = _W.set("verb_cues")
+_TAKES_OBJECT = _P.pattern("takes_object")
 
 
 def _next_is_object(items: list[Item], j: int) -> bool:
     """Does a verb-or-noun word at ``j`` take an object (so it is a verb)?"""
-    if j + 1 >= len(items):
-        return False
-    nxt = items[j + 1]
-    if nxt.det or nxt.pron is not None or nxt.quant is not None or nxt.number is not None:
-        return True
-    if nxt.noun is not None and nxt.prep is None and (
-            nxt.verb is None or j + 2 >= len(items) or items[j + 2].punct is not None
-            or items[j + 2].conj is not None):
-        return True     # "open microwave." : a noun that could be a verb, with nothing after
-    if nxt.particle is not None and nxt.prep is None:
-        return True
-    verb = items[j].verb
-    if nxt.particle in ("on", "off") and verb is not None and verb.sense.act is lx.Act.SWITCH:
-        return True
-    return bool(nxt.particle is not None and j + 2 < len(items)
-                and (items[j + 2].det or items[j + 2].noun is not None))
+    return _TAKES_OBJECT.at(items, j)
 
 
 def verb_here(items: list[Item], j: int) -> bool:

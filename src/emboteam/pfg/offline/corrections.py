@@ -13,7 +13,7 @@ from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item
 
 _W = word_tables("corrections")
-_CALLED_OFF = pattern_tables("corrections").pattern("called_off")
+_CALLED_OFF, _RESTART = (pattern_tables("corrections").pattern(name) for name in ("called_off", "restart"))
 #: marker word sequences; a bare "no"/"sorry" is a marker only between punctuation
 _MARKERS = _W.phrases("markers")
 _BREAK = frozenset(".!?;:,")
@@ -29,16 +29,7 @@ def _marker_at(items: list[Item], k: int) -> int:
         after = items[k + len(m)] if k + len(m) < len(items) else None
         if after is None:
             return 0
-        restart = m == ("no",) and k > 0 and (
-            ((items[k - 1].det or items[k - 1].text == "and") and after.det)
-            # "throw the pencil away. No wait, throw the pen away": the request said again
-            or (items[k - 1].punct in (".", "!", "?", ",") and _starts_clause(after)
-                and after.text not in ("need", "worry", "rush", "hurry", "problem")
-                # a request with its object ("no heat" is a noun phrase)
-                and k + 2 < len(items) and (items[k + 2].det or items[k + 2].pron is not None))
-            # "turn on the faucet - no wait, don't, just ...": the act called off
-            or (after.text == "do" and k + 2 < len(items) and items[k + 2].neg
-                and (k + 3 == len(items) or items[k + 3].punct is not None or items[k + 3].text in ("just", "only"))))
+        restart = m == ("no",) and k > 0 and _RESTART.at(items, k - 1)
         if len(m) == 1 and not restart and (before is None or not (after.punct == "," or after.prep is not None)):
             continue     # "no one", "sorry to bother you", "rather the mug than ..."
         if restart:

@@ -62,6 +62,7 @@ class Token(Strict):
     QUANT: Reading = None
     VERB_FORM: str | Words | None = None
     VERB_LEMMA: str | Words | None = None
+    VERB_ACT: str | Words | None = None
     OP: Literal["?", "*", "+", "!"] | None = None
     END: bool | None = None
 
@@ -134,9 +135,11 @@ def _compile(token: Token, tables: WordTables) -> tuple[_Test, ...]:
 def _value(item: Item, attr: str) -> object:
     if attr == "lower":
         return item.text
-    if attr in ("verb_form", "verb_lemma"):
+    if attr in ("verb_form", "verb_lemma", "verb_act"):
         verb = item.verb
-        return None if verb is None else verb.form if attr == "verb_form" else verb.lemma
+        if verb is None:
+            return None
+        return verb.form if attr == "verb_form" else verb.lemma if attr == "verb_lemma" else verb.sense.act.value
     return getattr(item, attr)
 
 
