@@ -52,11 +52,11 @@ _SUBJECT_PREDICATE = _P.table("subject_predicate")
         "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
         "ask_someone", "coordinator", "only_the", "so_i_was", "described_member", "place_not_state",
         "run_on_state"))
+_RELATIVE_PLACE = _P.pattern("relative_place")
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
-_VERB_CUES = _W.set("verb_cues")
-_TAKES_OBJECT = _P.pattern("takes_object")
+_TAKES_OBJECT, _VERB_CUES, _VERB_HERE = _P.pattern("takes_object"), _P.pattern("verb_cues"), _P.table("verb_here")
 
 
 def _next_is_object(items: list[Item], j: int) -> bool:
@@ -66,18 +66,9 @@ def _next_is_object(items: list[Item], j: int) -> bool:
 
 def verb_here(items: list[Item], j: int) -> bool:
     """Is ``items[j]`` (after optional cues like "also", "please") the verb of a new clause?"""
-    while j < len(items) and items[j].text in _VERB_CUES and items[j].verb is None:
-        j += 1
-    if j >= len(items):
-        return False
-    it = items[j]
-    if it.verb is None or it.verb.form == "s":
-        return False
-    if it.verb.form == "ed" and it.state is not None and it.noun is None:
-        return False   # "the bread sliced and the slices ..." : a state, not a verb
-    if it.noun is not None or it.state is not None or it.prep is not None:
-        return _next_is_object(items, j)
-    return True
+    j = _VERB_CUES.end(items, j) or j
+    rule = first_rule(_VERB_HERE, items, j)
+    return rule is not None and (rule.then == "verb" or (rule.then == "object" and _next_is_object(items, j)))
 
 
 #: words that only introduce a robot: "have robot 2 ...", "the second robot", "ask robot 1 to"
@@ -239,16 +230,10 @@ def _skip_np(items: list[Item], j: int) -> int:
 def _skip_relative(items: list[Item], k: int) -> int:
     """The index after a relative clause of where a subject is ("that are lying on the
     desk"), ``k`` when there is none."""
-    n = len(items)
-    if not (k + 2 < n and items[k].text in ("that", "which", "who") and items[k + 1].copula):
+    start = _RELATIVE_PLACE.end(items, k)
+    if start is None or _skip_np(items, start - 1) == start - 1:
         return k
-    m = k + 2
-    verb = items[m].verb if m < n else None
-    if verb is not None and verb.form == "ing":
-        m += 1
-    if m + 1 < n and items[m].prep in ("in", "on", "by", "near", "next to", "under") and _skip_np(items, m + 1) > m + 1:
-        return _skip_np(items, m + 1)
-    return k
+    return _skip_np(items, start - 1)
 
 
 def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
