@@ -481,7 +481,8 @@ def _finish_np(s: _NP, i: int) -> tuple[Head | None, int]:
 
 
 _RELATIVE = _W.set("relative")
-_LOCATIVE = _W.set("locative")
+_IS_IN, _CLAUSE_BOUNDARY, _POSITION_THEN_PLACE = (pattern_tables("phrases").pattern(name) for name in (
+    "is_in", "clause_boundary", "position_then_place"))
 
 
 def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> int:
@@ -494,20 +495,15 @@ def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> in
     if k < n and (items[k].det or items[k].pron in ("it", "they", "them")):
         inner, m = parse_np(items, k) if items[k].det else (
             Head(text=items[k].text, pron=items[k].text), k + 1)
-    if inner is not None and m < n and items[m].text in ("is", "are", "was", "were"):
-        end = m + 1
-        if end < n and items[end].text in _LOCATIVE:
-            end += 1
-        if end >= n or items[end].punct is not None or items[end].conj is not None \
-                or items[end].seq is not None or items[end].verb is not None:
-            h.container_of = inner
-            words.extend(x.text for x in items[j:end])
-            return end
+    end = _IS_IN.end(items, m) if inner is not None else None
+    if end is not None and _CLAUSE_BOUNDARY.at(items, end):
+        h.container_of = inner
+        words.extend(x.text for x in items[j:end])
+        return end
     if not (k > j and k + 1 < n and items[k].text in ("is", "are", "was", "were")):
         return j
     p = k + 1
-    if p + 1 < n and position_participle(items[p]) and items[p + 1].prep in ("in", "on"):
-        p += 1      # "the potato that's sitting in the sink": the participle only says where
+    p += 1 if _POSITION_THEN_PLACE.at(items, p) else 0     # "... that's sitting in the sink"
     nxt = items[p]
     ends = p + 1 >= n or not np_start(items[p + 1])
     if nxt.state is not None and (nxt.prep is None or ends) and p == k + 1:
