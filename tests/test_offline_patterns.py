@@ -104,3 +104,10 @@ def test_a_word_table_a_pattern_names_and_the_words_file_lacks_is_named() -> Non
         _rule([{"LOWER": {"IN": "@no_such_table"}}])
     with pytest.raises(KnowledgeDataError, match=r"^patterns\.json: @lexicon\.no_such: the lexicon has no such word list"):
         _rule([{"LOWER": {"IN": "@lexicon.no_such"}}])
+
+
+def test_a_search_window_finds_the_pattern_a_few_words_on() -> None:
+    goes = _rule([{"VERB_ACT": "go"}, {"PREP": {"IN": ["in", "on"]}}], within=[1, 2])
+    assert goes.end(tag("they both go in the drawer"), 0) == 4
+    assert not goes.at(tag("they go in the drawer"), 1)        # "in" is no verb of going
+    assert not goes.at(tag("the mug and the cup go in the sink"), 0)    # "go" too far on

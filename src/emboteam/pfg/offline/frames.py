@@ -217,6 +217,8 @@ class _Tail:
 _SEPARATOR, _FILLER_OR_RECIPIENT, _REJECTION, _SWITCHED_STATE, _IN_IT, _INSIDE_AT_END = (
     _P.pattern(name) for name in ("separator", "filler_or_recipient", "rejection", "switched_state", "in_it",
                                   "inside_at_end"))
+_THEY_STATE, _BE_NEAR_START, _THEY_PUT_AWAY, _THEY_GO = (
+    _P.pattern(name) for name in ("they_state", "be_near_start", "they_put_away", "they_go"))
 #: a tail rule's decision: the words were read (go on), the tail ended, None: not this rule
 _GO, _END = "go", "end"
 TailRule = Callable[[_Tail], str | None]
@@ -1147,17 +1149,7 @@ def _tool_on(clause: Clause, items: list[Item], mentions: list[Head],
 def _things_they(items: list[Item]) -> bool:
     """Is "they" things, not people: in a state ("they're clean") or going somewhere
     ("they can go in a drawer", "they both belong on the shelf")?"""
-    if len(items) > 2 and items[1].copula and items[2].state is not None:
-        return True
-    words = [it.text for it in items[:5]]
-    if "be" in words and any(it.verb is not None and it.verb.form == "ed" and k + 1 < len(items)
-                             and (items[k + 1].prep in ("in", "on", "into", "onto", "inside")
-                                  or items[k + 1].text in ("back", "away", "up"))
-                             for k, it in enumerate(items[2:6], 2)):
-        return True     # "they should be tucked in a drawer", "they ought to be locked up in the safe"
-    return any(it.verb is not None and it.verb.sense.act is Act.GO and k + 1 < len(items)
-               and (items[k + 1].prep in ("in", "on", "into", "onto") or items[k + 1].text in ("back", "away"))
-               for k, it in enumerate(items[1:5], 1))
+    return _THEY_STATE.at(items) or (_BE_NEAR_START.at(items) and _THEY_PUT_AWAY.at(items)) or _THEY_GO.at(items)
 
 
 def _use_to(clause: Clause, items: list[Item], mentions: list[Head],

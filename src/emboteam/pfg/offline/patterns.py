@@ -77,11 +77,15 @@ class Pattern(Strict):
     then: str = ""
     advance: int = 1
     not_after: Words | None = None
+    #: the match may start this many words after the position, from .. to (a search window)
+    within: tuple[int, int] = (0, 0)
 
     @model_validator(mode="after")
     def _not_empty(self) -> Pattern:
         if not self.patterns or any(not p for p in self.patterns):
             raise ValueError("a pattern needs at least one token")
+        if not 0 <= self.within[0] <= self.within[1]:
+            raise ValueError(f"within {list(self.within)}: from 0 up, and from <= to")
         return self
 
 
@@ -196,10 +200,15 @@ class Rule:
     def __init__(self, pattern: Pattern, tables: WordTables) -> None:
         self.alternatives = tuple(Compiled(p, tables) for p in pattern.patterns)
         self.then, self.advance = pattern.then, pattern.advance
+        self.offsets = range(pattern.within[0], pattern.within[1] + 1)
         self.not_after = _words(pattern.not_after, tables) if pattern.not_after is not None else None
 
     def end(self, items: list[Item], j: int = 0) -> int | None:
-        """The index after the first alternative that matches at ``items[j]``, or None."""
+        """The index after the first alternative that matches at ``items[j]`` (or in the
+        window after it), or None."""
+        return next((e for k in self.offsets if (e := self._end(items, j + k)) is not None), None)
+
+    def _end(self, items: list[Item], j: int) -> int | None:
         if self.not_after is not None and j > 0 and (items[j - 1].text in self.not_after[0]) is self.not_after[1]:
             return None
         word = items[j].text if j < len(items) else None
