@@ -52,7 +52,8 @@ _SUBJECT_PREDICATE = _P.table("subject_predicate")
         "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
         "ask_someone", "coordinator", "only_the", "so_i_was", "described_member", "place_not_state",
         "run_on_state"))
-_RELATIVE_PLACE = _P.pattern("relative_place")
+_RELATIVE_PLACE, _SECOND_STATE, _STATE_OF_PLACED = (_P.pattern(name) for name in (
+    "relative_place", "second_state", "state_of_placed"))
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
@@ -164,14 +165,10 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     it = items[j]
     if any(rule.at(items, j) and (comma or rule.then != "after_comma") for rule in _NEW_CLAUSE):
         return True
-    if it.state is not None and it.prep is None and (it.verb is not None or it.text in ("open", "shut", "clean"))\
-            and (j + 1 == len(items) or items[j + 1].punct is not None) and current \
-            and (current[-1].state is not None or current[-1].particle is not None) \
+    if current and _SECOND_STATE.at(items, j) and (current[-1].state is not None or current[-1].particle is not None) \
             and not (current[-1].text in ("on", "off") and it.text in ("on", "off")):
         return True     # "should be left switched off and closed": a second state, of the same thing
-    if comma and it.state is not None and it.prep is None and it.verb is not None and it.verb.form == "ed" \
-            and (j + 1 == len(items) or items[j + 1].punct is not None or items[j + 1].conj is not None) \
-            and current and current[-1].noun is not None:
+    if comma and current and current[-1].noun is not None and _STATE_OF_PLACED.at(items, j):
         return True     # "the laptop goes on the dresser, closed, ...": the state of what was placed
     k = team_subject(items, j)
     if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
