@@ -52,8 +52,9 @@ _SUBJECT_PREDICATE = _P.table("subject_predicate")
         "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
         "ask_someone", "coordinator", "only_the", "so_i_was", "described_member", "place_not_state",
         "run_on_state"))
-_RELATIVE_PLACE, _SECOND_STATE, _STATE_OF_PLACED = (_P.pattern(name) for name in (
-    "relative_place", "second_state", "state_of_placed"))
+_RELATIVE_PLACE, _SECOND_STATE, _STATE_OF_PLACED, _PERSON_ACTS, _IT_IS, _READY_STATE, _RUN_ON_IT, _RUN_ON_VERB = (
+    _P.pattern(name) for name in ("relative_place", "second_state", "state_of_placed", "person_acts", "it_is",
+                                  "ready_state", "run_on_it", "run_on_verb"))
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
@@ -148,13 +149,6 @@ def _has_predicate(items: list[Item]) -> bool:
                for k, x in enumerate(items)) or verb_here(items, 0) or last.particle is not None or (
         last.state is not None and last.prep is None)
 
-
-#: verbs that start a run-on request after a complete one ("turn off the light put the
-#: book on the table")
-_RUN_ON_VERBS = _W.set("run_on_verbs")
-
-#: "once it's ready bring it over": words of being done that end a state clause
-_READY = _W.set("ready")
 
 
 def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
@@ -362,9 +356,7 @@ def _sequence_marker(sentence: list[Item], j: int, current: Clause) -> _Cut | No
 def _person_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """"when I come back I want the light off": the main clause after a subordinate one,
     without a comma between them."""
-    it = sentence[j]
-    if current.link not in (AND, THEN) and it.text in _HUMAN and j + 1 < len(sentence) \
-            and (sentence[j + 1].verb is not None or sentence[j + 1].copula) \
+    if current.link not in (AND, THEN) and _PERSON_ACTS.at(sentence, j) \
             and any(x.verb is not None or x.particle is not None for x in current.items):
         return _Cut(AND)
     return None
@@ -390,9 +382,8 @@ def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut |
     switch the coffee maker off": the state, then the request."""
     it, items = sentence[j], current.items
     if current.link not in (AND, THEN) and len(items) >= 3 \
-            and ((items[0].pron in ("it", "they", "that") and items[1].copula) or (
-                _skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
-            and (items[-1].state is not None or items[-1].particle is not None or items[-1].text in _READY) \
+            and (_IT_IS.at(items) or (_skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
+            and _READY_STATE.at(items, len(items) - 1) \
             and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
             and it.verb.form == "base" and verb_here(sentence, j):
         return _Cut(AND)
@@ -406,11 +397,9 @@ def _robot_named(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
 def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """"bring me the book from the desk put it on the bed": a run-on request; "the remote
     is on the tv stand can you put it on the sofa": a run-on statement, then the request."""
-    it, items, n = sentence[j], current.items, len(sentence)
-    if it.verb is not None and it.noun is None and it.verb.form == "base" and j + 1 < n \
-            and (sentence[j + 1].pron in ("it", "them") or (
-                sentence[j + 1].det and items and items[0].verb is not None
-                and items[0].noun is None and it.text in _RUN_ON_VERBS)) \
+    items = current.items
+    if (_RUN_ON_IT.at(sentence, j) or (_RUN_ON_VERB.at(sentence, j) and items and items[0].verb is not None
+                                       and items[0].noun is None)) \
             and items and items[-1].noun is not None \
             and any(x.verb is not None and x.noun is None for x in items):
         return _Cut(AND)
