@@ -55,6 +55,7 @@ _SUBJECT_PREDICATE = _P.table("subject_predicate")
 _RELATIVE_PLACE, _SECOND_STATE, _STATE_OF_PLACED, _PERSON_ACTS, _IT_IS, _READY_STATE, _RUN_ON_IT, _RUN_ON_VERB = (
     _P.pattern(name) for name in ("relative_place", "second_state", "state_of_placed", "person_acts", "it_is",
                                   "ready_state", "run_on_it", "run_on_verb"))
+_STATE_THEN_THING, _NOUN_THEN_THING = _P.pattern("state_then_thing"), _P.pattern("noun_then_thing")
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
@@ -297,8 +298,6 @@ def _state_item_here(items: list[Item], j: int) -> bool:
     return not _PLACE_NOT_STATE.at(items, k) and _RUN_ON_STATE.at(items, k)
 
 
-#: states that end a "thing state" item of a run-on list (not "on": it is also a place)
-_RUN_ON_STATES = _W.set("run_on_states")
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")
 _SUBJECT_PLACES = _W.set("subject_places")
@@ -456,11 +455,9 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
 def _run_on_states(sentence: list[Item], j: int, current: Clause) -> bool:
     """"soap in the sink tap running light off": states typed without commas, each after
     its own subject."""
-    it = sentence[j]
-    return j > 1 and ((sentence[j - 1].text in _RUN_ON_STATES and sentence[j - 2].verb is None
-                       and not sentence[j - 2].det)
-                      or (sentence[j - 1].noun is not None and _ends_with_place(current.items))) \
-        and (it.det or it.noun is not None) and _state_item_here(sentence, j) and _content(current.items)
+    return j > 1 and (_STATE_THEN_THING.at(sentence, j - 2) or (
+        _NOUN_THEN_THING.at(sentence, j - 1) and _ends_with_place(current.items))) \
+        and _state_item_here(sentence, j) and _content(current.items)
 
 
 #: the rules that say whether a clause starts at an item, in order: the first that applies
