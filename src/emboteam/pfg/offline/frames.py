@@ -138,12 +138,8 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
                     flags["wish_scope"] = True
                 if _ASK_FOR.match(text):
                     flags["recipient"] = True     # "can I have the apple": give it to me
-                consumed = text[: m.end()].split()
-                k, used = 0, 0
-                while k < len(items) and used < len(consumed):
-                    used += len(items[k].text.split())
-                    k += 1
-                if used == len(consumed) and k > 0:
+                k = _items_holding(items, len(text[: m.end()].split()))
+                if k is not None:
                     # never drop a verb that begins the clause (the "so" of "so that" aside)
                     items = items[k:]
                     changed = True
@@ -155,15 +151,22 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
             break
         if m.group().strip() in ("too", "as well", "also"):
             flags["also"] = True      # "and the tomato too": the act before, on this
-        n_words = len(m.group().split())
-        k, used = len(items), 0
-        while k > 0 and used < n_words:
-            k -= 1
-            used += len(items[k].text.split())
-        if used != n_words or k == 0:
+        k = _items_holding(items, len(m.group().split()), from_end=True)
+        if k is None or k == len(items):
             break
-        items = items[:k]
+        items = items[:-k]
     return items
+
+
+def _items_holding(items: list[Item], n_words: int, from_end: bool = False) -> int | None:
+    """How many items from the start (or the end) hold exactly the first (or last)
+    ``n_words`` words; None when an item of several words straddles the cut."""
+    used = 0
+    for count, it in enumerate(reversed(items) if from_end else items, 1):
+        used += len(it.text.split())
+        if used >= n_words:
+            return count if used == n_words else None
+    return None
 
 
 # --- clause parsing ---------------------------------------------------------------------
