@@ -17,13 +17,15 @@ A pattern name has one or several alternative patterns (spaCy's ``Matcher.add(ke
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from operator import attrgetter
 from typing import Literal
 
 from pydantic import Field, model_validator
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import KnowledgeDataError, Strict, WordTables, load, word_tables
-from emboteam.pfg.offline.tagger import Item
+from emboteam.pfg.offline.tagger import Item, VerbReading
 
 
 class Words(Strict):
@@ -119,75 +121,76 @@ def _words(value: str | Words, tables: WordTables) -> tuple[frozenset[str], bool
     return frozenset(raw), inside
 
 
-#: a compiled constraint: (what it tests, the words or None, whether it must hold)
-_Test = tuple[str, frozenset[str] | None, bool]
+#: a compiled token: does the item meet every constraint?
+Check = Callable[[Item], bool]
+_FLAGS = frozenset({"det", "neg", "copula"})
+_VERB_PARTS: dict[str, Callable[[VerbReading], str]] = {
+    "verb_form": attrgetter("form"), "verb_lemma": attrgetter("lemma"), "verb_act": lambda v: v.sense.act.value}
 
 
-def _compile(token: Token, tables: WordTables) -> tuple[_Test, ...]:
-    tests: list[_Test] = []
+def _check(attr: str, words: frozenset[str] | None, want: bool) -> Check:
+    """One constraint as a test of an item (closures: the patterns are tested many times
+    per instruction)."""
+    if words is None:
+        if attr in _FLAGS:
+            return lambda it: bool(getattr(it, attr)) is want
+        return lambda it: (getattr(it, attr) is not None) is want
+    if attr == "lower":
+        return lambda it: (it.text in words) is want
+    if attr in _VERB_PARTS:
+        part = _VERB_PARTS[attr]
+        return lambda it: it.verb is not None and (part(it.verb) in words) is want
+    return lambda it: (v := getattr(it, attr)) is not None and (v in words) is want
+
+
+def _compile(token: Token, tables: WordTables) -> tuple[Check, frozenset[str] | None]:
+    """The token's test, and the words its item must be one of when it says (else None)."""
+    checks: list[Check] = []
+    first: frozenset[str] | None = None
     for name, value in token:
         if value is None or name in ("OP", "END"):
             continue
-        if isinstance(value, bool):
-            tests.append((name.lower(), None, value))
-        else:
-            words, inside = _words(value, tables)
-            tests.append((name.lower(), words, inside))
-    return tuple(tests)
+        words, want = (None, value) if isinstance(value, bool) else _words(value, tables)
+        checks.append(_check(name.lower(), words, want))
+        first = words if name == "LOWER" and want else first
 
+    def check(item: Item) -> bool:
+        return all(one(item) for one in checks)
 
-def _value(item: Item, attr: str) -> object:
-    if attr == "lower":
-        return item.text
-    if attr in ("verb_form", "verb_lemma", "verb_act"):
-        verb = item.verb
-        if verb is None:
-            return None
-        return verb.form if attr == "verb_form" else verb.lemma if attr == "verb_lemma" else verb.sense.act.value
-    return getattr(item, attr)
-
-
-def _holds(item: Item, tests: tuple[_Test, ...]) -> bool:
-    for attr, words, inside in tests:
-        value = _value(item, attr)
-        if words is None:
-            present = bool(value) if attr in ("det", "neg", "copula") else value is not None
-            if present is not inside:
-                return False
-        elif value is None or (value in words) is not inside:
-            return False
-    return True
+    return (checks[0] if len(checks) == 1 else check), first
 
 
 class Compiled:
-    """One alternative, ready to match: each token's tests, its OP and whether it is END."""
+    """One alternative, ready to match: each token's test, its OP and whether it is END."""
 
     def __init__(self, tokens: tuple[Token, ...], tables: WordTables) -> None:
-        self.steps = tuple((_compile(t, tables), t.OP, bool(t.END)) for t in tokens)
-        tests, op, at_end = self.steps[0]
+        compiled = [_compile(t, tables) for t in tokens]
+        self.steps = tuple((check, t.OP, bool(t.END)) for (check, _), t in zip(compiled, tokens, strict=True))
         #: the words the first item must be one of (None: any), to refuse most positions at once
-        self.first: frozenset[str] | None = next(
-            (words for attr, words, inside in tests if attr == "lower" and inside and words is not None
-             and op is None and not at_end), None)
+        self.first = compiled[0][1] if tokens[0].OP is None and not tokens[0].END else None
 
     def end(self, items: list[Item], j: int) -> int | None:
         """The index after the match at ``items[j]``, or None. ``?``, ``*`` and ``+`` take
         every item they can and never give one back (a possessive quantifier): the grammar's
         word tests look ahead that way."""
         n = len(items)
-        for tests, op, at_end in self.steps:
-            if at_end:
+        for check, op, at_end in self.steps:
+            if op is None and not at_end:
+                if j >= n or not check(items[j]):
+                    return None
+                j += 1
+            elif at_end:
                 if j != n:
                     return None
             elif op in ("*", "+"):
                 start = j
-                while j < n and _holds(items[j], tests):
+                while j < n and check(items[j]):
                     j += 1
                 if op == "+" and j == start:
                     return None
             elif op == "?":
-                j += 1 if j < n and _holds(items[j], tests) else 0
-            elif j >= n or _holds(items[j], tests) is (op == "!"):
+                j += 1 if j < n and check(items[j]) else 0
+            elif j >= n or check(items[j]):     # "!": any item but one that fits
                 return None
             else:
                 j += 1
@@ -201,22 +204,29 @@ class Rule:
         self.alternatives = tuple(Compiled(p, tables) for p in pattern.patterns)
         self.then, self.advance = pattern.then, pattern.advance
         self.offsets = range(pattern.within[0], pattern.within[1] + 1)
+        self.here = pattern.within == (0, 0)
         self.not_after = _words(pattern.not_after, tables) if pattern.not_after is not None else None
 
     def end(self, items: list[Item], j: int = 0) -> int | None:
         """The index after the first alternative that matches at ``items[j]`` (or in the
         window after it), or None."""
+        if self.here:
+            return self._end(items, j)
         return next((e for k in self.offsets if (e := self._end(items, j + k)) is not None), None)
 
     def _end(self, items: list[Item], j: int) -> int | None:
         if self.not_after is not None and j > 0 and (items[j - 1].text in self.not_after[0]) is self.not_after[1]:
             return None
         word = items[j].text if j < len(items) else None
-        return next((e for p in self.alternatives if (p.first is None or word in p.first)
-                     and (e := p.end(items, j)) is not None), None)
+        for alternative in self.alternatives:
+            if alternative.first is None or word in alternative.first:
+                end = alternative.end(items, j)
+                if end is not None:
+                    return end
+        return None
 
     def at(self, items: list[Item], j: int = 0) -> bool:
-        return self.end(items, j) is not None
+        return (self._end(items, j) if self.here else self.end(items, j)) is not None
 
 
 class PatternTables:
