@@ -15,15 +15,15 @@ appliance runs.
 from __future__ import annotations
 
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item
 
 _W = word_tables("adjuncts")
 #: nouns and adverbs that name a point or stretch of time (not a duration unit)
 TIME_POINTS = _W.set("time_points")
-#: words that introduce a time adjunct ("on" only before a day: "leave the light on all
-#: night" keeps its particle)
-_INTRODUCERS = _W.set("introducers")
-_DAYS = _W.set("days")
+#: "... on any more"; a word that introduces a time adjunct ("on" only before a day:
+#: "leave the light on all night" keeps its particle)
+_NO_LONGER, _INTRODUCED = (pattern_tables("adjuncts").pattern(name) for name in ("no_longer", "introduced"))
 #: words that modify a time noun ("this afternoon", "next week", "all day", "at some point")
 _MODIFIERS = _W.set("modifiers")
 #: "at some point", "at any time": a vague point in time
@@ -52,15 +52,11 @@ def drop_time_adjuncts(items: list[Item]) -> list[Item]:
     out: list[Item] = []
     k = 0
     while k < len(items):
-        if items[k].text == "anymore" or (items[k].text == "any" and k + 1 < len(items)
-                                          and items[k + 1].text in ("more", "longer")
-                                          and (k + 2 == len(items) or items[k + 2].punct is not None)):
-            k += 1 if items[k].text == "anymore" else 2     # "... on any more": when, not what
+        no_longer = _NO_LONGER.end(items, k)
+        if no_longer is not None:
+            k = no_longer
             continue
-        introduced = items[k].text in _INTRODUCERS or (
-            items[k].text == "on" and k + 1 < len(items)
-            and (items[k + 1].text in _DAYS or (k + 2 < len(items) and items[k + 2].text in _DAYS)))
-        start = k + 1 if introduced else k
+        start = k + 1 if _INTRODUCED.at(items, k) else k
         end = _time_run(items, start)
         if end > start and (end >= len(items) or items[end].text != "of"):
             k = end        # "the morning of ..." aside: the whole adjunct goes

@@ -15,6 +15,7 @@ from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start, parse_np
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
@@ -34,6 +35,8 @@ def known_objects(items: list[Item]) -> list[Head] | None:
 #: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
 _NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
 _W = word_tables("clause_passes")
+_SHE_NEEDS_IT, _REQUEST_AFTER_IF, _REPORTED = (pattern_tables("clause_passes").pattern(name) for name in (
+    "she_needs_it", "request_after_if", "reported"))
 #: a person's own doings under "when", "before", "if": "when I get home", "before you go"
 #: are a time, not a request
 _PERSON = _W.set("person")
@@ -121,8 +124,7 @@ def small_talk(clause: Clause) -> bool:
             i.verb is not None and i.verb.form == "ing" for i in items[texts.index("bother") + 1:]):
         return True     # "don't bother rinsing it": the act is called off
     words = [i for i in items if i.punct is None and i.text not in ("still", "really", "just", "also")]
-    if len(words) == 3 and words[0].text in ("he", "she") and words[1].verb is not None \
-            and words[1].verb.lemma in ("need", "want", "use") and words[2].pron is not None:
+    if _SHE_NEEDS_IT.at(words):
         return True     # "don't pack the laptop, she still needs it": why, no request
     if any(i.noun is not None or i.state is not None or i.pron is not None or i.liquid is not None
            or i.recipe is not None for i in items):
@@ -150,8 +152,7 @@ def condition_groups(clauses: list[Clause]) -> list[list[int]]:
             groups.append([k])
         elif groups and groups[-1][-1] == k - 1 and c.link == AND and c.sentence == clauses[k - 1].sentence \
                 and not (c.items and c.items[0].verb is not None) \
-                and not (len(c.items) > 1 and c.items[0].text in ("could", "can", "would", "will", "please")
-                         and c.items[1].text in ("you", "someone", "somebody", "one")):
+                and not _REQUEST_AFTER_IF.at(c.items):
             # ("if the lamp's still on, could you switch it off": the request the "if" is for)
             groups[-1].append(k)
     return groups
@@ -188,8 +189,7 @@ def _reported(items: list[Item]) -> bool:
     """"(before) it goes off", "(once) they come out": a pronoun and a verb in the third
     person, what will happen, not something asked."""
     words = [i for i in items if i.punct is None]
-    return len(words) >= 2 and words[0].pron in ("it", "they", "that", "this") and words[1].verb is not None \
-        and words[1].verb.form == "s" and words[1].noun is None
+    return _REPORTED.at(words)
 
 
 def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:

@@ -15,6 +15,7 @@ from typing import NamedTuple
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import first_rule, pattern_tables
 from emboteam.pfg.offline.tagger import Item
 
 #: how a clause attaches to the one before it
@@ -40,46 +41,37 @@ class Clause:
 
 _SENTENCE_END = frozenset(".!?;:")
 _W = word_tables("clauses")
+_P = pattern_tables("clauses")
+#: what starts a new clause after a comma or "and" (more in :func:`_starts_new`)
+_NEW_CLAUSE = _P.table("new_clause")
+#: what follows a subject when it has a predicate of its own: which kind
+_SUBJECT_PREDICATE = _P.table("subject_predicate")
+(_ADVERB_THEN_PLACE, _LEFT_IN_A_STATE, _QUESTION_MODALS, _MAKE_SURE, _TOO_AT_END, _MODAL_PREDICATE,
+ _ASK_SOMEONE, _COORDINATOR, _ONLY_THE, _SO_I_WAS, _DESCRIBED_MEMBER, _PLACE_NOT_STATE, _RUN_ON_STATE) = (
+    _P.pattern(name) for name in (
+        "adverb_then_place", "left_in_a_state", "question_modals", "make_sure", "too_at_end", "modal_predicate",
+        "ask_someone", "coordinator", "only_the", "so_i_was", "described_member", "place_not_state",
+        "run_on_state"))
+_RELATIVE_PLACE, _SECOND_STATE, _STATE_OF_PLACED, _PERSON_ACTS, _IT_IS, _READY_STATE, _RUN_ON_IT, _RUN_ON_VERB = (
+    _P.pattern(name) for name in ("relative_place", "second_state", "state_of_placed", "person_acts", "it_is",
+                                  "ready_state", "run_on_it", "run_on_verb"))
+_STATE_THEN_THING, _NOUN_THEN_THING = _P.pattern("state_then_thing"), _P.pattern("noun_then_thing")
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
-_VERB_CUES = _W.set("verb_cues")
+_TAKES_OBJECT, _VERB_CUES, _VERB_HERE = _P.pattern("takes_object"), _P.pattern("verb_cues"), _P.table("verb_here")
 
 
 def _next_is_object(items: list[Item], j: int) -> bool:
     """Does a verb-or-noun word at ``j`` take an object (so it is a verb)?"""
-    if j + 1 >= len(items):
-        return False
-    nxt = items[j + 1]
-    if nxt.det or nxt.pron is not None or nxt.quant is not None or nxt.number is not None:
-        return True
-    if nxt.noun is not None and nxt.prep is None and (
-            nxt.verb is None or j + 2 >= len(items) or items[j + 2].punct is not None
-            or items[j + 2].conj is not None):
-        return True     # "open microwave." : a noun that could be a verb, with nothing after
-    if nxt.particle is not None and nxt.prep is None:
-        return True
-    verb = items[j].verb
-    if nxt.particle in ("on", "off") and verb is not None and verb.sense.act is lx.Act.SWITCH:
-        return True
-    return bool(nxt.particle is not None and j + 2 < len(items)
-                and (items[j + 2].det or items[j + 2].noun is not None))
+    return _TAKES_OBJECT.at(items, j)
 
 
 def verb_here(items: list[Item], j: int) -> bool:
     """Is ``items[j]`` (after optional cues like "also", "please") the verb of a new clause?"""
-    while j < len(items) and items[j].text in _VERB_CUES and items[j].verb is None:
-        j += 1
-    if j >= len(items):
-        return False
-    it = items[j]
-    if it.verb is None or it.verb.form == "s":
-        return False
-    if it.verb.form == "ed" and it.state is not None and it.noun is None:
-        return False   # "the bread sliced and the slices ..." : a state, not a verb
-    if it.noun is not None or it.state is not None or it.prep is not None:
-        return _next_is_object(items, j)
-    return True
+    j = _VERB_CUES.end(items, j) or j
+    rule = first_rule(_VERB_HERE, items, j)
+    return rule is not None and (rule.then == "verb" or (rule.then == "object" and _next_is_object(items, j)))
 
 
 #: words that only introduce a robot: "have robot 2 ...", "the second robot", "ask robot 1 to"
@@ -133,22 +125,12 @@ def team_subject(items: list[Item], j: int) -> int:
     for words in TEAM_SUBJECTS:
         if tuple(x.text for x in items[j:j + len(words)]) == words:
             return j + len(words)
-    if j < len(items) and items[j].text in ("the", "a", "whichever", "any"):
-        # "the strong robot", "the strongest robot": a member described by its build
-        k = j + 1
-        while k < len(items) and k - j <= 3 and items[k].noun is None and items[k].verb is None \
-                and items[k].punct is None and items[k].text not in _ROBOT_HEADS:
-            k += 1
-        if k > j + 1 and k < len(items) and items[k].text in _ROBOT_HEADS:
-            return k + 1
-    return j
+    return _DESCRIBED_MEMBER.end(items, j) or j     # "the strong robot": described by its build
 
 
 #: "I'd like my phone brought over": the verb after the object is the wished state
 _WISH_VERBS = _W.set("wish_verbs")
 
-#: nouns that name a team member
-_ROBOT_HEADS = _W.set("robot_heads")
 
 
 def _has_predicate(items: list[Item]) -> bool:
@@ -156,13 +138,8 @@ def _has_predicate(items: list[Item]) -> bool:
     need to go in the fridge) has not: the next subject shares the predicate."""
     if not items:
         return False
-    words = [x.text for x in items]
-    for wish in (["please", "make", "sure"], ["make", "sure"], ["please", "ensure"], ["ensure"]):
-        if words[:len(wish)] == wish:
-            items = items[len(wish):]     # "make sure the fridge and the microwave are closed"
-            break
-    while items and items[0].text in ("could", "can", "would", "will", "should", "may", "might"):
-        items = items[1:]     # "could my phone off the coffee table (and the keys go ...)": a question
+    items = items[_MAKE_SURE.end(items) or 0:]
+    items = items[_QUESTION_MODALS.end(items) or 0:]
     if not items:
         return False
     last = items[-1]
@@ -174,16 +151,6 @@ def _has_predicate(items: list[Item]) -> bool:
         last.state is not None and last.prep is None)
 
 
-#: adverbs between a person and the verb: "I still need", "we really want"
-_SUBJECT_ADVERBS = _W.set("subject_adverbs")
-
-#: verbs that start a run-on request after a complete one ("turn off the light put the
-#: book on the table")
-_RUN_ON_VERBS = _W.set("run_on_verbs")
-
-#: "once it's ready bring it over": words of being done that end a state clause
-_READY = _W.set("ready")
-
 
 def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
                 comma: bool = True) -> bool:
@@ -191,27 +158,13 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
     far; ``comma``: a comma came before (a new subject needs one: "I need the tomato and
     the lettuce sliced" is one clause, "turn the TV off, the lights too" two)."""
     it = items[j]
-    if it.seq is not None or it.robot is not None:
+    if any(rule.at(items, j) and (comma or rule.then != "after_comma") for rule in _NEW_CLAUSE):
         return True
-    if (it.sub is not None and it.sub != "purpose") or it.text == "so":
-        return True
-    if it.text in _HUMAN:
-        v = j + 1
-        while v < len(items) and items[v].text in _SUBJECT_ADVERBS:
-            v += 1      # "..., I still need the pencil"
-        if v < len(items) and (items[v].verb is not None or items[v].copula):
-            return True
-    if it.state is not None and it.prep is None and (it.verb is not None or it.text in ("open", "shut", "clean"))\
-            and (j + 1 == len(items) or items[j + 1].punct is not None) and current \
-            and (current[-1].state is not None or current[-1].particle is not None) \
+    if current and _SECOND_STATE.at(items, j) and (current[-1].state is not None or current[-1].particle is not None) \
             and not (current[-1].text in ("on", "off") and it.text in ("on", "off")):
         return True     # "should be left switched off and closed": a second state, of the same thing
-    if comma and it.state is not None and it.prep is None and it.verb is not None and it.verb.form == "ed" \
-            and (j + 1 == len(items) or items[j + 1].punct is not None or items[j + 1].conj is not None) \
-            and current and current[-1].noun is not None:
+    if comma and current and current[-1].noun is not None and _STATE_OF_PLACED.at(items, j):
         return True     # "the laptop goes on the dresser, closed, ...": the state of what was placed
-    if it.text == "there" and j + 1 < len(items) and items[j + 1].text in ("is", "are", "s", "was", "were"):
-        return True     # "I'm not asking for miracles, but there are two rags on the floor"
     k = team_subject(items, j)
     if k > j and k < len(items) and (items[k].verb is not None or items[k].copula):
         return True     # ", the other should put ...", "while another turns off ..."
@@ -219,19 +172,11 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
             and items[j + 1].verb is None and items[j + 1].prep is None and items[j + 1].text.endswith("s") \
             and len(items[j + 1].text) > 3 and items[j + 1].text not in lx.vocabulary():
         return True     # "..., it glares on the screen": a clause of its own with a verb we do not know
-    if it.text in ("do", "please") and j + 2 < len(items) and items[j + 1].neg and items[j + 2].verb is not None:
-        return True     # "..., and don't leave the fridge door open": a prohibition of its own
-    if comma and it.text in ("can", "could", "would", "will", "should") and j + 2 < len(items) \
-            and (items[j + 1].pron is not None or items[j + 1].det or items[j + 1].text in _HUMAN):
-        return True     # "I've left my phone on the bed, can it go on the desk?"
     if it.verb is not None and it.verb.form == "s" and it.noun is None and current \
             and any(x.verb is not None and x.verb.form == "s" and x.noun is None for x in current) \
             and _next_is_object(items, j):
         return True     # "robot 1 closes it and turns off the light": the same subject's next act
-    if it.text in ("use", "using") and j + 1 < len(items) and (items[j + 1].det
-                                                              or items[j + 1].noun is not None):
-        return True     # "fry the egg - use the pan on the stove"
-    asked = current is not None and bool(current) and current[0].text in ("could", "can", "would", "will", "should", "may", "might")
+    asked = current is not None and _QUESTION_MODALS.at(current)
     kind = subject_here(items, j, asked)
     if kind == "state" and comma and _ends_with_place(current or []):
         return True     # "candle in the box, box shut, lamp on": terse items, each complete
@@ -277,16 +222,10 @@ def _skip_np(items: list[Item], j: int) -> int:
 def _skip_relative(items: list[Item], k: int) -> int:
     """The index after a relative clause of where a subject is ("that are lying on the
     desk"), ``k`` when there is none."""
-    n = len(items)
-    if not (k + 2 < n and items[k].text in ("that", "which", "who") and items[k + 1].copula):
+    start = _RELATIVE_PLACE.end(items, k)
+    if start is None or _skip_np(items, start - 1) == start - 1:
         return k
-    m = k + 2
-    verb = items[m].verb if m < n else None
-    if verb is not None and verb.form == "ing":
-        m += 1
-    if m + 1 < n and items[m].prep in ("in", "on", "by", "near", "next to", "under") and _skip_np(items, m + 1) > m + 1:
-        return _skip_np(items, m + 1)
-    return k
+    return _skip_np(items, start - 1)
 
 
 def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
@@ -304,8 +243,7 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         # a subject: noun phrases with where they are, coordinated ("my phone off the desk
         # and the keys that are lying on the other desk should go ...")
         k = _skip_relative(items, k)
-        if k + 1 < n and items[k].text in ("up", "down", "over", "back") and items[k + 1].prep is not None:
-            k += 1
+        k += 1 if _ADVERB_THEN_PLACE.at(items, k) else 0
         while k + 1 < n and items[k].prep in _SUBJECT_PLACES and _skip_np(items, k + 1) > k + 1:
             k = _skip_np(items, k + 1)
         if k + 1 < n and items[k].conj == "and" and _skip_np(items, k + 1) > k + 1:
@@ -314,28 +252,11 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         break
     if k >= n:
         return None
-    if k + 1 < n and items[k].text in ("left", "kept", "still", "now", "all") and (
-            items[k + 1].state is not None or items[k + 1].particle in ("on", "off")):
-        k += 1      # "... and the shower door left open"
+    k += 1 if _LEFT_IN_A_STATE.at(items, k) else 0
     it = items[k]
-    end = k + 1 >= n or items[k + 1].punct is not None or items[k + 1].conj is not None \
-        or items[k + 1].sub is not None   # "... closed once they're in", "... left open so it dries"
-    if it.copula and it.text != "to":
-        return "copula"
-    if it.text in ("have", "has") and k + 1 < n and (items[k + 1].text in ("both", "all", "already", "just")
-                                                      or items[k + 1].verb is not None):
-        return "copula"     # a perfect: "... have both gone off", "... has been left on"
-    if it.verb is not None and it.verb.form == "ed" and it.noun is None and k + 1 < n and (
-            items[k + 1].prep in ("in", "on", "into", "onto", "to", "over to", "inside")
-            or (items[k + 1].particle is not None and k + 2 < n and items[k + 2].prep is not None)):
-        return "state"      # "..., and the tissues moved over to the dresser": a thing and its wished place
-    if it.verb is not None and it.verb.form == "ed" and it.noun is None and k + 1 < n \
-            and items[k + 1].particle in ("on", "off", "up", "down") and (
-                k + 2 >= n or items[k + 2].punct is not None or items[k + 2].conj is not None):
-        return "state"      # "..., and the light switched off"
-    if end and (it.particle in ("on", "off", "up", "down") or (
-            it.state is not None and it.prep is None)):
-        return "state"
+    predicate = first_rule(_SUBJECT_PREDICATE, items, k)
+    if predicate is not None:
+        return predicate.then
     plural = items[j].text in ("they", "these", "those", "both", "all") or any(
         x.conj == "and" or (x.noun is not None and x.noun.plural) for x in items[j:k])
     if it.verb is not None and (it.verb.form == "s" or ((plural or asked) and it.verb.form == "base")) \
@@ -344,7 +265,7 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
         return "verb"       # "and the fork goes in the drawer", ", they both go in the fridge"
     while k < n and items[k].text in ("both", "all", "each"):
         k += 1      # "they both want to go in the basket"
-    if k < n and _modal_predicate(items, k) and items[j].text not in ("that", "which", "who"):
+    if k < n and _MODAL_PREDICATE.at(items, k) and items[j].text not in ("that", "which", "who"):
         return "verb"       # ", the egg in the sink wants to go in the fridge"
     return None
 
@@ -360,15 +281,7 @@ def _also_item(items: list[Item], j: int) -> bool:
         m = _skip_np(items, m + 1)      # "and the spray bottle on the toilet too"
         if m >= n:
             return False
-    if items[m].text in ("too", "also"):
-        m += 1
-    elif items[m].text == "as" and m + 1 < n and items[m + 1].text == "well":
-        m += 2
-    elif items[m].text == "as well":
-        m += 1
-    else:
-        return False
-    return m >= n or items[m].punct is not None or items[m].sub is not None or items[m].conj is not None
+    return _TOO_AT_END.at(items, m)
 
 
 def _with_a_place(items: list[Item], j: int) -> bool:
@@ -382,27 +295,12 @@ def _state_item_here(items: list[Item], j: int) -> bool:
     k = _skip_np(items, j)
     if k == j or k >= len(items):
         return False
-    it = items[k]
-    if it.prep is not None and k + 1 < len(items) and (items[k + 1].det or items[k + 1].noun is not None
-                                                       or items[k + 1].pron):
-        return False    # "the little one on the desk": a place, not a state
-    return it.text in _RUN_ON_STATES or it.particle in ("on", "off") or (it.state is not None and it.prep is None)
+    return not _PLACE_NOT_STATE.at(items, k) and _RUN_ON_STATE.at(items, k)
 
 
-#: states that end a "thing state" item of a run-on list (not "on": it is also a place)
-_RUN_ON_STATES = _W.set("run_on_states")
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")
 _SUBJECT_PLACES = _W.set("subject_places")
-
-#: words that open a predicate of a new subject: "should go", "wants to go", "can come out"
-_SUBJECT_MODALS = _W.set("subject_modals")
-
-
-def _modal_predicate(items: list[Item], k: int) -> bool:
-    return items[k].text in _SUBJECT_MODALS and k + 1 < len(items) and (
-        items[k + 1].verb is not None or items[k + 1].text in ("to", "be", "really", "also", "probably"))
-
 
 def _sentence_adverb(it: Item) -> bool:
     """"..., but honestly the egg has gone off": an adverb that comments on the clause
@@ -457,9 +355,7 @@ def _sequence_marker(sentence: list[Item], j: int, current: Clause) -> _Cut | No
 def _person_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """"when I come back I want the light off": the main clause after a subordinate one,
     without a comma between them."""
-    it = sentence[j]
-    if current.link not in (AND, THEN) and it.text in _HUMAN and j + 1 < len(sentence) \
-            and (sentence[j + 1].verb is not None or sentence[j + 1].copula) \
+    if current.link not in (AND, THEN) and _PERSON_ACTS.at(sentence, j) \
             and any(x.verb is not None or x.particle is not None for x in current.items):
         return _Cut(AND)
     return None
@@ -485,9 +381,8 @@ def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut |
     switch the coffee maker off": the state, then the request."""
     it, items = sentence[j], current.items
     if current.link not in (AND, THEN) and len(items) >= 3 \
-            and ((items[0].pron in ("it", "they", "that") and items[1].copula) or (
-                _skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
-            and (items[-1].state is not None or items[-1].particle is not None or items[-1].text in _READY) \
+            and (_IT_IS.at(items) or (_skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
+            and _READY_STATE.at(items, len(items) - 1) \
             and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
             and it.verb.form == "base" and verb_here(sentence, j):
         return _Cut(AND)
@@ -501,17 +396,13 @@ def _robot_named(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
 def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """"bring me the book from the desk put it on the bed": a run-on request; "the remote
     is on the tv stand can you put it on the sofa": a run-on statement, then the request."""
-    it, items, n = sentence[j], current.items, len(sentence)
-    if it.verb is not None and it.noun is None and it.verb.form == "base" and j + 1 < n \
-            and (sentence[j + 1].pron in ("it", "them") or (
-                sentence[j + 1].det and items and items[0].verb is not None
-                and items[0].noun is None and it.text in _RUN_ON_VERBS)) \
+    items = current.items
+    if (_RUN_ON_IT.at(sentence, j) or (_RUN_ON_VERB.at(sentence, j) and items and items[0].verb is not None
+                                       and items[0].noun is None)) \
             and items and items[-1].noun is not None \
             and any(x.verb is not None and x.noun is None for x in items):
         return _Cut(AND)
-    if it.text in ("can", "could", "would", "will") and j + 1 < n \
-            and sentence[j + 1].text in ("you", "someone", "somebody", "anyone") \
-            and _content(items) and any(x.copula or x.verb is not None for x in items):
+    if _ASK_SOMEONE.at(sentence, j) and _content(items) and any(x.copula or x.verb is not None for x in items):
         return _Cut(AND)
     return None
 
@@ -519,17 +410,14 @@ def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | Non
 def _coordination(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """A comma, "and", "but", "plus", "as well as": a boundary when what follows starts a
     clause of its own (:func:`_starts_new`)."""
-    it = sentence[j]
-    if not (it.text == "as well as" or ((it.text in (",", "and", "but", "plus") or it.punct == ",")
-                                        and j + 1 < len(sentence))):
+    if not _COORDINATOR.at(sentence, j):
         return None
     k = j + 1
     while k < len(sentence) and (sentence[k].punct == "," or sentence[k].text in ("and", "but")
                                  or _sentence_adverb(sentence[k])):
         k += 1
     comma = any(sentence[x].punct == "," for x in range(j, k))
-    if k + 1 < len(sentence) and sentence[k].text in ("only", "just") \
-            and any(x.neg for x in current.items) and sentence[k + 1].det:
+    if _ONLY_THE.at(sentence, k) and any(x.neg for x in current.items):
         # "don't turn off the desk lamp, only the floor lamp": the act, not negated, on
         # what follows
         return _Cut(AND, k + 1 - j, only=True)
@@ -559,8 +447,7 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
             and (nxt.noun is None or _next_is_object(sentence, j + 1)):
         link = THEN     # "... and after close the box": afterwards
-    if it.text == "so" and nxt is not None and nxt.text in _HUMAN and j + 2 < len(sentence) \
-            and sentence[j + 2].text in ("was", "were", "am", "m", "did", "had"):
+    if _SO_I_WAS.at(sentence, j):
         link = AND      # "so I was going to bake": what happened, no purpose
     return _Cut(link, skip)
 
@@ -568,11 +455,9 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
 def _run_on_states(sentence: list[Item], j: int, current: Clause) -> bool:
     """"soap in the sink tap running light off": states typed without commas, each after
     its own subject."""
-    it = sentence[j]
-    return j > 1 and ((sentence[j - 1].text in _RUN_ON_STATES and sentence[j - 2].verb is None
-                       and not sentence[j - 2].det)
-                      or (sentence[j - 1].noun is not None and _ends_with_place(current.items))) \
-        and (it.det or it.noun is not None) and _state_item_here(sentence, j) and _content(current.items)
+    return j > 1 and (_STATE_THEN_THING.at(sentence, j - 2) or (
+        _NOUN_THEN_THING.at(sentence, j - 1) and _ends_with_place(current.items))) \
+        and _state_item_here(sentence, j) and _content(current.items)
 
 
 #: the rules that say whether a clause starts at an item, in order: the first that applies

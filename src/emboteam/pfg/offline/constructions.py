@@ -14,6 +14,7 @@ from pydantic import field_validator
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load, word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
@@ -63,6 +64,8 @@ def places_to_locations(frame: Frame) -> None:
 
 
 _W = word_tables("constructions")
+_A_THEN_ADJECTIVES, _PART_OF = (pattern_tables("constructions").pattern(name) for name in ("a_then_adjectives",
+                                                                                          "part_of"))
 #: what a noun phrase can be said to be when it is only the means: "the microwave is fine"
 _INSTRUMENT_OK = _W.set("instrument_ok")
 #: "the pan could really do with a good scrub", "the mug badly needs a wash": the words
@@ -104,12 +107,9 @@ def _verbal_noun(items: list[Item], k: int) -> int | None:
     """The index of V in "a [adjectives] V" at ``k`` ("a good scrub", "a quick rinse",
     "some water") when V names an act."""
     n = len(items)
-    if k >= n or items[k].text not in ("a", "an", "some"):
+    m = _A_THEN_ADJECTIVES.end(items, k)
+    if m is None:
         return None
-    m = k + 1
-    while m < n and items[m].verb is None and items[m].noun is None and items[m].prep is None \
-            and items[m].punct is None and items[m].conj is None and not items[m].det:
-        m += 1
     verb = items[m].verb if m < n else None
     if verb is None or verb.sense.act not in _LIGHT_ACTS:
         return None
@@ -200,8 +200,6 @@ def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
                  text=" ".join(x.text for x in items))
 
 
-#: parts of a place that are the place for a goal: AI2-THOR has no "edge of the bathtub"
-PLACE_PARTS = _W.set("place_parts")
 
 
 def parts_as_places(items: list[Item]) -> list[Item]:
@@ -211,15 +209,11 @@ def parts_as_places(items: list[Item]) -> list[Item]:
     k = 0
     while k < len(items):
         it = items[k]
-        if it.prep in ("on", "onto", "in", "at", "to") and k + 1 < len(items):
-            m = k + 1
-            if items[m].det and m + 1 < len(items):
-                m += 1
-            if items[m].text in PLACE_PARTS and items[m].noun is None and m + 2 < len(items) \
-                    and items[m + 1].text == "of" and (items[m + 2].det or items[m + 2].noun is not None):
-                out.append(it)
-                k = m + 2      # "on the side of the bath" -> "on the bath"
-                continue
+        end = _PART_OF.end(items, k)
+        if end is not None:
+            out.append(it)
+            k = end - 1      # "on the side of the bath" -> "on the bath"
+            continue
         out.append(it)
         k += 1
     return out

@@ -9,9 +9,11 @@ everything downstream sees the corrected instruction only.
 from __future__ import annotations
 
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item
 
 _W = word_tables("corrections")
+_CALLED_OFF, _RESTART = (pattern_tables("corrections").pattern(name) for name in ("called_off", "restart"))
 #: marker word sequences; a bare "no"/"sorry" is a marker only between punctuation
 _MARKERS = _W.phrases("markers")
 _BREAK = frozenset(".!?;:,")
@@ -27,16 +29,7 @@ def _marker_at(items: list[Item], k: int) -> int:
         after = items[k + len(m)] if k + len(m) < len(items) else None
         if after is None:
             return 0
-        restart = m == ("no",) and k > 0 and (
-            ((items[k - 1].det or items[k - 1].text == "and") and after.det)
-            # "throw the pencil away. No wait, throw the pen away": the request said again
-            or (items[k - 1].punct in (".", "!", "?", ",") and _starts_clause(after)
-                and after.text not in ("need", "worry", "rush", "hurry", "problem")
-                # a request with its object ("no heat" is a noun phrase)
-                and k + 2 < len(items) and (items[k + 2].det or items[k + 2].pron is not None))
-            # "turn on the faucet - no wait, don't, just ...": the act called off
-            or (after.text == "do" and k + 2 < len(items) and items[k + 2].neg
-                and (k + 3 == len(items) or items[k + 3].punct is not None or items[k + 3].text in ("just", "only"))))
+        restart = m == ("no",) and k > 0 and _RESTART.at(items, k - 1)
         if len(m) == 1 and not restart and (before is None or not (after.punct == "," or after.prep is not None)):
             continue     # "no one", "sorry to bother you", "rather the mug than ..."
         if restart:
@@ -78,8 +71,7 @@ def apply_corrections(items: list[Item]) -> list[Item]:
             continue
         head = fix[0]
         cut: int | None = None
-        if len(fix) > 1 and head.text in ("do", "dont") and fix[1].neg \
-                and (len(fix) == 2 or fix[2].punct is not None or fix[2].text in ("just", "only", "instead")):
+        if _CALLED_OFF.at(fix):
             # "turn on the faucet - no wait, don't, just switch off the light": the act
             # before is called off, what follows stands
             cut = max((i + 1 for i, x in enumerate(before) if x.punct in _BREAK), default=0)

@@ -25,6 +25,7 @@ from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
 from emboteam.pfg.offline.errors import OfflineParseError
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import Frame, Head, Target, np_start, parse_np
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import Item
@@ -67,20 +68,16 @@ def _embedded_be(items: list[Item], k: int) -> bool:
 
 #: past participles of "have gone off" kind (the regular ones end in -ed)
 _PARTICIPLES = _W.set("participles")
-#: "the fork sitting in the sink": verbs of posture, which say where something is
-_POSTURE_VERBS = _W.set("posture_verbs")
+_PERFECT, _HABITUAL, _POSTURE = (pattern_tables("cues").pattern(name) for name in ("perfect", "habitual", "posture"))
 
 
 def _perfect(items: list[Item], k: int) -> bool:
     """Is "have"/"has" at ``k`` a perfect ("the egg and the apple have both gone off"): a
     report of what happened, with no modal before it ("should have")?"""
-    if items[k].text not in ("have", "has") or (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE):
+    after = _PERFECT.end(items, k)
+    if after is None:
         return False
-    m = k + 1
-    while m < len(items) and items[m].text in ("both", "all", "already", "just", "now", "since"):
-        m += 1
-    if m >= len(items):
-        return False
+    m = after - 1
     verb = items[m].verb
     return items[m].text in _PARTICIPLES or (verb is not None and verb.form == "ed") or (
         verb is None and items[m].noun is None and len(items[m].text) > 4 and items[m].text.endswith("ed"))
@@ -88,16 +85,12 @@ def _perfect(items: list[Item], k: int) -> bool:
 
 def _habitual(items: list[Item], k: int) -> bool:
     """"my keys keep going missing": "keep(s)" and a present participle after a subject."""
-    nxt = items[k + 1].verb if k + 1 < len(items) else None
-    return items[k].text in ("keep", "keeps") and k > 0 and items[k - 1].noun is not None \
-        and nxt is not None and nxt.form == "ing"
+    return k > 0 and _HABITUAL.at(items, k - 1)
 
 
 def _posture(items: list[Item], k: int) -> bool:
     """"the fork and spoon sitting in the sink": where something is, as a participle."""
-    verb = items[k].verb
-    return k > 0 and items[k - 1].noun is not None and verb is not None and verb.form == "ing" \
-        and verb.lemma in _POSTURE_VERBS
+    return k > 0 and _POSTURE.at(items, k - 1)
 
 
 def is_statement(items: list[Item]) -> bool:

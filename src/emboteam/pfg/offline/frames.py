@@ -38,6 +38,7 @@ from emboteam.pfg.offline.constructions import (
     with_as_and,
 )
 from emboteam.pfg.offline.knowledge import Strict, load, word_tables
+from emboteam.pfg.offline.patterns import first_rule, pattern_tables
 from emboteam.pfg.offline.phrases import (
     MODIFIER_PREPS,
     Frame,
@@ -98,9 +99,7 @@ class PreambleFile(Strict):
 # --- preamble: politeness, hedges and framing that carry no content -------------------
 _PREAMBLE, _TRAILING, _WISH, _ASK_FOR = load("preamble.json", PreambleFile).compiled()
 _W = word_tables("frames")
-#: words dropped anywhere outside noun phrases
-_MID_FILLERS = _W.set("mid_fillers")
-
+_P = pattern_tables("frames")
 
 #: sentence adverbs and hesitations that may come before the verb ("maybe throw the CD
 #: away", "um, like, wash the mug", "honestly just close it")
@@ -139,12 +138,8 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
                     flags["wish_scope"] = True
                 if _ASK_FOR.match(text):
                     flags["recipient"] = True     # "can I have the apple": give it to me
-                consumed = text[: m.end()].split()
-                k, used = 0, 0
-                while k < len(items) and used < len(consumed):
-                    used += len(items[k].text.split())
-                    k += 1
-                if used == len(consumed) and k > 0:
+                k = _items_holding(items, len(text[: m.end()].split()))
+                if k is not None:
                     # never drop a verb that begins the clause (the "so" of "so that" aside)
                     items = items[k:]
                     changed = True
@@ -156,15 +151,22 @@ def _strip_preamble(items: list[Item], flags: dict[str, bool]) -> list[Item]:
             break
         if m.group().strip() in ("too", "as well", "also"):
             flags["also"] = True      # "and the tomato too": the act before, on this
-        n_words = len(m.group().split())
-        k, used = len(items), 0
-        while k > 0 and used < n_words:
-            k -= 1
-            used += len(items[k].text.split())
-        if used != n_words or k == 0:
+        k = _items_holding(items, len(m.group().split()), from_end=True)
+        if k is None or k == len(items):
             break
-        items = items[:k]
+        items = items[:-k]
     return items
+
+
+def _items_holding(items: list[Item], n_words: int, from_end: bool = False) -> int | None:
+    """How many items from the start (or the end) hold exactly the first (or last)
+    ``n_words`` words; None when an item of several words straddles the cut."""
+    used = 0
+    for count, it in enumerate(reversed(items) if from_end else items, 1):
+        used += len(it.text.split())
+        if used >= n_words:
+            return count if used == n_words else None
+    return None
 
 
 # --- clause parsing ---------------------------------------------------------------------
@@ -173,61 +175,22 @@ _WANT = _W.set("want")
 _REFLEXIVE = _W.set("reflexive")
 
 
-#: irregular past participles after "have" ("I've left it", "it has gone")
-_IRREGULAR_PARTICIPLES = _W.set("irregular_participles")
-
-
-#: "would look nicer on": a wished place
-_LOOKS = _W.set("looks")
-#: adverbs, hedges and auxiliaries between a subject and its state ("is still nicely warm")
-_BEFORE_STATE = _W.set("before_state")
-#: "should end up sliced", "winds up on the plate": as "be"
-_END_UP = _W.set("end_up")
-
-
-def _participle(it: Item) -> bool:
-    """Is the word a past participle (a perfect after "have"), not an infinitive ("have to")?"""
-    return it.verb is not None and it.noun is None and (
-        it.verb.form == "ed" or it.text in _IRREGULAR_PARTICIPLES)
+#: what may stand between a subject and its predicate, and what each means
+_AUX_RULES = _P.table("aux")
 
 
 def _skip_aux(items: list[Item], j: int, frame_flags: dict[str, bool]) -> int:
-    """Skip copulas, modals, negation and adverbs before a predicate, noting them."""
+    """Skip copulas, modals, negation and adverbs before a predicate, noting them in
+    ``frame_flags`` (the rules of ``patterns.json``, ``frames -> aux``)."""
     while j < len(items):
-        it = items[j]
-        t = it.text
-        nxt_item = items[j + 1] if j + 1 < len(items) else None
-        if it.verb is not None and it.verb.lemma in _WANT and nxt_item is not None and \
-                nxt_item.text not in ("to", "be") and (nxt_item.verb is None or nxt_item.det):
-            break      # "i need the potato cooked": the wish itself
-        if it.neg:
-            frame_flags["neg"] = not frame_flags.get("neg", False)
-        elif t in ("has", "have", "had", "ve") and j + 1 < len(items) and _participle(items[j + 1]) \
-                and not (j > 0 and items[j - 1].text in ("should", "must", "could", "would", "might")):
-            frame_flags["perfect"] = True     # "I've left my phone on the bed": what was done
-        elif (t in lx.MODALS and it.verb is None) or t in ("should", "must", "ought", "can",
-                                                          "could", "would", "will", "shall",
-                                                          "might", "may") or (t in ("needs", "need", "has", "have", "had", "wants", "want") and j + 1 < len(items) and \
-                (items[j + 1].text in ("to", "be") or items[j + 1].verb is not None)):
-            frame_flags["modal"] = True
-        elif t == "too":
-            frame_flags["too"] = True
-        elif t in ("going", "gonna") and j + 1 < len(items) and items[j + 1].text == "to":
-            frame_flags["modal"] = True
-        elif t == "to" and not (nxt_item is not None and (nxt_item.text == "be" or nxt_item.verb)):
-            break      # "towel to towel holder": a place, not an infinitive
-        elif it.copula or t in _BEFORE_STATE:
-            pass
-        elif t in ("look", "looks") and j + 2 < len(items) and items[j + 1].text in _LOOKS \
-                and items[j + 2].prep in ("on", "in"):
-            frame_flags["modal"] = True
-            j += 1      # "the vase would look nicer on the side table": where it should be
-        elif t in _END_UP and j + 2 < len(items) and items[j + 1].text == "up" \
-                and items[j + 2].state is not None and items[j + 2].prep is None:
-            j += 1      # "should end up sliced (and on a plate)": as "be"
-        else:
+        rule = first_rule(_AUX_RULES, items, j)
+        if rule is None or rule.then == "stop":
             break
-        j += 1
+        if rule.then == "neg":
+            frame_flags["neg"] = not frame_flags.get("neg", False)
+        elif rule.then:
+            frame_flags[rule.then] = True
+        j += rule.advance
     return j
 
 
@@ -254,6 +217,11 @@ class _Tail:
         return self.items[self.j + k] if self.j + k < len(self.items) else None
 
 
+_SEPARATOR, _FILLER_OR_RECIPIENT, _REJECTION, _SWITCHED_STATE, _IN_IT, _INSIDE_AT_END = (
+    _P.pattern(name) for name in ("separator", "filler_or_recipient", "rejection", "switched_state", "in_it",
+                                  "inside_at_end"))
+_THEY_STATE, _BE_NEAR_START, _THEY_PUT_AWAY, _THEY_GO = (
+    _P.pattern(name) for name in ("they_state", "be_near_start", "they_put_away", "they_go"))
 #: a tail rule's decision: the words were read (go on), the tail ended, None: not this rule
 _GO, _END = "go", "end"
 TailRule = Callable[[_Tail], str | None]
@@ -262,11 +230,9 @@ TailRule = Callable[[_Tail], str | None]
 def _separator(s: _Tail) -> str | None:
     """Conjunctions and punctuation; "the apple or the tomato": alternatives of the last
     object."""
-    it = s.it
-    if not (it.conj is not None or it.punct is not None
-            or it.text in ("as well as", "along with", "together with")):
+    if not _SEPARATOR.at(s.items, s.j):
         return None
-    if it.conj == "or" and s.pending:
+    if s.it.conj == "or" and s.pending:
         head, k = parse_np(s.items, s.j + 1)
         if head is not None:
             s.mentions.append(head)
@@ -281,8 +247,7 @@ def _filler_or_recipient(s: _Tail) -> str | None:
     """"please", "back", "away" (kept as the particle: "put it back"), and "me", "us",
     "here": the object ends up with the person."""
     it = s.it
-    if not ((it.text in _MID_FILLERS and it.noun is None and it.verb is None and it.prep is None
-             and it.state is None) or it.text in ("me", "us", "here", "there", "him", "her")):
+    if not _FILLER_OR_RECIPIENT.at(s.items, s.j):
         return None
     if it.text in ("me", "us", "here", "him", "her"):
         s.frame.recipient = True
@@ -315,11 +280,11 @@ def _containing(s: _Tail) -> str | None:
 def _rejected_alternative(s: _Tail) -> str | None:
     """"on the holder, not on the counter", "the tomato, not the apple", "but not the CD",
     "instead of the cup", "except (for) the apple": neither object nor mention."""
-    it, nxt, items, n = s.it, s.at(1), s.items, len(s.items)
-    if not (it.neg or it.text == "except" or (it.text in ("instead", "apart")
-                                               and nxt is not None and nxt.text in ("of", "from"))):
+    it, items, n = s.it, s.items, len(s.items)
+    after = _REJECTION.end(items, s.j)
+    if after is None:
         return None
-    s.j += 1 if it.neg or it.text == "except" else 2
+    s.j = after
     if s.j < n and items[s.j].text == "for":
         s.j += 1
     if s.j < n and items[s.j].prep is not None:
@@ -423,15 +388,14 @@ def _inside_the_one_named(s: _Tail, prep: str) -> None:
 
 def _holding(s: _Tail, head: Head) -> bool:
     """"the bowl with the apple in it": what the last object holds (then True)."""
-    items, j, n = s.items, s.j, len(s.items)
+    items, j = s.items, s.j
     if not s.pending or (head.liquid is not None and head.noun is None):
         return False
-    if j + 1 < n and items[j].prep in ("in", "on", "inside") and items[j + 1].pron in ("it", "them"):
+    if _IN_IT.at(items, j):
         s.pending[-1].head.holds.append(head)
         s.j += 2
         return True
-    if j < n and items[j].text == "inside" and (j + 1 == n or items[j + 1].punct is not None
-                                                or items[j + 1].conj is not None):
+    if _INSIDE_AT_END.at(items, j):
         s.pending[-1].head.holds.append(head)      # "with the apple inside"
         s.j += 1
         return True
@@ -586,9 +550,8 @@ def _object(s: _Tail) -> str | None:
 def _switched_state(s: _Tail) -> str | None:
     """"get the fridge closed and the light switched off": "switched/turned on/off" after
     an object is that object's state."""
-    it, nxt = s.it, s.at(1)
-    if it.verb is None or it.verb.form != "ed" or it.verb.lemma not in ("switch", "turn") \
-            or nxt is None or nxt.particle not in ("on", "off") or not s.pending:
+    nxt = s.at(1)
+    if not _SWITCHED_STATE.at(s.items, s.j) or nxt is None or not s.pending:
         return None
     t = s.pending[-1]
     if t.state is not None or t.particle is not None:
@@ -1013,21 +976,22 @@ def _pro_verb_clause(clause: Clause, items: list[Item], mentions: list[Head]) ->
     return None
 
 
+_NOBODY, _LEADING_NEGATION, _NEED_TO, _MODAL_BEFORE_VERB, _THERE_IS = (_P.pattern(name) for name in (
+    "nobody", "leading_negation", "need_to", "modal_before_verb", "there_is"))
+
+
 def _clause_proper(items: list[Item], flags: dict[str, bool]) -> list[Item]:
     """The clause without what comes before its verb or subject: a rejected topic, a
     leading negation (noted in ``flags``), "need to", a team member as subject, a modal."""
     # leading negation: "don't leave the lights on", "never turn on ..." ("nobody", "no
     # one" are subjects: "nobody closed the fridge" is read with its verb below)
-    nobody = bool(items) and (items[0].text == "nobody" or (
-        items[0].text == "no" and len(items) > 1 and items[1].text == "one"))
+    nobody = _NOBODY.at(items)
     items = _without_rejected_topic(items)
-    while items and not nobody and (items[0].neg or (items[0].text in ("do", "does", "did")
-                                    and len(items) > 1 and items[1].neg)):
+    while not nobody and _LEADING_NEGATION.at(items):
         if items[0].neg:
             flags["neg"] = not flags.get("neg", False)
         items = items[1:]
-    if items and items[0].text == "need" and len(items) > 1 and items[1].text == "to":
-        items = items[2:]
+    items = items[_NEED_TO.end(items) or 0:]
     # "one of you slices the bread", "the other should open the fridge": the team
     # member is left to the planner, the verb is the act
     k = team_subject(items, 0)
@@ -1035,9 +999,7 @@ def _clause_proper(items: list[Item], flags: dict[str, bool]) -> list[Item]:
         items = items[k:]
         flags["subject"] = True
     # "(robot 1) should slice ...", "(robot 2) will open ...": a modal before a verb
-    while len(items) > 1 and items[0].text in ("should", "must", "will", "can", "shall", "could",
-                                               "would", "to", "is", "needs", "has", "have") \
-            and ((items[1].verb is not None and items[1].noun is None) or items[1].text == "to"):
+    while _MODAL_BEFORE_VERB.at(items):
         items = items[1:]
     return items
 
@@ -1046,7 +1008,7 @@ def _there_is(clause: Clause, items: list[Item], mentions: list[Head],
               flags: dict[str, bool]) -> ParsedClause | None:
     """"there's a bottle of wine in the cupboard": introduces a referent and where it is
     (or, "there's no milk in the fridge", says what is missing)."""
-    if not (len(items) > 2 and items[0].text == "there" and items[1].text in ("is", "are", "was", "were")):
+    if not _THERE_IS.at(items):
         return None
     missing = absent_from(items[2:], clause.text)
     if missing is not None:
@@ -1190,17 +1152,7 @@ def _tool_on(clause: Clause, items: list[Item], mentions: list[Head],
 def _things_they(items: list[Item]) -> bool:
     """Is "they" things, not people: in a state ("they're clean") or going somewhere
     ("they can go in a drawer", "they both belong on the shelf")?"""
-    if len(items) > 2 and items[1].copula and items[2].state is not None:
-        return True
-    words = [it.text for it in items[:5]]
-    if "be" in words and any(it.verb is not None and it.verb.form == "ed" and k + 1 < len(items)
-                             and (items[k + 1].prep in ("in", "on", "into", "onto", "inside")
-                                  or items[k + 1].text in ("back", "away", "up"))
-                             for k, it in enumerate(items[2:6], 2)):
-        return True     # "they should be tucked in a drawer", "they ought to be locked up in the safe"
-    return any(it.verb is not None and it.verb.sense.act is Act.GO and k + 1 < len(items)
-               and (items[k + 1].prep in ("in", "on", "into", "onto") or items[k + 1].text in ("back", "away"))
-               for k, it in enumerate(items[1:5], 1))
+    return _THEY_STATE.at(items) or (_BE_NEAR_START.at(items) and _THEY_PUT_AWAY.at(items)) or _THEY_GO.at(items)
 
 
 def _use_to(clause: Clause, items: list[Item], mentions: list[Head],

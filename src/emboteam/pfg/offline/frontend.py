@@ -61,6 +61,7 @@ from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import warm_spelling
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.tagger import Item, tag
@@ -82,6 +83,8 @@ ParseResult = Reading
 
 
 _W = word_tables("frontend")
+_PRONOUN_SUBJECT, _SUBJECT_PRONOUN, _REJECTED = (pattern_tables("frontend").pattern(name) for name in (
+    "pronoun_subject", "subject_pronoun", "rejected"))
 #: a prefix of only these is the person's own words ("(when) you have got the egg out"),
 #: nothing left unread
 _PERSON_WORDS = _W.set("person_words")
@@ -120,7 +123,7 @@ def _unread(clause: Clause, parsed: ParsedClause) -> bool:
         return False
     if clause.link not in (AND, THEN) and not any(i.noun is not None for i in items):
         return False     # "if you have time", "before you leave": a circumstance
-    if items and items[0].text in ("not", "instead", "rather", "except"):
+    if _REJECTED.at(items):
         return False     # "not the apple", "instead of the cup": a rejected alternative
     if known_objects(items):
         return False     # "The bread. Slice it.": a topic for what follows
@@ -343,9 +346,7 @@ class OfflineFrontend:
                 # noun phrases names every one of them ("watch" is no verb here)
                 # ("they're both on the desk next to the laptop": after a pronoun subject the
                 # nouns are where it is, places, as the grammar read them)
-                pronoun_subject = len(clause.items) > 1 and clause.items[0].pron in ("it", "they", "this", "that",
-                                                                                     "these", "those") \
-                    and clause.items[1].noun is None and not clause.items[1].det     # not "that cloth"
+                pronoun_subject = _PRONOUN_SUBJECT.at(clause.items)
                 named = known_objects(clause.items) or parsed.mentions or cue_mentions(clause)
                 for h in named:
                     semantics.note(h, ci, "place" if pronoun_subject else None)
@@ -379,8 +380,7 @@ class OfflineFrontend:
                 continue
             # "the book doesn't belong on the sofa; it ..."; after a pronoun subject ("they're
             # on the desk next to the laptop") the nouns are where it is
-            subject_pronoun = len(clause.items) > 1 and clause.items[0].pron in ("it", "they", "these", "those") \
-                and clause.items[1].noun is None and not clause.items[1].det
+            subject_pronoun = _SUBJECT_PRONOUN.at(clause.items)
             for h in parsed.mentions:
                 semantics.note(h, ci, "place" if subject_pronoun else None)
             if not any(f.act is not None or f.state is not None for f in parsed.frames):

@@ -77,8 +77,8 @@ def apply_rewrites(rules: tuple[tuple[re.Pattern[str], str], ...], text: str) ->
 
 
 def _gist(node: Any) -> str:
-    """What an entry of a list says, to find it by: its pattern or its first words."""
-    shown = node.get("pattern") or node.get("words") if isinstance(node, dict) else None
+    """What an entry of a list says, to find it by: its pattern, its first words or why it is."""
+    shown = node.get("pattern") or node.get("words") or node.get("why") if isinstance(node, dict) else None
     if isinstance(shown, list):
         return f" ({', '.join(map(str, shown[:3]))}{', ...' if len(shown) > 3 else ''})"
     return f" ({str(shown)[:60]!r})" if shown else ""

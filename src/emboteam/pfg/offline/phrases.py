@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.clauses import Clause
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item, NounReading
 from emboteam.world.catalogue import load_catalogue
 
@@ -175,22 +176,14 @@ class _NP:
 #: what a noun-phrase rule decides: the word belongs to the phrase (go on), the phrase
 #: ended, or (None) the rule does not apply
 _NEXT, _STOP = "next", "stop"
+_ENDS_PHRASE = pattern_tables("phrases").pattern("ends_phrase")
 NPRule = Callable[[_NP], str | None]
 
 
 def _ends_phrase(s: _NP) -> str | None:
     """Punctuation, a conjunction, a sequence word, a robot, "containing", a negation, a
     copula, "instead of", "except": the phrase ends before them."""
-    it, nxt = s.it, s.nxt
-    if it.punct is not None or it.conj is not None or it.seq is not None or it.robot is not None \
-            or it.text in lx.CONTAINING:
-        return _STOP
-    if it.neg or ((it.copula and it.text not in ("one",)) and it.noun is None):
-        return _STOP
-    if it.text == "except" or (it.text in ("instead", "apart") and nxt is not None
-                               and nxt.text in ("of", "from")):
-        return _STOP      # "the mug instead of the cup": a rejected alternative follows
-    return None
+    return _STOP if _ENDS_PHRASE.at(s.items, s.j) else None
 
 
 def _measure_of(s: _NP) -> str | None:
@@ -488,7 +481,8 @@ def _finish_np(s: _NP, i: int) -> tuple[Head | None, int]:
 
 
 _RELATIVE = _W.set("relative")
-_LOCATIVE = _W.set("locative")
+_IS_IN, _CLAUSE_BOUNDARY, _POSITION_THEN_PLACE = (pattern_tables("phrases").pattern(name) for name in (
+    "is_in", "clause_boundary", "position_then_place"))
 
 
 def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> int:
@@ -501,20 +495,15 @@ def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> in
     if k < n and (items[k].det or items[k].pron in ("it", "they", "them")):
         inner, m = parse_np(items, k) if items[k].det else (
             Head(text=items[k].text, pron=items[k].text), k + 1)
-    if inner is not None and m < n and items[m].text in ("is", "are", "was", "were"):
-        end = m + 1
-        if end < n and items[end].text in _LOCATIVE:
-            end += 1
-        if end >= n or items[end].punct is not None or items[end].conj is not None \
-                or items[end].seq is not None or items[end].verb is not None:
-            h.container_of = inner
-            words.extend(x.text for x in items[j:end])
-            return end
+    end = _IS_IN.end(items, m) if inner is not None else None
+    if end is not None and _CLAUSE_BOUNDARY.at(items, end):
+        h.container_of = inner
+        words.extend(x.text for x in items[j:end])
+        return end
     if not (k > j and k + 1 < n and items[k].text in ("is", "are", "was", "were")):
         return j
     p = k + 1
-    if p + 1 < n and position_participle(items[p]) and items[p + 1].prep in ("in", "on"):
-        p += 1      # "the potato that's sitting in the sink": the participle only says where
+    p += 1 if _POSITION_THEN_PLACE.at(items, p) else 0     # "... that's sitting in the sink"
     nxt = items[p]
     ends = p + 1 >= n or not np_start(items[p + 1])
     if nxt.state is not None and (nxt.prep is None or ends) and p == k + 1:
