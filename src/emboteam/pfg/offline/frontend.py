@@ -250,9 +250,10 @@ class OfflineFrontend:
         except ContradictoryInstruction:
             raise
         except OfflineParseError as exc:
-            if isinstance(exc, GroundingError) and not isinstance(exc, IncapableError):
-                raise       # "the pineapple", "two bottles" (only one): what the scene lacks
-            found = from_mentions_choices(text, tagged, scene, state, team, self.priors)
+            # "the pineapple", "two bottles" (only one): what the scene lacks stands, unless
+            # the words' structure reads it ("everything on the dresser except ...")
+            words_only = isinstance(exc, GroundingError) and not isinstance(exc, IncapableError)
+            found = from_mentions_choices(text, tagged, scene, state, team, self.priors, words_only)
             if found is None:
                 raise
             spec, made = found

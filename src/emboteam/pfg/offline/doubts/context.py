@@ -57,10 +57,12 @@ class DoubtContext:
     def words(self) -> tuple[str, ...]:
         return tuple(i.text for i in self.items)
 
-    def named_types(self, item: Item) -> tuple[str, ...]:
+    def named_types(self, item: Item, verbs_too: bool = False) -> tuple[str, ...]:
         """The scene's types a word names, in the lexicon's order of preference (its
-        fallbacks after), none when it names no thing or nothing of this scene."""
-        if item.noun is None or item.verb is not None or item.noun.concept.kind not in _THING_KINDS:
+        fallbacks after), none when it names no thing or nothing of this scene (nor, unless
+        ``verbs_too``, when it may be a verb: "watch")."""
+        if item.noun is None or (item.verb is not None and not verbs_too) or \
+                item.noun.concept.kind not in _THING_KINDS:
             return ()
         concept = item.noun.concept
         return tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in self.scene_types)
