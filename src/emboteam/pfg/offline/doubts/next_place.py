@@ -29,16 +29,21 @@ def next_destination(ctx: DoubtContext, k: int, thing: str, words: NextPlace) ->
     leads to and no negation since ``k`` rules out."""
     _, end = sentence_bounds(ctx.items, k)
     end = min(end, k + words.reach)
-    cues = {e for _, e in find(ctx.items, k + 1, end, words.destination_cues)}
+    clause_start, _ = ctx.clause_bounds(k)
+    cues = {e: ctx.items[b].text for b, e in find(ctx.items, k + 1, end, words.destination_cues)}
     for m, item, types in ctx.mentions():
         if not k < m < end or types[0] == thing or not _is(types[0], "receptacle") or item.noun is None:
             continue
-        if not any(j in cues for j in range(max(k + 1, m - 2), m + 1)) or \
-                any(i.text in words.locatives for i in ctx.items[max(k + 1, m - 3):m]):
+        lead = [cues[j] for j in range(max(k + 1, m - 2), m + 1) if j in cues]
+        if not lead:
             continue
         if any(i.neg for i in ctx.items[k + 1:m]):
-            continue
-        return types[0]
+            continue    # "plates don't live on the coffee table - their home is the shelf"
+        # the first place after the thing: where it is ("lying on", "the CD in the drawer,
+        # put it ..."), or where it goes (a verb before the place, or a direction)
+        located = any(i.text in words.locatives for i in ctx.items[max(k + 1, m - 3):m])
+        verb = any(i.verb is not None or i.copula for i in ctx.items[clause_start:m] if i is not ctx.items[k])
+        return types[0] if not located and (lead[0] in words.directional or verb) else None
     return None
 
 

@@ -75,6 +75,10 @@ class NextPlace(_Closed):
     destination_cues: list[Words]
     #: words right before a place that make it where the thing is now ("lying on the counter")
     locatives: list[str]
+    #: cues that lead to a destination with no verb before them ("mug -> coffee table");
+    #: any other needs a verb or a copula between the thing and its place ("the CD in the
+    #: drawer" is where the CD is)
+    directional: list[str]
     replaces: list[str]
     reach: int = Field(10, ge=1, le=30)
 
