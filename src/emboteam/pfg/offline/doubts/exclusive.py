@@ -15,6 +15,7 @@ from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.rule_words import Exclusive, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object
+from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.sentences import type_name
 from emboteam.world.goals import Condition, Predicate
 
@@ -56,6 +57,9 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         rule = next(c for c in words.cues if ctx.items[cue[0]:cue[1]] and
                     [i.text for i in ctx.items[cue[0]:cue[1]]] == c.words)
         start, end = sentence_bounds(ctx.items, cue[0])
+        if any(i.text in words.restrictive or (i.verb is not None and i.verb.sense.act is Act.SWITCH_OFF)
+               for i in ctx.items[start:cue[0]]):
+            continue    # "don't turn off the desk lamp, only the floor lamp"
         keep = _kept(ctx, start, end, cue, rule.kept, words)
         if keep is None or not ctx.scene.of_type(keep):
             continue

@@ -59,6 +59,9 @@ class Exclusive(_Closed):
     cues: list[Cue]
     lights: list[str]
     screens: list[str]
+    #: words that, before the cue in its sentence, make "only" restrictive ("turn off
+    #: only the floor lamp"): no exclusive purpose (a verb of switching off counts too)
+    restrictive: list[str]
     reach: int = Field(6, ge=1, le=30)
 
     @field_validator("lights", "screens")
