@@ -21,8 +21,9 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
 | stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
+| correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
 
-The words of the last four are data: ``rule_words.json`` (:mod:`.rule_words`).
+The words of the last five (and of stays) are data: ``rule_words.json`` (:mod:`.rule_words`).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from __future__ import annotations
 from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline.doubts import (
     contents,
+    correction_object,
     device,
     exclusive,
     instances,
@@ -50,8 +52,9 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     """The doubts that may give a whole reading from the words (also when the grammar
-    found nothing): contents, exclusive purposes, next places, stated states."""
-    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx)]
+    found nothing): contents, exclusive purposes, next places, stated states, corrected things."""
+    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
+             *correction_object.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 

@@ -27,7 +27,9 @@ def _is(type_: str, prop: str) -> bool:
 def next_destination(ctx: DoubtContext, k: int, thing: str, words: NextPlace) -> str | None:
     """The first receptacle after position ``k`` in its sentence that a destination cue
     leads to and no negation since ``k`` rules out."""
-    _, end = sentence_bounds(ctx.items, k)
+    start, end = sentence_bounds(ctx.items, k)
+    if any(i.text in load_rule_words().correction_object.cues for i in ctx.items[start:end]):
+        return None     # a self-correction's places are the correction rules' (scope.py)
     end = min(end, k + words.reach)
     clause_start, _ = ctx.clause_bounds(k)
     cues = {e: ctx.items[b].text for b, e in find(ctx.items, k + 1, end, words.destination_cues)}

@@ -93,6 +93,17 @@ class Stated(_Closed):
     reach: int = Field(4, ge=1, le=30)
 
 
+class Stays(_Closed):
+    #: words that keep a thing as it is ("stays where it is", "leave the lamp on")
+    keepers: list[str]
+
+
+class CorrectionObject(_Closed):
+    #: words that start a self-correction of the thing ("the pen - no, the pencil")
+    cues: list[str]
+    reach: int = Field(4, ge=1, le=12)
+
+
 class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
@@ -100,6 +111,8 @@ class RuleWords(_Closed):
     exclusive: Exclusive
     next_place: NextPlace
     stated: Stated
+    stays: Stays
+    correction_object: CorrectionObject
 
 
 @cache
