@@ -32,6 +32,7 @@ def next_destination(ctx: DoubtContext, k: int, thing: str, words: NextPlace) ->
         return None     # a self-correction's places are the correction rules' (scope.py)
     end = min(end, k + words.reach)
     clause_start, _ = ctx.clause_bounds(k)
+    since = k + 1     # a negation rules out the first place after it
     cues = {e: ctx.items[b].text for b, e in find(ctx.items, k + 1, end, words.destination_cues)}
     for m, item, types in ctx.mentions():
         if not k < m < end or types[0] == thing or not _is(types[0], "receptacle") or item.noun is None:
@@ -39,7 +40,8 @@ def next_destination(ctx: DoubtContext, k: int, thing: str, words: NextPlace) ->
         lead = [cues[j] for j in range(max(k + 1, m - 2), m + 1) if j in cues]
         if not lead:
             continue
-        if any(i.neg for i in ctx.items[k + 1:m]):
+        if any(i.neg for i in ctx.items[since:m]):
+            since = m + 1
             continue    # "plates don't live on the coffee table - their home is the shelf"
         # the first place after the thing: where it is ("lying on", "the CD in the drawer,
         # put it ..."), or where it goes (a verb before the place, or a direction)
