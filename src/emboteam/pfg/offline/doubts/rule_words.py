@@ -104,6 +104,12 @@ class CorrectionObject(_Closed):
     reach: int = Field(4, ge=1, le=12)
 
 
+class Contradiction(_Closed):
+    #: words in or between two opposed requests that make the later one settle it (a
+    #: self-correction, "sorry, I mean leave it on"; a rule, "if it is off it ought to be on")
+    cues: list[str]
+
+
 class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
@@ -113,6 +119,7 @@ class RuleWords(_Closed):
     stated: Stated
     stays: Stays
     correction_object: CorrectionObject
+    contradiction: Contradiction
 
 
 @cache
