@@ -47,7 +47,9 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         return []     # without a narrative, a bare "the TV is on" is a complaint: the reader's
     out: list[Doubt] = []
     seen: set[str] = set()
-    for k, item, types in ctx.mentions():
+    # "the light's off": a noun that may be a verb ("light") names the thing here too
+    named = [(k, item, ts) for k, item in enumerate(ctx.items) if (ts := ctx.named_types(item, verbs_too=True))]
+    for k, item, types in named:
         thing = types[0]
         p = _stated(ctx, k, words)
         if p is None or thing in seen or _FAMILIES[p] not in load_catalogue().type(thing).properties:
