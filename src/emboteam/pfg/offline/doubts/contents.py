@@ -5,8 +5,9 @@ The grammar reads "everything" only for switching off and closing; here the word
 source (the receptacle after a quantifier or an emptying verb), a destination (a
 receptacle after a placing preposition, or the bin for a throwing verb) and the excluded
 things (after "except", "apart from", ...). The alternative moves every pickupable thing
-that stands in the source now (the world state says which) to the destination, and keeps
-each excluded thing where it is; goals the reader gave those things are replaced. The
+that stands in the source now (the world state says which) to the destination, keeps
+each excluded thing where it is and closes a source that is closed now; goals the reader
+gave those things are replaced. The
 words are data (``rule_words.json``, ``contents``).
 """
 
@@ -15,10 +16,10 @@ from __future__ import annotations
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
-from emboteam.pfg.offline.doubts.wants import placed
+from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.sentences import type_name
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.goals import Condition
+from emboteam.world.goals import Condition, Predicate
 
 KIND = "contents"
 
@@ -110,6 +111,15 @@ def _goal(type_: str, place: str, count: int) -> Condition:
     return c.model_copy(update={"count": count}) if count > 1 else c
 
 
+def _closed_again(ctx: DoubtContext, source: str) -> list[Condition]:
+    """A source that is closed now is closed again once emptied (the fridge, a cabinet:
+    taking things out opens it; the person left it shut)."""
+    objs = list(ctx.state.of_type(source))
+    if objs and all(o.has("openable") and not o.is_open for o in objs):
+        return [one_object(Predicate.closed, source)]
+    return []
+
+
 def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_rule_words().contents
     k = _trigger(ctx, words)
@@ -128,7 +138,8 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
     kept = [t for t in dict.fromkeys(excluded) if _count(ctx, t, source)]
     if not moved:
         return []
-    add = tuple([placed(t, dest) for t in moved] + [_goal(t, source, _count(ctx, t, source)) for t in kept])
+    add = tuple([placed(t, dest) for t in moved] + [_goal(t, source, _count(ctx, t, source)) for t in kept]
+                + _closed_again(ctx, source))
     touched = set(moved) | set(kept)
     drop = tuple(c for c in ctx.goals if ref_types(c.subject) & touched and c not in add)
     if set(add) <= set(ctx.goals):
