@@ -97,6 +97,22 @@ class DoubtContext:
         return next((k for k, _, types in self.mentions() if subject & set(types)), None)
 
     @cached_property
+    def narrative(self) -> bool:
+        """Whether a narrative cue frames the instruction ("by the time", "will find":
+        ``rule_words.json``, ``stated``), asked by several rules: found once."""
+        from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words
+
+        return bool(find(self.items, 0, len(self.items), load_rule_words().stated.narrative_cues))
+
+    @cached_property
+    def corrected(self) -> bool:
+        """Whether a self-correction cue was said (``correction_object`` cues)."""
+        from emboteam.pfg.offline.doubts.rule_words import load_rule_words
+
+        cues = set(load_rule_words().correction_object.cues)
+        return any(i.text in cues for i in self.items)
+
+    @cached_property
     def _goal_types(self) -> frozenset[str]:
         return frozenset(t for c in (*self.goals, *self.steps) for t in condition_types(c))
 

@@ -33,12 +33,12 @@ def destinations(ctx: DoubtContext, k: int, thing: str, words: NextPlace) -> tup
     negation gives way to the next; where the thing is ("lying on", "there's a mug in the
     sink", "the CD in the drawer, put it ...") is no destination."""
     start, end = sentence_bounds(ctx.items, k)
-    if any(i.text in load_rule_words().correction_object.cues for i in ctx.items):
+    if ctx.corrected:
         return ()     # a self-correction's places are the correction rules' (scope.py)
     if find(ctx.items, max(start, k - 4), k, load_rule_words().contents.excluders):
         return ()     # "apart from the alarm clock": what is excluded goes nowhere
     end = min(end, k + words.reach)
-    narrative = bool(find(ctx.items, 0, len(ctx.items), load_rule_words().stated.narrative_cues))
+    narrative = ctx.narrative
     since = ctx.clause_bounds(k)[0]     # a negation rules out the first place after it
     cues = {e: ctx.items[b].text for b, e in find(ctx.items, k + 1, end, words.destination_cues)}
     places: list[tuple[bool, tuple[str, ...]]] = []

@@ -132,11 +132,28 @@ def starts_at(items: Sequence[Item], k: int, words: Words) -> bool:
     return k + len(words) <= len(items) and all(items[k + i].text == w for i, w in enumerate(words))
 
 
-def find(items: Sequence[Item], lo: int, hi: int, phrases: Sequence[Words]) -> list[tuple[int, int]]:
-    """(start, end) of every phrase found between ``lo`` and ``hi``, in order."""
-    out = []
-    for k in range(lo, hi):
+#: phrase list (by identity: the loaded file's lists live as long as the process) -> its
+#: phrases by first word, so that a search looks only at the phrases a token can start
+_BY_FIRST: dict[int, dict[str, list[Words]]] = {}
+
+
+def _by_first(phrases: Sequence[Words]) -> dict[str, list[Words]]:
+    index = _BY_FIRST.get(id(phrases))
+    if index is None:
+        index = {}
         for words in phrases:
+            index.setdefault(words[0], []).append(words)
+        _BY_FIRST[id(phrases)] = index
+    return index
+
+
+def find(items: Sequence[Item], lo: int, hi: int, phrases: Sequence[Words]) -> list[tuple[int, int]]:
+    """(start, end) of every phrase found between ``lo`` and ``hi``, in order (the first
+    phrase of the list that matches at a position)."""
+    index = _by_first(phrases)
+    out = []
+    for k in range(lo, min(hi, len(items))):
+        for words in index.get(items[k].text, ()):
             if starts_at(items, k, words):
                 out.append((k, k + len(words)))
                 break

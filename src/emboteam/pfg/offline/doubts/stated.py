@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
-from emboteam.pfg.offline.doubts.rule_words import Stated, find, load_rule_words, sentence_bounds
+from emboteam.pfg.offline.doubts.rule_words import Stated, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object
 from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.catalogue import load_catalogue
@@ -43,7 +43,7 @@ def _stated(ctx: DoubtContext, k: int, words: Stated) -> P | None:
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_rule_words().stated
-    if not find(ctx.items, 0, len(ctx.items), words.narrative_cues):
+    if not ctx.narrative:
         return []     # without a narrative, a bare "the TV is on" is a complaint: the reader's
     out: list[Doubt] = []
     seen: set[str] = set()
