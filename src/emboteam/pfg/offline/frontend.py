@@ -47,6 +47,7 @@ from emboteam.pfg.offline.corrections import apply_corrections
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
+from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
 from emboteam.pfg.offline.doubts.priors import Priors
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
@@ -253,9 +254,10 @@ class OfflineFrontend:
         except ContradictoryInstruction:
             raise
         except OfflineParseError as exc:
-            if isinstance(exc, GroundingError) and not isinstance(exc, IncapableError):
-                raise       # "the pineapple", "two bottles" (only one): what the scene lacks
-            found = from_mentions_choices(text, tagged, scene, state, team, self.priors)
+            # "the pineapple", "two bottles" (only one): what the scene lacks stands, unless
+            # the words' structure reads it ("everything on the dresser except ...")
+            words_only = isinstance(exc, GroundingError) and not isinstance(exc, IncapableError)
+            found = from_mentions_choices(text, tagged, scene, state, team, self.priors, words_only)
             if found is None:
                 raise
             spec, made = found
@@ -404,7 +406,8 @@ class OfflineFrontend:
             log.info("offline parser: %s", note)
         narrow_contrasts(drafts)
         narrow_choices(drafts)
-        check_consistent(clauses, drafts)
+        settled = settle_contradictions(clauses, drafts, check_consistent, tagged)
+        notes = (*notes, *(ReadingNote(span, why, "assumed") for span, why in settled))
         spec = assemble(text, clauses, drafts, team)
         unsure = _unsure(spec, semantics.g.doubts)
         unsure += tuple(dict.fromkeys(str(c) for ci in sorted(guessed) for d in drafts.get(ci, [])

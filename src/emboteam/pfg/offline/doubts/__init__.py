@@ -17,20 +17,32 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |
 | instance | :mod:`.instances` (one object, or any of its type) |
 | stays | :mod:`.stays` (a thing kept as it is: its present place or switch state as a goal) |
+| contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
+| exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
+| next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
+| stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
+| correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
+
+The words of the last five (and of stays) are data: ``rule_words.json`` (:mod:`.rule_words`).
 """
 
 from __future__ import annotations
 
 from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline.doubts import (
+    contents,
+    correction_object,
     device,
+    exclusive,
     instances,
     means,
+    next_place,
     of_compound,
     scene_type,
     scope,
     slices,
     state,
+    stated,
     stays,
     unexplained,
 )
@@ -38,13 +50,21 @@ from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 
+def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
+    """The doubts that may give a whole reading from the words (also when the grammar
+    found nothing): contents, exclusive purposes, next places, stated states, corrected things."""
+    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
+             *correction_object.doubts(ctx)]
+    return [d for d in found if len(d.choices) > 1]
+
+
 def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     """Every point of doubt of a reading, rule by rule."""
     priors = priors or load_priors()
     found = [*unexplained.doubts(ctx), *scope.doubts(ctx), *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *stays.doubts(ctx)]
+             *instances.doubts(ctx), *stays.doubts(ctx), *reading_doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 
-__all__ = ["DoubtContext", "Priors", "find_doubts", "load_priors"]
+__all__ = ["DoubtContext", "Priors", "find_doubts", "load_priors", "reading_doubts"]

@@ -4,12 +4,12 @@ calls once it has read an instruction)."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from emboteam.pfg.candidates import Candidate, Doubt
 from emboteam.pfg.offline.discourse import Mention
-from emboteam.pfg.offline.doubts import find_doubts
+from emboteam.pfg.offline.doubts import find_doubts, reading_doubts
 from emboteam.pfg.offline.doubts.check import FeasibilityCheck
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.coverage import Coverage
@@ -18,7 +18,9 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 from emboteam.pfg.offline.doubts.unexplained import unexplained_spans
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.ranker import rank
-from emboteam.pfg.taskspec import TaskSpec
+from emboteam.pfg.sentences import sentence
+from emboteam.pfg.taskspec import Subtask, TaskSpec
+from emboteam.world.goals import Condition
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -47,18 +49,44 @@ def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldSta
     return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(ctx)), tuple(doubts))
 
 
+def _from_words(ctx: DoubtContext, feasible: Callable[[tuple[Condition, ...]], bool],
+                text: str) -> tuple[TaskSpec, list[Doubt]] | None:
+    """A reading from the reading-level doubts alone (:func:`.reading_doubts`: an exclusion
+    over a receptacle's contents, an exclusive purpose ...): the first whose likeliest
+    alternative is feasible, with the other doubts of that reading."""
+    for doubt in reading_doubts(ctx):
+        for choice in doubt.choices[1:]:
+            if choice.add and feasible(choice.add):
+                spec = TaskSpec(instruction=text, subtasks=tuple(
+                    Subtask(id=f"s{i}", description=sentence([c]).rstrip("."), goal=(c,))
+                    for i, c in enumerate(choice.add, 1)))
+                return spec, []
+    return None
+
+
 def from_mentions_choices(text: str, items: Sequence[Item], scene: Scene, state: WorldState,
-                          team: Sequence[RobotProfile], priors: Priors | None = None) -> tuple[TaskSpec, Choices] | None:
+                          team: Sequence[RobotProfile], priors: Priors | None = None,
+                          words_only: bool = False) -> tuple[TaskSpec, Choices] | None:
     """When the reader found nothing to act on: the reading that gives each unexplained
-    mention its likeliest goal (:mod:`.from_mentions`) and its candidates; None when the
-    mentions propose nothing feasible."""
+    mention its likeliest goal (:mod:`.from_mentions`), or else the one a reading-level
+    doubt gives (only that with ``words_only``: the reader's error was about a phrase, and
+    only the words' own structure may overrule it), and its candidates; None when neither
+    proposes anything feasible."""
     priors = priors or load_priors()
     ctx = DoubtContext(items=items, goals=(), scene=scene, state=state)
     check = FeasibilityCheck(scene, state, team)
-    made = from_mentions(ctx, priors, lambda g: check(g) and check.team_can(g), Coverage(ctx), text)
+
+    def can(goals: tuple[Condition, ...]) -> bool:
+        return check(goals) and check.team_can(goals)
+
+    made = None if words_only else from_mentions(ctx, priors, can, Coverage(ctx), text)
+    if made is None:
+        made = _from_words(ctx, can, text)
     if made is None:
         return None
     spec, doubts = made
+    read = DoubtContext(items=items, goals=tuple(spec.goal().conditions), scene=scene, state=state)
+    doubts = [*doubts, *reading_doubts(read)]
     ranked = rank(spec, doubts, priors, check, Coverage(ctx))
     best = ranked[0].score
     ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))

@@ -57,10 +57,12 @@ class DoubtContext:
     def words(self) -> tuple[str, ...]:
         return tuple(i.text for i in self.items)
 
-    def named_types(self, item: Item) -> tuple[str, ...]:
+    def named_types(self, item: Item, verbs_too: bool = False) -> tuple[str, ...]:
         """The scene's types a word names, in the lexicon's order of preference (its
-        fallbacks after), none when it names no thing or nothing of this scene."""
-        if item.noun is None or item.verb is not None or item.noun.concept.kind not in _THING_KINDS:
+        fallbacks after), none when it names no thing or nothing of this scene (nor, unless
+        ``verbs_too``, when it may be a verb: "watch")."""
+        if item.noun is None or (item.verb is not None and not verbs_too) or \
+                item.noun.concept.kind not in _THING_KINDS:
             return ()
         concept = item.noun.concept
         return tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in self.scene_types)
@@ -93,6 +95,22 @@ class DoubtContext:
         """Where the instruction first names the object of a goal condition."""
         subject = ref_types(c.subject)
         return next((k for k, _, types in self.mentions() if subject & set(types)), None)
+
+    @cached_property
+    def narrative(self) -> bool:
+        """Whether a narrative cue frames the instruction ("by the time", "will find":
+        ``rule_words.json``, ``stated``), asked by several rules: found once."""
+        from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words
+
+        return bool(find(self.items, 0, len(self.items), load_rule_words().stated.narrative_cues))
+
+    @cached_property
+    def corrected(self) -> bool:
+        """Whether a self-correction cue was said (``correction_object`` cues)."""
+        from emboteam.pfg.offline.doubts.rule_words import load_rule_words
+
+        cues = set(load_rule_words().correction_object.cues)
+        return any(i.text in cues for i in self.items)
 
     @cached_property
     def _goal_types(self) -> frozenset[str]:

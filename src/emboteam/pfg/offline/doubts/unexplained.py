@@ -14,9 +14,10 @@ named near it).
 from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
-from emboteam.pfg.offline.doubts import affordances
+from emboteam.pfg.offline.doubts import affordances, next_place
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.explained import explanation
+from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
 from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.goals import Condition, Predicate
@@ -73,6 +74,8 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
             if c is not None:
                 proposals.append((label, with_subject(c, thing)))
         proposals += affordances.proposals(ctx, k, thing)
+        if (dest := next_place.next_destination(ctx, k, thing, load_rule_words().next_place)) is not None:
+            proposals.append(("next_place", placed(thing, dest)))    # "their home is the shelf"
         choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
         seen: set[str] = set()
         for label, c in proposals:

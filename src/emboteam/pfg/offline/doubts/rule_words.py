@@ -1,0 +1,172 @@
+"""The words of the reading-level points of doubt: exclusions over a receptacle's
+contents (:mod:`.contents`), exclusive purposes (:mod:`.exclusive`), the destination a
+thing's own words give it (:mod:`.next_place`), states stated as they should be
+(:mod:`.stated`). Data (``rule_words.json``), checked at load by the schema below: a
+malformed entry is a :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming
+the file and the entry.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import cache
+from pathlib import Path
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from emboteam.pfg.offline.knowledge import read
+from emboteam.pfg.offline.tagger import Item
+from emboteam.world.catalogue import load_catalogue
+
+RULE_WORDS_FILE = Path(__file__).with_name("rule_words.json")
+
+#: a sequence of words, matched on consecutive tokens ("apart from")
+Words = list[str]
+
+
+class _Closed(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+def _types_exist(types: Sequence[str]) -> None:
+    cat = load_catalogue()
+    for t in types:
+        cat.type(t)     # raises on a type AI2-THOR lacks
+
+
+class Contents(_Closed):
+    quantifiers: list[str]
+    emptying_verbs: list[str]
+    source_preps: list[str]
+    destination_preps: list[str]
+    pronoun_places: list[str]
+    excluders: list[Words]
+    trash_acts: list[str]
+    trash_place: str
+    reach: int = Field(8, ge=1, le=30)
+    note: str = ""
+
+
+class Cue(_Closed):
+    words: Words = Field(min_length=1)
+    #: where the thing kept on stands: before the cue, after it, either (after first), or
+    #: the cue names it itself ("by the candle lit")
+    kept: Literal["before", "after", "either", "inside"]
+
+
+class Exclusive(_Closed):
+    cues: list[Cue]
+    lights: list[str]
+    screens: list[str]
+    #: words that, before the cue in its sentence, make "only" restrictive ("turn off
+    #: only the floor lamp"): no exclusive purpose (a verb of switching off counts too)
+    restrictive: list[str]
+    reach: int = Field(6, ge=1, le=30)
+
+    @field_validator("lights", "screens")
+    @classmethod
+    def _known(cls, v: list[str]) -> list[str]:
+        try:
+            _types_exist(v)
+        except Exception as exc:    # the catalogue's own error says which type
+            raise ValueError(f"unknown object type: {exc}") from None
+        return v
+
+
+class NextPlace(_Closed):
+    destination_cues: list[Words]
+    #: words right before a place that make it where the thing is now ("lying on the counter")
+    locatives: list[str]
+    #: cues that lead to a destination with no verb before them ("mug -> coffee table");
+    #: any other needs a verb or a copula between the thing and its place ("the CD in the
+    #: drawer" is where the CD is)
+    directional: list[str]
+    replaces: list[str]
+    reach: int = Field(10, ge=1, le=30)
+
+
+class Stated(_Closed):
+    narrative_cues: list[Words]
+    #: words before a state that make it a complaint ("still on", "left open"): no narrative
+    complaint_words: list[str]
+    reach: int = Field(4, ge=1, le=30)
+
+
+class Stays(_Closed):
+    #: words that keep a thing as it is ("stays where it is", "leave the lamp on")
+    keepers: list[str]
+
+
+class CorrectionObject(_Closed):
+    #: words that start a self-correction of the thing ("the pen - no, the pencil")
+    cues: list[str]
+    reach: int = Field(4, ge=1, le=12)
+
+
+class Contradiction(_Closed):
+    #: words in or between two opposed requests that make the later one settle it (a
+    #: self-correction, "sorry, I mean leave it on"; a rule, "if it is off it ought to be on")
+    cues: list[str]
+
+
+class RuleWords(_Closed):
+    about: str = ""
+    sentence_ends: list[str]
+    contents: Contents
+    exclusive: Exclusive
+    next_place: NextPlace
+    stated: Stated
+    stays: Stays
+    correction_object: CorrectionObject
+    contradiction: Contradiction
+
+
+@cache
+def load_rule_words(path: Path = RULE_WORDS_FILE) -> RuleWords:
+    return read(path, RuleWords)
+
+
+def starts_at(items: Sequence[Item], k: int, words: Words) -> bool:
+    """Whether the tokens from ``k`` on are ``words``."""
+    return k + len(words) <= len(items) and all(items[k + i].text == w for i, w in enumerate(words))
+
+
+#: phrase list (by identity: the loaded file's lists live as long as the process) -> its
+#: phrases by first word, so that a search looks only at the phrases a token can start
+_BY_FIRST: dict[int, dict[str, list[Words]]] = {}
+
+
+def _by_first(phrases: Sequence[Words]) -> dict[str, list[Words]]:
+    index = _BY_FIRST.get(id(phrases))
+    if index is None:
+        index = {}
+        for words in phrases:
+            index.setdefault(words[0], []).append(words)
+        _BY_FIRST[id(phrases)] = index
+    return index
+
+
+def find(items: Sequence[Item], lo: int, hi: int, phrases: Sequence[Words]) -> list[tuple[int, int]]:
+    """(start, end) of every phrase found between ``lo`` and ``hi``, in order (the first
+    phrase of the list that matches at a position)."""
+    index = _by_first(phrases)
+    out = []
+    for k in range(lo, min(hi, len(items))):
+        for words in index.get(items[k].text, ()):
+            if starts_at(items, k, words):
+                out.append((k, k + len(words)))
+                break
+    return out
+
+
+def sentence_bounds(items: Sequence[Item], k: int) -> tuple[int, int]:
+    """[start, end) of the sentence around position ``k`` (between sentence-ending marks)."""
+    ends = set(load_rule_words().sentence_ends)
+    start = k
+    while start > 0 and items[start - 1].punct not in ends:
+        start -= 1
+    end = k
+    while end < len(items) and items[end].punct not in ends:
+        end += 1
+    return start, end
