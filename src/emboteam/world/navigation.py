@@ -83,7 +83,7 @@ class Navigator:
     def travel_actions(self, a: tuple[float, float], b: tuple[float, float]) -> int | None:
         """Agent actions for a robot at point ``a`` to reach the nearest pose of the thing at
         ``b`` (:meth:`nearest_pose`)."""
-        return _travel(self.floor_plan, round(a[0], 3), round(a[1], 3), round(b[0], 3), round(b[1], 3))
+        return _travel_points(self.floor_plan, a, b)
 
     def path(self, start: Cell, pose: Pose) -> list[State] | None:
         """The states (cell, heading) of a shortest drive, start and end included; each
@@ -222,6 +222,13 @@ def _table_off_grid(floor_plan: str, goal: Pose) -> dict[State, int]:
                 dist[p] = d
                 queue.append(p)
     return dist
+
+
+@lru_cache(maxsize=262144)
+def _travel_points(floor_plan: str, a: tuple[float, float], b: tuple[float, float]) -> int | None:
+    """:func:`_travel` by the points as given: the planner's cost model asks the same pairs
+    thousands of times a plan, and a hit here is one lookup, with no rounding."""
+    return _travel(floor_plan, round(a[0], 3), round(a[1], 3), round(b[0], 3), round(b[1], 3))
 
 
 @lru_cache(maxsize=262144)
