@@ -83,7 +83,7 @@ class Navigator:
     def travel_actions(self, a: tuple[float, float], b: tuple[float, float]) -> int | None:
         """Agent actions for a robot at point ``a`` to reach the nearest pose of the thing at
         ``b`` (:meth:`nearest_pose`)."""
-        return _travel_points(self.floor_plan, a, b)
+        return _travel_points(self.floor_plan, tuple(a), tuple(b))  # hashable whatever the caller passes
 
     def path(self, start: Cell, pose: Pose) -> list[State] | None:
         """The states (cell, heading) of a shortest drive, start and end included; each
