@@ -130,6 +130,29 @@ def test_dot_and_ascii() -> None:
     assert all(f"{s.id} {s.action}:" in drives for s in gotos) and "MoveAhead" in drives
 
 
+def test_dot_carries_each_steps_drive_as_the_xml_does(doc: ET.Element) -> None:
+    """With the initial state, DOT's GoToObject nodes carry the same ``path`` and ``moves``
+    as the XML export's ports (and a tooltip with both, for SVG viewers); without it, none."""
+    import pydot
+
+    plan, _ = fridge_handoff()
+    (graph,) = pydot.graph_from_dot_data(to_dot(plan, state=fresh_state("FloorPlan1", "1,2")))
+
+    def unquoted(v: object) -> str:
+        return str(v).strip('"')
+
+    marked = [n for n in graph.get_nodes() if "path" in n.get_attributes()]
+    in_dot = sorted((unquoted(n.get("path")), unquoted(n.get("moves"))) for n in marked)
+    in_xml = sorted((el.attrib["path"], el.attrib["moves"]) for el in doc.iter("GoToObject") if "path" in el.attrib)
+    gotos = [s for s in plan.steps if s.action.skill.value == "GoToObject"]
+    assert len(in_dot) == len(gotos) and in_dot == in_xml
+    assert all(unquoted(n.get_name()).startswith("GoToObject(") for n in marked)
+    for n, (path, moves) in zip(sorted(marked, key=lambda n: (unquoted(n.get("path")), unquoted(n.get("moves")))),
+                                in_dot, strict=True):
+        assert unquoted(n.get("tooltip")) == f"path: {path}\\nmoves: {moves}"
+    assert "path=" not in to_dot(plan) and "moves=" not in to_dot(plan)
+
+
 def test_render_needs_graphviz(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     plan, _ = fridge_handoff()
     with pytest.raises(ExportError, match="svg or png"):

@@ -130,6 +130,31 @@ def test_robots_crossing_paths_never_share_a_cell_in_thor() -> None:
     assert len(unity.by_action("MoveAhead")) > 8
 
 
+def test_an_idle_robot_parked_in_the_doorway_steps_aside_in_thor() -> None:
+    """FloorPlan5's one-cell doorway at (3, 1), robot 2 idle in it and robot 1 behind it
+    (tests/test_sim_traffic.py's case): as in the simulator, robot 1's drive looks again,
+    robot 2 is asked to step aside, its moves go to AI2-THOR, and robot 1 gets through."""
+    from emboteam.world.navgrid import largest_component
+
+    fp, door = "FloorPlan5", (3, 1)
+    grid = load_grid(fp)
+    other_side = largest_component(set(grid.cells) - {door})
+    starts = {"robot1": NavGrid.point(min(other_side)), "robot2": NavGrid.point(door)}
+    unity = UnityDouble(fp, 2)
+    env = ThorEnvironment(unity, load_scene(fp), parse_team("1,2"), starts=starts)
+    env.start("robot1", Action(skill=Skill.GoToObject, target="Apple_1"))
+    done: list[ActionOutcome] = []
+    while (t := env.next_event_time()) is not None:
+        done += env.advance(t)
+    assert [(o.robot, o.success) for o in done] == [("robot1", True)], done
+    assert env.traffic.yields == 1
+    robot2 = _replay(unity, 1)
+    assert robot2 and grid.cell_at(robot2[-1][:2]) != door  # the double moved agent 1 off the doorway
+    here = grid.cell_at(env.observe().robots["robot1"].position)
+    assert here is not None and here not in other_side  # robot 1 went through
+    assert check_motion(env.nav_record()).collisions == 0
+
+
 def test_a_step_thor_refuses_ends_the_drive_where_the_agent_stands() -> None:
     env, unity = make()
     unity.fail_next("MoveAhead", "StandardIslandHeight is blocking Agent 0 from moving 0")

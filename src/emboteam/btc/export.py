@@ -42,6 +42,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import py_trees
 
@@ -53,6 +54,9 @@ from emboteam.btc.keys import ident
 from emboteam.btc.nodes import Act, Leaf, Port
 from emboteam.hp.plan import MergedPlan
 from emboteam.world.state import WorldState
+
+if TYPE_CHECKING:  # py_trees renders with pydot (its dependency, not ours)
+    import pydot
 
 Behaviour = py_trees.behaviour.Behaviour
 
@@ -97,10 +101,14 @@ _PATH_DOC = "the grid cells of the drive as x,z,yaw (m, degrees), ';'-separated"
 _MOVES_DOC = "the drive as AI2-THOR agent actions: MoveAhead RotateLeft RotateRight Wait:SECONDS"
 
 
+def _core_goto(node: Behaviour) -> bool:
+    """A step's own GoToObject (not a recovery's re-approach, planned when it happens)."""
+    return isinstance(node, Act) and node.recovery is None and node.btcpp_id == "GoToObject"
+
+
 def _drive_ports(node: Leaf, scope: _Scope | None, drives: dict[str, PlannedDrive]) -> list[Port]:
     """``path``/``moves`` for the core GoToObject of a step whose drive is known."""
-    if (scope is None or not isinstance(node, Act) or node.recovery is not None
-            or node.btcpp_id != "GoToObject" or scope.step_id not in drives):
+    if scope is None or not _core_goto(node) or scope.step_id not in drives:
         return []
     drive = drives[scope.step_id]
     return [Port(PATH_PORT, drive.cells, description=_PATH_DOC),
@@ -227,12 +235,45 @@ def to_btcpp_xml(plan: MergedPlan, *, state: WorldState | None = None, config: B
 
 
 def to_dot(plan: MergedPlan, *, state: WorldState | None = None, config: BTConfig | None = None) -> str:
-    """Graphviz DOT of the py_trees tree (py_trees' own renderer)."""
+    """Graphviz DOT of the py_trees tree (py_trees' own renderer). With ``state``, each
+    step's GoToObject node carries its drive as the XML export's ports do: attributes
+    ``path`` and ``moves`` (read by tools; Graphviz ignores them), and a ``tooltip`` with
+    both that SVG viewers show on hover."""
     compiled = _compiled(plan, state, config)
+    drives = planned_drives(plan, state) if state is not None else {}
     try:
-        return str(py_trees.display.dot_tree(compiled.root).to_string())
+        graph = py_trees.display.dot_tree(compiled.root)
+        _mark_drives(graph, compiled, drives)
+        return str(graph.to_string())
     finally:
         compiled.close()
+
+
+def _mark_drives(graph: pydot.Dot, compiled: CompiledTree, drives: dict[str, PlannedDrive]) -> None:
+    """Put each step's drive on its GoToObject node of ``graph`` (py_trees' rendering of
+    ``compiled.root``). py_trees names the nodes itself (duplicate names get ``*``s), so
+    the nodes are matched to behaviours by walking both trees together: a node's edges
+    lead to its children in order."""
+    if not drives:
+        return
+    kids: dict[str, list[str]] = {}
+    for edge in graph.get_edges():
+        kids.setdefault(str(edge.get_source()), []).append(str(edge.get_destination()))
+    nodes = {n.get_name(): n for n in graph.get_nodes()}
+    step_of = {node.id: sid for sid, node in compiled.steps.items()}
+    roots = [n for n in kids if all(n not in v for v in kids.values())]
+    stack: list[tuple[Behaviour, str, str | None]] = [(compiled.root, roots[0], None)] if len(roots) == 1 else []
+    while stack:
+        node, name, step = stack.pop()
+        step = step_of.get(node.id, step)
+        if step in drives and _core_goto(node) and name in nodes:
+            drive = drives[step]
+            for key, value in ((PATH_PORT, drive.cells), (MOVES_PORT, drive.moves),
+                               ("tooltip", f"path: {drive.cells}\nmoves: {drive.moves}")):
+                nodes[name].set(key, value)
+        names = kids.get(name, [])
+        if len(names) == len(node.children):  # py_trees left nothing out below this node
+            stack.extend((c, n, step) for c, n in zip(node.children, names, strict=True))
 
 
 def to_ascii(plan: MergedPlan, *, state: WorldState | None = None, config: BTConfig | None = None) -> str:

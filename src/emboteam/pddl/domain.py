@@ -261,7 +261,9 @@ def pending_pieces(state: WorldState, wholes: Sequence[str] | None = None) -> di
         o = state.objects.get(oid)
         if o is None or o.source is not None or o.is_sliced:
             continue
-        if cat.slice_product(o.type) is None or not (o.has("sliceable") or o.type == "Egg"):
+        # the flag first: it rules out most objects at a set lookup (planning asks this
+        # hundreds of times a plan, over every object of the scene)
+        if not (o.has("sliceable") or o.type == "Egg") or cat.slice_product(o.type) is None:
             continue
         cut.append(o)
     key = (state.floor_plan, *((o.id, o.type, o.properties, o.mass, o.position) for o in cut))

@@ -203,24 +203,42 @@ def bindings(variables: Sequence[Param], conditions: Sequence[Atom], base: Mappi
 
     if not all(test(c, base) for c in first):
         return
+    yield from _extend(_Search(variables, ready, domain, test, observe, generate, quantified), 0, dict(base))
 
-    def extend(i: int, current: dict[str, str]) -> Iterator[dict[str, str]]:
-        if i == len(variables):
-            yield dict(current)
-            return
-        name, type_ = variables[i]
-        values: Sequence[str] | None = None
-        if generate is not None:
-            for c in ready[i]:
-                values = generate(c, current, name)
-                if values is not None:
-                    if observe is not None:
-                        observe(c, current, quantified)
-                    break
-        for value in domain(type_) if values is None else values:
-            current[name] = value
-            if all(test(c, current) for c in ready[i]):
-                yield from extend(i + 1, current)
-        current.pop(name, None)
 
-    yield from extend(0, dict(base))
+@dataclass(frozen=True, slots=True)
+class _Search:
+    """What :func:`_extend` needs from :func:`bindings`: passed along, not closed over, so
+    the recursion makes no reference cycle (a self-recursive closure does, and the
+    thousands a plan's grounding made left their states for the cycle collector)."""
+
+    variables: Sequence[Param]
+    ready: list[list[Atom]]
+    domain: Callable[[str], Sequence[str]]
+    test: Callable[[Atom, Mapping[str, str]], bool]
+    observe: Observer | None
+    generate: Generator | None
+    quantified: frozenset[str]
+
+
+def _extend(search: _Search, i: int, current: dict[str, str]) -> Iterator[dict[str, str]]:
+    """Bind variable ``i`` and the ones after it, in order, testing each condition as soon
+    as its variables are bound (:func:`bindings`)."""
+    if i == len(search.variables):
+        yield dict(current)
+        return
+    name, type_ = search.variables[i]
+    ready, test = search.ready[i], search.test
+    values: Sequence[str] | None = None
+    if search.generate is not None:
+        for c in ready:
+            values = search.generate(c, current, name)
+            if values is not None:
+                if search.observe is not None:
+                    search.observe(c, current, search.quantified)
+                break
+    for value in search.domain(type_) if values is None else values:
+        current[name] = value
+        if all(test(c, current) for c in ready):
+            yield from _extend(search, i + 1, current)
+    current.pop(name, None)

@@ -39,16 +39,25 @@ def _heat(o: ObjectState) -> None:
         o.is_cooked = True
 
 
+#: the types :func:`settle` looks at: only they have standing effects
+_SOURCES: frozenset[str] = COLD_SOURCES | HEATERS | BREWERS | WATER_SOURCES
+
+
 def settle(state: WorldState) -> None:
     """Apply every standing side effect of running appliances and cold sources.
 
-    One pass builds a parent -> children index, so the cost is linear in the number of
-    objects however many appliances run (it runs after every action).
+    One pass builds a parent -> children index and picks out the few objects that can have
+    an effect (fridges, heaters, coffee machines, faucets), so the cost is linear in the
+    number of objects however many appliances run (it runs after every action, thousands
+    of times per plan), and the rest of the work is per source.
     """
     children: dict[str, list[ObjectState]] = defaultdict(list)
+    sources: list[ObjectState] = []
     for o in state.objects.values():
         if o.parent is not None:
             children[o.parent].append(o)
+        if o.type in _SOURCES:
+            sources.append(o)
     if not children:
         return
 
@@ -61,7 +70,7 @@ def settle(state: WorldState) -> None:
                 frontier.append(child.id)
         return out
 
-    for src in list(state.objects.values()):
+    for src in sources:  # in the objects' order, as before: the last effect on an object wins
         t = src.type
         if is_cold_source(src):
             for o in within(src.id):

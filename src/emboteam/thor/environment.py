@@ -10,7 +10,10 @@ avoidance on), a blocked drive waiting and looking again every second; each step
 path (``MoveAhead``/``RotateLeft``/``RotateRight``, or ``Teleport`` to the next cell:
 :mod:`emboteam.thor.driving`) is sent when it ends, then the agent turns to face the
 object. Robots start on their grid cells (the task's start cells), teleported there
-before the episode. Unlike the simulator, robots in the way do not step aside on request. What the
+before the episode. As in the simulator, when a drive looks again and still finds no way,
+the robots parked on its shortest way that are idle (or wait for a way themselves and asked
+later: a deadlock) step aside to the nearest free cell off it, their moves sent like a
+drive's. What the
 team model adds to AI2-THOR is checked before any controller call: a robot's skills, its
 mass capacity, the knife slicing needs (docs/world.md), and a robot that is down. Every
 other failure is AI2-THOR's own, read from ``lastActionSuccess`` and ``errorMessage``.
@@ -79,7 +82,8 @@ class _Motion:
     seq: int
     robot: str = field(compare=False)
     step: DriveStep = field(compare=False)
-    drive: _Pending = field(compare=False)
+    #: the drive it belongs to; None: the robot steps aside for another one
+    drive: _Pending | None = field(compare=False)
 
 
 def team_precheck(state: WorldState, robot: str, action: Action) -> StepResult | None:
@@ -266,11 +270,16 @@ class ThorEnvironment:
         self._plan(drive)
         return None
 
-    def _plan(self, drive: _Pending) -> None:
-        """Reserve the drive's path and queue its steps, or wait and look again."""
+    def _plan(self, drive: _Pending, *, make_way: bool = False) -> None:
+        """Reserve the drive's path and queue its steps, or wait and look again; with
+        ``make_way`` (looking again), robots in the way are asked to step aside first."""
         robot = drive.robot
         dt = agent_action_seconds(self._state.robots[robot].profile.speed)
+        heading = self._heading_at_end(robot)
         path = self.traffic.drive(robot, self._now, dt, drive.goals)
+        if path is None and make_way:
+            self._make_way(drive)
+            path = self.traffic.drive(robot, self._now, dt, drive.goals)
         if path is None:
             drive.blocked += 1
             self.traffic.waits += 1
@@ -282,8 +291,7 @@ class ThorEnvironment:
                 drive.waiting, drive.end = True, self._now + NAV_RETRY_SECONDS
             self._push(drive)
             return
-        yaw = float(self._agent(robot)["agent"]["rotation"]["y"])
-        steps = drive_steps(path, start=self._now, heading_before=heading_of_rotation(yaw))
+        steps = drive_steps(path, start=self._now, heading_before=heading)
         drive.waiting = False
         drive.end = max(path[-1].t, drive.start + MIN_NAVIGATION_SECONDS, self._now)
         for step in steps:
@@ -292,11 +300,45 @@ class ThorEnvironment:
 
     def _retry(self, drive: _Pending) -> None:
         self.traffic.replans += 1
-        self._plan(drive)
+        self._plan(drive, make_way=True)
+
+    def _heading_at_end(self, robot: str) -> int:
+        """Where ``robot`` will face when a drive planned now sets off: at the end of the
+        moves it is still making (stepping aside; the drive starts there), else as
+        AI2-THOR has it now."""
+        if self.traffic.end_time(robot) > self._now:
+            return self.traffic.paths[robot][-1].heading
+        return heading_of_rotation(float(self._agent(robot)["agent"]["rotation"]["y"]))
+
+    def _make_way(self, drive: _Pending) -> None:
+        """The simulator's rule (:meth:`emboteam.sim.simulator.Simulator._make_way`): each
+        robot parked on the blocked robot's shortest way that is idle, or that waits for a
+        way itself and started later, steps aside to the nearest free cell off that way
+        (within reach of what it works on, when it can); a robot that is down stays, an
+        obstacle. The moves are sent to AI2-THOR as they end, like a drive's."""
+        way = self.traffic.way_of(drive.robot, self._now, drive.goals)
+        for other in self.traffic.blockers(drive.robot, self._now, drive.goals):
+            o = self._state.robots.get(other)
+            if o is None or o.down or other in self._down:
+                continue
+            theirs = self._running.get(other)
+            if theirs is not None and not (theirs.waiting and (theirs.start, other) > (drive.start, drive.robot)):
+                continue
+            near = None
+            if o.at is not None and o.at in self._state.objects:
+                p = self._state.objects[o.at].position
+                near = (p[0], p[2])
+            heading = self._heading_at_end(other)
+            dt = agent_action_seconds(o.profile.speed)
+            path = self.traffic.step_aside(other, self._now, dt, way, near)
+            if path is None:
+                continue
+            for step in drive_steps(path, start=self._now, heading_before=heading):
+                heapq.heappush(self._motion, _Motion(step.end, next(self._seq), other, step, None))
 
     def _send(self, motion: _Motion) -> None:
         drive = motion.drive
-        if drive.failure is not None or self._running.get(motion.robot) is not drive:
+        if drive is not None and (drive.failure is not None or self._running.get(motion.robot) is not drive):
             return  # the drive already ended (a step before this one was refused)
         result = self.driver.send(self._agent_id(motion.robot), self._agent(motion.robot), motion.step)
         if result.success:
@@ -304,6 +346,15 @@ class ThorEnvironment:
         agent = self._agent(motion.robot)["agent"]
         here = self.traffic.nav.grid.nearest((float(agent["position"]["x"]), float(agent["position"]["z"])))
         self.traffic.halt(motion.robot, self._now, here, heading_of_rotation(float(agent["rotation"]["y"])))
+        if drive is None:
+            # a step aside AI2-THOR refused: the robot stays where it stands, and the rest of
+            # the way aside is off, as is a drive planned to set off from its end
+            self._motion = [m for m in self._motion if m.robot != motion.robot]
+            heapq.heapify(self._motion)
+            drive = self._running.get(motion.robot)
+            if drive is None or drive.point is None or drive.waiting:
+                self._refresh()
+                return
         drive.failure = StepResult(False, result.reason or R.NOT_REACHABLE,
                                    f"AI2-THOR refused {motion.step.action} towards {drive.action.target}: "
                                    f"{result.message}")

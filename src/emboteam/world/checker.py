@@ -8,6 +8,8 @@ different apples, as in SMART-LLM's and ALFRED's goal checks.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 from pydantic import BaseModel, ConfigDict
 
 from emboteam.errors import EmboTeamError
@@ -95,29 +97,43 @@ def _unary(pred: Predicate, o: ObjectState, liquid: str | None) -> bool:
 
 
 def check_condition(cond: Condition, state: WorldState) -> ConditionResult:
+    # the planner checks conditions thousands of times per plan: the subject test of
+    # :func:`matches` is inlined here and the receptacle reference built once per call
+    objects = state.objects
+    ref, pred = cond.subject, cond.predicate
+    ref_id, ref_types = ref.id, ref.types
+    where = cond.receptacle
+    if pred is Predicate.inside and where is not None and where.types:
+        where = _place_ref(where.types)
     witnesses: list[str] = []
-    for o in state.objects.values():
-        if not matches(cond.subject, o, state):
+    for o in objects.values():
+        if ref_id is not None:
+            if o.id != ref_id and o.source != ref_id:
+                continue
+        elif o.type not in ref_types and (o.source is None or objects[o.source].type not in ref_types):
             continue
-        if cond.predicate is Predicate.sliced:
+        if pred is Predicate.sliced:
             ok = o.is_sliced and o.source is None  # the whole, not each of its pieces
-        elif cond.predicate is Predicate.broken and o.gone:
+        elif pred is Predicate.broken and o.gone:
             ok = o.is_broken  # a cracked egg is gone, but it was broken
         elif o.gone:
             continue  # a sliced whole no longer exists; its pieces stand for it
-        elif cond.predicate is Predicate.inside:
-            assert cond.receptacle is not None
-            where = cond.receptacle
-            if where.types:
-                where = ObjectRef(types=tuple(sorted(place_types(where.types))))
-            ok = any(matches(where, state.objects[r], state) for r in state.ancestors(o.id))
+        elif pred is Predicate.inside:
+            assert where is not None
+            ok = any(matches(where, objects[r], state) for r in state.ancestors(o.id))
         else:
-            ok = _unary(cond.predicate, o, cond.liquid)
+            ok = _unary(pred, o, cond.liquid)
         if ok:
             witnesses.append(o.id)
     satisfied = len(witnesses)
     return ConditionResult(condition=cond, holds=satisfied >= cond.count, satisfied=satisfied,
                            required=cond.count, witnesses=tuple(witnesses))
+
+
+@lru_cache(maxsize=1024)
+def _place_ref(types: tuple[str, ...]) -> ObjectRef:
+    """The reference an ``inside`` goal's receptacle types stand for (Sink: Sink or SinkBasin)."""
+    return ObjectRef(types=tuple(sorted(place_types(types))))
 
 
 def check_goal(goal: Goal, state: WorldState) -> GoalReport:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from dataclasses import dataclass
 from functools import cache, lru_cache
 
 from emboteam.errors import EmboTeamError
@@ -82,7 +83,7 @@ class Navigator:
     def travel_actions(self, a: tuple[float, float], b: tuple[float, float]) -> int | None:
         """Agent actions for a robot at point ``a`` to reach the nearest pose of the thing at
         ``b`` (:meth:`nearest_pose`)."""
-        return _travel(self.floor_plan, round(a[0], 3), round(a[1], 3), round(b[0], 3), round(b[1], 3))
+        return _travel_points(self.floor_plan, tuple(a), tuple(b))  # hashable whatever the caller passes
 
     def path(self, start: Cell, pose: Pose) -> list[State] | None:
         """The states (cell, heading) of a shortest drive, start and end included; each
@@ -150,7 +151,59 @@ def _successors(grid: NavGrid, state: State) -> list[State]:
 @lru_cache(maxsize=4096)
 def cost_table(floor_plan: str, goal: Pose) -> dict[State, int]:
     """Actions from every state to ``goal``: a breadth-first search over reversed actions
-    (a move's predecessor is one cell back along the same heading; turns reverse)."""
+    (a move's predecessor is one cell back along the same heading; turns reverse).
+
+    The search runs on the floor plan's state graph numbered once (:func:`_reverse_graph`):
+    a list of distances indexed by state, not a dictionary of tuples, since a cold planning
+    call builds a hundred of these tables. The states are visited in the same order as a
+    search over the tuples, so the table is the same, entry for entry."""
+    graph = _reverse_graph(floor_plan)
+    start = graph.index.get((goal.cell, goal.heading))
+    if start is None:
+        return _table_off_grid(floor_plan, goal)
+    preds = graph.preds
+    dist = [-1] * len(preds)
+    dist[start] = 0
+    order = [start]
+    for k in order:  # the list grows as it is read: a FIFO queue
+        d = dist[k] + 1
+        for p in preds[k]:
+            if dist[p] < 0:
+                dist[p] = d
+                order.append(p)
+    states = graph.states
+    return {states[k]: dist[k] for k in order}
+
+
+@dataclass(frozen=True)
+class _ReverseGraph:
+    """A floor plan's states (cell, heading), numbered, and each one's predecessors (the
+    states one action before it: the two turns, then the move from one cell back)."""
+
+    states: tuple[State, ...]
+    index: dict[State, int]
+    preds: tuple[tuple[int, ...], ...]
+
+
+@cache
+def _reverse_graph(floor_plan: str) -> _ReverseGraph:
+    grid = load_grid(floor_plan)
+    states = tuple((c, h) for c in grid.ordered for h in range(4))
+    index = {s: k for k, s in enumerate(states)}
+    preds = []
+    for (i, j), h in states:
+        di, dj = STEPS[h]
+        ks = [index[((i, j), (h + 1) % 4)], index[((i, j), (h + 3) % 4)]]
+        back = index.get(((i - di, j - dj), h))
+        if back is not None:
+            ks.append(back)
+        preds.append(tuple(ks))
+    return _ReverseGraph(states, index, tuple(preds))
+
+
+def _table_off_grid(floor_plan: str, goal: Pose) -> dict[State, int]:
+    """:func:`cost_table` for a goal cell that is not on the grid (a pose made by hand):
+    the same search on tuples, since such a state has no number."""
     grid = load_grid(floor_plan)
     start: State = (goal.cell, goal.heading)
     dist = {start: 0}
@@ -169,6 +222,13 @@ def cost_table(floor_plan: str, goal: Pose) -> dict[State, int]:
                 dist[p] = d
                 queue.append(p)
     return dist
+
+
+@lru_cache(maxsize=262144)
+def _travel_points(floor_plan: str, a: tuple[float, float], b: tuple[float, float]) -> int | None:
+    """:func:`_travel` by the points as given: the planner's cost model asks the same pairs
+    thousands of times a plan, and a hit here is one lookup, with no rounding."""
+    return _travel(floor_plan, round(a[0], 3), round(a[1], 3), round(b[0], 3), round(b[1], 3))
 
 
 @lru_cache(maxsize=262144)
