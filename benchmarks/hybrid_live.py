@@ -13,7 +13,7 @@ from the cassette (no model) and exits 1 when any metric differs.
 
 Development rounds and MACE-THOR only (never a held-out half or the unseen suite).
 
-    EMBOTEAM_LLAMACPP_THREADS=2 nice .venv/bin/python benchmarks/hybrid_live.py r40 r41 r43 mace
+    EMBOTEAM_LLAMACPP_THREADS=2 nice .venv/bin/python benchmarks/hybrid_live.py r40 r41 r43 r45 mace
     .venv/bin/python benchmarks/hybrid_live.py --replay r40 r41 mace
 """
 
@@ -37,7 +37,8 @@ OUT = ROOT / "benchmarks" / "llm_local"
 RESULTS = OUT / "read25_results.json"
 MODEL = Path("/root/.cache/emboteam/models/qwen2.5-coder-0.5b-instruct.gguf")
 SUITES = {"r40": ROOT / "tests" / "data" / "blind_r40" / "dev", "r41": ROOT / "tests" / "data" / "blind_r41" / "dev",
-          "r43": ROOT / "tests" / "data" / "blind_r43" / "dev", "mace": None}
+          "r43": ROOT / "tests" / "data" / "blind_r43" / "dev", "r45": ROOT / "tests" / "data" / "blind_r45" / "dev",
+          "mace": None}
 #: the model only scores close readings: its review of a reading answers "ok" to everything
 #: (issue 25) and costs minutes a call on the shared 2-core machine
 WHEN = "close"
