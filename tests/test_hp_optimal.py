@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from emboteam.bench.suites import load_suite
-from emboteam.hp.optimal import Job, Op, Problem, reference, solve, travel
+from emboteam.hp import optimal
+from emboteam.hp.optimal import Job, Op, Problem, ScheduleTimeoutError, problem_of, reference, solve, travel
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
@@ -64,6 +65,47 @@ def test_the_reference_of_a_plan_is_proven_and_never_above_it(make: Callable[[],
     ref = reference(plan, spec, planning_state(state), limit=10.0)
     assert ref is not None and ref.optimal
     assert ref.bound <= ref.makespan <= plan.makespan + 1e-6
+    # never below what no schedule of these actions escapes: the busiest spot's operations
+    # one after another, and all operations spread over the team (durations are rounded
+    # down to hundredths in the model)
+    problem = problem_of(plan, spec, planning_state(state))
+    assert problem is not None
+    ops = [o for j in problem.jobs for o in j.ops]
+    per_spot: dict[str, float] = {}
+    for o in ops:
+        per_spot[o.spot] = per_spot.get(o.spot, 0.0) + o.seconds
+    slack = 0.01 * len(ops)
+    assert ref.makespan >= max(per_spot.values()) - slack
+    assert ref.makespan >= sum(o.seconds for o in ops) / len(problem.profiles) - slack
+
+
+def test_time_in_the_models_quantum_loses_no_schedule() -> None:
+    """The reference counts time in the greatest common divisor of every duration and
+    drive (here 2 s): the same optimum as in hundredths of a second (``fast``'s small
+    model), in far fewer steps of the bound."""
+    a, b = parse_team(["1", "1"])
+    places = [(2.0, 0.0), (0.0, 2.0), (2.0, 2.0), (4.0, 2.0)]
+    jobs = [_job(i, "robot1", p, 10.0) for i, p in enumerate(places)]
+    problem = Problem(jobs, {j.group: ("robot1", "robot2") for j in jobs},
+                      {"robot1": (0.0, 0.0), "robot2": (0.0, 0.0)}, {"robot1": a, "robot2": b})
+    assert optimal._Model(problem, None, tight=True).unit == 200
+    strong, plain = solve(problem, limit=5.0), solve(problem, limit=5.0, linearization=1)
+    assert strong.optimal and plain.optimal
+    assert abs(strong.makespan - plain.makespan) < 1e-9
+    assert all(abs(t * 100 % 200) < 1e-6 for t in strong.starts.values())
+
+
+def test_a_solve_past_its_wall_clock_safety_net_raises(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The answer may depend only on the deterministic limit: a solve the wall clock stops
+    gives no answer but a typed time-out."""
+    spec, state = random_cell(2, 6)
+    plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+    problem = problem_of(plan, spec, planning_state(state))
+    assert problem is not None
+    monkeypatch.setattr(optimal, "WALL_FLOOR", 0.0)
+    monkeypatch.setattr(optimal, "WALL_FACTOR", 1e-6)
+    with pytest.raises(ScheduleTimeoutError, match="wall-clock safety net"):
+        solve(problem, plan, limit=10.0)
 
 
 def test_the_optimal_schedule_is_valid_and_never_longer() -> None:
