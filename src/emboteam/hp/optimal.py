@@ -26,8 +26,14 @@ plus the drive on every arc of its circuit, in the LP with the circuits at
 plan gave them (a fridge one job opens stays opened by that job) and their places (an
 object another job moved is where the plan left it), so this is the optimum *for these actions in this causal order*: a tighter
 reference than the resource-aware bound, exact where it proves optimality, and no bound
-on plans with other actions. Solved with one worker, a fixed
-seed and a *deterministic* time limit: the same answer on any machine.
+on plans with other actions. Solved with a fixed seed and a *deterministic* time limit
+(one worker for ``fast``'s small models; CP-SAT's portfolio interleaved in fixed batches
+for the reference and ``--schedule optimal``): the same answer on any machine. A wall-clock
+limit far above it is only a safety net, raising :class:`ScheduleTimeoutError`. The strong
+model (``linearization=2``) also counts time in the greatest common divisor of all
+durations and drives (a quarter second on the navigation grid), and posts a drive within
+a job without its robot where every candidate drives as long (issue 28: FloorPlan1 4 x 16,
+goal seeds 3 and 4, proven in 10 deterministic seconds, not before).
 """
 
 from __future__ import annotations
@@ -526,10 +532,14 @@ class _Model:
 
 def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT,
           linearization: int = 2) -> Reference:
-    """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with one
-    worker, seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2``
-    puts the circuits and the route lengths into the LP (``_Model._routes``): what
-    proves the 8-robot, 32-goal cells in 10 s (their bound was 55-90 % of the optimum)."""
+    """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with
+    seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2`` puts the
+    circuits and the route lengths into the LP (``_Model._routes``): what proves the
+    8-robot, 32-goal cells in 10 s (their bound was 55-90 % of the optimum); with it come
+    the tight model (:class:`_Model`'s ``tight``) and the interleaved portfolio
+    (:data:`PORTFOLIO_WORKERS`). ``linearization=1`` (``fast``'s small stage) keeps one
+    worker and the model its plans were made with. Raises :class:`ScheduleTimeoutError`
+    when the wall-clock safety net (:data:`WALL_FLOOR`, :data:`WALL_FACTOR`) stops it."""
     strong = linearization >= 2
     model = _Model(problem, hint, tight=strong)
     solver = cp_model.CpSolver()
