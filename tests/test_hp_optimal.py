@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from emboteam.bench.suites import load_suite
-from emboteam.hp.optimal import Job, Op, Problem, reference, solve, travel
+from emboteam.hp import optimal
+from emboteam.hp.optimal import Job, Op, Problem, ScheduleTimeoutError, problem_of, reference, solve, travel
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
@@ -20,6 +21,7 @@ from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
 from sweep_cells import random_cell
+from test_hp_determinism import _content, busy_cpu  # noqa: F401 (busy_cpu: the fixture)
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))  # benchmarks/ is no package
 from plan_dump import sweep_input
@@ -64,6 +66,61 @@ def test_the_reference_of_a_plan_is_proven_and_never_above_it(make: Callable[[],
     ref = reference(plan, spec, planning_state(state), limit=10.0)
     assert ref is not None and ref.optimal
     assert ref.bound <= ref.makespan <= plan.makespan + 1e-6
+    # never below what no schedule of these actions escapes: the busiest spot's operations
+    # one after another, and all operations spread over the team (durations are rounded
+    # down to hundredths in the model)
+    problem = problem_of(plan, spec, planning_state(state))
+    assert problem is not None
+    ops = [o for j in problem.jobs for o in j.ops]
+    per_spot: dict[str, float] = {}
+    for o in ops:
+        per_spot[o.spot] = per_spot.get(o.spot, 0.0) + o.seconds
+    slack = 0.01 * len(ops)
+    assert ref.makespan >= max(per_spot.values()) - slack
+    assert ref.makespan >= sum(o.seconds for o in ops) / len(problem.profiles) - slack
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_the_four_robot_cells_one_worker_could_not_prove_are_proven(seed: int) -> None:
+    """FloorPlan1, 4 robots, 16 goals, goal seeds 3 and 4 (quick-sweep cells): one worker
+    in hundredths of a second ended 10 deterministic seconds at 20.75 / 19.70 and 18.0 /
+    17.18 (best / bound); in quarter seconds with the interleaved portfolio both are proven
+    (20.75 and 17.75, the second shorter than the best one worker found)."""
+    _, spec, state = sweep_input("FloorPlan1", 4, 16, seed)
+    plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+    ref = reference(plan, spec, planning_state(state), limit=10.0)
+    assert ref is not None and ref.optimal
+    assert ref.bound <= ref.makespan <= plan.makespan + 1e-6
+    assert ref.makespan == {3: 20.75, 4: 17.75}[seed]
+
+
+def test_time_in_the_models_quantum_loses_no_schedule() -> None:
+    """The reference counts time in the greatest common divisor of every duration and
+    drive (here 2 s): the same optimum as in hundredths of a second (``fast``'s small
+    model), in far fewer steps of the bound."""
+    a, b = parse_team(["1", "1"])
+    places = [(2.0, 0.0), (0.0, 2.0), (2.0, 2.0), (4.0, 2.0)]
+    jobs = [_job(i, "robot1", p, 10.0) for i, p in enumerate(places)]
+    problem = Problem(jobs, {j.group: ("robot1", "robot2") for j in jobs},
+                      {"robot1": (0.0, 0.0), "robot2": (0.0, 0.0)}, {"robot1": a, "robot2": b})
+    assert optimal._Model(problem, None, tight=True).unit == 200
+    strong, plain = solve(problem, limit=5.0), solve(problem, limit=5.0, linearization=1)
+    assert strong.optimal and plain.optimal
+    assert abs(strong.makespan - plain.makespan) < 1e-9
+    assert all(abs(t * 100 % 200) < 1e-6 for t in strong.starts.values())
+
+
+def test_a_solve_past_its_wall_clock_safety_net_raises(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The answer may depend only on the deterministic limit: a solve the wall clock stops
+    gives no answer but a typed time-out."""
+    spec, state = random_cell(2, 6)
+    plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+    problem = problem_of(plan, spec, planning_state(state))
+    assert problem is not None
+    monkeypatch.setattr(optimal, "WALL_FLOOR", 0.0)
+    monkeypatch.setattr(optimal, "WALL_FACTOR", 1e-6)
+    with pytest.raises(ScheduleTimeoutError, match="wall-clock safety net"):
+        solve(problem, plan, limit=10.0)
 
 
 def test_the_optimal_schedule_is_valid_and_never_longer() -> None:
@@ -98,3 +155,17 @@ def test_the_routes_prove_an_eight_robot_cell_the_load_bound_could_not() -> None
     ref = reference(plan, spec, planning_state(state), limit=10.0)
     assert ref is not None and ref.optimal
     assert ref.bound <= ref.makespan <= plan.makespan + 1e-6
+
+
+def test_the_optimal_schedule_is_the_same_on_a_loaded_machine(request: pytest.FixtureRequest) -> None:
+    """``--schedule optimal`` and the reference stop on deterministic time (the portfolio
+    interleaved in fixed batches), so a busy CPU gives the same plan and the same answer."""
+    spec, state = random_cell(3, 10)
+
+    def run() -> tuple[list[object], object]:
+        plan = HybridPlanner(PlannerConfig(schedule="optimal")).plan(spec, state)
+        return _content(plan), reference(plan, spec, planning_state(state), limit=2.0)
+
+    idle = run()
+    request.getfixturevalue("busy_cpu")
+    assert run() == idle

@@ -26,8 +26,14 @@ plus the drive on every arc of its circuit, in the LP with the circuits at
 plan gave them (a fridge one job opens stays opened by that job) and their places (an
 object another job moved is where the plan left it), so this is the optimum *for these actions in this causal order*: a tighter
 reference than the resource-aware bound, exact where it proves optimality, and no bound
-on plans with other actions. Solved with one worker, a fixed
-seed and a *deterministic* time limit: the same answer on any machine.
+on plans with other actions. Solved with a fixed seed and a *deterministic* time limit
+(one worker for ``fast``'s small models; CP-SAT's portfolio interleaved in fixed batches
+for the reference and ``--schedule optimal``): the same answer on any machine. A wall-clock
+limit far above it is only a safety net, raising :class:`ScheduleTimeoutError`. The strong
+model (``linearization=2``) also counts time in the greatest common divisor of all
+durations and drives (a quarter second on the navigation grid), and posts a drive within
+a job without its robot where every candidate drives as long (issue 28: FloorPlan1 4 x 16,
+goal seeds 3 and 4, proven in 10 deterministic seconds, not before).
 """
 
 from __future__ import annotations
@@ -39,6 +45,7 @@ from dataclasses import dataclass, field
 from ortools.sat.python import cp_model
 
 from emboteam.hp.plan import MergedPlan, PlanStep
+from emboteam.pddl.errors import PlannerLimitError
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.durations import navigation_seconds
 from emboteam.sim.rules import apply_action, check_action
@@ -52,6 +59,23 @@ SCALE = 100
 REFERENCE_LIMIT = 10.0
 #: no model when the robots' circuits would have more arcs than this (the 32-robot cells)
 MAX_ARCS = 20_000
+#: the wall-clock safety net of a solve, ``WALL_FLOOR + WALL_FACTOR * limit`` seconds: far
+#: above what the deterministic limit takes on a loaded machine (10 deterministic s took up
+#: to 27 s of wall time at load 15 on 2 cores), so it only stops a solve that has hung
+WALL_FLOOR = 30.0
+WALL_FACTOR = 12.0
+#: the strong search (``linearization=2``: the reference and ``--schedule optimal``): CP-SAT's
+#: portfolio of strategies interleaved in fixed batches, deterministic for a fixed worker
+#: count and batch size (``interleave_search``); it proved FloorPlan1 4 x 16 (goal seed 3)
+#: in 4.1 deterministic s where one worker needed 29.6
+PORTFOLIO_WORKERS = 4
+PORTFOLIO_BATCH = 12
+
+
+class ScheduleTimeoutError(PlannerLimitError):
+    """CP-SAT hit its wall-clock safety net before its deterministic limit: its answer
+    would depend on the machine's load, so there is none (issue 28: the same input gives
+    the same plan on any machine)."""
 
 Point = tuple[float, float]
 
@@ -130,6 +154,8 @@ class Reference:
     bound: float
     robots: Mapping[str, str]
     starts: Mapping[str, float]
+    #: CP-SAT's deterministic seconds for the answer (the same on any machine)
+    deterministic: float = 0.0
 
     @property
     def optimal(self) -> bool:
@@ -303,10 +329,17 @@ def _t(seconds: float) -> int:
 class _Model:
     """The CP-SAT model of a :class:`Problem` (see the module docstring)."""
 
-    def __init__(self, problem: Problem, hint: MergedPlan | None) -> None:
+    def __init__(self, problem: Problem, hint: MergedPlan | None, tight: bool = False) -> None:
         self.p = problem
+        #: :meth:`_within`'s drives posted without a robot where every candidate agrees,
+        #: and time counted in :attr:`unit`
+        self.tight = tight
+        self.travelled: dict[tuple[float, Point, Point], int] = {}
+        #: hundredths of a second per tick of the model: 1, or with ``tight`` the greatest
+        #: common divisor of every duration and drive (:meth:`_quantum`)
+        self.unit = self._quantum() if tight else 1
         m = self.m = cp_model.CpModel()
-        horizon = self.horizon = max(self._horizon(), _t(hint.makespan) + 1 if hint is not None else 0)
+        horizon = self.horizon = max(self._horizon(), self._u(hint.makespan) + 1 if hint is not None else 0)
         self.x: dict[tuple[str, str], cp_model.IntVar] = {}
         self.start: dict[str, cp_model.IntVar] = {}
         self.end: dict[str, cp_model.IntVar] = {}
@@ -329,7 +362,7 @@ class _Model:
             for o in j.ops:
                 s = self.start[o.step] = m.new_int_var(0, horizon, f"s[{o.step}]")
                 e = self.end[o.step] = m.new_int_var(0, horizon, f"e[{o.step}]")
-                self.size[o.step] = _t(o.seconds)
+                self.size[o.step] = self._u(o.seconds)
                 spots.setdefault(o.spot, []).append(m.new_interval_var(s, self.size[o.step], e, f"i[{o.step}]"))
         for j in problem.jobs:
             self._within(j)
@@ -358,15 +391,41 @@ class _Model:
         self.span_sizes.append((size, first, last))
         return self.m.new_interval_var(self.start[first], size, self.end[last], f"o[{obj},{first}]")
 
-    def _travel(self, profile: RobotProfile, a: Point, b: Point) -> float:
-        return travel(profile, a, b, self.p.floor_plan)
+    def _u(self, seconds: float) -> int:
+        """``seconds`` in ticks of the model, rounded down (see :func:`_t`)."""
+        return _t(seconds) // self.unit
+
+    def _travel(self, profile: RobotProfile, a: Point, b: Point) -> int:
+        """A drive in ticks of the model (:func:`travel`, each computed once)."""
+        key = (profile.speed, a, b)
+        if key not in self.travelled:
+            self.travelled[key] = _t(travel(profile, a, b, self.p.floor_plan))
+        return self.travelled[key] // self.unit
+
+    def _quantum(self) -> int:
+        """The greatest common divisor of every operation's and every possible drive's
+        hundredths (25 when, as on the navigation grid, all are quarter seconds). Time in
+        these ticks loses no schedule: with every duration and offset a multiple of it,
+        any schedule's starts rounded down to multiples of it keep every constraint. And
+        each step of the search's bound is a whole tick, so the proof that nothing
+        shorter exists closes in far fewer steps."""
+        self.unit = 1
+        sizes = [_t(o.seconds) for j in self.p.jobs for o in j.ops]
+        for r, profile in self.p.profiles.items():
+            mine = [j for j in self.p.jobs if r in self.p.candidates[j.group]]
+            for j in mine:
+                sizes.append(self._travel(profile, self.p.starts[r], j.ops[0].goal))
+                sizes += [self._travel(profile, a.place, b.goal) for a, b in zip(j.ops, j.ops[1:], strict=False)
+                          if b.drive]
+                sizes += [self._travel(profile, j.ops[-1].place, j2.ops[0].goal) for j2 in mine if j2 is not j]
+        return math.gcd(*sizes) or 1
 
     def _horizon(self) -> int:
         slowest = min(p.speed for p in self.p.profiles.values())
         span = 0.0
         for j in self.p.jobs:
             span += sum(o.seconds for o in j.ops) + len(j.ops) * 30.0 / slowest + 30.0 / slowest
-        return _t(span) + 1
+        return self._u(span) + 1
 
     def _within(self, j: Job) -> None:
         """A job's operations in order, the drives between them at the speed of its robot."""
@@ -374,10 +433,14 @@ class _Model:
             if not o.drive:
                 self.m.add(self.start[o.step] >= self.end[prev.step])
                 continue
-            for r in self.p.candidates[j.group]:
-                d = _t(self._travel(self.p.profiles[r], prev.place, o.goal))
-                for after in [prev.step, *self.drive_after.get(o.step, ())]:
-                    self.m.add(self.start[o.step] >= self.end[after] + d).only_enforce_if(self.x[(j.group, r)])
+            drives = {r: self._travel(self.p.profiles[r], prev.place, o.goal) for r in self.p.candidates[j.group]}
+            least = min(drives.values())
+            for after in [prev.step, *self.drive_after.get(o.step, ())]:
+                if self.tight:
+                    self.m.add(self.start[o.step] >= self.end[after] + least)
+                for r, d in drives.items():
+                    if d > least or not self.tight:
+                        self.m.add(self.start[o.step] >= self.end[after] + d).only_enforce_if(self.x[(j.group, r)])
 
     def _circuits(self) -> None:
         """Per robot: a circuit over a depot and the jobs it may take (a job it does not
@@ -391,7 +454,7 @@ class _Model:
                 arcs_.append((k, k, ~lit))
                 first = self.arc[(r, "", j.id)] = self.m.new_bool_var("")
                 arcs_.append((0, k, first))
-                d0 = self.drive[(r, "", j.id)] = _t(self._travel(profile, self.p.starts[r], j.ops[0].goal))
+                d0 = self.drive[(r, "", j.id)] = self._travel(profile, self.p.starts[r], j.ops[0].goal)
                 self.m.add(self.start[j.ops[0].step] >= d0).only_enforce_if(first)
                 for after in self.drive_after.get(j.ops[0].step, ()):
                     self.m.add(self.start[j.ops[0].step] >= self.end[after] + d0).only_enforce_if(first)
@@ -402,7 +465,7 @@ class _Model:
                         continue
                     lit2 = self.arc[(r, j.id, j2.id)] = self.m.new_bool_var("")
                     arcs_.append((k, k2, lit2))
-                    d = self.drive[(r, j.id, j2.id)] = _t(self._travel(profile, j.ops[-1].place, j2.ops[0].goal))
+                    d = self.drive[(r, j.id, j2.id)] = self._travel(profile, j.ops[-1].place, j2.ops[0].goal)
                     for after in [j.ops[-1].step, *self.drive_after.get(j2.ops[0].step, ())]:
                         self.m.add(self.start[j2.ops[0].step] >= self.end[after] + d).only_enforce_if(lit2)
             self.m.add_circuit(arcs_)
@@ -410,8 +473,8 @@ class _Model:
     def _inner(self, profile: RobotProfile, j: Job) -> int:
         """A job's own seconds for a robot of ``profile``: its operations and the drives
         between them."""
-        return sum(_t(o.seconds) for o in j.ops) + sum(
-            _t(self._travel(profile, a.place, b.goal)) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
+        return sum(self._u(o.seconds) for o in j.ops) + sum(
+            self._travel(profile, a.place, b.goal) for a, b in zip(j.ops, j.ops[1:], strict=False) if b.drive)
 
     def _loads(self) -> None:
         """Redundant, for the bound: a robot's jobs fit before the makespan, each with its
@@ -452,42 +515,56 @@ class _Model:
             self.m.add_hint(lit, r == robot_of[g])
         for s in plan.steps:
             if s.id in self.start:
-                self.m.add_hint(self.start[s.id], _t(s.est_start))
-                self.m.add_hint(self.end[s.id], _t(s.est_start) + _t(s.est_end - s.est_start))
+                self.m.add_hint(self.start[s.id], self._u(s.est_start))
+                self.m.add_hint(self.end[s.id], self._u(s.est_start) + self.size[s.id])
         for size, first, last in self.span_sizes:
-            end = _t(starts_of[last]) + self.size[last]
-            self.m.add_hint(size, end - _t(starts_of[first]))
+            end = self._u(starts_of[last]) + self.size[last]
+            self.m.add_hint(size, end - self._u(starts_of[first]))
         order: dict[str, list[str]] = {r: [] for r in self.p.profiles}
         for j in sorted(self.p.jobs, key=lambda j: starts_of[j.ops[0].step]):
             order[j.robot].append(j.id)
         for (r, a, b), lit in self.arc.items():
             seq = ["", *order[r], ""] if order[r] else ["", ""]
             self.m.add_hint(lit, any(seq[i] == a and seq[i + 1] == b for i in range(len(seq) - 1)))
-        self.m.add_hint(self.makespan, max(_t(s.est_start) + _t(s.est_end - s.est_start) for s in plan.steps
+        self.m.add_hint(self.makespan, max(self._u(s.est_start) + self.size[s.id] for s in plan.steps
                                            if s.id in self.start))
 
 
 def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT,
           linearization: int = 2) -> Reference:
-    """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with one
-    worker, seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2``
-    puts the circuits and the route lengths into the LP (``_Model._routes``): what
-    proves the 8-robot, 32-goal cells in 10 s (their bound was 55-90 % of the optimum)."""
-    model = _Model(problem, hint)
+    """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with
+    seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2`` puts the
+    circuits and the route lengths into the LP (``_Model._routes``): what proves the
+    8-robot, 32-goal cells in 10 s (their bound was 55-90 % of the optimum); with it come
+    the tight model (:class:`_Model`'s ``tight``) and the interleaved portfolio
+    (:data:`PORTFOLIO_WORKERS`). ``linearization=1`` (``fast``'s small stage) keeps one
+    worker and the model its plans were made with. Raises :class:`ScheduleTimeoutError`
+    when the wall-clock safety net (:data:`WALL_FLOOR`, :data:`WALL_FACTOR`) stops it."""
+    strong = linearization >= 2
+    model = _Model(problem, hint, tight=strong)
     solver = cp_model.CpSolver()
-    solver.parameters.num_workers = 1
+    solver.parameters.num_workers = PORTFOLIO_WORKERS if strong else 1
+    if strong:
+        solver.parameters.interleave_search = True
+        solver.parameters.interleave_batch_size = PORTFOLIO_BATCH
     solver.parameters.random_seed = 0
     solver.parameters.max_deterministic_time = limit
     solver.parameters.linearization_level = linearization
+    wall = WALL_FLOOR + WALL_FACTOR * limit
+    solver.parameters.max_time_in_seconds = wall
     status = solver.solve(model.m)
+    tick = model.unit / SCALE
+    if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE) and solver.wall_time >= 0.99 * wall:
+        raise ScheduleTimeoutError(f"CP-SAT did not finish {limit:g} deterministic s of search within its "
+                                   f"{wall:g} s wall-clock safety net (the machine is overloaded)")
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         name = "infeasible" if status == cp_model.INFEASIBLE else "unknown"
-        return Reference(name, 0.0, solver.best_objective_bound / SCALE, {}, {})
+        return Reference(name, 0.0, solver.best_objective_bound * tick, {}, {}, solver.deterministic_time)
     chosen = {g: next(r for r in robots if solver.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
     assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
-    starts = {sid: solver.value(v) / SCALE for sid, v in model.start.items()}
-    return Reference("optimal" if status == cp_model.OPTIMAL else "feasible", solver.objective_value / SCALE,
-                     solver.best_objective_bound / SCALE, assignment, starts)
+    starts = {sid: solver.value(v) * tick for sid, v in model.start.items()}
+    return Reference("optimal" if status == cp_model.OPTIMAL else "feasible", solver.objective_value * tick,
+                     solver.best_objective_bound * tick, assignment, starts, solver.deterministic_time)
 
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
