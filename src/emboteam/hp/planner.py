@@ -35,6 +35,7 @@ from emboteam.hp.stages.decomposed import plan_decomposed
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
+from emboteam.hp.stages.route import reroute
 from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers
 from emboteam.pddl.errors import PlanningError
@@ -73,6 +74,8 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(reorder)
     if config.split_containers:
         stages.append(_then_reorder(split_containers, config.spot_order))
+    if config.route:
+        stages.append(_then_reorder(reroute, config.spot_order))
     stages.append(schedule if config.schedule == "optimal" else schedule_small)
     return tuple(stages)
 
