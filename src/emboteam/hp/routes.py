@@ -33,6 +33,8 @@ Point = tuple[float, float]
 #: stops walked by one search at most (a count, so the routes never depend on the clock);
 #: a 2-robot, 32-goal cell's search walks about a tenth of it
 WALK_BUDGET = 400_000
+#: a node is tried on its own robot and on this many others, those passing nearest
+NEAR_ROBOTS = 3
 
 
 @dataclass(frozen=True)
@@ -62,14 +64,27 @@ class Walker:
     floor_plan: str
     speeds: Mapping[str, float]
     starts: Mapping[str, Point]
+    #: (speed, from, to) -> (where the drive ends, its seconds): the search asks the same
+    #: drives many times, and the navigation's own caches sit behind several calls
+    drives: dict[tuple[float, Point, Point], tuple[Point, float]] = field(default_factory=dict)
+
+    def drive(self, robot: str, here: Point, there: Point) -> tuple[Point, float]:
+        """Where a drive from ``here`` to the thing at ``there`` ends, and its seconds."""
+        key = (self.speeds[robot], here, there)
+        found = self.drives.get(key)
+        if found is None:
+            seconds = navigation_seconds(here, there, key[0], self.floor_plan or None)
+            end = arrival_point(self.floor_plan, here, there) if self.floor_plan else there
+            found = self.drives[key] = (end, seconds)
+        return found
 
     def stop(self, robot: str, here: Point, stop: Stop) -> tuple[Point, float]:
         """Where the robot stands after ``stop`` and the seconds it took (drive included)."""
         p = stop.point
         if p is None or (not stop.forced and math.hypot(p[0] - here[0], p[1] - here[1]) <= REACH):
             return here, stop.seconds
-        drive = navigation_seconds(here, p, self.speeds[robot], self.floor_plan or None)
-        return arrival_point(self.floor_plan, here, p) if self.floor_plan else p, drive + stop.seconds
+        end, seconds = self.drive(robot, here, p)
+        return end, seconds + stop.seconds
 
     def walk(self, robot: str, here: Point, clock: float, nodes: Sequence[Node]) -> tuple[Point, float, int]:
         """Walk ``nodes`` from ``here`` at ``clock``: the end point, the clock, stops walked."""
@@ -81,35 +96,69 @@ class Walker:
             n += len(node.stops)
         return here, clock, n
 
-    def times(self, robot: str, nodes: Sequence[Node]) -> dict[str, float]:
-        """Each stop's start (step id -> seconds from the route's start, the drive to it
-        before it)."""
-        here, clock = self.starts[robot], 0.0
-        out: dict[str, float] = {}
-        for node in nodes:
-            for s in node.stops:
-                here, dt = self.stop(robot, here, s)
-                out[s.step] = clock + dt - s.seconds
-                clock += dt
-        return out
+def timetable(walker: Walker, nodes: Mapping[str, Node], order: Mapping[str, Sequence[str]],
+              waits: Mapping[str, frozenset[str]]) -> tuple[dict[str, float], dict[str, float], int] | None:
+    """Walk every route at once, a node starting no earlier than the nodes it waits for
+    end (a list schedule over the robots): each stop's start (step id -> seconds, its drive
+    before it), each robot's end, the stops walked; None when the routes wait on each
+    other in a circle."""
+    here = {r: walker.starts[r] for r in order}
+    clock = {r: 0.0 for r in order}
+    nxt = {r: 0 for r in order}
+    ends: dict[str, float] = {}
+    times: dict[str, float] = {}
+    left, walked = sum(len(v) for v in order.values()), 0
+    while left:
+        moved = False
+        for r in sorted(order):
+            route = order[r]
+            while nxt[r] < len(route) and waits.get(route[nxt[r]], frozenset()) <= ends.keys():
+                node = nodes[route[nxt[r]]]
+                t = max([clock[r], *(ends[p] for p in waits.get(node.id, ()))])
+                for st in node.stops:
+                    here[r], dt = walker.stop(r, here[r], st)
+                    times[st.step] = t + dt - st.seconds
+                    t += dt
+                walked += len(node.stops)
+                ends[node.id] = clock[r] = t
+                nxt[r] += 1
+                left -= 1
+                moved = True
+        if not moved:
+            return None
+    return times, clock, walked
 
 
 @dataclass
 class Routes:
-    """Each robot's route (node ids in order), with its walked prefix (point and clock after
-    each node) kept for cheap evaluation of a change."""
+    """Each robot's route (node ids in order). A change whose routes wait for no other
+    robot's nodes (nor are waited for) is priced route by route, from each walked prefix
+    (point and clock after each node); any other by the whole :func:`timetable`."""
 
     walker: Walker
     nodes: Mapping[str, Node]
-    #: (a, b): when a and b are on one robot, a comes first
-    before: frozenset[tuple[str, str]]
+    #: node -> the nodes it waits for (on any robot)
+    waits: Mapping[str, frozenset[str]]
     order: dict[str, list[str]]
     walked: int = 0
     prefix: dict[str, list[tuple[Point, float]]] = field(default_factory=dict)
+    ends: dict[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        for r in self.order:
-            self._refresh(r)
+        self.before = frozenset((p, n) for n, ps in self.waits.items() for p in ps)
+        #: node -> the nodes it waits for or that wait for it
+        self.partners: dict[str, set[str]] = {n: set() for n in self.nodes}
+        for a, b in self.before:
+            self.partners[a].add(b)
+            self.partners[b].add(a)
+        self.apply(dict(self.order))
+
+    def _alone(self, change: Mapping[str, list[str]]) -> bool:
+        """No node of the changed routes waits for, or is waited for by, a node on another
+        robot once ``change`` is made: each changed route is priced alone."""
+        robot_of = {x: r for r, route in self.order.items() for x in route}
+        robot_of.update({x: r for r, route in change.items() for x in route})
+        return all(robot_of[p] == r for r, route in change.items() for x in route for p in self.partners[x])
 
     def _refresh(self, robot: str) -> None:
         here, clock = self.walker.starts[robot], 0.0
@@ -119,22 +168,27 @@ class Routes:
             self.walked += n
             out.append((here, clock))
         self.prefix[robot] = out
-
-    def length(self, robot: str) -> float:
-        return self.prefix[robot][-1][1]
+        self.ends[robot] = clock
 
     def cost(self) -> tuple[float, float]:
-        """(longest route, sum of routes): what the search minimises, in that order."""
-        lengths = [self.length(r) for r in self.order]
-        return (max(lengths, default=0.0), sum(lengths))
+        """(makespan, sum of the robots' ends): what the search minimises, in that order."""
+        return (max(self.ends.values(), default=0.0), sum(self.ends.values()))
 
-    def priced(self, robot: str, route: Sequence[str], same_from: int) -> float:
-        """The length of ``route`` for ``robot``, walking only from position ``same_from``
-        (the prefix up to there is that of its current route)."""
-        here, clock = self.prefix[robot][same_from]
-        _, clock, n = self.walker.walk(robot, here, clock, [self.nodes[x] for x in route[same_from:]])
-        self.walked += n
-        return clock
+    def price(self, change: Mapping[str, list[str]]) -> tuple[float, float] | None:
+        """The cost with ``change`` made (None: the routes would wait in a circle)."""
+        if not self._alone(change):
+            found = timetable(self.walker, self.nodes, {**self.order, **change}, self.waits)
+            if found is None:
+                return None
+            self.walked += found[2]
+            ends = found[1]
+        else:
+            ends = dict(self.ends)
+            for r, route in change.items():
+                here, clock = self.prefix[r][same := _first_common(self.order[r], route)]
+                _, ends[r], n = self.walker.walk(r, here, clock, [self.nodes[x] for x in route[same:]])
+                self.walked += n
+        return (max(ends.values(), default=0.0), sum(ends.values()))
 
     def keeps_order(self, route: Sequence[str]) -> bool:
         pos = {x: i for i, x in enumerate(route)}
@@ -144,20 +198,34 @@ class Routes:
         for r, route in changed.items():
             self.order[r] = route
             self._refresh(r)
+        if self.before:
+            found = timetable(self.walker, self.nodes, self.order, self.waits)
+            assert found is not None, "a change was applied that waits in a circle"
+            self.ends = found[1]
 
 
-def _with(lengths: Mapping[str, float], changed: Mapping[str, float]) -> tuple[float, float]:
-    values = [changed.get(r, v) for r, v in lengths.items()]
-    return (max(values, default=0.0), sum(values))
+def _near(routes: Routes, nid: str, home: str) -> list[str]:
+    """The robot of node ``nid`` and the :data:`NEAR_ROBOTS` others able to do it whose
+    routes come nearest to it (its first stop against their start and stops, straight
+    line), nearest first: a node is tried where a robot passes by, not on every robot."""
+    first = next((s.point for s in routes.nodes[nid].stops if s.point is not None), None)
+    others = [r for r in routes.nodes[nid].robots if r != home and r in routes.order]
+    if first is None or len(others) <= NEAR_ROBOTS:
+        return [home, *others]
+
+    def gap(robot: str) -> float:
+        points = [routes.walker.starts[robot], *(s.point for x in routes.order[robot]
+                                                 for s in routes.nodes[x].stops if s.point is not None)]
+        return min(math.hypot(p[0] - first[0], p[1] - first[1]) for p in points)
+
+    return [home, *sorted(others, key=lambda r: (gap(r), r))[:NEAR_ROBOTS]]
 
 
 def _relocations(routes: Routes, nid: str, home: str) -> list[dict[str, list[str]]]:
-    """Every route change that moves node ``nid`` elsewhere (same robot or another)."""
+    """Every route change that moves node ``nid`` elsewhere (same robot or a near one)."""
     out: list[dict[str, list[str]]] = []
     rest = [x for x in routes.order[home] if x != nid]
-    for robot in routes.nodes[nid].robots:
-        if robot not in routes.order:
-            continue
+    for robot in _near(routes, nid, home):
         base = rest if robot == home else routes.order[robot]
         for i in range(len(base) + 1):
             route = [*base[:i], nid, *base[i:]]
@@ -171,9 +239,7 @@ def _swaps(routes: Routes, nid: str, home: str) -> list[dict[str, list[str]]]:
     """Every exchange of node ``nid`` with a node of another robot both may do."""
     out: list[dict[str, list[str]]] = []
     i = routes.order[home].index(nid)
-    for robot in routes.nodes[nid].robots:
-        if robot == home or robot not in routes.order:
-            continue
+    for robot in _near(routes, nid, home)[1:]:
         for j, other in enumerate(routes.order[robot]):
             if home not in routes.nodes[other].robots:
                 continue
@@ -198,15 +264,14 @@ def _first_common(a: Sequence[str], b: Sequence[str]) -> int:
 def _try(routes: Routes, changes: list[dict[str, list[str]]], budget: int) -> bool:
     """Apply the first change that lowers the cost; False when none does (or the budget
     ran out)."""
-    lengths = {r: routes.length(r) for r in routes.order}
     best = routes.cost()
     for change in changes:
         if routes.walked >= budget:
             return False
         if not all(routes.keeps_order(route) for route in change.values()):
             continue
-        priced = {r: routes.priced(r, route, _first_common(routes.order[r], route)) for r, route in change.items()}
-        if better(_with(lengths, priced), best):
+        priced = routes.price(change)
+        if priced is not None and better(priced, best):
             routes.apply(change)
             return True
     return False

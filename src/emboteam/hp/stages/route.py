@@ -19,9 +19,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from emboteam.hp import optimal, spot_order
+from emboteam.hp.dependencies import Footprint
 from emboteam.hp.merge import GroundedStep, SeqStep
 from emboteam.hp.plan import MergedPlan, PlanStep
-from emboteam.hp.routes import Node, Routes, Stop, Walker, better, improve
+from emboteam.hp.routes import Node, Routes, Stop, Walker, improve, timetable
 from emboteam.hp.stages.context import Context, Draft, Invalid
 from emboteam.hp.stages.merge import finish_independent
 from emboteam.hp.stages.replay import replay
@@ -36,37 +37,52 @@ log = logging.getLogger(__name__)
 #: the walked routes must promise at least this many seconds less than the plan's own
 #: (each rebuild costs a replay and a simulation; a smaller promise rarely survives them)
 MIN_GAIN = 0.5
+#: the stage searches only when the longest walked route is at least this share of the
+#: makespan: below it the makespan is made by waits the routes do not see (a 32-robot
+#: cell's routes are 65 % of it), and the search would cost without paying
+ROUTE_BOUND = 0.9
+#: nor for a plan of more steps: the search and the rebuild (a replay, a merge and a
+#: simulation of the whole plan) would cost the 32-robot, 96-goal cell more than its
+#: whole planning time, and its routes are a third of its makespan
+ROUTE_STEPS = 160
 
 
 @dataclass(frozen=True)
 class Layout:
-    """What a plan's routes are made of: the nodes, the step -> robot of the plan, the
-    pairs of nodes one robot must keep in order, the nodes waiting on another robot."""
+    """What a plan's routes are made of: the nodes (its jobs), each robot's jobs in the
+    plan's order, the jobs each job waits for in the merged plan (what it needs another
+    job to do first; the jobs of one subtask on one robot in their order), and the same
+    with every conflicting pair kept in order (``strict``); the walker of the scene."""
 
     nodes: dict[str, Node]
     order: dict[str, list[str]]
-    before: frozenset[tuple[str, str]]
-    #: node -> the nodes it waits for (any robot): the rebuilt order keeps these
-    waits: dict[str, set[str]]
+    waits: dict[str, frozenset[str]]
+    strict: dict[str, frozenset[str]]
+    walker: Walker
 
 
 def reroute(ctx: Context, draft: Draft) -> Draft:
-    """The draft with its jobs on shorter routes, or the draft itself."""
+    """The draft with its jobs on shorter routes, or the draft itself. The routes are
+    searched with the waits of the merged plan first; when that plan no longer runs or
+    misses the goal (two jobs switching one microwave swapped), once more with every
+    conflicting pair of jobs kept in its order (:func:`conflicts`)."""
     plan, seq = draft.plan, draft.record.sequence
-    if not ctx.independent or len(seq) != len(plan.steps):
+    if not ctx.independent or len(seq) != len(plan.steps) or len(plan.steps) > ROUTE_STEPS:
         return draft
-    layout = layout_of(ctx, plan)
+    layout = layout_of(ctx, plan, seq)
     if layout is None:
         return draft
-    walker = Walker(ctx.start.floor_plan, {r: ctx.start.robots[r].profile.speed for r in layout.order},
-                    {r: _xz(ctx.start.robots[r].position) for r in layout.order})
-    routes = Routes(walker, layout.nodes, layout.before, {r: list(v) for r, v in layout.order.items()})
-    before = routes.cost()
-    improve(routes)
-    if not better(routes.cost(), before, eps=MIN_GAIN):
-        return draft
-    steps = _sequence(routes, layout, plan, seq)
-    other = _rebuilt(ctx, steps) if steps is not None else None
+    for waits in (layout.waits, layout.strict):
+        routes = Routes(layout.walker, layout.nodes, waits, {r: list(v) for r, v in layout.order.items()})
+        before = routes.cost()
+        if before[0] < ROUTE_BOUND * plan.makespan:
+            return draft  # the makespan is waiting (at spots, for other robots), not driving
+        improve(routes)
+        if routes.cost()[0] > before[0] - MIN_GAIN:
+            return draft
+        other = _rebuilt(ctx, _sequence(routes, plan, seq))
+        if other is not None:
+            break
     if other is None or other[0].makespan >= plan.makespan - 1e-6:
         log.debug("routes %.1f -> %.1f s walked do not simulate shorter", before[0], routes.cost()[0])
         return draft
@@ -123,11 +139,36 @@ def _stops(ctx: Context, plan: MergedPlan) -> dict[str, Stop | None] | None:
     return out
 
 
-def layout_of(ctx: Context, plan: MergedPlan) -> Layout | None:
+def conflicts(accesses: Sequence[tuple[str, Footprint]]) -> set[tuple[str, str]]:
+    """(a, b): node b must stay after node a, from their steps' footprints in the plan's
+    order: a write after any earlier access of the variable since its last write, a read
+    or a set update after the last write, a read after updates (two updates commute).
+    The merge's waits alone let the rebuilt order flip two jobs that both switch the
+    microwave, and the last one to switch it decides the goal. A robot's own pose and
+    hand are its own business (not shared)."""
+    last: dict[str, str] = {}
+    seen: dict[str, dict[str, set[str]]] = {}  # var -> node -> {"r", "u"} since the last write
+    out: set[tuple[str, str]] = set()
+    for node, fp in accesses:
+        for kind, names in (("r", fp.reads), ("u", fp.updates), ("w", fp.writes)):
+            for v in names:
+                if v.startswith(("pose:", "hand:")):
+                    continue
+                since = seen.setdefault(v, {})
+                before = [last[v]] if v in last else []
+                before += [n for n, kinds in since.items() if kind == "w" or kinds - {kind}]
+                out.update((b, node) for b in before if b != node)
+                if kind == "w":
+                    last[v], seen[v] = node, {}
+                else:
+                    since.setdefault(node, set()).add(kind)
+    return out
+
+
+def layout_of(ctx: Context, plan: MergedPlan, seq: Sequence[GroundedStep]) -> Layout | None:
     """The nodes of ``plan`` (:mod:`emboteam.hp.optimal`'s jobs: one robot's steps between
-    two moments its hands are empty) and their constraints: a job that waits for another,
-    or that another waits for (the jobs of one subtask on one robot are chained so), stays
-    on its robot; None when the plan cannot be taken apart so."""
+    two moments its hands are empty, each for the robots its subtask's group may go to)
+    and what they wait for; None when the plan cannot be taken apart so."""
     problem = optimal.problem_of(plan, ctx.spec, ctx.start)
     stops = _stops(ctx, plan) if problem is not None else None
     if problem is None or stops is None:
@@ -140,52 +181,28 @@ def layout_of(ctx: Context, plan: MergedPlan) -> Layout | None:
     for a, b in [*problem.precedences, *problem.drive_waits]:
         if op_job[a] != op_job[b]:
             waits[op_job[b]].add(op_job[a])
-    waiting = {g for g, ps in waits.items() if ps} | {p for ps in waits.values() for p in ps}
+    strict = {n: set(ps) for n, ps in waits.items()}
+    for a, b in conflicts([(job_of[s.id], g.footprint) for s, g in zip(plan.steps, seq, strict=True)
+                           if s.id in job_of]):
+        strict[b].add(a)
     nodes = {j.id: Node(j.id, tuple(st for sid in j.steps if (st := stops[sid]) is not None),
-                        (j.robot,) if j.id in waiting else problem.candidates[j.group]) for j in problem.jobs}
+                        problem.candidates[j.group]) for j in problem.jobs}
     order: dict[str, list[str]] = {r: [] for r in plan.robots}
     for j in problem.jobs:  # in the plan's order of their first steps
         order[j.robot].append(j.id)
-    before = frozenset((p, g) for g, ps in waits.items() for p in ps)
-    return Layout(nodes, order, before, waits)
+    walker = Walker(ctx.start.floor_plan, {r: ctx.start.robots[r].profile.speed for r in order},
+                    {r: _xz(ctx.start.robots[r].position) for r in order})
+    return Layout(nodes, order, {n: frozenset(ps) for n, ps in waits.items()},
+                  {n: frozenset(ps) for n, ps in strict.items()}, walker)
 
 
-def _timed(routes: Routes, layout: Layout) -> dict[str, float] | None:
-    """Each kept step's start in the new routes, a node starting no earlier than the nodes
-    it waits for end (a list schedule over the robots); None when the routes wait on each
-    other in a circle."""
-    walker, nodes = routes.walker, routes.nodes
-    here = {r: walker.starts[r] for r in routes.order}
-    clock = {r: 0.0 for r in routes.order}
-    nxt = {r: 0 for r in routes.order}
-    ends: dict[str, float] = {}
-    times: dict[str, float] = {}
-    left = sum(len(v) for v in routes.order.values())
-    while left:
-        moved = False
-        for r in sorted(routes.order):
-            while nxt[r] < len(routes.order[r]) and layout.waits[routes.order[r][nxt[r]]] <= ends.keys():
-                node = nodes[routes.order[r][nxt[r]]]
-                t = max([clock[r], *(ends[p] for p in layout.waits[node.id])])
-                for s in node.stops:
-                    here[r], dt = walker.stop(r, here[r], s)
-                    times[s.step] = t + dt - s.seconds
-                    t += dt
-                ends[node.id], clock[r] = t, t
-                nxt[r] += 1
-                left -= 1
-                moved = True
-        if not moved:
-            return None
-    return times
-
-
-def _sequence(routes: Routes, layout: Layout, plan: MergedPlan, seq: Sequence[GroundedStep]) -> list[SeqStep] | None:
+def _sequence(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> list[SeqStep] | None:
     """The kept steps of the new routes in the order of their starts (each on the robot of
     its route), or None when the routes cannot be timed."""
-    times = _timed(routes, layout)
-    if times is None:
+    found = timetable(routes.walker, routes.nodes, routes.order, routes.waits)
+    if found is None:
         return None
+    times = found[0]
     robot_of = {s.step: r for r, route in routes.order.items() for nid in route for s in routes.nodes[nid].stops}
     index = {s.id: i for i, s in enumerate(plan.steps)}
     kept = sorted(times, key=lambda sid: (times[sid], robot_of[sid], index[sid]))
@@ -193,9 +210,11 @@ def _sequence(routes: Routes, layout: Layout, plan: MergedPlan, seq: Sequence[Gr
             for sid in kept]
 
 
-def _rebuilt(ctx: Context, steps: list[SeqStep]) -> tuple[MergedPlan, list[GroundedStep]] | None:
+def _rebuilt(ctx: Context, steps: list[SeqStep] | None) -> tuple[MergedPlan, list[GroundedStep]] | None:
     """The plan of ``steps`` with its drives planned again by the replay, merged and
     simulated; None when it no longer runs, misses the goal or fails in the simulator."""
+    if steps is None:
+        return None
     state = ctx.start.copy()
     grounded, why = replay(state, steps, Universe(state.copy()), spot_order.reopen)
     if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
