@@ -72,7 +72,10 @@ def reroute(ctx: Context, draft: Draft) -> Draft:
     layout = layout_of(ctx, plan, seq)
     if layout is None:
         return draft
+    other = None
     for waits in (layout.waits, layout.strict):
+        if timetable(layout.walker, layout.nodes, layout.order, waits) is None:
+            break  # jobs interleaved in the plan wait on each other both ways: not modelled
         routes = Routes(layout.walker, layout.nodes, waits, {r: list(v) for r, v in layout.order.items()})
         before = routes.cost()
         if before[0] < ROUTE_BOUND * plan.makespan:
@@ -84,7 +87,7 @@ def reroute(ctx: Context, draft: Draft) -> Draft:
         if other is not None:
             break
     if other is None or other[0].makespan >= plan.makespan - 1e-6:
-        log.debug("routes %.1f -> %.1f s walked do not simulate shorter", before[0], routes.cost()[0])
+        log.debug("rerouted plan not shorter: %s", None if other is None else other[0].makespan)
         return draft
     ctx.notes.append(f"jobs rerouted (walked routes {before[0]:.1f} -> {routes.cost()[0]:.1f} s, drives planned "
                      f"again): makespan {plan.makespan:.1f} -> {other[0].makespan:.1f} s")
