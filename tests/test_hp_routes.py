@@ -42,8 +42,8 @@ def test_the_search_gives_each_robot_the_jobs_near_it_and_never_prices_longer() 
 
 
 def test_a_job_that_waits_for_another_starts_after_it_ends_on_any_robot() -> None:
-    # n2 (near A) needs n18 (near B) done first
-    routes = _routes({"A": ["n18", "n2"], "B": ["n4", "n16"]}, {"n2": frozenset({"n18"})})
+    # n2's step (near A) needs n18's step (near B) done first
+    routes = _routes({"A": ["n18", "n2"], "B": ["n4", "n16"]}, {"n2.1": frozenset({"n18.1"})})
     improve(routes)
     found = timetable(routes.walker, routes.nodes, routes.order, routes.waits)
     assert found is not None
@@ -51,9 +51,20 @@ def test_a_job_that_waits_for_another_starts_after_it_ends_on_any_robot() -> Non
     assert times["n2.1"] >= times["n18.1"] + 1.0
     assert max(ends.values()) == routes.cost()[0]
     # n2 waits for n16, n16 for n4, which A does after n2: no timetable
-    waits = {"n2": frozenset({"n16"}), "n16": frozenset({"n4"})}
+    waits = {"n2.1": frozenset({"n16.1"}), "n16.1": frozenset({"n4.1"})}
     assert timetable(routes.walker, routes.nodes, {"A": ["n2", "n4"], "B": ["n16"]}, waits) is None
     assert timetable(routes.walker, routes.nodes, {"A": ["n4", "n2"], "B": ["n16"]}, waits) is not None
+
+
+def test_one_robot_at_a_time_at_a_spot_the_first_to_arrive_first() -> None:
+    walker = Walker("", {"A": 1.0, "B": 1.0}, {"A": (0.0, 0.0), "B": (5.0, 0.0)})
+    nodes = {"a": Node("a", (Stop("a.1", (3.0, 0.0), 4.0, spot="Sink_1"),), ("A",)),
+             "b": Node("b", (Stop("b.1", (3.0, 0.0), 4.0, spot="Sink_1"),), ("B",))}
+    found = timetable(walker, nodes, {"A": ["a"], "B": ["b"]}, {})
+    assert found is not None
+    times, ends, _ = found
+    assert times["b.1"] == 2.0 and times["a.1"] == 6.0  # B arrives at 2 s, A at 3 s and waits
+    assert ends == {"A": 10.0, "B": 6.0}
 
 
 def test_jobs_that_switch_one_thing_keep_their_order_and_two_puts_into_one_box_commute() -> None:

@@ -46,6 +46,8 @@ class Stop:
     point: Point | None
     seconds: float
     forced: bool = False
+    #: the interaction spot it holds (one robot at a time), if any
+    spot: str | None = None
 
 
 @dataclass(frozen=True)
@@ -96,37 +98,54 @@ class Walker:
             n += len(node.stops)
         return here, clock, n
 
+@dataclass
+class _Clock:
+    """One robot in :func:`timetable`: its stops, the next one, where it stands and when
+    it is free, and the drive to its next stop once priced (end point, arrival)."""
+
+    stops: list[Stop]
+    here: Point
+    free: float = 0.0
+    next: int = 0
+    ahead: tuple[Point, float] | None = None
+
+
 def timetable(walker: Walker, nodes: Mapping[str, Node], order: Mapping[str, Sequence[str]],
               waits: Mapping[str, frozenset[str]]) -> tuple[dict[str, float], dict[str, float], int] | None:
-    """Walk every route at once, a node starting no earlier than the nodes it waits for
-    end (a list schedule over the robots): each stop's start (step id -> seconds, its drive
-    before it), each robot's end, the stops walked; None when the routes wait on each
+    """Walk every route at once, stop by stop, as the simulator runs a plan: the robot
+    that arrives first at a stop it may start goes next (ties: by name); a stop starts
+    when its robot has driven there, the stops it waits for (``waits``: step id -> step
+    ids, on any robot) have ended and nobody else is at its spot. Each stop's start (step
+    id -> seconds), each robot's end, the stops walked; None when the routes wait on each
     other in a circle."""
-    here = {r: walker.starts[r] for r in order}
-    clock = {r: 0.0 for r in order}
-    nxt = {r: 0 for r in order}
+    clocks = {r: _Clock([st for nid in order[r] for st in nodes[nid].stops], walker.starts[r]) for r in order}
     ends: dict[str, float] = {}
-    times: dict[str, float] = {}
-    left, walked = sum(len(v) for v in order.values()), 0
-    while left:
-        moved = False
-        for r in sorted(order):
-            route = order[r]
-            while nxt[r] < len(route) and waits.get(route[nxt[r]], frozenset()) <= ends.keys():
-                node = nodes[route[nxt[r]]]
-                t = max([clock[r], *(ends[p] for p in waits.get(node.id, ()))])
-                for st in node.stops:
-                    here[r], dt = walker.stop(r, here[r], st)
-                    times[st.step] = t + dt - st.seconds
-                    t += dt
-                walked += len(node.stops)
-                ends[node.id] = clock[r] = t
-                nxt[r] += 1
-                left -= 1
-                moved = True
-        if not moved:
+    spots: dict[str, float] = {}
+    starts: dict[str, float] = {}
+    for _ in range(sum(len(c.stops) for c in clocks.values())):
+        ready = [(_arrival(walker, r, c), r) for r, c in sorted(clocks.items())
+                 if c.next < len(c.stops) and waits.get(c.stops[c.next].step, frozenset()) <= ends.keys()]
+        if not ready:
             return None
-    return times, clock, walked
+        arrival, r = min(ready)
+        c = clocks[r]
+        st = c.stops[c.next]
+        start = max([arrival, spots.get(st.spot, 0.0), *(ends[p] for p in waits.get(st.step, ()))])
+        starts[st.step], ends[st.step] = start, start + st.seconds
+        if st.spot is not None:
+            spots[st.spot] = start + st.seconds
+        assert c.ahead is not None
+        c.here, c.free, c.next, c.ahead = c.ahead[0], start + st.seconds, c.next + 1, None
+    return starts, {r: c.free for r, c in clocks.items()}, len(starts)
+
+
+def _arrival(walker: Walker, robot: str, c: _Clock) -> float:
+    """When the robot can start its next stop, driving there first (priced once)."""
+    if c.ahead is None:
+        st = c.stops[c.next]
+        here, dt = walker.stop(robot, c.here, st)
+        c.ahead = (here, c.free + dt - st.seconds)
+    return c.ahead[1]
 
 
 @dataclass
@@ -137,7 +156,7 @@ class Routes:
 
     walker: Walker
     nodes: Mapping[str, Node]
-    #: node -> the nodes it waits for (on any robot)
+    #: step -> the steps it waits for (on any robot), as :func:`timetable` takes them
     waits: Mapping[str, frozenset[str]]
     order: dict[str, list[str]]
     walked: int = 0
@@ -145,7 +164,10 @@ class Routes:
     ends: dict[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        self.before = frozenset((p, n) for n, ps in self.waits.items() for p in ps)
+        node_of = {st.step: n.id for n in self.nodes.values() for st in n.stops}
+        #: (a, b): node b waits for node a (on one robot, a comes first)
+        self.before = frozenset((node_of[p], node_of[s]) for s, ps in self.waits.items() for p in ps
+                                if node_of[p] != node_of[s])
         #: node -> the nodes it waits for or that wait for it
         self.partners: dict[str, set[str]] = {n: set() for n in self.nodes}
         for a, b in self.before:
@@ -285,7 +307,6 @@ def improve(routes: Routes, budget: int = WALK_BUDGET) -> Routes:
         improved = False
         for nid in sorted(routes.nodes):
             home = next(r for r, route in routes.order.items() if nid in route)
-            if _try(routes, _relocations(routes, nid, home), budget) or _try(
-                    routes, _swaps(routes, nid, home), budget):
+            if any(_try(routes, moves(routes, nid, home), budget) for moves in (_relocations, _swaps)):
                 improved = True
     return routes

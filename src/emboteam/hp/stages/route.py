@@ -37,22 +37,25 @@ log = logging.getLogger(__name__)
 #: the walked routes must promise at least this many seconds less than the plan's own
 #: (each rebuild costs a replay and a simulation; a smaller promise rarely survives them)
 MIN_GAIN = 0.5
-#: the stage searches only when the longest walked route is at least this share of the
-#: makespan: below it the makespan is made by waits the routes do not see (a 32-robot
-#: cell's routes are 65 % of it), and the search would cost without paying
-ROUTE_BOUND = 0.9
+#: the stage searches only when the walked timetable's makespan is at least this share of
+#: the plan's: below it the makespan is made by what the walk does not see (robots in
+#: each other's way, orders the merge adds), and the search would cost without paying
+ROUTE_BOUND = 0.8
 #: nor for a plan of more steps: the search and the rebuild (a replay, a merge and a
 #: simulation of the whole plan) would cost the 32-robot, 96-goal cell more than its
 #: whole planning time, and its routes are a third of its makespan
 ROUTE_STEPS = 160
+#: rounds of the stage (a count, not a clock)
+ROUNDS = 2
 
 
 @dataclass(frozen=True)
 class Layout:
     """What a plan's routes are made of: the nodes (its jobs), each robot's jobs in the
-    plan's order, the jobs each job waits for in the merged plan (what it needs another
+    plan's order, the steps each step waits for in the merged plan (what it needs another
     job to do first; the jobs of one subtask on one robot in their order), and the same
-    with every conflicting pair kept in order (``strict``); the walker of the scene."""
+    with every conflicting pair of steps kept in order (``strict``); the walker of the
+    scene."""
 
     nodes: dict[str, Node]
     order: dict[str, list[str]]
@@ -62,7 +65,19 @@ class Layout:
 
 
 def reroute(ctx: Context, draft: Draft) -> Draft:
-    """The draft with its jobs on shorter routes, or the draft itself. The routes are
+    """The draft with its jobs on shorter routes, or the draft itself: up to
+    :data:`ROUNDS` rounds, each from the plan the last one made (its robots stand on
+    other poses, so its jobs are other stops)."""
+    for _ in range(ROUNDS):
+        better = _once(ctx, draft)
+        if better is draft:
+            break
+        draft = better
+    return draft
+
+
+def _once(ctx: Context, draft: Draft) -> Draft:
+    """One round: the draft with its jobs on shorter routes, or the draft itself. The routes are
     searched with the waits of the merged plan first; when that plan no longer runs or
     misses the goal (two jobs switching one microwave swapped), once more with every
     conflicting pair of jobs kept in its order (:func:`conflicts`)."""
@@ -135,7 +150,8 @@ def _stops(ctx: Context, plan: MergedPlan) -> dict[str, Stop | None] | None:
             planned_again = op is not None and _need(op) == s.action.target
             out[s.id] = None if planned_again else Stop(s.id, _point(state, s.action.target), 0.0, forced=True)
         else:
-            out[s.id] = Stop(s.id, _point(state, _need(s)), s.est_end - s.est_start)
+            out[s.id] = Stop(s.id, _point(state, _need(s)), s.est_end - s.est_start,
+                             spot=s.resources[0] if s.resources else None)
         apply_action(state, s.robot, s.action)
     if any(r.holding is not None for r in state.robots.values()):
         return None
@@ -143,7 +159,7 @@ def _stops(ctx: Context, plan: MergedPlan) -> dict[str, Stop | None] | None:
 
 
 def conflicts(accesses: Sequence[tuple[str, Footprint]]) -> set[tuple[str, str]]:
-    """(a, b): node b must stay after node a, from their steps' footprints in the plan's
+    """(a, b): step (or node) b must stay after a, from their footprints in the plan's
     order: a write after any earlier access of the variable since its last write, a read
     or a set update after the last write, a read after updates (two updates commute).
     The merge's waits alone let the rebuilt order flip two jobs that both switch the
@@ -179,15 +195,13 @@ def layout_of(ctx: Context, plan: MergedPlan, seq: Sequence[GroundedStep]) -> La
     job_of = {sid: j.id for j in problem.jobs for sid in j.steps}
     if any(s.id not in job_of and s.action.skill is not Skill.GoToObject for s in plan.steps):
         return None
-    op_job = {o.step: j.id for j in problem.jobs for o in j.ops}
-    waits: dict[str, set[str]] = {j.id: set() for j in problem.jobs}
+    waits: dict[str, set[str]] = {}
     for a, b in [*problem.precedences, *problem.drive_waits]:
-        if op_job[a] != op_job[b]:
-            waits[op_job[b]].add(op_job[a])
+        waits.setdefault(b, set()).add(a)
     strict = {n: set(ps) for n, ps in waits.items()}
-    for a, b in conflicts([(job_of[s.id], g.footprint) for s, g in zip(plan.steps, seq, strict=True)
-                           if s.id in job_of]):
-        strict[b].add(a)
+    for a, b in conflicts([(s.id, g.footprint) for s, g in zip(plan.steps, seq, strict=True)
+                           if stops.get(s.id) is not None]):
+        strict.setdefault(b, set()).add(a)
     nodes = {j.id: Node(j.id, tuple(st for sid in j.steps if (st := stops[sid]) is not None),
                         problem.candidates[j.group]) for j in problem.jobs}
     order: dict[str, list[str]] = {r: [] for r in plan.robots}
