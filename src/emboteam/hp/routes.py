@@ -130,7 +130,7 @@ def timetable(walker: Walker, nodes: Mapping[str, Node], order: Mapping[str, Seq
         arrival, r = min(ready)
         c = clocks[r]
         st = c.stops[c.next]
-        start = max([arrival, spots.get(st.spot, 0.0), *(ends[p] for p in waits.get(st.step, ()))])
+        start = max([arrival, spots.get(st.spot or "", 0.0), *(ends[p] for p in waits.get(st.step, ()))])
         starts[st.step], ends[st.step] = start, start + st.seconds
         if st.spot is not None:
             spots[st.spot] = start + st.seconds
