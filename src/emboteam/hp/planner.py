@@ -9,8 +9,9 @@ own module with one entry point:
    (a validated plan and how it was made);
 2. the improvements ``PlannerConfig`` turns on, each ``(Context, Draft) -> Draft``, kept
    only when the simulated makespan is shorter: re-allocation, cluster split, spot order,
-   container split (then the spot order again), and with ``schedule="optimal"`` CP-SAT
-   over the whole schedule;
+   container split (then the spot order again), the jobs on shorter routes with their
+   drives planned again (then the spot order again), CP-SAT over the whole schedule
+   (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
 3. if decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
    validate), :mod:`~emboteam.hp.stages.joint`: the whole goal as ONE joint problem.
 
