@@ -41,9 +41,9 @@ MIN_GAIN = 0.5
 #: the plan's: below it the makespan is made by what the walk does not see (robots in
 #: each other's way, orders the merge adds), and the search would cost without paying
 ROUTE_BOUND = 0.8
-#: nor for a plan of more steps: the search and the rebuild (a replay, a merge and a
-#: simulation of the whole plan) would cost the 32-robot, 96-goal cell more than its
-#: whole planning time, and its routes are a third of its makespan
+#: nor for a plan of more steps: the search and the rebuilds (a replay, a merge and a
+#: simulation of the whole plan each) cost the 32-robot, 96-goal cell (223 steps) 2.6-3.3 s
+#: on this 2-core machine, more than its whole planning time, for no shorter plan
 ROUTE_STEPS = 160
 #: rounds of the stage (a count, not a clock)
 ROUNDS = 2
