@@ -157,10 +157,13 @@ def real_replanner(log: list[tuple[Goal, tuple[str, ...]]] | None = None) -> Rep
 
 
 @functools.cache
-def planned(floor_plan: str, team: str, goal: str) -> tuple[MergedPlan, Goal]:
-    """The hybrid planner's plan for a goal (text) from the scene's initial state."""
+def planned(floor_plan: str, team: str, goal: str, route: bool = True) -> tuple[MergedPlan, Goal]:
+    """The hybrid planner's plan for a goal (text) from the scene's initial state
+    (``route=False``: without the route stage, which may put a producer and its consumer
+    on one robot)."""
     g = Goal.parse(goal)
-    return planner().plan_goal(g, fresh_state(floor_plan, team)), g
+    config = PlannerConfig(workers=1) if route else PlannerConfig(workers=1, route=False)
+    return HybridPlanner(config).plan_goal(g, fresh_state(floor_plan, team)), g
 
 
 #: (floor plan, team, goal) the hybrid planner plans for the fault measurements

@@ -138,8 +138,10 @@ def test_contended_counter_is_used_by_one_robot_at_a_time() -> None:
 @pytest.mark.parametrize(("floor_plan", "team", "goal"), PLANNED)
 def test_planner_plans_keep_the_protocol_under_faults(floor_plan: str, team: str, goal: str) -> None:
     """The hybrid planner's own plans (sync points from its causal links, spots from its
-    resources): the same guarantees under faults, with the planner replanning."""
-    plan, g = planned(floor_plan, team, goal)
+    resources): the same guarantees under faults, with the planner replanning. Planned
+    without the route stage: on FloorPlan1's lettuce, tomato and fridge it moves the jobs
+    (8.5 -> 8.0 s) so that no robot waits for another, and leaves nothing to check."""
+    plan, g = planned(floor_plan, team, goal, route=False)
     assert any(s.after for s in plan.steps) or plan.sync
     checked = 0
     for seed in range(3):

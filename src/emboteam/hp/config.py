@@ -80,6 +80,11 @@ class PlannerConfig:
     #: move a step the robot drove to do to its other visit to the same object, when that
     #: saves seconds (:mod:`emboteam.hp.visits`; replays only, no planner call)
     merge_visits: bool = True
+    #: put the plan's jobs in a shorter order and on the robots able to do them, priced by
+    #: walking the routes as the simulator drives, and rebuild the plan with its drives
+    #: planned again; kept when the simulated makespan is shorter (:mod:`emboteam.hp.routes`,
+    #: :mod:`emboteam.hp.stages.route`; no planner call). Tried after the container split
+    route: bool = True
     #: "fast" (the default): the stages above; "optimal": then the plan's actions given to
     #: CP-SAT's exact model of the whole schedule (:mod:`emboteam.hp.optimal`: which robot
     #: does each job, in which order, when; a deterministic time limit), and the plan

@@ -9,8 +9,9 @@ own module with one entry point:
    (a validated plan and how it was made);
 2. the improvements ``PlannerConfig`` turns on, each ``(Context, Draft) -> Draft``, kept
    only when the simulated makespan is shorter: re-allocation, cluster split, spot order,
-   container split (then the spot order again), and with ``schedule="optimal"`` CP-SAT
-   over the whole schedule;
+   container split (then the spot order again), the jobs on shorter routes with their
+   drives planned again (then the spot order again), CP-SAT over the whole schedule
+   (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
 3. if decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
    validate), :mod:`~emboteam.hp.stages.joint`: the whole goal as ONE joint problem.
 
@@ -36,6 +37,7 @@ from emboteam.hp.stages.decomposed import plan_decomposed
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
+from emboteam.hp.stages.route import reroute
 from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers
 from emboteam.pddl.errors import PlanningError
@@ -74,6 +76,8 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(reorder)
     if config.split_containers:
         stages.append(_then_reorder(split_containers, config.spot_order))
+    if config.route:
+        stages.append(_then_reorder(reroute, config.spot_order))
     stages.append(schedule if config.schedule == "optimal" else schedule_small)
     return tuple(stages)
 

@@ -10,8 +10,9 @@ planning :class:`~emboteam.hp.stages.context.Context` and returns a typed result
 - the improvements, each ``(Context, Draft) -> Draft`` and kept only when the simulated
   makespan is shorter: :mod:`.reallocate` (re-allocation from measured plans),
   :mod:`.split` (two or more robots on one long cluster), :mod:`.reorder` (who goes first
-  at a shared spot), :mod:`.schedule` (CP-SAT over the whole schedule,
-  ``schedule="optimal"``);
+  at a shared spot), :mod:`.route` (the jobs on shorter routes, walked as the simulator
+  drives, the drives planned again), :mod:`.schedule` (CP-SAT over the whole schedule:
+  small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
 - the fallback and the ablation: :mod:`.joint` (one joint problem), :mod:`.concatenate`
   (the no-HP pipeline).
 """
