@@ -90,6 +90,26 @@ def test_infeasible_alternatives_are_not_candidates(frontend: OfflineFrontend) -
     assert [c.as_read for c in ranked] == [True]
 
 
+def test_an_alternative_that_asks_a_state_and_its_opposite_is_not_a_candidate(frontend: OfflineFrontend) -> None:
+    """A doubt that adds "the light on" to a reading that switches it off makes a goal no
+    plan can reach (found on a development round: the model then picked it)."""
+    scene = load_scene("FloorPlan1")
+    team = parse_team("1,2")
+    state = WorldState.from_scene(scene, team)
+    spec = frontend.parse("switch off the light", scene, state, team).spec
+    on = Condition.parse("switched_on(LightSwitch)")
+    doubt = Doubt("state", "light", (Choice(AS_READ, "as read"), Choice("on too", "on", add=(on,))))
+    priors = Priors(priors={"state": {AS_READ: 0.1, "on too": 0.9}})
+
+    def feasible(goals: tuple[Condition, ...]) -> bool:
+        from emboteam.pfg.offline.doubts.check import feasible as check
+        return check(goals, scene, state, team)
+
+    assert feasible((on,))                                      # alone, the state is fine
+    ranked = rank(spec, [doubt], priors, feasible)
+    assert [c.as_read for c in ranked] == [True]
+
+
 def test_priors_decide_the_order_and_the_reading_changes_only_for_them(frontend: OfflineFrontend) -> None:
     scene = load_scene("FloorPlan1")
     team = parse_team("1,2")

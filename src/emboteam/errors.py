@@ -41,6 +41,10 @@ class EmboTeamError(Exception):
 
     #: process exit status the CLI uses for this error family (see EXIT_CODES)
     exit_code: int = EXIT_BAD_INPUT
+    #: what an episode had read when the error ended it (its notes and the reading's
+    #: fields: candidates, unexplained mentions), so a failed episode still shows why it
+    #: read what it did; set by the pipeline, empty for errors raised before any reading
+    read_so_far: dict[str, object] | None = None
 
 
 def exit_code_of(error_name: str) -> int | None:

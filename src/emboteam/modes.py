@@ -14,6 +14,7 @@ from typing import Protocol, cast
 
 from emboteam.config import RunConfig
 from emboteam.environments import ExecutionEnvironment, make_environment
+from emboteam.errors import EmboTeamError
 from emboteam.exec import Executor, parse_joins, planner_replanner, run_linear, run_sequences
 from emboteam.exec.ceiling import Prepared, disturbance_outcome, prepare
 from emboteam.exec.episode import Episode, episode_header, score
@@ -296,7 +297,13 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
         plan_seconds = time.perf_counter() - t0
         result, sim = _run_lists(ctx, lists, task.ground_truth or Goal(conditions=()))
     else:
-        spec, plan = plan_task(ctx, notes, readings)
+        try:
+            spec, plan = plan_task(ctx, notes, readings)
+        except EmboTeamError as exc:
+            # a goal read and then refused by the planner is a reading's failure: keep what
+            # was read (notes, candidates, the model's overturn) for the failed episode
+            exc.read_so_far = {"notes": tuple(notes), **reading_fields(readings[-1] if readings else None)}
+            raise
         plan_seconds = time.perf_counter() - t0
         result, sim = execute(ctx, plan, spec.goal(), finish_plan=any(not s.final for s in spec.subtasks))
     truth = task.ground_truth or (spec.goal() if spec else Goal(conditions=()))

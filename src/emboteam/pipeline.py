@@ -46,7 +46,8 @@ def run_episode(task: EpisodeTask, cfg: RunConfig) -> Episode:
         asked = exc.clarification if isinstance(exc, ClarificationNeeded) else None
         episode = Episode.model_validate({
             **episode_header(task, cfg, [p.name for p in team]), "success": False, "gcr": gcr,
-            "conditions": conds, "error": f"{type(exc).__name__}: {exc}", "clarification": asked, **usage})
+            "conditions": conds, "error": f"{type(exc).__name__}: {exc}", "clarification": asked, **usage,
+            **(exc.read_so_far or {})})
     return episode.model_copy(update={"wall_seconds": round(time.perf_counter() - started, 4)})
 
 

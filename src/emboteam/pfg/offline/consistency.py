@@ -44,7 +44,8 @@ class ContradictoryInstruction(OfflineParseError):
             phrase=f"{first.description} / {second.description}")
 
 
-def _opposed(a: Condition, b: Condition) -> bool:
+def opposed(a: Condition, b: Condition) -> bool:
+    """Whether two conditions ask opposite states of one object (they cannot both hold at the end)."""
     return frozenset({a.predicate, b.predicate}) in _EXCLUSIVE and refs_overlap(a.subject, b.subject)
 
 
@@ -59,7 +60,7 @@ def check_consistent(clauses: Sequence[Clause], drafts: dict[int, list[Draft]]) 
             if s1 != s2:
                 continue       # "the lamp is off. Turn it on.": a new sentence, a new request
             for a, b in itertools.product(first.conditions, second.conditions):
-                if _opposed(a, b):
+                if opposed(a, b):
                     raise ContradictoryInstruction(first, second, a, b)
 
 
@@ -108,7 +109,7 @@ def narrow_contrasts(drafts: dict[int, list[Draft]]) -> None:
     for a_draft, b_draft in itertools.permutations(all_drafts, 2):
         for k, b in enumerate(b_draft.conditions):
             for a in a_draft.conditions:
-                if not _opposed(a, b) or a.subject.id is None or b.subject.id is not None:
+                if not opposed(a, b) or a.subject.id is None or b.subject.id is not None:
                     continue
                 kind = a.subject.id.split("_")[0]
                 rest = tuple(t for t in b.subject.types if t != kind)

@@ -1,6 +1,8 @@
 """A candidate reading is checked like the reader's own: every condition names things the
 scene has and can take that state (the goal checker), the goal compiler can compile it
-(AI2-THOR's placement rules), and the team has the skills it needs.
+(AI2-THOR's placement rules), the team has the skills it needs, and no two of its end
+states are opposite states of one object (the reader's own contradiction rule: a doubt
+that adds "the light on" to a reading that has it off makes no reading).
 
 Conditions are checked one at a time and remembered (:class:`FeasibilityCheck`): the
 candidates of one instruction share most of their conditions, and the team check is the
@@ -9,10 +11,12 @@ costly part, so each condition is checked once per instruction.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 
 from emboteam.pddl.errors import ImpossibleGoalError
 from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.pfg.offline.consistency import opposed
 from emboteam.sim.capability import analyse_condition
 from emboteam.world.checker import GoalValidationError, validate_goal
 from emboteam.world.goals import Condition, Goal
@@ -58,7 +62,12 @@ class FeasibilityCheck:
                                     for c in goals if c not in self.base)
 
     def __call__(self, goals: tuple[Condition, ...]) -> bool:
-        return all(self.condition(c) for c in goals)
+        return all(self.condition(c) for c in goals) and consistent(goals)
+
+
+def consistent(goals: Sequence[Condition]) -> bool:
+    """No two end states that exclude each other (on and off, open and closed of one object)."""
+    return not any(opposed(a, b) for a, b in itertools.combinations(goals, 2))
 
 
 def feasible(goals: tuple[Condition, ...], scene: Scene, state: WorldState, team: Sequence[RobotProfile]) -> bool:
