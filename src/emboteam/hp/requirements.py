@@ -15,7 +15,7 @@ the condition needs (``certain``) may reject a team outright.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
 from emboteam.pddl.errors import ImpossibleGoalError, MissingSkillError
@@ -89,89 +89,153 @@ def _type_of(state: WorldState, oid: str) -> str | None:
     return product[0] if product else None
 
 
+@dataclass(frozen=True)
+class _Subject:
+    """What every predicate's rule reads about a condition: computed once in
+    :func:`need_of`, so that the rules stay small and see the same facts."""
+
+    cond: Condition
+    state: WorldState
+    part: GoalPart
+    #: the most promising candidate object (the goal compiler ranks it first)
+    s: str
+    mass: float
+    #: the lightest candidate: a robot unable to lift even that one certainly fails
+    lightest: float
+    carry: Role
+    opener: list[Role]
+
+    def need(self, roles: Sequence[Role], visits: tuple[str, ...], work: float) -> Need:
+        """A need with one alternative."""
+        return Need(self.cond, (tuple(roles),), visits, work, self.part)
+
+
+def _held(x: _Subject) -> Need:
+    roles = [_role(f"hold {x.s}", [S.PickupObject], mass=x.lightest, certain=True), *x.opener,
+             *_cutter(x.state, x.s)]
+    return x.need(roles, (x.s,), ACTION_SECONDS[S.PickupObject])
+
+
+def _place_openers(state: WorldState, place: str) -> list[Role]:
+    """Open what hides the place, and the place itself if it must be open to put into."""
+    roles = _opener(state, place)
+    p = state.objects[place]
+    if p.type in load_catalogue().must_be_open and not p.is_open:
+        roles.append(_role(f"open {place}", [S.OpenObject]))
+    return roles
+
+
+def _inside(x: _Subject) -> Need:
+    state, s = x.state, x.s
+    place = x.part.places[0] if x.part.places else None
+    options = [[S.PickupObject, S.PutObject]]
+    if place is not None and state.objects[place].type == "GarbageCan":
+        options.append([S.PickupObject, S.ThrowObject])
+    roles = [_role(f"carry {s}", *options, mass=x.mass), *x.opener, *_cutter(state, s),
+             _role(f"move {x.cond.subject}", [S.PickupObject], mass=x.lightest, certain=True)]
+    if place is not None:
+        roles += _place_openers(state, place)
+    a = ACTION_SECONDS
+    return x.need(roles, (s, place) if place else (s,), a[S.PickupObject] + a[S.PutObject])
+
+
+def _sliced(x: _Subject) -> Need:
+    state, s = x.state, x.s
+    egg = state.objects[s].type == "Egg"
+    options = [[S.SliceObject, S.PickupObject]]
+    if egg:
+        options.append([S.BreakObject])
+    roles = [_role(f"slice {s}", *options), *x.opener]
+    if not egg:
+        roles.append(_role(f"slice {x.cond.subject}", [S.SliceObject], certain=True))
+    knives = [k.id for k in state.of_type("Knife", "ButterKnife")]
+    return x.need(roles, (*knives[:1], s), ACTION_SECONDS[S.PickupObject] + ACTION_SECONDS[S.SliceObject])
+
+
+#: predicates one action of one skill on the object achieves
+_SINGLE = {Predicate.broken: S.BreakObject, Predicate.switched_on: S.SwitchOn,
+           Predicate.switched_off: S.SwitchOff, Predicate.open: S.OpenObject,
+           Predicate.closed: S.CloseObject}
+
+
+def _single(x: _Subject) -> Need:
+    skill = _SINGLE[x.cond.predicate]
+    roles = [_role(f"{skill.value} {x.s}", [skill], certain=True), *x.opener]
+    o = x.state.objects[x.s]
+    if x.cond.predicate is Predicate.switched_on and o.type in INTERLOCKED and o.is_open:
+        roles.append(_role(f"close {x.s}", [S.CloseObject]))
+    return x.need(roles, (x.s,), ACTION_SECONDS[skill])
+
+
+def _heater_roles(state: WorldState, h: str) -> list[Role]:
+    """Switch the heater on (by its own switch or the stove knob controlling it), and
+    open and close it when its door interlocks with its power."""
+    ho = state.objects[h]
+    switch = h if ho.has("toggleable") else next(
+        (k.id for k in state.of_type("StoveKnob") if h in k.controls), h)
+    roles = [] if ho.is_on else [_role(f"switch on {switch}", [S.SwitchOn])]
+    if ho.type in INTERLOCKED:
+        roles += [_role(f"open {h}", [S.OpenObject]), _role(f"close {h}", [S.CloseObject])]
+    return roles
+
+
+def _heated(x: _Subject) -> Need:
+    state, s = x.state, x.s
+    heater = heater_for(state, _type_of(state, s), cook=x.cond.predicate is Predicate.cooked)
+    chain = state.ancestors(_anchor(state, s)) if _anchor(state, s) in state.objects else []
+    inside = next((h for h in chain if state.objects[h].type in HEATERS), None)
+    roles = [] if inside else [x.carry, *x.opener]
+    h = inside or heater
+    if h is not None:
+        roles += _heater_roles(state, h)
+    if s not in state.objects:  # a piece: cut the whole first
+        roles.append(_role(f"slice {_anchor(state, s)}", [S.SliceObject, S.PickupObject]))
+    return x.need(roles, (s, h) if h else (s,), 4.0)
+
+
+def _cold(x: _Subject) -> Need:
+    fridge = cold_source(x.state)
+    roles = [x.carry, *x.opener, *_cutter(x.state, x.s)]
+    if fridge is not None and not x.state.objects[fridge].is_open:
+        roles.append(_role(f"open {fridge}", [S.OpenObject]))
+    return x.need(roles, (x.s, fridge) if fridge else (x.s,), 3.5)
+
+
+def _watered(x: _Subject) -> Need:
+    state, s, pred = x.state, x.s, x.cond.predicate
+    faucet, basin = water_basin(state)
+    if pred is Predicate.filled and x.cond.liquid == "coffee":
+        faucet = basin = brewer(state)
+    roles = [x.carry, *x.opener]
+    if faucet is not None and not state.objects[faucet].is_on:
+        roles.append(_role(f"switch on {faucet}", [S.SwitchOn]))
+    alternatives = [tuple(roles)]
+    if pred is Predicate.clean:
+        alternatives.insert(0, (_role(f"clean {s}", [S.CleanObject]), *x.opener))
+    return Need(x.cond, tuple(alternatives), (s, basin) if basin else (s,), 3.0, x.part)
+
+
+#: the rule for each predicate (a predicate without one needs nothing: ``need_of``)
+_RULES: dict[Predicate, Callable[[_Subject], Need]] = {
+    Predicate.held: _held, Predicate.inside: _inside, Predicate.sliced: _sliced,
+    **dict.fromkeys(_SINGLE, _single),
+    Predicate.hot: _heated, Predicate.cooked: _heated, Predicate.cold: _cold,
+    Predicate.clean: _watered, Predicate.filled: _watered,
+}
+
+
 def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
-    """Roles for ``cond`` from ``state`` (raises the goal compiler's typed errors)."""
+    """Roles for ``cond`` from ``state`` (raises the goal compiler's typed errors): the
+    facts every rule reads, then the predicate's rule from ``_RULES``."""
     part = compile_condition(cond, state, robots)
     if part.satisfied:
         return Need(cond, ((),), part=part)
-    pred = cond.predicate
     s = part.subjects[0]
     mass = _mass(state, part, s)
-    lightest = min(_mass(state, part, x) for x in part.subjects)
-    carry = _role(f"carry {s}", [S.PickupObject, S.PutObject], mass=mass)
-    opener = _opener(state, s)
-    a = ACTION_SECONDS
-    if pred in (Predicate.inside, Predicate.held):
-        place = part.places[0] if part.places else None
-        if pred is Predicate.held:
-            roles = [_role(f"hold {s}", [S.PickupObject], mass=lightest, certain=True), *opener, *_cutter(state, s)]
-            return Need(cond, (tuple(roles),), (s,), a[S.PickupObject], part)
-        options = [[S.PickupObject, S.PutObject]]
-        if place is not None and state.objects[place].type == "GarbageCan":
-            options.append([S.PickupObject, S.ThrowObject])
-        roles = [_role(f"carry {s}", *options, mass=mass), *opener, *_cutter(state, s),
-                 _role(f"move {cond.subject}", [S.PickupObject], mass=lightest, certain=True)]
-        if place is not None:
-            roles += _opener(state, place)
-            p = state.objects[place]
-            if p.type in load_catalogue().must_be_open and not p.is_open:
-                roles.append(_role(f"open {place}", [S.OpenObject]))
-        return Need(cond, (tuple(roles),), (s, place) if place else (s,), a[S.PickupObject] + a[S.PutObject], part)
-    if pred is Predicate.sliced:
-        options = [[S.SliceObject, S.PickupObject]]
-        if state.objects[s].type == "Egg":
-            options.append([S.BreakObject])
-        certain = [S.SliceObject] if state.objects[s].type != "Egg" else None
-        roles = [_role(f"slice {s}", *options), *opener]
-        if certain:
-            roles.append(_role(f"slice {cond.subject}", certain, certain=True))
-        knives = [k.id for k in state.of_type("Knife", "ButterKnife")]
-        return Need(cond, (tuple(roles),), (*knives[:1], s), a[S.PickupObject] + a[S.SliceObject], part)
-    single = {Predicate.broken: S.BreakObject, Predicate.switched_on: S.SwitchOn,
-              Predicate.switched_off: S.SwitchOff, Predicate.open: S.OpenObject,
-              Predicate.closed: S.CloseObject}
-    if pred in single:
-        skill = single[pred]
-        roles = [_role(f"{skill.value} {s}", [skill], certain=True), *opener]
-        o = state.objects[s]
-        if pred is Predicate.switched_on and o.type in INTERLOCKED and o.is_open:
-            roles.append(_role(f"close {s}", [S.CloseObject]))
-        return Need(cond, (tuple(roles),), (s,), a[skill], part)
-    if pred in (Predicate.hot, Predicate.cooked):
-        heater = heater_for(state, _type_of(state, s), cook=pred is Predicate.cooked)
-        chain = state.ancestors(_anchor(state, s)) if _anchor(state, s) in state.objects else []
-        inside = next((h for h in chain if state.objects[h].type in HEATERS), None)
-        roles = [] if inside else [carry, *opener]
-        h = inside or heater
-        if h is not None:
-            ho = state.objects[h]
-            switch = h if ho.has("toggleable") else next(
-                (k.id for k in state.of_type("StoveKnob") if h in k.controls), h)
-            if not ho.is_on:
-                roles.append(_role(f"switch on {switch}", [S.SwitchOn]))
-            if ho.type in INTERLOCKED:
-                roles += [_role(f"open {h}", [S.OpenObject]), _role(f"close {h}", [S.CloseObject])]
-        if s not in state.objects:  # a piece: cut the whole first
-            roles.append(_role(f"slice {_anchor(state, s)}", [S.SliceObject, S.PickupObject]))
-        return Need(cond, (tuple(roles),), (s, h) if h else (s,), 4.0, part)
-    if pred is Predicate.cold:
-        fridge = cold_source(state)
-        roles = [carry, *opener, *_cutter(state, s)]
-        if fridge is not None and not state.objects[fridge].is_open:
-            roles.append(_role(f"open {fridge}", [S.OpenObject]))
-        return Need(cond, (tuple(roles),), (s, fridge) if fridge else (s,), 3.5, part)
-    if pred in (Predicate.clean, Predicate.filled):
-        faucet, basin = water_basin(state)
-        if pred is Predicate.filled and cond.liquid == "coffee":
-            faucet = basin = brewer(state)
-        roles = [carry, *opener]
-        if faucet is not None and not state.objects[faucet].is_on:
-            roles.append(_role(f"switch on {faucet}", [S.SwitchOn]))
-        alternatives = [tuple(roles)]
-        if pred is Predicate.clean:
-            alternatives.insert(0, (_role(f"clean {s}", [S.CleanObject]), *opener))
-        return Need(cond, tuple(alternatives), (s, basin) if basin else (s,), 3.0, part)
-    return Need(cond, ((),), part=part)
+    x = _Subject(cond, state, part, s, mass=mass, lightest=min(_mass(state, part, o) for o in part.subjects),
+                 carry=_role(f"carry {s}", [S.PickupObject, S.PutObject], mass=mass), opener=_opener(state, s))
+    rule = _RULES.get(cond.predicate)
+    return rule(x) if rule is not None else Need(cond, ((),), part=part)
 
 
 def covers(profiles: Sequence[RobotProfile], need: Need) -> bool:
@@ -179,27 +243,24 @@ def covers(profiles: Sequence[RobotProfile], need: Need) -> bool:
     return any(all(any(role.covered_by(p) for p in profiles) for role in alt) for alt in need.alternatives)
 
 
-def check_team(needs: Sequence[Need], profiles: Sequence[RobotProfile]) -> None:
-    """Reject a goal the team certainly cannot reach, naming the skill and the condition;
-    also too many objects to hold for the robots that can pick up."""
-    names = ", ".join(p.name for p in profiles)
-    for need in needs:
-        for alt in need.alternatives:
-            for role in alt:
-                if not role.certain or any(role.covered_by(p) for p in profiles):
-                    continue
-                skills = sorted({s.value for opt in role.options for s in opt})
-                able = [p for p in profiles if any(opt <= p.skills for opt in role.options)]
-                if able and role.lift > 0:
-                    raise ImpossibleGoalError(
-                        f"{need.condition}: every {need.condition.subject} here weighs {role.lift:g} kg "
-                        f"or more; the robots that can pick up ({', '.join(p.name for p in able)}) lift at "
-                        f"most {max(p.mass_capacity for p in able):g} kg")
-                raise MissingSkillError(
-                    f"{need.condition} needs {' + '.join(skills)}, which no robot of the team ({names}) has",
-                    skill=skills[0], condition=str(need.condition))
-    # objects held at once: conditions whose candidates are pairwise disjoint need
-    # different objects, hence different hands (a greedy packing is a lower bound)
+def _missing(need: Need, role: Role, profiles: Sequence[RobotProfile], names: str) -> Exception:
+    """The error for a certain role no robot covers: too heavy for the robots that have
+    the skills, else the missing skill (named, so a user knows which robot to add)."""
+    skills = sorted({s.value for opt in role.options for s in opt})
+    able = [p for p in profiles if any(opt <= p.skills for opt in role.options)]
+    if able and role.lift > 0:
+        return ImpossibleGoalError(
+            f"{need.condition}: every {need.condition.subject} here weighs {role.lift:g} kg "
+            f"or more; the robots that can pick up ({', '.join(p.name for p in able)}) lift at "
+            f"most {max(p.mass_capacity for p in able):g} kg")
+    return MissingSkillError(
+        f"{need.condition} needs {' + '.join(skills)}, which no robot of the team ({names}) has",
+        skill=skills[0], condition=str(need.condition))
+
+
+def _held_at_once(needs: Sequence[Need]) -> int:
+    """Objects held at once: conditions whose candidates are pairwise disjoint need
+    different objects, hence different hands (a greedy packing is a lower bound)."""
     held = sorted((n for n in needs if n.condition.predicate is Predicate.held and n.part is not None),
                   key=lambda n: len(n.part.subjects) if n.part else 0)
     taken: set[str] = set()
@@ -210,6 +271,18 @@ def check_team(needs: Sequence[Need], profiles: Sequence[RobotProfile]) -> None:
         if not pool & taken:
             taken |= pool
             required += n.condition.count
+    return required
+
+
+def check_team(needs: Sequence[Need], profiles: Sequence[RobotProfile]) -> None:
+    """Reject a goal the team certainly cannot reach, naming the skill and the condition;
+    also too many objects to hold for the robots that can pick up."""
+    names = ", ".join(p.name for p in profiles)
+    for need in needs:
+        for role in (r for alt in need.alternatives for r in alt):
+            if role.certain and not any(role.covered_by(p) for p in profiles):
+                raise _missing(need, role, profiles, names)
+    required = _held_at_once(needs)
     hands = sum(1 for p in profiles if p.can(S.PickupObject))
     if required > hands:
         raise ImpossibleGoalError(f"the goal has {required} objects held at once, but only {hands} robot(s) "

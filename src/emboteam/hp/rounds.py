@@ -14,7 +14,7 @@ from emboteam.pfg.taskspec import Subtask
 from emboteam.world.actions import Action, Skill
 from emboteam.world.catalogue import INTERLOCKED, load_catalogue
 from emboteam.world.goals import Condition
-from emboteam.world.state import WorldState
+from emboteam.world.state import RobotState, WorldState
 
 
 @dataclass
@@ -185,36 +185,56 @@ def polish(actions: Sequence[tuple[str, Action]]) -> list[tuple[str, Action]]:
     return [a for a, k in zip(actions, keep, strict=True) if k]
 
 
+def _reach(state: WorldState, step: SeqStep) -> list[Action]:
+    """Go back within reach of the step's object (where it still lies, not held)."""
+    a = step.action
+    need = a.receptacle if a.skill is Skill.PutObject else a.target
+    if a.skill in (Skill.DropHandObject, Skill.ThrowObject) or need not in state.objects:
+        return []
+    place = state.objects[need]
+    if place.gone or place.held_by is not None or state.in_reach(step.robot, need):
+        return []
+    return [Action(skill=Skill.GoToObject, target=need)]
+
+
+def _reopen(state: WorldState, step: SeqStep, robot: RobotState) -> list[Action]:
+    """Open the receptacle a put goes into, which another robot closed after this plan
+    was made (or opened first, so this plan's own opening was skipped); a running
+    interlocked appliance is switched off first."""
+    a = step.action
+    rec = state.objects.get(a.receptacle) if a.skill is Skill.PutObject and a.receptacle else None
+    if (rec is None or rec.type not in load_catalogue().must_be_open or rec.is_open
+            or not robot.profile.can(Skill.OpenObject)):
+        return []
+    off = rec.type in INTERLOCKED and rec.is_on and robot.profile.can(Skill.SwitchOff)
+    return [*([Action(skill=Skill.SwitchOff, target=rec.id)] if off else []),
+            Action(skill=Skill.OpenObject, target=rec.id)]
+
+
+def _interlock(state: WorldState, step: SeqStep, robot: RobotState) -> list[Action]:
+    """The door/power interlock: switch a running appliance off before opening it, close
+    it before switching it on."""
+    a = step.action
+    target = state.objects.get(a.target)
+    if target is None or target.type not in INTERLOCKED:
+        return []
+    out: list[Action] = []
+    if a.skill is Skill.OpenObject and target.is_on and robot.profile.can(Skill.SwitchOff):
+        out.append(Action(skill=Skill.SwitchOff, target=target.id))
+    if a.skill is Skill.SwitchOn and target.is_open and robot.profile.can(Skill.CloseObject):
+        out.append(Action(skill=Skill.CloseObject, target=target.id))
+    return out
+
+
 def preparations(state: WorldState, step: SeqStep) -> list[Action]:
     """Actions that make a step of a plan made for an earlier state runnable again: go
     back within reach of its object, open a receptacle another robot closed before putting
     into it, switch a running microwave off before opening it, close it before switching
     it on (the door/power interlock). Validated like any step."""
-    a = step.action
     robot = state.robots.get(step.robot)
-    if robot is None or a.skill is Skill.GoToObject:
+    if robot is None or step.action.skill is Skill.GoToObject:
         return []
-    out: list[Action] = []
-    need = a.receptacle if a.skill is Skill.PutObject else a.target
-    if a.skill not in (Skill.DropHandObject, Skill.ThrowObject) and need in state.objects:
-        place = state.objects[need]
-        if not place.gone and place.held_by is None and not state.in_reach(step.robot, need):
-            out.append(Action(skill=Skill.GoToObject, target=need))
-    rec = state.objects.get(a.receptacle) if a.skill is Skill.PutObject and a.receptacle else None
-    if (rec is not None and rec.type in load_catalogue().must_be_open and not rec.is_open
-            and robot.profile.can(Skill.OpenObject)):
-        # another robot closed it after this plan was made (or opened it first, so this
-        # plan's own opening was skipped): open it again
-        if rec.type in INTERLOCKED and rec.is_on and robot.profile.can(Skill.SwitchOff):
-            out.append(Action(skill=Skill.SwitchOff, target=rec.id))
-        out.append(Action(skill=Skill.OpenObject, target=rec.id))
-    target = state.objects.get(a.target)
-    if target is not None and target.type in INTERLOCKED:
-        if a.skill is Skill.OpenObject and target.is_on and robot.profile.can(Skill.SwitchOff):
-            out.append(Action(skill=Skill.SwitchOff, target=target.id))
-        if a.skill is Skill.SwitchOn and target.is_open and robot.profile.can(Skill.CloseObject):
-            out.append(Action(skill=Skill.CloseObject, target=target.id))
-    return out
+    return [*_reach(state, step), *_reopen(state, step, robot), *_interlock(state, step, robot)]
 
 
 def already_done(state: WorldState, action: Action) -> bool:

@@ -171,6 +171,83 @@ def lower_bound(plan: MergedPlan, durations: dict[str, float]) -> float:
     return max([*finish.values(), *work.values(), 0.0])
 
 
+@dataclass
+class _Run:
+    """One simulation in progress: each robot's queue and running step, and what each
+    step found when it began (the spot it held, its robot's hand), which the bounds read."""
+
+    sim: Simulator
+    queues: dict[str, list[PlanStep]]
+    ended: set[str] = field(default_factory=set)
+    running: dict[str, PlanStep] = field(default_factory=dict)
+    starts: dict[str, float] = field(default_factory=dict)
+    held: dict[str, str] = field(default_factory=dict)
+    holding: dict[str, str] = field(default_factory=dict)
+    times: dict[str, tuple[float, float]] = field(default_factory=dict)
+
+    def _next(self, robot: str) -> PlanStep | None:
+        """The robot's next step if it may start now: robot idle, waits ended, and its
+        spot not held by another robot (the scheduler waits, as the behavior trees do)."""
+        queue = self.queues[robot]
+        if robot in self.running or not queue:
+            return None
+        step = queue[0]
+        if not all(p in self.ended for p in step.after):
+            return None
+        target = step.action.receptacle or step.action.target
+        if step.action.skill is Skill.GoToObject or target not in self.sim.state.objects:
+            return step
+        holder = self.sim.locks.get(self.sim.state.spot_of(target))
+        return None if holder is not None and holder != robot else step
+
+    def start_ready(self) -> None:
+        """Start every step that may start, robots in name order (a start may take a
+        spot, so the order decides who gets it: fixed for the same plan)."""
+        for robot in sorted(self.queues):
+            step = self._next(robot)
+            if step is None:
+                continue
+            self.queues[robot].pop(0)
+            self.running[robot] = step
+            self.starts[step.id] = self.sim.now
+            where = step.action.receptacle or step.action.target
+            if step.action.skill is not Skill.GoToObject and where in self.sim.state.objects:
+                self.held[step.id] = self.sim.state.spot_of(where)
+            hand = self.sim.state.robots[robot].holding
+            if hand is not None:
+                self.holding[step.id] = hand
+            self.sim.start(robot, step.action)
+
+    def advance(self) -> Timing | None:
+        """Run to the next event; the failed timing if a running step failed there."""
+        t = self.sim.next_event_time()
+        assert t is not None
+        for outcome in self.sim.advance(t):
+            if outcome.robot not in self.running:
+                continue
+            step = self.running.pop(outcome.robot)
+            if not outcome.success:
+                return Timing(ok=False, failure=f"{step.id} {outcome}", failed_step=step.id, times=self.times,
+                              final=self.sim.state)
+            self.ended.add(step.id)
+            self.times[step.id] = (self.starts[step.id], outcome.end)
+        return None
+
+
+def _timing(plan: MergedPlan, run: _Run) -> Timing:
+    """The timing of a run that ended: failed if steps were left waiting, else the
+    makespan and both lower bounds over the measured durations."""
+    left = [s.id for q in run.queues.values() for s in q]
+    if left:
+        return Timing(ok=False, failure=f"steps {', '.join(left[:5])} never became ready (their waits "
+                      "form a cycle or name unknown steps)", times=run.times, final=run.sim.state)
+    times = run.times
+    makespan = max((e for _, e in times.values()), default=0.0)
+    durations = {k: e - s for k, (s, e) in times.items()}
+    return Timing(ok=True, times=times, makespan=makespan, lower_bound=lower_bound(plan, durations),
+                  resources=resource_bound(plan, durations, run.held, run.holding), final=run.sim.state)
+
+
 def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None, *,
              sim: Simulator | None = None) -> Timing:
     """Execute ``plan`` from ``state`` (not modified). ``ok`` when every step succeeds and
@@ -180,58 +257,16 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None, *,
     queues: dict[str, list[PlanStep]] = {r: plan.for_robot(r) for r in plan.robots}
     for s in plan.steps:
         queues.setdefault(s.robot, [])
-    ended: set[str] = set()
-    running: dict[str, PlanStep] = {}
-    starts: dict[str, float] = {}
-    held: dict[str, str] = {}
-    holding: dict[str, str] = {}
-    times: dict[str, tuple[float, float]] = {}
+    run = _Run(sim, queues)
     while True:
-        for robot in sorted(queues):
-            queue = queues[robot]
-            if robot in running or not queue:
-                continue
-            step = queue[0]
-            if not all(p in ended for p in step.after):
-                continue
-            if step.action.skill is not Skill.GoToObject:
-                target = step.action.receptacle or step.action.target
-                if target in sim.state.objects:
-                    holder = sim.locks.get(sim.state.spot_of(target))
-                    if holder is not None and holder != robot:
-                        continue
-            queue.pop(0)
-            running[robot] = step
-            starts[step.id] = sim.now
-            where = step.action.receptacle or step.action.target
-            if step.action.skill is not Skill.GoToObject and where in sim.state.objects:
-                held[step.id] = sim.state.spot_of(where)
-            hand = sim.state.robots[robot].holding
-            if hand is not None:
-                holding[step.id] = hand
-            sim.start(robot, step.action)
-        if not running:
+        run.start_ready()
+        if not run.running:
             break
-        t = sim.next_event_time()
-        assert t is not None
-        for outcome in sim.advance(t):
-            if outcome.robot not in running:
-                continue
-            step = running.pop(outcome.robot)
-            if not outcome.success:
-                return Timing(ok=False, failure=f"{step.id} {outcome}", failed_step=step.id, times=times,
-                              final=sim.state)
-            ended.add(step.id)
-            times[step.id] = (starts[step.id], outcome.end)
-    left = [s.id for q in queues.values() for s in q]
-    if left:
-        return Timing(ok=False, failure=f"steps {', '.join(left[:5])} never became ready (their waits "
-                      "form a cycle or name unknown steps)", times=times, final=sim.state)
-    makespan = max((e for _, e in times.values()), default=0.0)
-    durations = {k: e - s for k, (s, e) in times.items()}
-    timing = Timing(ok=True, times=times, makespan=makespan, lower_bound=lower_bound(plan, durations),
-                    resources=resource_bound(plan, durations, held, holding), final=sim.state)
-    if goal is not None:
+        failed = run.advance()
+        if failed is not None:
+            return failed
+    timing = _timing(plan, run)
+    if timing.ok and goal is not None:
         report = check_goal(goal, sim.state)
         if not report.success:
             timing.ok = False
