@@ -38,7 +38,7 @@ plan, and falls back to the original plan if that fails.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from emboteam.hp.merge import nominal_seconds
 from emboteam.sim.rules import apply_action, check_action
@@ -117,37 +117,86 @@ def eliminate_steps(state: WorldState, actions: Sequence[tuple[str, Action]], go
     trace = _run(state, plan, {})
     if trace is None:
         return ids, frozenset()  # the plan does not run as given: not ours to fix
-    robots = sorted({r for r, _ in plan})
-    wanted = [c for c in goals if check_condition(c, trace.end).holds]
-    hands = _holdings(trace.end, robots)
-    moved: set[int] = set()
+    aim = _Aim.of(plan, goals, trace.end)
+    search = _Search(plan, ids, trace)
     for n in range(MAX_PASSES if window is None else WINDOWED_PASSES):
-        removed_any = False
         allowed = _WINDOWED if n == 0 else _DRIVES  # windowed: the toggles were all tried
-        i = 0
-        while i < len(plan):
-            at = trace.before[i]
-            if (at is None or (window is not None and plan[i][1].skill not in allowed)
-                    or not _worth_trying(plan, i, at, trace.marks)):
-                i += 1
-                continue
-            found = _without(plan, i, trace, window)
-            if found is not None:
-                keep, end, seconds, k = found
-                if (_holdings(end, robots) == hands
-                        and all(seconds.get(r, 0.0) <= trace.total.get(r, 0.0) + 1e-9 for r in robots)
-                        and (k is not None or all(check_condition(c, end).holds for c in wanted))):
-                    cand = [plan[j] for j in keep]
-                    moved.update(ids[i:len(plan) if k is None else k + 1])
-                    ids = [ids[j] for j in keep]
-                    trace = _retrace(plan, cand, i, k, trace)
-                    plan = cand
-                    removed_any = True
-                    continue  # the step now at i is new: try it too
-            i += 1
-        if not removed_any:
+        if not _pass(search, aim, window, allowed):
             break
-    return ids, frozenset(moved.intersection(ids))
+    return search.ids, frozenset(search.moved.intersection(search.ids))
+
+
+#: what :func:`_without` finds: the steps kept, the end state, the seconds, where it rejoined
+_Found = tuple[list[int], WorldState, Seconds, int | None]
+
+
+@dataclass(frozen=True)
+class _Aim:
+    """What every kept plan must still do, taken once from the original run: reach the
+    conditions of the goals it reached, leave every robot's hand as it did."""
+
+    robots: list[str]
+    wanted: list[Condition]
+    hands: dict[str, str | None]
+
+    @classmethod
+    def of(cls, plan: Plan, goals: Sequence[Condition], end: WorldState) -> _Aim:
+        robots = sorted({r for r, _ in plan})
+        wanted = [c for c in goals if check_condition(c, end).holds]
+        return cls(robots, wanted, _holdings(end, robots))
+
+    def kept_by(self, found: _Found, trace: _Trace) -> bool:
+        """Does the replay ``found`` still do it, with no robot's seconds grown over
+        ``trace`` (the plan it was cut from)? A replay that rejoined the original run
+        reaches what that run reaches, so its goals need no check."""
+        _, end, seconds, k = found
+        return (_holdings(end, self.robots) == self.hands
+                and all(seconds.get(r, 0.0) <= trace.total.get(r, 0.0) + 1e-9 for r in self.robots)
+                and (k is not None or all(check_condition(c, end).holds for c in self.wanted)))
+
+
+@dataclass
+class _Search:
+    """The plan as cut so far: its steps, their indices into the original, its run, and
+    the indices of the steps that may start from another state than in the original."""
+
+    plan: Plan
+    ids: list[int]
+    trace: _Trace
+    moved: set[int] = field(default_factory=set)
+
+    def tried(self, i: int, window: int | None, allowed: frozenset[Skill]) -> bool:
+        """Is removing step ``i`` worth a replay? (its state is kept, a windowed search
+        allows its skill, and :func:`_worth_trying` says it may pay off)"""
+        at = self.trace.before[i]
+        if at is None or (window is not None and self.plan[i][1].skill not in allowed):
+            return False
+        return _worth_trying(self.plan, i, at, self.trace.marks)
+
+    def remove(self, i: int, found: _Found) -> None:
+        """Keep the replay ``found`` of the plan without step ``i``."""
+        keep, _, _, k = found
+        cand = [self.plan[j] for j in keep]
+        self.moved.update(self.ids[i:len(self.plan) if k is None else k + 1])
+        self.ids = [self.ids[j] for j in keep]
+        self.trace = _retrace(self.plan, cand, i, k, self.trace)
+        self.plan = cand
+
+
+def _pass(search: _Search, aim: _Aim, window: int | None, allowed: frozenset[Skill]) -> bool:
+    """One pass over the plan, front to back, removing every step it can; whether it
+    removed any (a removal can make an earlier step removable: another pass)."""
+    removed_any = False
+    i = 0
+    while i < len(search.plan):
+        if search.tried(i, window, allowed):
+            found = _without(search.plan, i, search.trace, window)
+            if found is not None and aim.kept_by(found, search.trace):
+                search.remove(i, found)
+                removed_any = True
+                continue  # the step now at i is new: try it too
+        i += 1
+    return removed_any
 
 
 def _holdings(state: WorldState, robots: Sequence[str]) -> dict[str, str | None]:
@@ -222,7 +271,7 @@ def _run(state: WorldState, plan: Plan, spent: Seconds, offset: int = 0, whole: 
 
 
 def _without(plan: Plan, i: int, trace: _Trace, window: int | None
-             ) -> tuple[list[int], WorldState, Seconds, int | None] | None:
+             ) -> _Found | None:
     """``plan`` without step ``i`` and the later steps that cannot run without it (the
     indices of the steps kept), its final state, each robot's nominal seconds, and the
     step after which the run rejoined the original (None: it did not); None when it has

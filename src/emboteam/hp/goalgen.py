@@ -12,7 +12,8 @@ unsolvable.
 from __future__ import annotations
 
 import random
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.catalogue import (
@@ -21,6 +22,7 @@ from emboteam.world.catalogue import (
     HEATERS,
     INTERLOCKED,
     WATER_SOURCES,
+    Catalogue,
     load_catalogue,
 )
 from emboteam.world.goals import Condition, Goal, ObjectRef, Predicate
@@ -46,52 +48,133 @@ def _cond(pred: Predicate, o: ObjectState, *, by_type: bool, place: ObjectState 
     return Condition(predicate=pred, subject=subject, receptacle=receptacle, liquid=liquid)
 
 
+@dataclass(frozen=True)
+class _Scene:
+    """What the condition rules read about a scene: computed once in
+    :func:`candidate_conditions`, so that each rule stays small and all see the same facts."""
+
+    state: WorldState
+    cat: Catalogue
+    #: the objects conditions are drawn over (present, not pieces of another)
+    objs: list[ObjectState]
+    #: objects per type: a type reference only where the type is unique
+    counts: dict[str, int]
+    fridges: list[ObjectState]
+    #: hot/cooked goals are drawn for microwaves (heaters with a door interlock)
+    heaters: list[ObjectState]
+    #: the receptacles water sources fill (sinks and basins)
+    basins: list[ObjectState]
+
+    @classmethod
+    def of(cls, state: WorldState) -> _Scene:
+        objs = [o for o in state.objects.values() if not o.gone and o.source is None]
+        counts: dict[str, int] = {}
+        for o in objs:
+            counts[o.type] = counts.get(o.type, 0) + 1
+        basins = [state.objects[b] for f in objs if f.type in WATER_SOURCES for b in f.controls
+                  if b in state.objects and state.objects[b].has("receptacle")]
+        return cls(state, load_catalogue(), objs, counts,
+                   fridges=[o for o in objs if o.type in COLD_SOURCES],
+                   heaters=[o for o in objs if o.type in HEATERS & INTERLOCKED], basins=basins)
+
+    def fits_any(self, o: ObjectState, places: Sequence[ObjectState]) -> bool:
+        """Can ``o`` be put into one of ``places``?"""
+        return any(self.cat.can_place(o.type, p.type) for p in places)
+
+
+def _inside(x: _Scene, o: ObjectState, by_type: bool, rng: random.Random) -> Condition | None:
+    """``o`` inside a receptacle drawn from those that can take it (not where it is, not
+    inside itself, never the floor or the bin)."""
+    places = [r for r in x.objs if r.has("receptacle") and r.id != o.id and r.id != o.parent
+              and x.cat.can_place(o.type, r.type) and o.id not in x.state.ancestors(r.id)
+              and r.type not in ("Floor", "GarbageCan")]
+    if not places:
+        return None
+    place = rng.choice(sorted(places, key=lambda r: r.id))
+    unique = by_type and x.counts[place.type] == 1
+    return _cond(Predicate.inside, o, by_type=unique, place=place)
+
+
+def _hot(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    return _cond(Predicate.hot, o, by_type=by_type) if x.fits_any(o, x.heaters) else None
+
+
+def _cold(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    return _cond(Predicate.cold, o, by_type=by_type) if x.fits_any(o, x.fridges) else None
+
+
+def _filled(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    wettable = x.fits_any(o, x.basins)
+    if o.has("canFillWithLiquid") and wettable:
+        return _cond(Predicate.filled, o, by_type=by_type, liquid="water")
+    return None
+
+
+def _cooked(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    return _cond(Predicate.cooked, o, by_type=by_type) if o.has("cookable") and x.heaters else None
+
+
+def _sliced(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    # an egg is cracked (broken), never sliced
+    if o.has("sliceable") and x.cat.slice_product(o.type) is not None and o.type != "Egg":
+        return _cond(Predicate.sliced, o, by_type=by_type)
+    return None
+
+
+def _broken(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    # cracking an egg consumes it: no goal can name it afterwards
+    if o.has("breakable") and o.type != "Egg" and not o.is_broken:
+        return _cond(Predicate.broken, o, by_type=by_type)
+    return None
+
+
+def _door(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    if not o.has("openable"):
+        return None
+    return _cond(Predicate.closed if o.is_open else Predicate.open, o, by_type=by_type)
+
+
+def _power(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    if not o.has("toggleable"):
+        return None
+    return _cond(Predicate.switched_off if o.is_on else Predicate.switched_on, o, by_type=by_type)
+
+
+def _clean(x: _Scene, o: ObjectState, by_type: bool) -> Condition | None:
+    if o.has("dirtyable") and o.is_dirty and o.has("pickupable") and x.fits_any(o, x.basins):
+        return _cond(Predicate.clean, o, by_type=by_type)
+    return None
+
+
+_Rule = Callable[[_Scene, ObjectState, bool], Condition | None]
+#: conditions on an object a robot can carry (after :func:`_inside`), in drawing order
+_CARRIED: tuple[_Rule, ...] = (_hot, _cold, _filled, _cooked)
+#: conditions on any object, in drawing order
+_CHANGED: tuple[_Rule, ...] = (_sliced, _broken, _door, _power, _clean)
+
+
+def _conditions_of(x: _Scene, o: ObjectState, by_type: bool, rng: random.Random, max_mass: float
+                   ) -> list[Condition]:
+    """The conditions worth drawing on ``o``: where it goes and what is done to it when a
+    robot can carry it, then what is done to it where it stands. The order (and the
+    random draw of :func:`_inside`) is fixed: goal seeds give the same goals as before."""
+    found: list[Condition | None] = []
+    if o.has("pickupable") and o.mass <= max_mass:
+        found.append(_inside(x, o, by_type, rng))
+        found += [rule(x, o, by_type) for rule in _CARRIED]
+    found += [rule(x, o, by_type) for rule in _CHANGED]
+    return [c for c in found if c is not None]
+
+
 def candidate_conditions(state: WorldState, rng: random.Random, *, max_mass: float = 100.0,
                          type_refs: float = 0.3) -> list[tuple[str, Condition]]:
     """Every condition worth drawing, as (subject id, condition), shuffled."""
-    cat = load_catalogue()
-    objs = [o for o in state.objects.values() if not o.gone and o.source is None]
-    counts: dict[str, int] = {}
-    for o in objs:
-        counts[o.type] = counts.get(o.type, 0) + 1
-    fridges = [o for o in objs if o.type in COLD_SOURCES]
-    heaters = [o for o in objs if o.type in HEATERS & INTERLOCKED]  # hot/cooked goals are drawn for microwaves
-    basins = [state.objects[b] for f in objs if f.type in WATER_SOURCES for b in f.controls
-              if b in state.objects and state.objects[b].has("receptacle")]
+    x = _Scene.of(state)
     out: list[tuple[str, Condition]] = []
-    for o in objs:
+    for o in x.objs:
         # a type reference only where the type is unique: "any Cabinet" is too easy
-        by_type = counts[o.type] == 1 and rng.random() < type_refs
-        if o.has("pickupable") and o.mass <= max_mass:
-            places = [r for r in objs if r.has("receptacle") and r.id != o.id and r.id != o.parent
-                      and cat.can_place(o.type, r.type) and o.id not in state.ancestors(r.id)
-                      and r.type not in ("Floor", "GarbageCan")]
-            if places:
-                place = rng.choice(sorted(places, key=lambda r: r.id))
-                unique = by_type and counts[place.type] == 1
-                out.append((o.id, _cond(Predicate.inside, o, by_type=unique, place=place)))
-            if any(cat.can_place(o.type, h.type) for h in heaters):
-                out.append((o.id, _cond(Predicate.hot, o, by_type=by_type)))
-            if any(cat.can_place(o.type, f.type) for f in fridges):
-                out.append((o.id, _cond(Predicate.cold, o, by_type=by_type)))
-            wettable = any(cat.can_place(o.type, b.type) for b in basins)
-            if o.has("canFillWithLiquid") and wettable:
-                out.append((o.id, _cond(Predicate.filled, o, by_type=by_type, liquid="water")))
-            if o.has("cookable") and heaters:
-                out.append((o.id, _cond(Predicate.cooked, o, by_type=by_type)))
-        if o.has("sliceable") and cat.slice_product(o.type) is not None and o.type != "Egg":
-            out.append((o.id, _cond(Predicate.sliced, o, by_type=by_type)))
-        if o.has("breakable") and o.type != "Egg" and not o.is_broken:
-            out.append((o.id, _cond(Predicate.broken, o, by_type=by_type)))
-        if o.has("openable"):
-            pred = Predicate.closed if o.is_open else Predicate.open
-            out.append((o.id, _cond(pred, o, by_type=by_type)))
-        if o.has("toggleable"):
-            pred = Predicate.switched_off if o.is_on else Predicate.switched_on
-            out.append((o.id, _cond(pred, o, by_type=by_type)))
-        if o.has("dirtyable") and o.is_dirty and o.has("pickupable") and any(
-                cat.can_place(o.type, b.type) for b in basins):
-            out.append((o.id, _cond(Predicate.clean, o, by_type=by_type)))
+        by_type = x.counts[o.type] == 1 and rng.random() < type_refs
+        out += [(o.id, c) for c in _conditions_of(x, o, by_type, rng, max_mass)]
     rng.shuffle(out)
     return out
 

@@ -24,8 +24,12 @@ from __future__ import annotations
 
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from emboteam.hp.plan import MergedPlan
+
+if TYPE_CHECKING:
+    from ortools.sat.python import cp_model
 
 #: re-plan only when the proposal promises the busiest robot at most this share of its work
 #: (0.95 when a proposal that did not pay off ended the re-allocation; with the next one
@@ -148,35 +152,16 @@ def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
         from ortools.sat.python import cp_model
     except ImportError:  # pragma: no cover - ortools is a dependency
         return None
-    scale = 10  # tenths of seconds
     model = cp_model.CpModel()
-    fixed = {r: 0 for r in team}
-    for j in jobs:
-        if not j.candidates:
-            for r in j.robots:
-                fixed[r] = fixed.get(r, 0) + round(scale * j.seconds / max(len(j.robots), 1))
+    fixed = _fixed_tenths(jobs, team)
     movable = sorted((j for j in jobs if j.candidates), key=lambda j: j.id)
-    x: dict[tuple[str, str], cp_model.IntVar] = {}
-    for j in movable:
-        for r in j.candidates:
-            if (j.id, r) in exclude and r != j.robots[0]:
-                continue
-            x[(j.id, r)] = model.new_bool_var(f"{j.id}@{r}")
-            model.add_hint(x[(j.id, r)], hint.get(j.id) == r)
-        model.add_exactly_one(x[(j.id, r)] for r in j.candidates if (j.id, r) in x)
-    horizon = sum(fixed.values()) + sum(round(scale * j.seconds) for j in movable)
+    x = _choices(model, movable, hint, exclude)
+    horizon = sum(fixed.values()) + sum(_tenths(j.seconds) for j in movable)
     busiest = model.new_int_var(0, horizon, "busiest")
     for r in sorted(fixed):
-        model.add(busiest >= fixed[r] + sum(round(scale * j.seconds) * x[(j.id, r)]
+        model.add(busiest >= fixed[r] + sum(_tenths(j.seconds) * x[(j.id, r)]
                                             for j in movable if (j.id, r) in x))
-    if max_moves is None:
-        model.minimize(busiest)
-    else:
-        # at most max_moves clusters leave their robot, as few as the best balance needs
-        stay = [x[(j.id, j.robots[0])] for j in movable if (j.id, j.robots[0]) in x]
-        moved = len(movable) - sum(stay)
-        model.add(moved <= max_moves)
-        model.minimize(busiest * (len(movable) + 1) + moved)
+    _objective(model, movable, x, busiest, max_moves)
     solver = cp_model.CpSolver()
     solver.parameters.num_workers = 1
     solver.parameters.random_seed = 0
@@ -185,7 +170,54 @@ def cp_sat(jobs: Sequence[Job], team: Sequence[str], hint: Mapping[str, str],
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         return None
     out = {j.id: next(r for r in j.candidates if (j.id, r) in x and solver.value(x[(j.id, r)])) for j in movable}
-    return out, solver.value(busiest) / scale
+    return out, solver.value(busiest) / _SCALE
+
+
+#: CP-SAT works in integers: seconds in tenths
+_SCALE = 10
+
+
+def _tenths(seconds: float) -> int:
+    return round(_SCALE * seconds)
+
+
+def _fixed_tenths(jobs: Sequence[Job], team: Sequence[str]) -> dict[str, int]:
+    """Each robot's work in the jobs that stay (no candidates: shared equally by the robots
+    that did them), in tenths of seconds; every robot of ``team`` has an entry."""
+    fixed = {r: 0 for r in team}
+    for j in jobs:
+        if not j.candidates:
+            for r in j.robots:
+                fixed[r] = fixed.get(r, 0) + round(_SCALE * j.seconds / max(len(j.robots), 1))
+    return fixed
+
+
+def _choices(model: cp_model.CpModel, movable: Sequence[Job], hint: Mapping[str, str],
+             exclude: Collection[tuple[str, str]]) -> dict[tuple[str, str], cp_model.IntVar]:
+    """One Boolean per (job, robot) it may go to, hinted from ``hint``, exactly one per job
+    (an excluded pair has none, unless the robot is the job's own)."""
+    x: dict[tuple[str, str], cp_model.IntVar] = {}
+    for j in movable:
+        for r in j.candidates:
+            if (j.id, r) in exclude and r != j.robots[0]:
+                continue
+            x[(j.id, r)] = model.new_bool_var(f"{j.id}@{r}")
+            model.add_hint(x[(j.id, r)], hint.get(j.id) == r)
+        model.add_exactly_one(x[(j.id, r)] for r in j.candidates if (j.id, r) in x)
+    return x
+
+
+def _objective(model: cp_model.CpModel, movable: Sequence[Job], x: Mapping[tuple[str, str], cp_model.IntVar],
+               busiest: cp_model.IntVar, max_moves: int | None) -> None:
+    """Minimise the busiest robot's work; with ``max_moves``, at most that many clusters
+    leave their robot, as few as the best balance needs (the moves break ties only)."""
+    if max_moves is None:
+        model.minimize(busiest)
+        return
+    stay = [x[(j.id, j.robots[0])] for j in movable if (j.id, j.robots[0]) in x]
+    moved = len(movable) - sum(stay)
+    model.add(moved <= max_moves)
+    model.minimize(busiest * (len(movable) + 1) + moved)
 
 
 def rebalance(jobs: Sequence[Job], team: Sequence[str], busiest: float,
