@@ -12,6 +12,8 @@ from emboteam.hp.rounds import already_done, preparations
 from emboteam.pddl.domain import Universe
 from emboteam.sim.rules import apply_action
 from emboteam.world.actions import Action
+from emboteam.world.checker import check_condition
+from emboteam.world.goals import Goal
 from emboteam.world.state import WorldState
 
 
@@ -37,6 +39,19 @@ def replay(trial: WorldState, steps: Sequence[SeqStep], universe: Universe,
     except StepFailure as exc:
         return [], f"no longer runs: {exc}"
     return grounded, None
+
+
+def replay_to_goal(start: WorldState, steps: Sequence[SeqStep], goal: Goal,
+                   repair: Callable[[WorldState, SeqStep], list[Action]] | None = None
+                   ) -> tuple[list[GroundedStep], str | None]:
+    """:func:`replay` of a whole rebuilt plan from a copy of ``start``: its grounded steps,
+    or why it cannot stand (it no longer runs, or it ends without reaching ``goal``). The
+    improvement stages that rebuild a plan in a new order (route, CP-SAT's schedule) share it."""
+    state = start.copy()
+    grounded, why = replay(state, steps, Universe(state.copy()), repair)
+    if why is None and not all(check_condition(c, state).holds for c in goal.conditions):
+        why = "misses the goal"
+    return grounded, why
 
 
 def replay_reusing(state: WorldState, steps: Sequence[GroundedStep], fresh: set[int], universe: Universe,

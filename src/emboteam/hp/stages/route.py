@@ -25,11 +25,9 @@ from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.routes import Node, Routes, Stop, Walker, improve, timetable
 from emboteam.hp.stages.context import Context, Draft, Invalid
 from emboteam.hp.stages.merge import finish_independent
-from emboteam.hp.stages.replay import replay
-from emboteam.pddl.domain import Universe
+from emboteam.hp.stages.replay import replay_to_goal
 from emboteam.sim.rules import apply_action
 from emboteam.world.actions import Skill
-from emboteam.world.checker import check_condition
 from emboteam.world.state import WorldState
 
 log = logging.getLogger(__name__)
@@ -232,10 +230,7 @@ def _rebuilt(ctx: Context, steps: list[SeqStep] | None) -> tuple[MergedPlan, lis
     simulated; None when it no longer runs, misses the goal or fails in the simulator."""
     if steps is None:
         return None
-    state = ctx.start.copy()
-    grounded, why = replay(state, steps, Universe(state.copy()), spot_order.reopen)
-    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
-        why = "misses the goal"
+    grounded, why = replay_to_goal(ctx.start, steps, ctx.spec.goal(), spot_order.reopen)
     if why is not None:
         log.debug("rerouted plan does not replay: %s", why)
         return None

@@ -15,9 +15,7 @@ from emboteam.hp import optimal
 from emboteam.hp.merge import SeqStep
 from emboteam.hp.stages.context import Context, Draft, Invalid
 from emboteam.hp.stages.merge import finish_independent
-from emboteam.hp.stages.replay import replay
-from emboteam.pddl.domain import Universe
-from emboteam.world.checker import check_condition
+from emboteam.hp.stages.replay import replay_to_goal
 
 log = logging.getLogger(__name__)
 
@@ -106,10 +104,7 @@ def _once(ctx: Context, draft: Draft, budget: Budget) -> Draft:
     robot_of = {s.id: ref.robots.get(s.id, s.robot) for s in plan.steps}
     order = sorted(range(len(seq)), key=lambda i: (*key[plan.steps[i].id], i))
     steps = [SeqStep(robot_of[plan.steps[i].id], seq[i].action, seq[i].subtask, seq[i].group) for i in order]
-    state = ctx.start.copy()
-    grounded, why = replay(state, steps, Universe(state.copy()))
-    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
-        why = "misses the goal"
+    grounded, why = replay_to_goal(ctx.start, steps, ctx.spec.goal())
     if why is not None:
         log.debug("CP-SAT's schedule does not replay: %s", why)
         return draft
