@@ -38,7 +38,6 @@ from emboteam.pfg.offline.tagger import NounReading
 from emboteam.pfg.offline.text import split_camel
 from emboteam.world.catalogue import BREWERS, load_catalogue
 from emboteam.world.goals import Condition, ObjectRef, Predicate
-from emboteam.world.state import ObjectState
 
 Act = lx.Act
 Stat = lx.Stat
@@ -235,8 +234,6 @@ class Semantics:
             # refused, not wanted
             frame = replace(frame, targets=[replace(t, state=None) if t.state == st else t for t in frame.targets])
             return self._state(frame, (st[0], not st[1]), False, clause)
-        if frame.report:
-            return []
         drafts = self._act(frame, act, clause)
         for _, positive in frame.room_states:
             # "open a book in a well lit room"
@@ -446,7 +443,7 @@ class Semantics:
         if act in (Act.DIM, Act.BRIGHTEN) and not targets:
             return self._lighting(act is Act.BRIGHTEN)
         if act is Act.WATER and not targets:
-            targets = [Target(Head(text="plant", noun=_noun("plant")))]
+            targets = [Target(Head(text="plant", noun=NounReading(lx.nouns()["plant"], "plant", False)))]
         if act is Act.MAKE:
             return self._make(frame, targets, clause)
         if act is Act.POUR:
@@ -695,7 +692,7 @@ class Semantics:
                        clause: int) -> list[Draft] | None:
         """Objects that change what the act means: a liquid poured into its destination
         ("fill water in the kettle"), a room ("clean the kitchen": too vague; "dim the
-        room": its lights), "everything" switched off or closed, the blinds' particle."""
+        room": its lights), "everything" switched off or closed."""
         head = t.head
         if head.noun is None and head.liquid is not None and t.dest and act in (
                 Act.FILL, Act.PLACE, Act.POUR):
@@ -713,9 +710,6 @@ class Semantics:
             return self._lighting(act is Act.BRIGHTEN)
         if _is_everything(head) and act in (Act.SWITCH_OFF, Act.CLOSE):
             return self._everything(Stat.SWITCH if act is Act.SWITCH_OFF else Stat.OPEN)
-        blind = self._blinds_particle(frame, act, head)
-        if blind is not None:
-            return self._state(Frame(None, frame.verb, [t]), (Stat.OPEN, blind), False, clause)
         return None
 
     def _place_unsaid(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft] | Act:
@@ -800,10 +794,6 @@ class Semantics:
         can = self.g.types_ref(("GarbageCan",), "garbage can")
         return self._each(P.inside, obj, can, receptacle=can.single())
 
-    def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
-        in_sink = any(d.noun is not None and {"SinkBasin", "Sink"} & set(d.noun.concept.types) for d in t.dest)
-        return self._clean(t.head, g, clause, in_sink=in_sink)
-
     def _toast_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """Toast is cooked slices: cut what is whole first ("toast a slice of bread" too);
         one slice: ``cooked(Bread)`` (any slice of it); more: that many cooked slices."""
@@ -858,7 +848,7 @@ class Semantics:
         obj = self.ground(t.head, "switch", g, clause)
         flipped = []
         for r, n in obj.groups:
-            on = all(o.is_on for o in self._objects(r))
+            on = all(o.is_on for o in self.discourse.objects(r))
             flipped.append(cond(P.switched_off if on else P.switched_on, r, n))
         return [self._draft(flipped, obj)]
 
@@ -868,15 +858,6 @@ class Semantics:
         if pred is None:
             return []
         return self._each(pred, self.ground(t.head, ACT_NEEDS.get(act), g, clause))
-
-    @staticmethod
-    def _blinds_particle(frame: Frame, act: Act, head: Head) -> bool | None:
-        """"pull the blinds down", "blinds up": up is open, down is closed."""
-        if frame.particle not in ("up", "down") or head.noun is None or \
-                "Blinds" not in head.noun.concept.types or act not in (
-                    Act.PLACE, Act.CAUSE, Act.HOLD, Act.OPEN, Act.CLOSE):
-            return None
-        return frame.particle == "up"
 
     def _cut_into(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """"crack an egg into the pan", "slice the tomato into the bowl": cut, then the
@@ -951,9 +932,6 @@ class Semantics:
             return []
         return [cond(P.inside, vessel, 1, ObjectRef(types=("StoveBurner",)))]
 
-    def _objects(self, ref: ObjectRef) -> list[ObjectState]:
-        return self.discourse.objects(ref)
-
     def _place(self, frame: Frame, t: Target, g: int, clause: int,
                obj: Ref | None = None) -> list[Draft]:
         obj = obj if obj is not None else self.ground(t.head, "hold", g, clause)
@@ -1011,7 +989,7 @@ class Semantics:
         ref = self.ground(landmark, None, g, clause, "place")
         places: list[str] = []
         for r, _ in ref.groups:
-            for o in self._objects(r):
+            for o in self.discourse.objects(r):
                 parent = getattr(o, "parent", None)
                 if parent is not None:
                     places.append(self.g.state.objects[parent].type)
@@ -1022,12 +1000,14 @@ class Semantics:
                                  phrase=landmark.label())
         return self.g.types_ref(dict.fromkeys(places), f"beside {landmark.label()}")
 
-    def _clean(self, head: Head, g: int, clause: int, in_sink: bool = False) -> list[Draft]:
+    def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        head = t.head
+        in_sink = any(d.noun is not None and {"SinkBasin", "Sink"} & set(d.noun.concept.types) for d in t.dest)
         obj = self.ground(head, None, g, clause)
         dirtyable = [(r, n) for r, n in obj.groups if all(self.g.can(x, "dirty") for x in _names(r))]
         # "wash the cloth in the sink" when no such cloth is dirty: clean already holds, so
         # what is asked is the washing itself (in the sink under running water), as a goal
-        already = [(r, n) for r, n in dirtyable if in_sink and not any(o.is_dirty for o in self._objects(r))]
+        already = [(r, n) for r, n in dirtyable if in_sink and not any(o.is_dirty for o in self.discourse.objects(r))]
         dirtyable = [(r, n) for r, n in dirtyable if (r, n) not in already]
         rest = [(r, n) for r, n in obj.groups if (r, n) not in dirtyable and (r, n) not in already]
         out: list[Draft] = []
@@ -1163,10 +1143,6 @@ def _whole(ref: ObjectRef) -> ObjectRef:
         return ref
     cat = load_catalogue()
     return ObjectRef(types=tuple(dict.fromkeys(cat.source_type(t) or t for t in ref.types)))
-
-
-def _noun(phrase: str) -> NounReading:
-    return NounReading(lx.nouns()[phrase], phrase, False)
 
 
 #: states that "everything" can be brought to: off, closed (the opposite would switch on
