@@ -719,15 +719,12 @@ class Semantics:
         head = t.head
         if frame.state is not None:
             return self._state(Frame(None, frame.verb, [t]), frame.state, False, clause)
-        if frame.verb == "hang":
+        if frame.verb == "hang" or frame.verb in lx.VERB_PLACES:
             obj = self.ground(head, "hold", g, clause)
-            holders = [r for r, types in self.cat.receptacle_whitelist.items()
-                       if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
-            dest = self.g.types_ref(holders, "its holder")
-            return self._each(P.inside, obj, dest, receptacle=dest.single())
-        if frame.verb in lx.VERB_PLACES:
-            obj = self.ground(head, "hold", g, clause)
-            dest = self.g.types_ref(lx.VERB_PLACES[frame.verb], frame.verb)
+            places = lx.VERB_PLACES.get(frame.verb) or [     # "hang the towel": a holder that takes it
+                r for r, types in self.cat.receptacle_whitelist.items()
+                if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
+            dest = self.g.types_ref(places, "its holder" if frame.verb == "hang" else frame.verb)
             return self._each(P.inside, obj, dest, receptacle=dest.single())
         if frame.particle == "back":
             return self._put_back(frame, t, g, clause)
@@ -787,11 +784,9 @@ class Semantics:
         if t.dest and frame.verb in _THROWING and frame.particle is None:
             return self._place(frame, t, g, clause)
         stranded = self._stranded_place(frame, t.head) if frame.verb in _THROWING else None
-        if stranded is not None:      # "open the hamper, throw the pillow in"
-            obj = self.ground(t.head, "hold", g, clause)
-            return self._each(P.inside, obj, stranded, receptacle=stranded.single())
         obj = self.ground(t.head, "hold", g, clause)
-        can = self.g.types_ref(("GarbageCan",), "garbage can")
+        # "open the hamper, throw the pillow in": in the hamper
+        can = stranded if stranded is not None else self.g.types_ref(("GarbageCan",), "garbage can")
         return self._each(P.inside, obj, can, receptacle=can.single())
 
     def _toast_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
