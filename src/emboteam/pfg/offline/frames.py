@@ -777,7 +777,9 @@ def _place_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target
         return None
     frame.act = Act.PLACE
     j = _parse_tail_until_next(items, j, frame, subjects, st.mentions)
-    if it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
+    if frame.report and not any(t.dest for t in subjects):
+        frame.act = None
+    elif it.prep in ("off", "from", "out of") and not any(t.dest for t in subjects):
         st.sources.append(frame)
     return j, True, True
 

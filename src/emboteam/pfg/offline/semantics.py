@@ -461,10 +461,9 @@ class Semantics:
             # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
                                     f"{past_participle(frame.verb)}?", phrase=frame.text, vague=True)
-        if act is Act.GO:
-            act = Act.PLACE if any(t.dest for t in targets) else act
-            if act is Act.GO:
-                return []
+        if act is Act.GO and not any(t.dest for t in targets):
+            return []
+        act = Act.PLACE if act is Act.GO else act
         return self._per_object(frame, act, targets, g, clause)
 
     def _per_object(self, frame: Frame, act: Act, targets: list[Target], g: int, clause: int) -> list[Draft]:
@@ -692,7 +691,7 @@ class Semantics:
                        clause: int) -> list[Draft] | None:
         """Objects that change what the act means: a liquid poured into its destination
         ("fill water in the kettle"), a room ("clean the kitchen": too vague; "dim the
-        room": its lights), "everything" switched off or closed."""
+        room": its lights), "everything" switched off or closed, the blinds' particle."""
         head = t.head
         if head.noun is None and head.liquid is not None and t.dest and act in (
                 Act.FILL, Act.PLACE, Act.POUR):
@@ -710,6 +709,9 @@ class Semantics:
             return self._lighting(act is Act.BRIGHTEN)
         if _is_everything(head) and act in (Act.SWITCH_OFF, Act.CLOSE):
             return self._everything(Stat.SWITCH if act is Act.SWITCH_OFF else Stat.OPEN)
+        blind = self._blinds_particle(frame, act, head)
+        if blind is not None:
+            return self._state(Frame(None, frame.verb, [t]), (Stat.OPEN, blind), False, clause)
         return None
 
     def _place_unsaid(self, frame: Frame, t: Target, g: int, clause: int) -> list[Draft] | Act:
@@ -853,6 +855,15 @@ class Semantics:
         if pred is None:
             return []
         return self._each(pred, self.ground(t.head, ACT_NEEDS.get(act), g, clause))
+
+    @staticmethod
+    def _blinds_particle(frame: Frame, act: Act, head: Head) -> bool | None:
+        """"pull the blinds down", "blinds up": up is open, down is closed."""
+        if frame.particle not in ("up", "down") or head.noun is None or \
+                "Blinds" not in head.noun.concept.types or act not in (
+                    Act.PLACE, Act.CAUSE, Act.HOLD, Act.OPEN, Act.CLOSE):
+            return None
+        return frame.particle == "up"
 
     def _cut_into(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """"crack an egg into the pan", "slice the tomato into the bowl": cut, then the
