@@ -26,7 +26,7 @@ from pydantic import model_validator
 
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.acts import DISPOSAL, TOOLS
-from emboteam.pfg.offline.clauses import Clause, team_subject
+from emboteam.pfg.offline.clauses import Clause, team_subject, verb_here
 from emboteam.pfg.offline.constructions import (
     DURATION,
     absent_from,
@@ -747,20 +747,13 @@ def _verb_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target]
         frame.act, frame.report = Act.PLACE, False
         for t in subjects:
             t.dest, t.prep = [there], "in"
-    elif sub.act is Act.GO and dest is None and not any(t.dest for t in sub.targets):
+    elif sub.act is Act.GO and dest is None:
         frame.act = None         # "the toaster stays": leave it as it is
-    elif sub.act is Act.GO or (sub.act in (Act.PLACE, Act.TRASH) and dest is not None):
+    elif dest is not None and sub.act in (Act.GO, Act.PLACE, Act.TRASH):
         frame.act = Act.PLACE if sub.act is Act.GO else sub.act
         frame.report = False
         for t in subjects:
-            if dest is not None:
-                t.dest, t.prep = dest.dest, dest.prep
-            elif sub.targets and sub.targets[0].dest:
-                t.dest, t.prep = sub.targets[0].dest, sub.targets[0].prep
-    if sub.act is Act.SWITCH and sub.particle in ("on", "off"):
-        frame.act = Act.SWITCH_ON if sub.particle == "on" else Act.SWITCH_OFF
-    elif sub.act is Act.SWITCH and it.text in ("switched", "turned") and sub.state:
-        frame.act = Act.SWITCH_ON if sub.state[1] else Act.SWITCH_OFF
+            t.dest, t.prep = dest.dest, dest.prep
     return len(items), True, True
 
 
@@ -777,13 +770,11 @@ def _blinds_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Targe
 
 def _place_predicate(st: _Statement, j: int, frame: Frame, subjects: list[Target],
                      local: dict[str, bool]) -> _Read | None:
-    """"lights off", "bread on plate", "the loo roll off the floor (and onto the holder)"."""
+    """"bread on plate", "the loo roll off the floor (and onto the holder)" ("lights off" is a
+    state: :func:`_state_predicate`)."""
     items, it = st.items, st.items[j]
     if it.prep is None and it.particle not in ("on", "off"):
         return None
-    if it.particle in ("on", "off") and (j + 1 >= len(items) or not np_start(items[j + 1])):
-        frame.state = (Stat.SWITCH, it.particle == "on")
-        return j + 1, True, True
     frame.act = Act.PLACE
     j = _parse_tail_until_next(items, j, frame, subjects, st.mentions)
     if frame.report and not any(t.dest for t in subjects):
@@ -1035,14 +1026,12 @@ def _frames(clause: Clause, items: list[Item], mentions: list[Head],
             first.text in ("they", "them") and _things_they(items)):
         return _human_subject(clause, items, mentions, flags)
     if first.verb is not None and (
-            (first.verb.form in ("base", "ing") and (first.noun is None or _takes_object(items)))
+            (first.verb.form in ("base", "ing") and (first.noun is None or verb_here(items, 0)))
             or (first.verb.form == "s" and (clause.robot is not None or flags.get("subject")))
             or (first.noun is None and first.state is None and first.verb.form != "s")):
         return [_verb_frame(items, 0, flags, mentions)]
     terse = not any(i.copula for i in items)
     flags["terse"] = terse
-    if terse:
-        flags["directive"] = True
     wished = noun_phrase_wish(items, mentions)
     frames = [wished] if wished is not None else _state_frames(items, mentions, flags)
     if not frames and flags.get("also"):
@@ -1181,9 +1170,4 @@ def _use_to(clause: Clause, items: list[Item], mentions: list[Head],
 CLAUSE_READERS: tuple[Callable[[Clause, list[Item], list[Head], dict[str, bool]], ParsedClause | None], ...] = (
     _there_is, _tool_on, _means_only, _use_to,
 )
-
-
-def _takes_object(items: list[Item]) -> bool:
-    from emboteam.pfg.offline.clauses import verb_here
-    return verb_here(items, 0)
 

@@ -38,7 +38,6 @@ from emboteam.pfg.offline.tagger import NounReading
 from emboteam.pfg.offline.text import split_camel
 from emboteam.world.catalogue import BREWERS, load_catalogue
 from emboteam.world.goals import Condition, ObjectRef, Predicate
-from emboteam.world.state import ObjectState
 
 Act = lx.Act
 Stat = lx.Stat
@@ -235,8 +234,6 @@ class Semantics:
             # refused, not wanted
             frame = replace(frame, targets=[replace(t, state=None) if t.state == st else t for t in frame.targets])
             return self._state(frame, (st[0], not st[1]), False, clause)
-        if frame.report:
-            return []
         drafts = self._act(frame, act, clause)
         for _, positive in frame.room_states:
             # "open a book in a well lit room"
@@ -446,7 +443,7 @@ class Semantics:
         if act in (Act.DIM, Act.BRIGHTEN) and not targets:
             return self._lighting(act is Act.BRIGHTEN)
         if act is Act.WATER and not targets:
-            targets = [Target(Head(text="plant", noun=_noun("plant")))]
+            targets = [Target(Head(text="plant", noun=NounReading(lx.nouns()["plant"], "plant", False)))]
         if act is Act.MAKE:
             return self._make(frame, targets, clause)
         if act is Act.POUR:
@@ -464,10 +461,9 @@ class Semantics:
             # "I want to watch a movie": no object, maybe said better by another clause
             raise OfflineParseError(f"{frame.verb!r} needs an object: what should be "
                                     f"{past_participle(frame.verb)}?", phrase=frame.text, vague=True)
-        if act is Act.GO:
-            act = Act.PLACE if any(t.dest for t in targets) else act
-            if act is Act.GO:
-                return []
+        if act is Act.GO and not any(t.dest for t in targets):
+            return []
+        act = Act.PLACE if act is Act.GO else act
         return self._per_object(frame, act, targets, g, clause)
 
     def _per_object(self, frame: Frame, act: Act, targets: list[Target], g: int, clause: int) -> list[Draft]:
@@ -725,15 +721,12 @@ class Semantics:
         head = t.head
         if frame.state is not None:
             return self._state(Frame(None, frame.verb, [t]), frame.state, False, clause)
-        if frame.verb == "hang":
+        if frame.verb == "hang" or frame.verb in lx.VERB_PLACES:
             obj = self.ground(head, "hold", g, clause)
-            holders = [r for r, types in self.cat.receptacle_whitelist.items()
-                       if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
-            dest = self.g.types_ref(holders, "its holder")
-            return self._each(P.inside, obj, dest, receptacle=dest.single())
-        if frame.verb in lx.VERB_PLACES:
-            obj = self.ground(head, "hold", g, clause)
-            dest = self.g.types_ref(lx.VERB_PLACES[frame.verb], frame.verb)
+            places = lx.VERB_PLACES.get(frame.verb) or [     # "hang the towel": a holder that takes it
+                r for r, types in self.cat.receptacle_whitelist.items()
+                if set(types) & set(obj.type_names()) and r.endswith(("Holder", "Hanger"))]
+            dest = self.g.types_ref(places, "its holder" if frame.verb == "hang" else frame.verb)
             return self._each(P.inside, obj, dest, receptacle=dest.single())
         if frame.particle == "back":
             return self._put_back(frame, t, g, clause)
@@ -793,16 +786,10 @@ class Semantics:
         if t.dest and frame.verb in _THROWING and frame.particle is None:
             return self._place(frame, t, g, clause)
         stranded = self._stranded_place(frame, t.head) if frame.verb in _THROWING else None
-        if stranded is not None:      # "open the hamper, throw the pillow in"
-            obj = self.ground(t.head, "hold", g, clause)
-            return self._each(P.inside, obj, stranded, receptacle=stranded.single())
         obj = self.ground(t.head, "hold", g, clause)
-        can = self.g.types_ref(("GarbageCan",), "garbage can")
+        # "open the hamper, throw the pillow in": in the hamper
+        can = stranded if stranded is not None else self.g.types_ref(("GarbageCan",), "garbage can")
         return self._each(P.inside, obj, can, receptacle=can.single())
-
-    def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
-        in_sink = any(d.noun is not None and {"SinkBasin", "Sink"} & set(d.noun.concept.types) for d in t.dest)
-        return self._clean(t.head, g, clause, in_sink=in_sink)
 
     def _toast_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
         """Toast is cooked slices: cut what is whole first ("toast a slice of bread" too);
@@ -858,7 +845,7 @@ class Semantics:
         obj = self.ground(t.head, "switch", g, clause)
         flipped = []
         for r, n in obj.groups:
-            on = all(o.is_on for o in self._objects(r))
+            on = all(o.is_on for o in self.discourse.objects(r))
             flipped.append(cond(P.switched_off if on else P.switched_on, r, n))
         return [self._draft(flipped, obj)]
 
@@ -951,9 +938,6 @@ class Semantics:
             return []
         return [cond(P.inside, vessel, 1, ObjectRef(types=("StoveBurner",)))]
 
-    def _objects(self, ref: ObjectRef) -> list[ObjectState]:
-        return self.discourse.objects(ref)
-
     def _place(self, frame: Frame, t: Target, g: int, clause: int,
                obj: Ref | None = None) -> list[Draft]:
         obj = obj if obj is not None else self.ground(t.head, "hold", g, clause)
@@ -1011,7 +995,7 @@ class Semantics:
         ref = self.ground(landmark, None, g, clause, "place")
         places: list[str] = []
         for r, _ in ref.groups:
-            for o in self._objects(r):
+            for o in self.discourse.objects(r):
                 parent = getattr(o, "parent", None)
                 if parent is not None:
                     places.append(self.g.state.objects[parent].type)
@@ -1022,12 +1006,14 @@ class Semantics:
                                  phrase=landmark.label())
         return self.g.types_ref(dict.fromkeys(places), f"beside {landmark.label()}")
 
-    def _clean(self, head: Head, g: int, clause: int, in_sink: bool = False) -> list[Draft]:
+    def _clean_act(self, frame: Frame, act: Act, t: Target, g: int, clause: int) -> list[Draft]:
+        head = t.head
+        in_sink = any(d.noun is not None and {"SinkBasin", "Sink"} & set(d.noun.concept.types) for d in t.dest)
         obj = self.ground(head, None, g, clause)
         dirtyable = [(r, n) for r, n in obj.groups if all(self.g.can(x, "dirty") for x in _names(r))]
         # "wash the cloth in the sink" when no such cloth is dirty: clean already holds, so
         # what is asked is the washing itself (in the sink under running water), as a goal
-        already = [(r, n) for r, n in dirtyable if in_sink and not any(o.is_dirty for o in self._objects(r))]
+        already = [(r, n) for r, n in dirtyable if in_sink and not any(o.is_dirty for o in self.discourse.objects(r))]
         dirtyable = [(r, n) for r, n in dirtyable if (r, n) not in already]
         rest = [(r, n) for r, n in obj.groups if (r, n) not in dirtyable and (r, n) not in already]
         out: list[Draft] = []
@@ -1163,10 +1149,6 @@ def _whole(ref: ObjectRef) -> ObjectRef:
         return ref
     cat = load_catalogue()
     return ObjectRef(types=tuple(dict.fromkeys(cat.source_type(t) or t for t in ref.types)))
-
-
-def _noun(phrase: str) -> NounReading:
-    return NounReading(lx.nouns()[phrase], phrase, False)
 
 
 #: states that "everything" can be brought to: off, closed (the opposite would switch on
