@@ -215,19 +215,25 @@ class Routes:
 
     def price(self, change: Mapping[str, list[str]]) -> tuple[float, float] | None:
         """The cost with ``change`` made (None: the routes would wait in a circle)."""
+        ends = self.ends_with(change)
+        if ends is None:
+            return None
+        return (max(ends.values(), default=0.0), sum(ends.values()))
+
+    def ends_with(self, change: Mapping[str, list[str]]) -> dict[str, float] | None:
+        """Each robot's end with ``change`` made (None: the routes would wait in a circle)."""
         if not self._alone(change):
             found = timetable(self.walker, self.nodes, {**self.order, **change}, self.waits)
             if found is None:
                 return None
             self.walked += found[2]
-            ends = found[1]
-        else:
-            ends = dict(self.ends)
-            for r, route in change.items():
-                here, clock = self.prefix[r][same := _first_common(self.order[r], route)]
-                _, ends[r], n = self.walker.walk(r, here, clock, [self.nodes[x] for x in route[same:]])
-                self.walked += n
-        return (max(ends.values(), default=0.0), sum(ends.values()))
+            return found[1]
+        ends = dict(self.ends)
+        for r, route in change.items():
+            here, clock = self.prefix[r][same := _first_common(self.order[r], route)]
+            _, ends[r], n = self.walker.walk(r, here, clock, [self.nodes[x] for x in route[same:]])
+            self.walked += n
+        return ends
 
     def keeps_order(self, route: Sequence[str]) -> bool:
         pos = {x: i for i, x in enumerate(route)}
