@@ -10,7 +10,13 @@ Why (issue 28): on the 2-robot sweep cells the plan was 20-50 % above CP-SAT's o
 for its own actions, nearly all of it driving (lama-first orders a unit's goals without
 regard to the way between them), and CP-SAT's better orders simulated longer once its
 schedule was rebuilt from the old steps (docs/planning.md). Only for specs whose
-subtasks are final and independent, as the other reordering stages."""
+subtasks are final and independent, as the other reordering stages.
+
+A plan of more than :data:`ROUTE_STEPS` steps (the 8- and 32-robot, 96-goal cells) gets a
+cheaper variant: only the jobs of the robots that end last move
+(:mod:`emboteam.hp.critical_routes`), over waits that no longer chain the jobs of one
+cluster in the plan's order (the conflicting pairs keep what the state needs), for a
+budget of :data:`LARGE_WALKS` walks of the plan, one round and one rebuild."""
 
 from __future__ import annotations
 
