@@ -18,7 +18,7 @@ from __future__ import annotations
 import bisect
 from collections.abc import Mapping
 
-from emboteam.hp.routes import Routes, _near, timetable
+from emboteam.hp.routes import Routes, nearest_robots, timetable
 
 #: robots whose jobs are tried, those that end last (each of them may hold the makespan
 #: after the next move)
@@ -53,7 +53,7 @@ def _late(routes: Routes) -> list[str]:
 def _targets(routes: Routes, nid: str, home: str) -> list[str]:
     """The robots a job of ``home`` is tried on: ``home`` itself, the nearest able ones
     and the able ones whose routes end earliest, without repeats, in that order."""
-    near = _near(routes, nid, home)
+    near = nearest_robots(routes, nid, home)
     able = [r for r in routes.nodes[nid].robots if r in routes.order and r not in near]
     early = sorted(able, key=lambda r: (routes.ends[r], r))[:EARLIEST_ROBOTS]
     return [*near, *early]

@@ -249,7 +249,7 @@ class Routes:
             self.ends = found[1]
 
 
-def _near(routes: Routes, nid: str, home: str) -> list[str]:
+def nearest_robots(routes: Routes, nid: str, home: str) -> list[str]:
     """The robot of node ``nid`` and the :data:`NEAR_ROBOTS` others able to do it whose
     routes come nearest to it (its first stop against their start and stops, straight
     line), nearest first: a node is tried where a robot passes by, not on every robot."""
@@ -270,7 +270,7 @@ def _relocations(routes: Routes, nid: str, home: str) -> list[dict[str, list[str
     """Every route change that moves node ``nid`` elsewhere (same robot or a near one)."""
     out: list[dict[str, list[str]]] = []
     rest = [x for x in routes.order[home] if x != nid]
-    for robot in _near(routes, nid, home):
+    for robot in nearest_robots(routes, nid, home):
         base = rest if robot == home else routes.order[robot]
         for i in range(len(base) + 1):
             route = [*base[:i], nid, *base[i:]]
@@ -284,7 +284,7 @@ def _swaps(routes: Routes, nid: str, home: str) -> list[dict[str, list[str]]]:
     """Every exchange of node ``nid`` with a node of another robot both may do."""
     out: list[dict[str, list[str]]] = []
     i = routes.order[home].index(nid)
-    for robot in _near(routes, nid, home)[1:]:
+    for robot in nearest_robots(routes, nid, home)[1:]:
         for j, other in enumerate(routes.order[robot]):
             if home not in routes.nodes[other].robots:
                 continue
