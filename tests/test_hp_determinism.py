@@ -12,6 +12,7 @@ from collections.abc import Iterator
 import pytest
 
 from emboteam.bench.suites import load_suite
+from emboteam.hp.goalgen import sweep_cell
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.pfg.oracle import OracleFrontend
@@ -82,3 +83,13 @@ def test_a_warm_cache_gives_the_same_plan_as_a_cold_one() -> None:
     again = _plan_all(planner)
     assert planner.fd.cache_hits > 0
     assert again == first == _plan_all()
+
+
+def test_a_plan_of_more_than_160_steps_is_the_same_on_a_loaded_machine(request: pytest.FixtureRequest) -> None:
+    # the route stage's cheaper search on large plans (hp/critical_routes.py) stops on a
+    # count of stops walked: a loaded machine must not cut it short
+    spec, state = sweep_cell("FloorPlan1", 32, 96, 0)
+    idle = HybridPlanner(PlannerConfig()).plan(spec, state)
+    assert len(idle.steps) > 160 and any("late robots" in n for n in idle.notes)
+    request.getfixturevalue("busy_cpu")
+    assert _content(HybridPlanner(PlannerConfig()).plan(spec, state)) == _content(idle)

@@ -10,15 +10,22 @@ Why (issue 28): on the 2-robot sweep cells the plan was 20-50 % above CP-SAT's o
 for its own actions, nearly all of it driving (lama-first orders a unit's goals without
 regard to the way between them), and CP-SAT's better orders simulated longer once its
 schedule was rebuilt from the old steps (docs/planning.md). Only for specs whose
-subtasks are final and independent, as the other reordering stages."""
+subtasks are final and independent, as the other reordering stages.
+
+A plan of more than :data:`ROUTE_STEPS` steps (the 8- and 32-robot, 96-goal cells) gets a
+cheaper variant: only the jobs of the robots that end last move
+(:mod:`emboteam.hp.critical_routes`), over waits that no longer chain the jobs of one
+cluster in the plan's order (the conflicting pairs keep what the state needs), for a
+budget of :data:`LARGE_WALKS` walks of the plan, one round and one rebuild."""
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from emboteam.hp import optimal, spot_order
+from emboteam.hp.critical_routes import improve_late
 from emboteam.hp.dependencies import Footprint
 from emboteam.hp.merge import GroundedStep, SeqStep
 from emboteam.hp.plan import MergedPlan, PlanStep
@@ -39,10 +46,18 @@ MIN_GAIN = 0.5
 #: the plan's: below it the makespan is made by what the walk does not see (robots in
 #: each other's way, orders the merge adds), and the search would cost without paying
 ROUTE_BOUND = 0.8
-#: nor for a plan of more steps: the search and the rebuilds (a replay, a merge and a
-#: simulation of the whole plan each) cost the 32-robot, 96-goal cell (223 steps) 2.6-3.3 s
-#: on this 2-core machine, more than its whole planning time, for no shorter plan
+#: a plan of more steps gets the cheaper search instead (:func:`emboteam.hp.critical_routes.
+#: improve_late`: only the jobs of the robots that end last move, one round, one rebuild):
+#: the full search and its rebuilds cost the 32-robot, 96-goal cell (223 steps) 2.6-3.3 s
+#: on this 2-core machine, more than its whole planning time
 ROUTE_STEPS = 160
+#: the cheaper search's budget: this many walks of the whole plan (stops walked = this x
+#: the plan's steps; a count scaled to the plan, never seconds)
+LARGE_WALKS = 50
+#: nor does it search a large plan whose walk is this much longer than its simulated
+#: makespan: the walk misprices it (robots the merge lets overlap), and its routes would
+#: not survive the rebuild (FloorPlan1 32x96, seed 4: walked 36.0 s, simulated 31.0)
+LARGE_MISPRICED = 1.05
 #: rounds of the stage (a count, not a clock)
 ROUNDS = 2
 
@@ -60,12 +75,17 @@ class Layout:
     waits: dict[str, frozenset[str]]
     strict: dict[str, frozenset[str]]
     walker: Walker
+    #: the conflicting pairs and the waits between robots, without the chain that keeps
+    #: the jobs of one cluster on one robot in the plan's order (the large-plan search's)
+    free: dict[str, frozenset[str]] = field(default_factory=dict)
 
 
 def reroute(ctx: Context, draft: Draft) -> Draft:
     """The draft with its jobs on shorter routes, or the draft itself: up to
     :data:`ROUNDS` rounds, each from the plan the last one made (its robots stand on
     other poses, so its jobs are other stops)."""
+    if len(draft.plan.steps) > ROUTE_STEPS:
+        return _once_large(ctx, draft)
     for _ in range(ROUNDS):
         better = _once(ctx, draft)
         if better is draft:
@@ -80,9 +100,7 @@ def _once(ctx: Context, draft: Draft) -> Draft:
     misses the goal (two jobs switching one microwave swapped), once more with every
     conflicting pair of jobs kept in its order (:func:`conflicts`)."""
     plan, seq = draft.plan, draft.record.sequence
-    if not ctx.independent or len(seq) != len(plan.steps) or len(plan.steps) > ROUTE_STEPS:
-        return draft
-    layout = layout_of(ctx, plan, seq)
+    layout = _layout(ctx, draft) if len(plan.steps) <= ROUTE_STEPS else None
     if layout is None:
         return draft
     other = None
@@ -99,10 +117,45 @@ def _once(ctx: Context, draft: Draft) -> Draft:
         other = _rebuilt(ctx, _sequence(routes, plan, seq))
         if other is not None:
             break
+    return _kept(ctx, draft, other, f"{before[0]:.1f} -> {routes.cost()[0]:.1f} s")
+
+
+def _layout(ctx: Context, draft: Draft) -> Layout | None:
+    """The draft's layout, when the stage applies to it (final, independent subtasks; a
+    plan made of its sequence)."""
+    plan, seq = draft.plan, draft.record.sequence
+    if not ctx.independent or len(seq) != len(plan.steps):
+        return None
+    return layout_of(ctx, plan, seq)
+
+
+def _once_large(ctx: Context, draft: Draft) -> Draft:
+    """The stage on a plan of more than :data:`ROUTE_STEPS` steps: one round of the
+    cheaper search (:func:`improve_late`, :data:`LARGE_WALKS` walks of the plan) over the
+    waits without the chains of each cluster's jobs (``layout.free``: what a long cluster
+    one robot does can then spread over the idle ones), one rebuild."""
+    plan = draft.plan
+    layout = _layout(ctx, draft)
+    if layout is None or timetable(layout.walker, layout.nodes, layout.order, layout.free) is None:
+        return draft
+    routes = Routes(layout.walker, layout.nodes, layout.free, {r: list(v) for r, v in layout.order.items()})
+    before = routes.cost()
+    if not ROUTE_BOUND * plan.makespan <= before[0] <= LARGE_MISPRICED * plan.makespan:
+        return draft  # the walk does not price this plan's makespan: its routes would not pay
+    improve_late(routes, LARGE_WALKS * len(plan.steps))
+    if routes.cost()[0] > before[0] - MIN_GAIN:
+        return draft
+    other = _rebuilt(ctx, _sequence(routes, plan, draft.record.sequence))
+    return _kept(ctx, draft, other, f"{before[0]:.1f} -> {routes.cost()[0]:.1f} s, the late robots' jobs")
+
+
+def _kept(ctx: Context, draft: Draft, other: tuple[MergedPlan, list[GroundedStep]] | None, walked: str) -> Draft:
+    """The rebuilt plan when it simulates shorter than the draft, else the draft."""
+    plan = draft.plan
     if other is None or other[0].makespan >= plan.makespan - 1e-6:
         log.debug("rerouted plan not shorter: %s", None if other is None else other[0].makespan)
         return draft
-    ctx.notes.append(f"jobs rerouted (walked routes {before[0]:.1f} -> {routes.cost()[0]:.1f} s, drives planned "
+    ctx.notes.append(f"jobs rerouted (walked routes {walked}, drives planned "
                      f"again): makespan {plan.makespan:.1f} -> {other[0].makespan:.1f} s")
     draft.record.sequence = other[1]
     return Draft(other[0], draft.record)
@@ -197,9 +250,11 @@ def layout_of(ctx: Context, plan: MergedPlan, seq: Sequence[GroundedStep]) -> La
     for a, b in [*problem.precedences, *problem.drive_waits]:
         waits.setdefault(b, set()).add(a)
     strict = {n: set(ps) for n, ps in waits.items()}
+    free = {n: set(ps) for n, ps in _unchained(problem).items()}
     for a, b in conflicts([(s.id, g.footprint) for s, g in zip(plan.steps, seq, strict=True)
                            if stops.get(s.id) is not None]):
         strict.setdefault(b, set()).add(a)
+        free.setdefault(b, set()).add(a)
     nodes = {j.id: Node(j.id, tuple(st for sid in j.steps if (st := stops[sid]) is not None),
                         problem.candidates[j.group]) for j in problem.jobs}
     order: dict[str, list[str]] = {r: [] for r in plan.robots}
@@ -208,7 +263,26 @@ def layout_of(ctx: Context, plan: MergedPlan, seq: Sequence[GroundedStep]) -> La
     walker = Walker(ctx.start.floor_plan, {r: ctx.start.robots[r].profile.speed for r in order},
                     {r: _xz(ctx.start.robots[r].position) for r in order})
     return Layout(nodes, order, {n: frozenset(ps) for n, ps in waits.items()},
-                  {n: frozenset(ps) for n, ps in strict.items()}, walker)
+                  {n: frozenset(ps) for n, ps in strict.items()}, walker,
+                  {n: frozenset(ps) for n, ps in free.items()})
+
+
+def _unchained(problem: optimal.Problem) -> dict[str, set[str]]:
+    """The problem's waits (step -> the steps it waits for) without the chain that orders
+    the jobs of one group (one cluster on one robot) as the plan did: those orders come
+    from the plan, not from the state, and the conflicting pairs (:func:`conflicts`) keep
+    the ones the state needs."""
+    chain: set[tuple[str, str]] = set()
+    last: dict[str, str] = {}
+    for j in problem.jobs:
+        if j.group in last:
+            chain.add((last[j.group], j.ops[0].step))
+        last[j.group] = j.ops[-1].step
+    out: dict[str, set[str]] = {}
+    for a, b in [*problem.precedences, *problem.drive_waits]:
+        if (a, b) not in chain:
+            out.setdefault(b, set()).add(a)
+    return out
 
 
 def _sequence(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> list[SeqStep] | None:
