@@ -35,8 +35,8 @@ def known_objects(items: list[Item]) -> list[Head] | None:
 #: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
 _NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
 _W = word_tables("clause_passes")
-_SHE_NEEDS_IT, _REQUEST_AFTER_IF, _REPORTED = (pattern_tables("clause_passes").pattern(name) for name in (
-    "she_needs_it", "request_after_if", "reported"))
+_SHE_NEEDS_IT, _REQUEST_AFTER_IF, _REPORTED, _OWN_FUTURE = (pattern_tables("clause_passes").pattern(name) for name in (
+    "she_needs_it", "request_after_if", "reported", "own_future"))
 #: a person's own doings under "when", "before", "if": "when I get home", "before you go"
 #: are a time, not a request
 _PERSON = _W.set("person")
@@ -167,13 +167,7 @@ _MADE_STATES = frozenset({lexicon.Stat.SLICED, lexicon.Stat.COOKED, lexicon.Stat
 def own_future(clause: Clause) -> bool:
     """Does the clause say what the speaker will do ("I'll do the rest myself"), not what
     they will want ("I'll need the apple in the fridge")?"""
-    words = [i for i in clause.items if i.punct is None]
-    if len(words) < 3 or words[0].text not in ("i", "we") or words[1].text not in ("will", "shall"):
-        return False
-    verb = words[2].verb
-    if verb is not None:
-        return verb.lemma not in ("want", "need", "like", "love", "prefer")
-    return words[2].copula
+    return _OWN_FUTURE.at([i for i in clause.items if i.punct is None])
 
 
 _WISH_WORDS = _W.set("wish_words")

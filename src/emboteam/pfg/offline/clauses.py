@@ -136,8 +136,6 @@ _WISH_VERBS = _W.set("wish_verbs")
 def _has_predicate(items: list[Item]) -> bool:
     """Has the clause so far a predicate of its own? "the bread on the counter" (and ...
     need to go in the fridge) has not: the next subject shares the predicate."""
-    if not items:
-        return False
     items = items[_MAKE_SURE.end(items) or 0:]
     items = items[_QUESTION_MODALS.end(items) or 0:]
     if not items:
@@ -195,10 +193,6 @@ def _ends_with_place(items: list[Item]) -> bool:
 _NP_WORDS = _W.set("np_words")
 #: adjectives inside a subject ("the big floor lamp's still on")
 _NP_ADJECTIVES = _W.set("np_adjectives")
-
-
-#: words after which "to" starts an infinitive of the same clause, not a purpose
-_TO_INFINITIVE_HEADS = _W.set("to_infinitive_heads")
 
 
 def _skip_np(items: list[Item], j: int) -> int:
@@ -279,8 +273,6 @@ def _also_item(items: list[Item], j: int) -> bool:
         return False
     if items[m].prep in _SUBJECT_PLACES and m + 1 < n and _skip_np(items, m + 1) > m + 1:
         m = _skip_np(items, m + 1)      # "and the spray bottle on the toilet too"
-        if m >= n:
-            return False
     return _TOO_AT_END.at(items, m)
 
 
@@ -440,8 +432,6 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     is_sub = it.sub != "by" or (nxt is not None and nxt.verb is not None and nxt.verb.form == "ing")
     if it.text == "as" and nxt is not None and nxt.text in ("to", "well", "soon"):
         is_sub = nxt.text != "well"
-    if it.text == "to" and j > 0 and sentence[j - 1].text in _TO_INFINITIVE_HEADS:
-        is_sub = False      # "I was going to bake": an infinitive, no purpose
     skip = 2 if it.text == "so" and nxt is not None and nxt.text == "that" else 1
     link = it.sub if is_sub else None
     if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \

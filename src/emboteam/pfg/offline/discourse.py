@@ -88,8 +88,7 @@ class Discourse:
     def _as_sized(named: Head, one: Head) -> Head:
         """"the tall lamp ... the little one": the kind named before ("lamp"), with the size
         said now ("little lamp") when the lexicon has that compound."""
-        if named.noun is None:
-            return named
+        assert named.noun is not None       # (the caller picks a mention with a noun)
         base = named.noun.phrase.split()[-1]
         for word in one.text.split()[:-1]:
             concept = lx.nouns().get(f"{word} {base}")

@@ -351,9 +351,6 @@ def _noun(s: _NP) -> str | None:
     if j + 1 < n and items[j].text == "of" and items[j + 1].liquid is not None:
         h.contents = items[j + 1].liquid
         s.take(f"of {h.contents}", 2)
-    elif j + 2 < n and items[j].text == "of" and items[j + 1].det and items[j + 2].noun is not None \
-            and h.noun.concept.kind == "anything":
-        s.j += 1     # "all of the ..." spelled with a noun: "everything of the"
     return _NEXT
 
 
