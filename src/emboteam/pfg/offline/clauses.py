@@ -59,19 +59,15 @@ _STATE_THEN_THING, _NOUN_THEN_THING = _P.pattern("state_then_thing"), _P.pattern
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
+#: a verb-or-noun word that takes an object (so it is a verb)
 _TAKES_OBJECT, _VERB_CUES, _VERB_HERE = _P.pattern("takes_object"), _P.pattern("verb_cues"), _P.table("verb_here")
-
-
-def _next_is_object(items: list[Item], j: int) -> bool:
-    """Does a verb-or-noun word at ``j`` take an object (so it is a verb)?"""
-    return _TAKES_OBJECT.at(items, j)
 
 
 def verb_here(items: list[Item], j: int) -> bool:
     """Is ``items[j]`` (after optional cues like "also", "please") the verb of a new clause?"""
     j = _VERB_CUES.end(items, j) or j
     rule = first_rule(_VERB_HERE, items, j)
-    return rule is not None and (rule.then == "verb" or (rule.then == "object" and _next_is_object(items, j)))
+    return rule is not None and (rule.then == "verb" or (rule.then == "object" and _TAKES_OBJECT.at(items, j)))
 
 
 #: words that only introduce a robot: "have robot 2 ...", "the second robot", "ask robot 1 to"
@@ -172,7 +168,7 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
         return True     # "..., it glares on the screen": a clause of its own with a verb we do not know
     if it.verb is not None and it.verb.form == "s" and it.noun is None and current \
             and any(x.verb is not None and x.verb.form == "s" and x.noun is None for x in current) \
-            and _next_is_object(items, j):
+            and _TAKES_OBJECT.at(items, j):
         return True     # "robot 1 closes it and turns off the light": the same subject's next act
     asked = current is not None and _QUESTION_MODALS.at(current)
     kind = subject_here(items, j, asked)
@@ -375,7 +371,7 @@ def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut |
     if current.link not in (AND, THEN) and len(items) >= 3 \
             and (_IT_IS.at(items) or (_skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
             and _READY_STATE.at(items, len(items) - 1) \
-            and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
+            and it.verb is not None and (it.noun is None or _TAKES_OBJECT.at(sentence, j)) \
             and it.verb.form == "base" and verb_here(sentence, j):
         return _Cut(AND)
     return None
@@ -435,7 +431,7 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     skip = 2 if it.text == "so" and nxt is not None and nxt.text == "that" else 1
     link = it.sub if is_sub else None
     if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
-            and (nxt.noun is None or _next_is_object(sentence, j + 1)):
+            and (nxt.noun is None or _TAKES_OBJECT.at(sentence, j + 1)):
         link = THEN     # "... and after close the box": afterwards
     if _SO_I_WAS.at(sentence, j):
         link = AND      # "so I was going to bake": what happened, no purpose

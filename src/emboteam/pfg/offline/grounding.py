@@ -46,20 +46,10 @@ class Ref:
     def types(self) -> frozenset[str]:
         """Every type the phrase can stand for, slices folded into their whole."""
         cat = load_catalogue()
-        out: set[str] = set()
-        for ref, _ in self.groups:
-            names = ref.types if ref.id is None else (ref.id.split("_")[0],)
-            for t in names:
-                out.add(cat.source_type(t) or t)
-        return frozenset(out)
+        return frozenset(cat.source_type(t) or t for ref, _ in self.groups for t in ref_types(ref))
 
     def type_names(self) -> tuple[str, ...]:
-        names: list[str] = []
-        for ref, _ in self.groups:
-            for t in (ref.types if ref.id is None else (ref.id.split("_")[0],)):
-                if t not in names:
-                    names.append(t)
-        return tuple(names)
+        return tuple(dict.fromkeys(t for ref, _ in self.groups for t in ref_types(ref)))
 
     def single(self) -> ObjectRef:
         """All groups as one reference (for a receptacle: any of these)."""
