@@ -128,7 +128,6 @@ def team_subject(items: list[Item], j: int) -> int:
 _WISH_VERBS = _W.set("wish_verbs")
 
 
-
 def _has_predicate(items: list[Item]) -> bool:
     """Has the clause so far a predicate of its own? "the bread on the counter" (and ...
     need to go in the fridge) has not: the next subject shares the predicate."""
@@ -143,7 +142,6 @@ def _has_predicate(items: list[Item]) -> bool:
     return any(x.copula or (x.verb is not None and x.noun is None and (x.state is None or k == 0))
                for k, x in enumerate(items)) or verb_here(items, 0) or last.particle is not None or (
         last.state is not None and last.prep is None)
-
 
 
 def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
@@ -284,7 +282,6 @@ def _state_item_here(items: list[Item], j: int) -> bool:
     if k == j or k >= len(items):
         return False
     return not _PLACE_NOT_STATE.at(items, k) and _RUN_ON_STATE.at(items, k)
-
 
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")

@@ -200,22 +200,15 @@ def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
                  text=" ".join(x.text for x in items))
 
 
-
-
 def parts_as_places(items: list[Item]) -> list[Item]:
     """"on the side of the bath", "on the edge of the bathtub", "on top of the counter": the
     place is the bath, the bathtub, the counter (in/on is the only relation a goal states)."""
     out: list[Item] = []
     k = 0
     while k < len(items):
-        it = items[k]
+        out.append(items[k])
         end = _PART_OF.end(items, k)
-        if end is not None:
-            out.append(it)
-            k = end - 1      # "on the side of the bath" -> "on the bath"
-            continue
-        out.append(it)
-        k += 1
+        k = end - 1 if end is not None else k + 1      # "on the side of the bath" -> "on the bath"
     return out
 
 
