@@ -283,7 +283,8 @@ def _object_first_np(items: list[Item], j: int) -> int:
 def object_first(items: list[Item]) -> list[Item]:
     """"the book put on sofa", "desk lamp make off", "labtop close it": an object before
     its verb (non-native word order), at the start of a clause, is read after it ("put the
-    book on sofa"); a pronoun that repeats the object after the verb is the object."""
+    book on sofa"); a pronoun that repeats the object after the verb ("close laptop it")
+    then refers to it, and a particle stays after the object ("turn desk lamp off")."""
     out: list[Item] = []
     k = 0
     start = True
@@ -297,11 +298,6 @@ def object_first(items: list[Item]) -> list[Item]:
         if end > k:
             verb = items[end]
             rest = end + 1
-            moved = [verb]
-            if rest < len(items) and items[rest].particle in ("on", "off", "up", "down", "away", "out") \
-                    and (rest + 1 >= len(items) or not (items[rest + 1].det or items[rest + 1].noun is not None)):
-                moved.append(items[rest])
-                rest += 1
             nxt = items[rest] if rest < len(items) else None
             if verb.verb is not None and verb.verb.lemma in _PARTICIPLE_LIKE \
                     and not (nxt is not None and nxt.pron in ("it", "them")):
@@ -311,14 +307,12 @@ def object_first(items: list[Item]) -> list[Item]:
                 start = False
                 k += 1
                 continue
-            if nxt is not None and nxt.pron in ("it", "them"):
-                rest += 1       # "labtop close it": the object again
-            elif nxt is not None and (nxt.det or (nxt.noun is not None and nxt.prep is None)):
+            if nxt is not None and (nxt.det or (nxt.noun is not None and nxt.prep is None)):
                 out.append(it)  # the verb has an object of its own: not this construction
                 start = False
                 k += 1
                 continue
-            out += [moved[0], *items[k:end], *moved[1:]]     # "turn the desk lamp off"
+            out += [verb, *items[k:end]]     # "desk lamp turn off": "turn desk lamp off"
             k = rest
             start = False
             continue
