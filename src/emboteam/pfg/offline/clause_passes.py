@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from emboteam.pfg.offline import lexicon
+from emboteam.pfg.offline import lexicon, phrases
 from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
@@ -18,7 +18,6 @@ from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start, parse_np
 from emboteam.pfg.offline.tagger import Item
-from emboteam.world.catalogue import load_catalogue
 
 
 def known_objects(items: list[Item]) -> list[Head] | None:
@@ -244,23 +243,14 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
     return silent
 
 
-def _types(head: Head) -> tuple[str, ...]:
-    return head.noun.concept.types if head.noun is not None else ()
-
-
 def _movable(head: Head) -> bool:
     """Can everything the phrase names be picked up (an apple, a mug)?"""
-    cat = load_catalogue()
-    types = [t for t in _types(head) if t in cat.types]
-    return bool(types) and all(cat.type(t).has("pickupable") for t in types)
+    return phrases.names_only(head, ("pickupable",))
 
 
 def _fixed_place(head: Head) -> bool:
     """Is the phrase a receptacle that cannot be picked up (a fridge, a sink, a counter)?"""
-    cat = load_catalogue()
-    types = [t for t in _types(head) if t in cat.types]
-    return bool(types) and all(cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
-                               for t in types)
+    return phrases.names_only(head, ("receptacle",), ("pickupable",))
 
 
 #: prepositions that say where something goes, most telling first

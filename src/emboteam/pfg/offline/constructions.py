@@ -13,11 +13,11 @@ from dataclasses import replace
 from pydantic import field_validator
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline import phrases
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load, word_tables
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
 from emboteam.pfg.offline.tagger import Item
-from emboteam.world.catalogue import load_catalogue
 
 Act = lx.Act
 
@@ -214,10 +214,8 @@ def parts_as_places(items: list[Item]) -> list[Item]:
 
 def _small_thing(it: Item) -> bool:
     """A noun that names only things one can pick up (a book, a pen), not furniture."""
-    if it.noun is None or it.noun.concept.kind != "object" or it.verb is not None or not it.noun.concept.types:
-        return False
-    cat = load_catalogue()
-    return all(t in cat.types and cat.type(t).has("pickupable") for t in it.noun.concept.types)
+    return it.noun is not None and it.noun.concept.kind == "object" and it.verb is None \
+        and phrases.names_only(it.noun, ("pickupable",))
 
 
 def commaless_lists(items: list[Item]) -> list[Item]:

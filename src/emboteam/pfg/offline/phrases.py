@@ -317,12 +317,18 @@ def _measure_after_noun(s: _NP) -> str | None:
     return None
 
 
+def names_only(head: Head | NounReading, has: tuple[str, ...], lacks: tuple[str, ...] = ()) -> bool:
+    """Does the phrase name catalogue types, every one with the properties ``has`` and none
+    of ``lacks`` ("receptacle", not "pickupable": a fridge, a counter)?"""
+    noun = head.noun if isinstance(head, Head) else head
+    cat = load_catalogue()
+    types = [cat.type(t) for t in (noun.concept.types if noun is not None else ()) if t in cat.types]
+    return bool(types) and all(all(t.has(p) for p in has) and not any(t.has(p) for p in lacks) for t in types)
+
+
 def _furniture(noun: NounReading) -> bool:
     """Does the noun name only furniture things stand on (a side table, a counter)?"""
-    cat = load_catalogue()
-    types = [t for t in noun.concept.types if t in cat.types]
-    return bool(types) and all(cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
-                               and not cat.type(t).has("openable") for t in types)
+    return names_only(noun, ("receptacle",), ("pickupable", "openable"))
 
 
 def _noun(s: _NP) -> str | None:
