@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from emboteam.pfg.offline import lexicon
+from emboteam.pfg.offline import lexicon, phrases
 from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.cues import is_statement
 from emboteam.pfg.offline.frames import parse_clause
@@ -18,7 +18,6 @@ from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import Frame, Head, ParsedClause, Target, np_list, np_start, parse_np
 from emboteam.pfg.offline.tagger import Item
-from emboteam.world.catalogue import load_catalogue
 
 
 def known_objects(items: list[Item]) -> list[Head] | None:
@@ -35,8 +34,8 @@ def known_objects(items: list[Item]) -> list[Head] | None:
 #: acts that ask for nothing on their own ("I'd love it if ...", "when I get home")
 _NO_REQUEST = frozenset({None, lexicon.Act.CAUSE, lexicon.Act.GO, lexicon.Act.MAKE})
 _W = word_tables("clause_passes")
-_SHE_NEEDS_IT, _REQUEST_AFTER_IF, _REPORTED = (pattern_tables("clause_passes").pattern(name) for name in (
-    "she_needs_it", "request_after_if", "reported"))
+_SHE_NEEDS_IT, _REQUEST_AFTER_IF, _REPORTED, _OWN_FUTURE = (pattern_tables("clause_passes").pattern(name) for name in (
+    "she_needs_it", "request_after_if", "reported", "own_future"))
 #: a person's own doings under "when", "before", "if": "when I get home", "before you go"
 #: are a time, not a request
 _PERSON = _W.set("person")
@@ -167,13 +166,7 @@ _MADE_STATES = frozenset({lexicon.Stat.SLICED, lexicon.Stat.COOKED, lexicon.Stat
 def own_future(clause: Clause) -> bool:
     """Does the clause say what the speaker will do ("I'll do the rest myself"), not what
     they will want ("I'll need the apple in the fridge")?"""
-    words = [i for i in clause.items if i.punct is None]
-    if len(words) < 3 or words[0].text not in ("i", "we") or words[1].text not in ("will", "shall"):
-        return False
-    verb = words[2].verb
-    if verb is not None:
-        return verb.lemma not in ("want", "need", "like", "love", "prefer")
-    return words[2].copula
+    return _OWN_FUTURE.at([i for i in clause.items if i.punct is None])
 
 
 _WISH_WORDS = _W.set("wish_words")
@@ -250,23 +243,14 @@ def drop_conditions(clauses: list[Clause], parsed: list[ParsedClause]) -> set[in
     return silent
 
 
-def _types(head: Head) -> tuple[str, ...]:
-    return head.noun.concept.types if head.noun is not None else ()
-
-
 def _movable(head: Head) -> bool:
     """Can everything the phrase names be picked up (an apple, a mug)?"""
-    cat = load_catalogue()
-    types = [t for t in _types(head) if t in cat.types]
-    return bool(types) and all(cat.type(t).has("pickupable") for t in types)
+    return phrases.names_only(head, ("pickupable",))
 
 
 def _fixed_place(head: Head) -> bool:
     """Is the phrase a receptacle that cannot be picked up (a fridge, a sink, a counter)?"""
-    cat = load_catalogue()
-    types = [t for t in _types(head) if t in cat.types]
-    return bool(types) and all(cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
-                               for t in types)
+    return phrases.names_only(head, ("receptacle",), ("pickupable",))
 
 
 #: prepositions that say where something goes, most telling first

@@ -59,19 +59,15 @@ _STATE_THEN_THING, _NOUN_THEN_THING = _P.pattern("state_then_thing"), _P.pattern
 #: ordinals that number the steps of a spoken list
 _LIST_ORDINALS = _W.set("list_ordinals")
 _HUMAN = _W.set("human")
+#: a verb-or-noun word that takes an object (so it is a verb)
 _TAKES_OBJECT, _VERB_CUES, _VERB_HERE = _P.pattern("takes_object"), _P.pattern("verb_cues"), _P.table("verb_here")
-
-
-def _next_is_object(items: list[Item], j: int) -> bool:
-    """Does a verb-or-noun word at ``j`` take an object (so it is a verb)?"""
-    return _TAKES_OBJECT.at(items, j)
 
 
 def verb_here(items: list[Item], j: int) -> bool:
     """Is ``items[j]`` (after optional cues like "also", "please") the verb of a new clause?"""
     j = _VERB_CUES.end(items, j) or j
     rule = first_rule(_VERB_HERE, items, j)
-    return rule is not None and (rule.then == "verb" or (rule.then == "object" and _next_is_object(items, j)))
+    return rule is not None and (rule.then == "verb" or (rule.then == "object" and _TAKES_OBJECT.at(items, j)))
 
 
 #: words that only introduce a robot: "have robot 2 ...", "the second robot", "ask robot 1 to"
@@ -132,12 +128,9 @@ def team_subject(items: list[Item], j: int) -> int:
 _WISH_VERBS = _W.set("wish_verbs")
 
 
-
 def _has_predicate(items: list[Item]) -> bool:
     """Has the clause so far a predicate of its own? "the bread on the counter" (and ...
     need to go in the fridge) has not: the next subject shares the predicate."""
-    if not items:
-        return False
     items = items[_MAKE_SURE.end(items) or 0:]
     items = items[_QUESTION_MODALS.end(items) or 0:]
     if not items:
@@ -149,7 +142,6 @@ def _has_predicate(items: list[Item]) -> bool:
     return any(x.copula or (x.verb is not None and x.noun is None and (x.state is None or k == 0))
                for k, x in enumerate(items)) or verb_here(items, 0) or last.particle is not None or (
         last.state is not None and last.prep is None)
-
 
 
 def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
@@ -174,7 +166,7 @@ def _starts_new(items: list[Item], j: int, current: list[Item] | None = None,
         return True     # "..., it glares on the screen": a clause of its own with a verb we do not know
     if it.verb is not None and it.verb.form == "s" and it.noun is None and current \
             and any(x.verb is not None and x.verb.form == "s" and x.noun is None for x in current) \
-            and _next_is_object(items, j):
+            and _TAKES_OBJECT.at(items, j):
         return True     # "robot 1 closes it and turns off the light": the same subject's next act
     asked = current is not None and _QUESTION_MODALS.at(current)
     kind = subject_here(items, j, asked)
@@ -195,10 +187,6 @@ def _ends_with_place(items: list[Item]) -> bool:
 _NP_WORDS = _W.set("np_words")
 #: adjectives inside a subject ("the big floor lamp's still on")
 _NP_ADJECTIVES = _W.set("np_adjectives")
-
-
-#: words after which "to" starts an infinitive of the same clause, not a purpose
-_TO_INFINITIVE_HEADS = _W.set("to_infinitive_heads")
 
 
 def _skip_np(items: list[Item], j: int) -> int:
@@ -279,8 +267,6 @@ def _also_item(items: list[Item], j: int) -> bool:
         return False
     if items[m].prep in _SUBJECT_PLACES and m + 1 < n and _skip_np(items, m + 1) > m + 1:
         m = _skip_np(items, m + 1)      # "and the spray bottle on the toilet too"
-        if m >= n:
-            return False
     return _TOO_AT_END.at(items, m)
 
 
@@ -296,7 +282,6 @@ def _state_item_here(items: list[Item], j: int) -> bool:
     if k == j or k >= len(items):
         return False
     return not _PLACE_NOT_STATE.at(items, k) and _RUN_ON_STATE.at(items, k)
-
 
 
 #: places that may describe a subject ("the potato on the table by the coffee machine")
@@ -383,7 +368,7 @@ def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut |
     if current.link not in (AND, THEN) and len(items) >= 3 \
             and (_IT_IS.at(items) or (_skip_np(items, 0) == len(items) - 2 and items[-2].copula)) \
             and _READY_STATE.at(items, len(items) - 1) \
-            and it.verb is not None and (it.noun is None or _next_is_object(sentence, j)) \
+            and it.verb is not None and (it.noun is None or _TAKES_OBJECT.at(sentence, j)) \
             and it.verb.form == "base" and verb_here(sentence, j):
         return _Cut(AND)
     return None
@@ -440,12 +425,10 @@ def _subordinator(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     is_sub = it.sub != "by" or (nxt is not None and nxt.verb is not None and nxt.verb.form == "ing")
     if it.text == "as" and nxt is not None and nxt.text in ("to", "well", "soon"):
         is_sub = nxt.text != "well"
-    if it.text == "to" and j > 0 and sentence[j - 1].text in _TO_INFINITIVE_HEADS:
-        is_sub = False      # "I was going to bake": an infinitive, no purpose
     skip = 2 if it.text == "so" and nxt is not None and nxt.text == "that" else 1
     link = it.sub if is_sub else None
     if it.text == "after" and nxt is not None and nxt.verb is not None and nxt.verb.form == "base" \
-            and (nxt.noun is None or _next_is_object(sentence, j + 1)):
+            and (nxt.noun is None or _TAKES_OBJECT.at(sentence, j + 1)):
         link = THEN     # "... and after close the box": afterwards
     if _SO_I_WAS.at(sentence, j):
         link = AND      # "so I was going to bake": what happened, no purpose

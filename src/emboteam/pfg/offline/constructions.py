@@ -13,11 +13,11 @@ from dataclasses import replace
 from pydantic import field_validator
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline import phrases
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load, word_tables
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import DESIRABLE, Frame, Head, Target, np_list, parse_np, skip_locative
 from emboteam.pfg.offline.tagger import Item
-from emboteam.world.catalogue import load_catalogue
 
 Act = lx.Act
 
@@ -200,31 +200,22 @@ def noun_phrase_wish(items: list[Item], mentions: list[Head]) -> Frame | None:
                  text=" ".join(x.text for x in items))
 
 
-
-
 def parts_as_places(items: list[Item]) -> list[Item]:
     """"on the side of the bath", "on the edge of the bathtub", "on top of the counter": the
     place is the bath, the bathtub, the counter (in/on is the only relation a goal states)."""
     out: list[Item] = []
     k = 0
     while k < len(items):
-        it = items[k]
+        out.append(items[k])
         end = _PART_OF.end(items, k)
-        if end is not None:
-            out.append(it)
-            k = end - 1      # "on the side of the bath" -> "on the bath"
-            continue
-        out.append(it)
-        k += 1
+        k = end - 1 if end is not None else k + 1      # "on the side of the bath" -> "on the bath"
     return out
 
 
 def _small_thing(it: Item) -> bool:
     """A noun that names only things one can pick up (a book, a pen), not furniture."""
-    if it.noun is None or it.noun.concept.kind != "object" or it.verb is not None or not it.noun.concept.types:
-        return False
-    cat = load_catalogue()
-    return all(t in cat.types and cat.type(t).has("pickupable") for t in it.noun.concept.types)
+    return it.noun is not None and it.noun.concept.kind == "object" and it.verb is None \
+        and phrases.names_only(it.noun, ("pickupable",))
 
 
 def commaless_lists(items: list[Item]) -> list[Item]:
@@ -290,7 +281,8 @@ def _object_first_np(items: list[Item], j: int) -> int:
 def object_first(items: list[Item]) -> list[Item]:
     """"the book put on sofa", "desk lamp make off", "labtop close it": an object before
     its verb (non-native word order), at the start of a clause, is read after it ("put the
-    book on sofa"); a pronoun that repeats the object after the verb is the object."""
+    book on sofa"); a pronoun that repeats the object after the verb ("close laptop it")
+    then refers to it, and a particle stays after the object ("turn desk lamp off")."""
     out: list[Item] = []
     k = 0
     start = True
@@ -304,11 +296,6 @@ def object_first(items: list[Item]) -> list[Item]:
         if end > k:
             verb = items[end]
             rest = end + 1
-            moved = [verb]
-            if rest < len(items) and items[rest].particle in ("on", "off", "up", "down", "away", "out") \
-                    and (rest + 1 >= len(items) or not (items[rest + 1].det or items[rest + 1].noun is not None)):
-                moved.append(items[rest])
-                rest += 1
             nxt = items[rest] if rest < len(items) else None
             if verb.verb is not None and verb.verb.lemma in _PARTICIPLE_LIKE \
                     and not (nxt is not None and nxt.pron in ("it", "them")):
@@ -318,14 +305,12 @@ def object_first(items: list[Item]) -> list[Item]:
                 start = False
                 k += 1
                 continue
-            if nxt is not None and nxt.pron in ("it", "them"):
-                rest += 1       # "labtop close it": the object again
-            elif nxt is not None and (nxt.det or (nxt.noun is not None and nxt.prep is None)):
+            if nxt is not None and (nxt.det or (nxt.noun is not None and nxt.prep is None)):
                 out.append(it)  # the verb has an object of its own: not this construction
                 start = False
                 k += 1
                 continue
-            out += [moved[0], *items[k:end], *moved[1:]]     # "turn the desk lamp off"
+            out += [verb, *items[k:end]]     # "desk lamp turn off": "turn desk lamp off"
             k = rest
             start = False
             continue

@@ -68,7 +68,7 @@ def _embedded_be(items: list[Item], k: int) -> bool:
 
 #: past participles of "have gone off" kind (the regular ones end in -ed)
 _PARTICIPLES = _W.set("participles")
-_PERFECT, _HABITUAL, _POSTURE = (pattern_tables("cues").pattern(name) for name in ("perfect", "habitual", "posture"))
+_PERFECT, _ONGOING = (pattern_tables("cues").pattern(name) for name in ("perfect", "ongoing"))
 
 
 def _perfect(items: list[Item], k: int) -> bool:
@@ -83,23 +83,13 @@ def _perfect(items: list[Item], k: int) -> bool:
         verb is None and items[m].noun is None and len(items[m].text) > 4 and items[m].text.endswith("ed"))
 
 
-def _habitual(items: list[Item], k: int) -> bool:
-    """"my keys keep going missing": "keep(s)" and a present participle after a subject."""
-    return k > 0 and _HABITUAL.at(items, k - 1)
-
-
-def _posture(items: list[Item], k: int) -> bool:
-    """"the fork and spoon sitting in the sink": where something is, as a participle."""
-    return k > 0 and _POSTURE.at(items, k - 1)
-
-
 def is_statement(items: list[Item]) -> bool:
     """Does the clause say how things are ("the mug is in the cupboard", "the egg has gone
     off")? A form of "be" that no modal turns into a wish ("should be", "needs to be") and
-    that is not inside a relative or subordinate clause, or a perfect."""
+    that is not inside a relative or subordinate clause, a perfect, or how things go on
+    ("my keys keep going missing", "the fork sitting in the sink")."""
     return any((it.text in _BE and not (k > 0 and items[k - 1].text in _MODAL_BEFORE_BE)
-                and not _embedded_be(items, k)) or (k > 0 and _perfect(items, k)) or _habitual(items, k)
-               or _posture(items, k)
+                and not _embedded_be(items, k)) or (k > 0 and (_perfect(items, k) or _ONGOING.at(items, k - 1)))
                for k, it in enumerate(items))
 
 

@@ -18,7 +18,6 @@ from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import ObjectRef
 from emboteam.world.state import ObjectState
 
-_names = ref_types
 _W = word_tables("discourse")
 #: words that make "one" another instance of the kind just named ("a fresh one", "a new one")
 OTHER_WORDS = _W.set("other_words")
@@ -88,8 +87,7 @@ class Discourse:
     def _as_sized(named: Head, one: Head) -> Head:
         """"the tall lamp ... the little one": the kind named before ("lamp"), with the size
         said now ("little lamp") when the lexicon has that compound."""
-        if named.noun is None:
-            return named
+        assert named.noun is not None       # (the caller picks a mention with a noun)
         base = named.noun.phrase.split()[-1]
         for word in one.text.split()[:-1]:
             concept = lx.nouns().get(f"{word} {base}")
@@ -123,7 +121,7 @@ class Discourse:
                 cut = [x for x in self.history if x.group == m.group and x.role == "object"
                        and any(self.cat.slice_product(t) for t in x.ref.type_names())]
                 wholes = list(dict.fromkeys(t for x in cut or [m] for r, _ in x.ref.groups
-                                            for t in _names(r)
+                                            for t in ref_types(r)
                                             if self.cat.slice_product(t) is not None))
                 if len(wholes) > 1 and head.count is None:
                     groups = tuple((ObjectRef(types=(p[0],)), 1) for t in wholes

@@ -46,20 +46,10 @@ class Ref:
     def types(self) -> frozenset[str]:
         """Every type the phrase can stand for, slices folded into their whole."""
         cat = load_catalogue()
-        out: set[str] = set()
-        for ref, _ in self.groups:
-            names = ref.types if ref.id is None else (ref.id.split("_")[0],)
-            for t in names:
-                out.add(cat.source_type(t) or t)
-        return frozenset(out)
+        return frozenset(cat.source_type(t) or t for ref, _ in self.groups for t in ref_types(ref))
 
     def type_names(self) -> tuple[str, ...]:
-        names: list[str] = []
-        for ref, _ in self.groups:
-            for t in (ref.types if ref.id is None else (ref.id.split("_")[0],)):
-                if t not in names:
-                    names.append(t)
-        return tuple(names)
+        return tuple(dict.fromkeys(t for ref, _ in self.groups for t in ref_types(ref)))
 
     def single(self) -> ObjectRef:
         """All groups as one reference (for a receptacle: any of these)."""
@@ -68,12 +58,12 @@ class Ref:
         return ObjectRef(types=self.type_names())
 
 
-#: predicate need -> catalogue property
-NEEDS: dict[str, str] = {
-    "switch": "toggleable", "open": "openable", "slice": "sliceable", "break": "breakable",
-    "cook": "cookable", "dirty": "dirtyable", "fill": "canFillWithLiquid", "hold": "pickupable",
-    "receptacle": "receptacle",
-}
+#: predicate need -> the catalogue property it asks, and what a thing without it cannot be
+NEEDS: dict[str, tuple[str, str]] = {
+    "switch": ("toggleable", "switched"), "open": ("openable", "opened or closed"), "slice": ("sliceable", "sliced"),
+    "break": ("breakable", "broken"), "cook": ("cookable", "cooked"), "dirty": ("dirtyable", "made dirty"),
+    "fill": ("canFillWithLiquid", "filled"), "hold": ("pickupable", "picked up"),
+    "receptacle": ("receptacle", "used as a place")}
 
 
 #: a basin and the fixture it belongs to are one place to people ("the soap on the bath"
@@ -121,7 +111,7 @@ class Grounder:
             return True
         if need == "slice":
             return self.cat.slice_product(t) is not None
-        prop = NEEDS[need]
+        prop = NEEDS[need][0]
         if t not in self.cat.types:
             return False
         if self.cat.type(t).has(prop):
@@ -211,14 +201,9 @@ class Grounder:
                                                 for o in self.instances(s) for c in o.controls
                                                 if c in self.state.objects)]
                 able = wired or able
-            if not able and need == "receptacle":
-                able = []
             if not able:
-                verb = {"switch": "switched", "open": "opened or closed", "slice": "sliced",
-                        "break": "broken", "cook": "cooked", "dirty": "made dirty",
-                        "fill": "filled", "hold": "picked up", "receptacle": "used as a place"}
                 noun = head.noun.phrase
-                raise IncapableError(f"no {noun} in {self.scene.floor_plan} can be {verb[need]} "
+                raise IncapableError(f"no {noun} in {self.scene.floor_plan} can be {NEEDS[need][1]} "
                                      f"({'/'.join(types)})", phrase=noun,
                                      suggestions=lambda: self.suggestions(noun))
             types = list(dict.fromkeys(able))
@@ -268,6 +253,16 @@ class Grounder:
                 return False
         return True
 
+    def _places(self, head: Head) -> list[Ref]:
+        """Where the phrase says its object is (a place not found leaves the object known)."""
+        places = []
+        for _, land in head.location:
+            try:
+                places.append(self.ground(land, None))
+            except GroundingError:
+                continue
+        return places
+
     def ground(self, head: Head, need: str | None) -> Ref:
         """The references a (non-pronoun) noun phrase stands for; a reference chosen with
         doubt is also added to :attr:`doubts`."""
@@ -281,12 +276,7 @@ class Grounder:
         types = self.candidate_types(head, need)
         fell_back = self._fell_back
         label = head.label()
-        places = []
-        for _, land in head.location:
-            try:
-                places.append(self.ground(land, None))
-            except GroundingError:
-                continue   # a place we cannot find does not make the object unknown
+        places = self._places(head)
         self._fell_back = fell_back     # the places' grounding does not make this one doubtful
         selective = bool(head.filters or places)
         if selective and not head.piece:
@@ -330,12 +320,7 @@ class Grounder:
     def located(self, types: Iterable[str], head: Head) -> Ref | None:
         """The instance of ``types`` that ``head``'s places single out ("the old one
         that's on the toilet"), None when they single out none or all of them."""
-        places = []
-        for _, land in head.location:
-            try:
-                places.append(self.ground(land, None))
-            except GroundingError:
-                continue
+        places = self._places(head)
         pool = [o for t in types for o in self.instances(t)]
         chosen = [o for o in pool if self._matches(o, head, places)] if places else []
         if not chosen or len(chosen) == len(pool):

@@ -162,15 +162,6 @@ class _Noun(Strict):
         return self
 
 
-class _Pattern(Strict):
-    pattern: str
-
-    @field_validator("pattern")
-    @classmethod
-    def _compiles(cls, value: str) -> str:
-        return Rewrite(pattern=value, replace="").pattern
-
-
 class LexiconFile(Strict):
     """``data/lexicon.json``: every table of the lexicon."""
 
@@ -214,7 +205,7 @@ class LexiconFile(Strict):
     @field_validator("vague_phrases")
     @classmethod
     def _patterns(cls, value: tuple[str, ...]) -> tuple[str, ...]:
-        return tuple(_Pattern(pattern=p).pattern for p in value)
+        return tuple(Rewrite(pattern=p, replace="").pattern for p in value)
 
     @field_validator("particle_verbs")
     @classmethod

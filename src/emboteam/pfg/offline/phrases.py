@@ -5,7 +5,8 @@ destination (``Target``); an act with its objects (``Frame``); a parsed clause.
 ``parse_np`` reads one noun phrase: determiners, numbers and quantifiers ("all three",
 "both of them", "the lot"), measure words ("two rolls of foil", "a head of lettuce"),
 pieces ("a slice of bread"), adjectives, and a relative clause that picks the object
-out ("the cabinet it's in", "the mug that is dirty", "the apple that is in the fridge").
+out ("the cabinet it's in", "the mug that is dirty"; "the apple that is in the fridge" is
+rewritten before, by :mod:`~emboteam.pfg.offline.idioms`).
 The place helpers tell a place that describes a noun phrase ("the lettuce sitting on the
 counter") from a destination.
 """
@@ -268,8 +269,6 @@ def _determiner(s: _NP) -> str | None:
     elif it.text in ("the", "this", "that", "these", "those", "my", "your", "our",
                      "his", "her", "their", "its"):
         h.definite = True
-        if it.text in ("these", "those"):
-            h.plural = True
     elif it.text == "some":
         h.vague_count = True
     return s.take(it.text)
@@ -318,12 +317,18 @@ def _measure_after_noun(s: _NP) -> str | None:
     return None
 
 
+def names_only(head: Head | NounReading, has: tuple[str, ...], lacks: tuple[str, ...] = ()) -> bool:
+    """Does the phrase name catalogue types, every one with the properties ``has`` and none
+    of ``lacks`` ("receptacle", not "pickupable": a fridge, a counter)?"""
+    noun = head.noun if isinstance(head, Head) else head
+    cat = load_catalogue()
+    types = [cat.type(t) for t in (noun.concept.types if noun is not None else ()) if t in cat.types]
+    return bool(types) and all(all(t.has(p) for p in has) and not any(t.has(p) for p in lacks) for t in types)
+
+
 def _furniture(noun: NounReading) -> bool:
     """Does the noun name only furniture things stand on (a side table, a counter)?"""
-    cat = load_catalogue()
-    types = [t for t in noun.concept.types if t in cat.types]
-    return bool(types) and all(cat.type(t).has("receptacle") and not cat.type(t).has("pickupable")
-                               and not cat.type(t).has("openable") for t in types)
+    return names_only(noun, ("receptacle",), ("pickupable", "openable"))
 
 
 def _noun(s: _NP) -> str | None:
@@ -334,8 +339,6 @@ def _noun(s: _NP) -> str | None:
         return None
     if h.noun is not None and h.noun.concept.kind == "room":
         h.noun = None
-    if h.noun is not None and it.noun.concept.kind == "room":
-        return s.take(it.text)     # "the lights in the room" handled as location
     if h.noun is not None and _furniture(h.noun) and it.noun.concept.kind in ("object", "lamps", "lights") \
             and not _furniture(it.noun):
         # "the side table lamp", "the counter knife": the thing on that furniture
@@ -351,9 +354,6 @@ def _noun(s: _NP) -> str | None:
     if j + 1 < n and items[j].text == "of" and items[j + 1].liquid is not None:
         h.contents = items[j + 1].liquid
         s.take(f"of {h.contents}", 2)
-    elif j + 2 < n and items[j].text == "of" and items[j + 1].det and items[j + 2].noun is not None \
-            and h.noun.concept.kind == "anything":
-        s.j += 1     # "all of the ..." spelled with a noun: "everything of the"
     return _NEXT
 
 
@@ -410,10 +410,6 @@ def _verb_or_preposition(s: _NP) -> str | None:
     """A verb, a preposition, a particle or a state word ends the phrase."""
     it, h = s.it, s.h
     if it.verb is not None and h.noun is None and it.noun is None and not it.det:
-        prev, nxt = s.items[s.j - 1] if s.j > 0 else None, s.nxt
-        if prev is not None and prev.det and nxt is not None and nxt.noun is not None \
-                and it.text in lx.COMMON_WORDS:
-            return s.take(it.text)      # "the empty loo roll", "the used towel": an adjective
         return _STOP
     if it.prep is not None or it.particle is not None or it.state is not None:
         return _STOP
@@ -458,8 +454,6 @@ def _finish_np(s: _NP, i: int) -> tuple[Head | None, int]:
     """What a read noun phrase stands for once its words are known: "them all", a bare
     quantifier ("all three": the objects just listed), a relative clause after the noun."""
     items, h, words, j, n = s.items, s.h, s.words, s.j, len(s.items)
-    if j == i:
-        return None, i
     if h.pron in ("them", "they", "these", "those") and j < n and items[j].text in (
             "all", "both", "each", "together"):
         words.append(items[j].text)        # "them all", "them both"
@@ -503,20 +497,14 @@ def _relative_clause(items: list[Item], j: int, h: Head, words: list[str]) -> in
     if not (k > j and k + 1 < n and items[k].text in ("is", "are", "was", "were")):
         return j
     p = k + 1
-    p += 1 if _POSITION_THEN_PLACE.at(items, p) else 0     # "... that's sitting in the sink"
+    if _POSITION_THEN_PLACE.at(items, p):
+        return j        # "the apple that's (sitting) in the fridge": where it is, read by idioms.py
     nxt = items[p]
     ends = p + 1 >= n or not np_start(items[p + 1])
-    if nxt.state is not None and (nxt.prep is None or ends) and p == k + 1:
+    if nxt.state is not None and (nxt.prep is None or ends):
         h.filters.append(nxt.state)
         words.extend(x.text for x in items[j:k + 2])
         return k + 2
-    if nxt.prep in ("in", "on") and not ends:
-        land, end = parse_np(items, p + 1)
-        if land is not None:
-            land.role = "place"
-            h.location.append((nxt.prep, land))
-            words.extend(x.text for x in items[j:end])
-            return end
     return j
 
 
