@@ -23,13 +23,14 @@ from functools import cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
-from emboteam.pfg.offline.doubts.rule_words import Words, find, starts_at
+from emboteam.pfg.offline.doubts.rule_words import Words, find, sentence_bounds, starts_at
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
 from emboteam.pfg.offline.knowledge import read
+from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, Predicate
@@ -39,6 +40,8 @@ MENTION_CUES_FILE = Path(__file__).with_name("mention_cues.json")
 #: the predicates of one family: a thing keeps one place, one switch state, one open state
 _FAMILIES = ({Predicate.inside}, {Predicate.switched_on, Predicate.switched_off}, {Predicate.open, Predicate.closed})
 #: the property a predicate needs of the thing (a state word that cannot apply is no cue)
+_OPPOSITE = {Predicate.switched_on: Predicate.switched_off, Predicate.switched_off: Predicate.switched_on,
+             Predicate.open: Predicate.closed, Predicate.closed: Predicate.open}
 _NEEDS = {Predicate.switched_on: "toggleable", Predicate.switched_off: "toggleable",
           Predicate.open: "openable", Predicate.closed: "openable"}
 
@@ -61,8 +64,27 @@ class MentionCues(_Closed):
     #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
     place_preps: list[str]
     directions: list[Words]
+    #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
+    direction_reach: int = Field(4, ge=1, le=12)
+    #: words that start a condition: a state after one is not asked of the thing
+    condition_words: list[str]
+    #: things switched as a group ("lights off"): one kept out of its group's switch is an exception
+    groups: list[list[str]]
     chatter: list[SidedCue]
     chatter_reach: int = Field(4, ge=1, le=12)
+
+
+    @field_validator("groups")
+    @classmethod
+    def _known(cls, v: list[list[str]]) -> list[list[str]]:
+        cat = load_catalogue()
+        for group in v:
+            for t in group:
+                try:
+                    cat.type(t)
+                except Exception as exc:    # the catalogue's own error says which type
+                    raise ValueError(f"unknown object type: {exc}") from None
+        return v
 
 
 @cache
@@ -83,11 +105,12 @@ def _is_place(ctx: DoubtContext, m: int) -> bool:
 
 
 def segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
-    """[start, end) of the mention's own words: its clause, cut at the nearest mentions
-    of other things that are not places (a place belongs to the stretch of its thing)."""
-    start, end = ctx.clause_bounds(k)
+    """[start, end) of the mention's own words: its sentence, cut at the nearest mentions
+    of other things that are not places (a place belongs to the stretch of its thing; a
+    clause after a comma is still about it: "the phone, which stays on the desk")."""
+    start, end = sentence_bounds(ctx.items, k)
     thing = set(ctx.named_types(ctx.items[k], verbs_too=True))
-    for m, _, types in ctx.mentions():
+    for m, _, types in _mentions(ctx):
         if m == k or not start <= m < end or set(types) & thing or _is_place(ctx, m):
             continue
         if m < k:
@@ -136,52 +159,90 @@ def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predica
     return asked_predicate(item)
 
 
-def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str) -> Predicate | None:
-    """The state the stretch names that the thing can take, nearest after it first."""
+def _fits(pred: Predicate | None, thing: str) -> bool:
+    return pred is not None and pred is not Predicate.inside and _NEEDS.get(pred, "") in _props(thing) | {""}
+
+
+def _state_before(ctx: DoubtContext, k: int, start: int, thing: str) -> Predicate | None:
+    """A state said before the thing and outside its noun phrase ("put open the blinds",
+    "lights off, the floor lamp too"); an adjective of the noun phrase ("the dirty
+    clothes", "a hot cup") describes it and asks nothing."""
+    j = k - 1
+    while j >= max(start, k - 3) and (ctx.items[j].det or ctx.items[j].punct is not None):
+        j -= 1
+    if j < start or j == k - 1:
+        return None
+    pred = _state_at(ctx, j, k, load_mention_cues())
+    return pred if _fits(pred, thing) else None
+
+
+def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: bool) -> Predicate | None:
+    """The state the words after the thing name that it can take (up to a condition:
+    "the knife, and once it is sliced ..."); a negated one ("never left burning") is its
+    opposite, or none; else one said before it (:func:`_state_before`)."""
     data = load_mention_cues()
-    props = _props(thing)
-    for j in [*range(k + 1, end), *range(k - 1, start - 1, -1)]:
+    for j in range(k + 1, end):
+        item = ctx.items[j]
+        if item.sub is not None or item.text in data.condition_words:
+            return None
         pred = _state_at(ctx, j, end, data)
-        if pred is not None and _NEEDS.get(pred, "") in props | {""} and pred is not Predicate.inside:
-            return pred
-    return None
+        if not _fits(pred, thing):
+            continue
+        if any(i.neg for i in ctx.items[max(k + 1, j - 3):j]):
+            return _OPPOSITE.get(pred)     # type: ignore[arg-type]
+        return pred
+    return _state_before(ctx, k, start, thing) if before else None
 
 
 def _destination(ctx: DoubtContext, k: int, end: int, thing: str) -> str | None:
     """The receptacle a direction after the thing leads to ("mug -> desk")."""
-    for s, e in find(ctx.items, k + 1, end, load_mention_cues().directions):   # a list of the loaded file
+    data = load_mention_cues()
+    for s, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), data.directions):
         place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
         if place is not None and place != thing and "receptacle" in _props(place):
             return place
     return None
 
 
-def kept(ctx: DoubtContext, thing: str, state: Predicate | None) -> Condition | None:
-    """The thing as it is: the state its words name, else its start place (a thing that
-    is picked up), else its start switch or open state."""
-    if state is not None:
-        return one_object(state, thing)
+def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool) -> Predicate:
+    """The switch state a thing kept as it is ends in: its start state, unless the
+    reading switches the rest of its group to that state ("lights off (desk lamp can
+    stay)": an exception to the group, it stays as the person believes it is: the other)."""
+    now = Predicate.switched_on if is_on else Predicate.switched_off
+    group = next((set(g) for g in load_mention_cues().groups if thing in g), set())
+    if any(c.predicate is now and (ref_types(c.subject) & group) - {thing} for c in ctx.goals):
+        return _OPPOSITE[now]
+    return now
+
+
+def kept(ctx: DoubtContext, thing: str, state: Predicate | None) -> tuple[Condition, ...]:
+    """The thing as it is: its start place (a thing that is picked up) and the state its
+    words name ("the candle stays and gets lit"), else its start switch or open state."""
     objs = list(ctx.state.of_type(thing))
     if not objs:
-        return None
+        return ()
     o, props = objs[0], _props(thing)
+    out = [one_object(state, thing)] if state is not None else []
     if "pickupable" in props and o.parent is not None:
-        return placed(thing, ctx.state.obj(o.parent).type)
-    if "toggleable" in props:
-        return one_object(Predicate.switched_on if o.is_on else Predicate.switched_off, thing)
-    if "openable" in props:
-        return one_object(Predicate.open if o.is_open else Predicate.closed, thing)
-    return None
+        out.append(placed(thing, ctx.state.obj(o.parent).type))
+    elif state is None and "toggleable" in props:
+        out.append(one_object(_kept_switch(ctx, thing, o.is_on), thing))
+    elif state is None and "openable" in props:
+        out.append(one_object(Predicate.open if o.is_open else Predicate.closed, thing))
+    return tuple(out)
 
 
 def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str, tuple[Condition, ...]] | None:
     """(label, goals) the mention's cues ask for, or None."""
     data = load_mention_cues()
     start, end = segment(ctx, k)
-    state = _state(ctx, k, start, end, thing)
-    if _sided(ctx, k, start, end, data.keep):
-        keep = kept(ctx, thing, state)
-        return ("keep", (keep,)) if keep is not None else None
+    keep = _sided(ctx, k, start, end, data.keep)
+    # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
+    # the state of the clause before ("lights off, the desk lamp can stay")
+    state = _state(ctx, k, start, end, thing, before=not keep)
+    if keep:
+        goals = kept(ctx, thing, state)
+        return ("keep", goals) if goals else None
     if negated:
         return None      # "not the lamp on": only a keeping cue speaks past a negation
     dest = _destination(ctx, k, end, thing)
@@ -191,11 +252,25 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     return (label, goals) if goals else None
 
 
-def _has_family(ctx: DoubtContext, thing: str, goals: Sequence[Condition]) -> bool:
-    """Whether the reading already gives the thing a goal of a family the proposal has."""
+def _has_goal(ctx: DoubtContext, thing: str, label: str, goals: Sequence[Condition]) -> bool:
+    """Whether the reading gives the thing a goal already: any goal (a state or a place
+    its words ask), or one of a family the proposal has (a thing kept where it is may
+    still be switched on: "the candle stays and gets lit")."""
+    if label != "keep":
+        return thing in ctx.goal_types()
     preds = {c.predicate for c in goals}
     return any(thing in ref_types(c.subject) and any(c.predicate in f and preds & f for f in _FAMILIES)
                for c in ctx.goals)
+
+
+def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
+    """The context's mentions, and a word that may be a verb after a determiner ("leave
+    the light as it is": the light)."""
+    found = {k for k, _, _ in ctx.mentions()}
+    more = [(k, i, types) for k, i in enumerate(ctx.items)
+            if k not in found and k > 0 and ctx.items[k - 1].det and i.verb is not None
+            and (types := ctx.named_types(i, verbs_too=True))]
+    return sorted([*ctx.mentions(), *more], key=lambda m: m[0])
 
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
@@ -203,12 +278,12 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
 
     out: list[Doubt] = []
     seen: set[str] = set()
-    for k, item, types in ctx.mentions():
+    for k, item, types in _mentions(ctx):
         why = explanation(ctx, k, types, goals=False)
         if types[0] in seen or why not in (None, NEGATED):
             continue
         made = _proposal(ctx, k, types[0], negated=why == NEGATED)
-        if made is None or _has_family(ctx, types[0], made[1]):
+        if made is None or _has_goal(ctx, types[0], *made):
             continue
         seen.add(types[0])
         label, goals = made
