@@ -64,6 +64,8 @@ class MentionCues(_Closed):
     #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
     place_preps: list[str]
     directions: list[Words]
+    #: what names the place after "leave X" / "keep X" ("leave the phone on the bed")
+    placing: list[Words]
     #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
     direction_reach: int = Field(4, ge=1, le=12)
     #: words that start a condition: a state after one is not asked of the thing
@@ -71,6 +73,8 @@ class MentionCues(_Closed):
     #: things switched as a group ("lights off"): one kept out of its group's switch is an exception
     groups: list[list[str]]
     chatter: list[SidedCue]
+    #: how far from the thing a keeping cue may stand ("the keys stay on the little table")
+    cue_reach: int = Field(6, ge=1, le=20)
     chatter_reach: int = Field(4, ge=1, le=12)
 
 
@@ -126,17 +130,25 @@ def _found(ctx: DoubtContext, lo: int, hi: int, words: Words) -> list[int]:
     return [s for s in range(lo, hi - len(words) + 1) if starts_at(ctx.items, s, words)]
 
 
-def _sided(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> bool:
-    """Whether a cue stands on its side of ``k`` within [lo, hi), not right after a negation."""
+def _side(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> str | None:
+    """On which side of ``k`` ("before", "after") a cue stands within [lo, hi) (and
+    ``cue_reach`` words), not right after a negation; None when none does."""
+    reach = load_mention_cues().cue_reach
+    lo, hi = max(lo, k - reach), min(hi, k + 1 + reach)
     for cue in cues:
         starts = []
         if cue.side in ("before", "either"):
             starts += _found(ctx, lo, k, cue.words)
         if cue.side in ("after", "either"):
             starts += _found(ctx, k + 1, hi, cue.words)
-        if any(not any(i.neg for i in ctx.items[max(lo, s - 2):s]) for s in starts):
-            return True
-    return False
+        for s in starts:
+            if not any(i.neg for i in ctx.items[max(lo, s - 2):s]):
+                return "before" if s < k else "after"
+    return None
+
+
+def _sided(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> bool:
+    return _side(ctx, k, lo, hi, cues) is not None
 
 
 def chatter(ctx: DoubtContext, k: int) -> bool:
@@ -194,10 +206,11 @@ def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: 
     return _state_before(ctx, k, start, thing) if before else None
 
 
-def _destination(ctx: DoubtContext, k: int, end: int, thing: str) -> str | None:
-    """The receptacle a direction after the thing leads to ("mug -> desk")."""
+def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words] | None = None) -> str | None:
+    """The receptacle a direction after the thing leads to ("mug -> desk"; with ``cues``,
+    a place named after those: "leave the phone on the bed")."""
     data = load_mention_cues()
-    for s, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), data.directions):
+    for s, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues or data.directions):
         place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
         if place is not None and place != thing and "receptacle" in _props(place):
             return place
@@ -236,13 +249,18 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     """(label, goals) the mention's cues ask for, or None."""
     data = load_mention_cues()
     start, end = segment(ctx, k)
-    keep = _sided(ctx, k, start, end, data.keep)
+    keep = _side(ctx, k, start, end, data.keep)
     # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
     # the state of the clause before ("lights off, the desk lamp can stay")
-    state = _state(ctx, k, start, end, thing, before=not keep)
-    if keep:
+    state = _state(ctx, k, start, end, thing, before=keep is None)
+    if keep == "after":
         goals = kept(ctx, thing, state)
         return ("keep", goals) if goals else None
+    if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
+        goals = kept(ctx, thing, state)
+        if (there := _destination(ctx, k, end, thing, data.placing)) is not None:
+            goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there))
+        return ("leave", goals) if goals else None
     if negated:
         return None      # "not the lamp on": only a keeping cue speaks past a negation
     dest = _destination(ctx, k, end, thing)
@@ -252,15 +270,27 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     return (label, goals) if goals else None
 
 
-def _has_goal(ctx: DoubtContext, thing: str, label: str, goals: Sequence[Condition]) -> bool:
-    """Whether the reading gives the thing a goal already: any goal (a state or a place
-    its words ask), or one of a family the proposal has (a thing kept where it is may
-    still be switched on: "the candle stays and gets lit")."""
-    if label != "keep":
-        return thing in ctx.goal_types()
-    preds = {c.predicate for c in goals}
-    return any(thing in ref_types(c.subject) and any(c.predicate in f and preds & f for f in _FAMILIES)
-               for c in ctx.goals)
+def _choice(ctx: DoubtContext, thing: str, label: str, goals: tuple[Condition, ...]) -> Choice | None:
+    """The alternative a mention's cues give, or None when the reading has it already.
+    A state or a place its words ask is for a thing with no goal; a thing kept as it is
+    may have goals of other kinds ("the candle stays and gets lit"), and a place the
+    reading moves it to is dropped ("the soap stays by the sink": by the sink is where it
+    is, not where it goes)."""
+    if label not in ("keep", "leave"):
+        return None if thing in ctx.goal_types() else Choice(label, _how(thing, goals), add=goals)
+    mine = [c for c in ctx.goals if thing in ref_types(c.subject)]
+    add = tuple(g for g in goals if g not in mine)
+    families = [f for f in _FAMILIES if any(g.predicate in f for g in add)]
+    clash = tuple(c for c in mine if any(c.predicate in f for f in families))
+    if not add or any(c.predicate is not Predicate.inside or label != "keep" for c in clash):
+        return None
+    if clash:
+        return Choice("keep_moved", _how(thing, add), drop=clash, add=add)
+    return Choice(label, _how(thing, add), add=add)
+
+
+def _how(thing: str, goals: Sequence[Condition]) -> str:
+    return f"{type_name(thing)}: " + "; ".join(clause(c) for c in goals)
 
 
 def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
@@ -283,11 +313,9 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         if types[0] in seen or why not in (None, NEGATED):
             continue
         made = _proposal(ctx, k, types[0], negated=why == NEGATED)
-        if made is None or _has_goal(ctx, types[0], *made):
+        choice = None if made is None else _choice(ctx, types[0], *made)
+        if choice is None:
             continue
         seen.add(types[0])
-        label, goals = made
-        how = "; ".join(clause(c) for c in goals)
-        out.append(Doubt(KIND, item.text, (Choice(AS_READ, f"{item.text!r}: no goal"),
-                                           Choice(label, f"{type_name(types[0])}: {how}", add=goals))))
+        out.append(Doubt(KIND, item.text, (Choice(AS_READ, f"{item.text!r}: as read"), choice)))
     return out
