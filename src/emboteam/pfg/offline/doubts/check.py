@@ -72,7 +72,8 @@ class FeasibilityCheck:
         for c in goals:
             if c.predicate is Predicate.inside and c.receptacle is not None and len(c.subject.types) == 1:
                 places.setdefault(c.subject.types[0], set()).add(c.receptacle.types or (str(c.receptacle.id),))
-        return all(len(where) < 2 or len(list(self.state.of_type(t))) > 1 for t, where in places.items())
+        # a type with none yet (slices) or several may be in several places
+        return all(len(where) < 2 or len(list(self.state.of_type(t))) != 1 for t, where in places.items())
 
 
 def consistent(goals: Sequence[Condition]) -> bool:

@@ -68,6 +68,10 @@ class MentionCues(_Closed):
     placing: list[Words]
     #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
     direction_reach: int = Field(4, ge=1, le=12)
+    #: words that say a state as it is (with the tagger's copulas): "its broken anyway"
+    copulas: list[str]
+    #: words between a copula and a state that make it wanted: "should be", "is always on"
+    wishes: list[str]
     #: words that start a condition: a state after one is not asked of the thing
     condition_words: list[str]
     #: things switched as a group ("lights off"): one kept out of its group's switch is an exception
@@ -171,6 +175,16 @@ def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predica
     return asked_predicate(item)
 
 
+def _described(ctx: DoubtContext, k: int, j: int, data: MentionCues) -> bool:
+    """Whether the state at ``j`` is said of the thing as it is ("the phone, it's broken
+    anyway"): after a copula, with no wish, rule or narrative that makes it an end state
+    ("should be on", "is never on", "when I walk in the TV is on")."""
+    between = ctx.items[k + 1:j]
+    if not any(i.copula or i.text in data.copulas for i in between):
+        return False
+    return not (ctx.narrative or any(i.text in data.wishes for i in between))
+
+
 def _fits(pred: Predicate | None, thing: str) -> bool:
     return pred is not None and pred is not Predicate.inside and _NEEDS.get(pred, "") in _props(thing) | {""}
 
@@ -198,7 +212,7 @@ def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: 
         if item.sub is not None or item.text in data.condition_words:
             return None
         pred = _state_at(ctx, j, end, data)
-        if not _fits(pred, thing):
+        if not _fits(pred, thing) or _described(ctx, k, j, data):
             continue
         if any(i.neg for i in ctx.items[max(k + 1, j - 3):j]):
             return _OPPOSITE.get(pred)     # type: ignore[arg-type]
