@@ -317,14 +317,34 @@ def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
     return sorted([*ctx.mentions(), *more], key=lambda m: m[0])
 
 
+def _chatter_doubt(ctx: DoubtContext, k: int, item: Item, thing: str) -> Doubt | None:
+    """A thing named only in chatter ("we used to have a laptop") that the reading gave
+    goals: those goals dropped is the alternative."""
+    from emboteam.pfg.offline.doubts.explained import CHATTER, explanation
+
+    if any(m != k and thing in ts and explanation(ctx, m, ts, goals=False) != CHATTER for m, _, ts in _mentions(ctx)):
+        return None      # named again outside the chatter
+    goals = tuple(c for c in ctx.goals if thing in ref_types(c.subject))
+    if not goals:
+        return None
+    return Doubt(KIND, item.text, (Choice(AS_READ, f"{item.text!r}: as read"),
+                                   Choice("chatter", f"{item.text!r} is chatter: no goal", drop=goals)))
+
+
 def doubts(ctx: DoubtContext) -> list[Doubt]:
-    from emboteam.pfg.offline.doubts.explained import NEGATED, explanation
+    from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
 
     out: list[Doubt] = []
     seen: set[str] = set()
     for k, item, types in _mentions(ctx):
         why = explanation(ctx, k, types, goals=False)
-        if types[0] in seen or why not in (None, NEGATED):
+        if types[0] in seen or why not in (None, NEGATED, CHATTER):
+            continue
+        if why == CHATTER:
+            found = _chatter_doubt(ctx, k, item, types[0])
+            if found is not None:
+                seen.add(types[0])
+                out.append(found)
             continue
         made = _proposal(ctx, k, types[0], negated=why == NEGATED)
         choice = None if made is None else _choice(ctx, types[0], *made)
