@@ -163,16 +163,17 @@ def chatter(ctx: DoubtContext, k: int) -> bool:
 
 
 def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predicate | None:
+    """The state the word at ``j`` asks; a word that may be a preposition or a particle
+    ("on", "up") is one only with no place or preposition after it ("stays on the shelf",
+    "ends up on the dresser")."""
     item = ctx.items[j]
-    if item.text in data.states:
-        return data.states[item.text]
-    if item.state is None:
+    if item.text not in data.states and item.state is None:
         return None
-    if item.text in data.place_preps and j + 1 < end:
+    if (item.text in data.states or item.text in data.place_preps) and j + 1 < end:
         nxt = ctx.items[j + 1]
-        if nxt.det or nxt.noun is not None:
-            return None      # "stays on the shelf": a place, not a state
-    return asked_predicate(item)
+        if nxt.det or nxt.noun is not None or (nxt.prep is not None and item.text in data.states):
+            return None
+    return data.states[item.text] if item.text in data.states else asked_predicate(item)
 
 
 def _described(ctx: DoubtContext, k: int, j: int, data: MentionCues) -> bool:
@@ -209,8 +210,8 @@ def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: 
     data = load_mention_cues()
     for j in range(k + 1, end):
         item = ctx.items[j]
-        if item.sub is not None or item.text in data.condition_words:
-            return None
+        if item.sub is not None or item.text in data.condition_words or (item.pron is not None and not item.det):
+            return None      # a condition, or a state said of what a pronoun names ("press it down")
         pred = _state_at(ctx, j, end, data)
         if not _fits(pred, thing) or _described(ctx, k, j, data):
             continue
