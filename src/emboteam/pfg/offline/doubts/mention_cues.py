@@ -225,7 +225,7 @@ def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence
     """The receptacle a direction after the thing leads to ("mug -> desk"; with ``cues``,
     a place named after those: "leave the phone on the bed")."""
     data = load_mention_cues()
-    for s, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues or data.directions):
+    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues or data.directions):
         place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
         if place is not None and place != thing and "receptacle" in _props(place):
             return place
