@@ -24,7 +24,9 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
 
-The words of the last five (and of stays) are data: ``rule_words.json`` (:mod:`.rule_words`).
+The words of contents, exclusive, next_place, stated, correction_object (and of stays) are
+data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
+``mention_cues.json``.
 """
 
 from __future__ import annotations

@@ -112,10 +112,24 @@ def _is_place(ctx: DoubtContext, m: int) -> bool:
     return after_preposition(ctx, m, ctx.clause_bounds(m)[0])
 
 
+def _memo(ctx: DoubtContext) -> dict[object, object]:
+    """This module's answers for one context, kept on it (the rules and the explanations
+    ask the same mentions and stretches many times per instruction; the context is frozen,
+    so they are stored as its cached properties are, in its ``__dict__``)."""
+    return ctx.__dict__.setdefault("_mention_cues_memo", {})     # type: ignore[no-any-return]
+
+
 def segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
     """[start, end) of the mention's own words: its sentence, cut at the nearest mentions
     of other things that are not places (a place belongs to the stretch of its thing; a
     clause after a comma is still about it: "the phone, which stays on the desk")."""
+    memo = _memo(ctx)
+    if ("segment", k) not in memo:
+        memo["segment", k] = _segment(ctx, k)
+    return memo["segment", k]      # type: ignore[return-value]
+
+
+def _segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
     start, end = sentence_bounds(ctx.items, k)
     thing = set(ctx.named_types(ctx.items[k], verbs_too=True))
     for m, _, types in _mentions(ctx):
@@ -311,11 +325,15 @@ def _how(thing: str, goals: Sequence[Condition]) -> str:
 def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
     """The context's mentions, and a word that may be a verb after a determiner ("leave
     the light as it is": the light)."""
+    memo = _memo(ctx)
+    if "mentions" in memo:
+        return memo["mentions"]    # type: ignore[return-value]
     found = {k for k, _, _ in ctx.mentions()}
     more = [(k, i, types) for k, i in enumerate(ctx.items)
             if k not in found and k > 0 and ctx.items[k - 1].det and i.verb is not None
             and (types := ctx.named_types(i, verbs_too=True))]
-    return sorted([*ctx.mentions(), *more], key=lambda m: m[0])
+    memo["mentions"] = sorted([*ctx.mentions(), *more], key=lambda m: m[0])
+    return memo["mentions"]    # type: ignore[return-value]
 
 
 def _chatter_doubt(ctx: DoubtContext, k: int, item: Item, thing: str) -> Doubt | None:
