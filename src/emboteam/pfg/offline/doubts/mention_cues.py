@@ -132,8 +132,10 @@ def segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
 def _segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
     start, end = sentence_bounds(ctx.items, k)
     thing = set(ctx.named_types(ctx.items[k], verbs_too=True))
-    for m, _, types in _mentions(ctx):
-        if m == k or not start <= m < end or set(types) & thing or _is_place(ctx, m):
+    # every word that may name another thing cuts, a verb-like one too ("- microwave's fine")
+    for m in range(start, end):
+        types = ctx.named_types(ctx.items[m], verbs_too=True)
+        if m == k or not types or set(types) & thing or _is_place(ctx, m):
             continue
         if m < k:
             start = m + 1
