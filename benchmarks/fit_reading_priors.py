@@ -172,9 +172,12 @@ def satisfies(keys: frozenset[tuple[object, ...]], truth: frozenset[tuple[object
 
 
 def _closeness(case: Case, goals: Sequence[Condition]) -> int:
+    """2 per true condition met, -1 per condition not in the truth (unless it holds
+    already at the start: a thing kept where it is asks nothing wrong), +100 when right."""
     keys = case.keys(goals)
+    idle = case.keys([c for c in goals if check_condition(c, case.state).holds])
     met = sum(any(_implies(g, w) for g in keys) for w in case.truth)
-    return 2 * met - len(keys - case.truth) + (100 if case.right(goals) else 0)
+    return 2 * met - len(keys - case.truth - idle) + (100 if case.right(goals) else 0)
 
 
 def fit(cases: list[Case], base: Priors) -> Priors:
@@ -238,13 +241,15 @@ def _promoting(priors: Priors) -> list[tuple[str, str]]:
             if label != AS_READ and p > table.get(AS_READ, priors.default_prior)]
 
 
-def guard(cases: list[Case], priors: Priors) -> Priors:
-    """Cap promoting alternatives, most harmful first, until no round's top-1 is below
-    the reading as read."""
+def guard(cases: list[Case], priors: Priors, kinds: set[str] | None = None,
+          floor: dict[str, int] | None = None) -> Priors:
+    """Cap promoting alternatives (of ``kinds`` only, when given), most harmful first,
+    until no round's top-1 is below the reading as read (or below ``floor``, a top-1 per
+    round: the shipped priors' when only some kinds are refitted)."""
     while True:
         scores = score(cases, priors)
-        worse = {r for r, s in scores.items() if s.top1 < s.as_read}
-        promoting = _promoting(priors)
+        worse = {r for r, s in scores.items() if s.top1 < (s.as_read if floor is None else floor[r])}
+        promoting = [kl for kl in _promoting(priors) if kinds is None or kl[0] in kinds]
         if not worse or not promoting:
             return priors
         harm: Counter[tuple[str, str]] = Counter()
@@ -260,18 +265,35 @@ def guard(cases: list[Case], priors: Priors) -> Priors:
         priors = priors.model_copy(update={"priors": table})
 
 
+def refit_kinds(cases: list[Case], shipped: Priors, kinds: set[str]) -> Priors:
+    """The shipped priors with only ``kinds`` refitted (and guarded), the rest as shipped."""
+    fitted = fit(cases, shipped)
+    table = {k: dict(v) for k, v in shipped.priors.items()}
+    table.update({k: v for k, v in fitted.priors.items() if k in kinds})
+    before = {k: v for k, v in shipped.priors.items() if k not in kinds}
+    floor = {r: s.top1 for r, s in score(cases, shipped.model_copy(update={"priors": before})).items()}
+    priors = guard(cases, shipped.model_copy(update={"priors": table}), kinds, floor)
+    rounds = sorted({*shipped.fitted_on, *(c.round for c in cases)})
+    return priors.model_copy(update={"fitted_on": rounds})
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--check", action="store_true", help="report with the shipped priors, write nothing")
     parser.add_argument("--extra", type=Path, nargs="*", default=[], help="more development rounds (dirs)")
     parser.add_argument("--json", action="store_true", help="one JSON object on stdout")
     parser.add_argument("--out", type=Path, default=PRIORS_FILE, help="where to write the priors")
+    parser.add_argument("--kinds", nargs="*", default=[],
+                        help="refit only these kinds of doubt (the other priors and the coverage weight kept)")
     args = parser.parse_args(argv)
     cases = dev_cases(args.extra)
     read_all(cases)
     shipped = load_priors()
     if args.check:
         priors = shipped
+    elif args.kinds:
+        priors = refit_kinds(cases, shipped, set(args.kinds))
+        args.out.write_text(json.dumps(priors.model_dump(), indent=1) + "\n")
     else:
         fitted = fit(cases, shipped)
         tried = []

@@ -822,7 +822,9 @@ def test_a_broken_off_word_is_corrected_and_the_speakers_own_plan_is_no_request(
 def test_a_wish_for_objects_brought_somewhere_after_so_is_one_clause() -> None:
     reading = read("I'm working from the desk today, so I'd like my phone and the book from the coffee table "
                    "brought over to the desk. Not the keys, those can stay put. And the floor lamp can go off.", 229)
-    assert goal(reading) == {"inside(CellPhone, Desk)", "inside(Book, Desk)", "switched_off(FloorLamp)"}
+    # the keys "can stay put": kept on the coffee table (doubts/mention_cues.py)
+    assert goal(reading) == {"inside(CellPhone, Desk)", "inside(Book, Desk)", "switched_off(FloorLamp)",
+                             "inside(KeyChain, CoffeeTable)"}
 
 
 def test_what_keeps_happening_is_a_statement() -> None:
@@ -1496,7 +1498,9 @@ def test_round_39_requests(text: str, fp: int, expected: set[str]) -> None:
     # "in there" is where the thing named before stands, when nothing else can take it
     ("The tomato's already in the fridge. Put the egg in there with it.", 1, {"inside(Egg, Fridge)"}),
     # a request broken off by "no wait" and said again
-    ("Put the apple on the - no wait, leave the apple where it is. Put the egg in the bowl.", 1, {"inside(Egg, Bowl)"}),
+    # the kept apple stays where it is (doubts/mention_cues.py: its start place is a goal)
+    ("Put the apple on the - no wait, leave the apple where it is. Put the egg in the bowl.", 1,
+     {"inside(Egg, Bowl)", "inside(Apple, CounterTop)"}),
     ("I would like a cup of coffee from the machine, in my mug.", 1, {"filled(Mug, coffee)", "hot(Mug)"}),
     # "no heat" is no correction
     ("the kettle goes on the stove (just put it there, no heat)", 1, {"inside(Kettle, StoveBurner)"}),

@@ -216,7 +216,7 @@ def test_clarify_on_a_terminal_asks_and_uses_the_choice() -> None:
 @pytest.mark.parametrize(("text", "floor_plan", "kind", "alternative"), [
     ("heat the potato in the microwave", "FloorPlan1", "means", {"hot(Potato)", "inside(Potato, Microwave)"}),
     ("make me a coffee", "FloorPlan1", "means", {"filled(Mug, coffee)", "inside(Mug, CoffeeMachine)"}),
-    ("leave the tomato where it is and put the apple in the fridge", "FloorPlan1", "stays",
+    ("leave the tomato where it is and put the apple in the fridge", "FloorPlan1", "mention_cue",
      {"inside(Apple, Fridge)", "inside(Tomato, CounterTop)"}),
     ("turn off the lamp", "FloorPlan201", "scene_type", {"switched_off(FloorLamp)"}),
     ("put the apple in the fridge, no, on the counter", "FloorPlan1", "correction", {"inside(Apple, Fridge)"}),

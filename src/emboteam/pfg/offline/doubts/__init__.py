@@ -22,8 +22,11 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
 | stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
 | correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
+| mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
 
-The words of the last five (and of stays) are data: ``rule_words.json`` (:mod:`.rule_words`).
+The words of contents, exclusive, next_place, stated, correction_object (and of stays) are
+data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
+``mention_cues.json``.
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ from emboteam.pfg.offline.doubts import (
     exclusive,
     instances,
     means,
+    mention_cues,
     next_place,
     of_compound,
     scene_type,
@@ -61,9 +65,14 @@ def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
 def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     """Every point of doubt of a reading, rule by rule."""
     priors = priors or load_priors()
-    found = [*unexplained.doubts(ctx), *scope.doubts(ctx), *of_compound.doubts(ctx), *scene_type.doubts(ctx),
+    cued = mention_cues.doubts(ctx)
+    # a mention whose own words give its goal is settled by that doubt, not by the weaker
+    # guesses of an unexplained mention or of a kept thing
+    said = {d.span for d in cued}
+    found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
+             *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *stays.doubts(ctx), *reading_doubts(ctx)]
+             *instances.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said), *reading_doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 

@@ -2,7 +2,8 @@
 scene has and can take that state (the goal checker), the goal compiler can compile it
 (AI2-THOR's placement rules), the team has the skills it needs, and no two of its end
 states are opposite states of one object (the reader's own contradiction rule: a doubt
-that adds "the light on" to a reading that has it off makes no reading).
+that adds "the light on" to a reading that has it off makes no reading), and no thing the
+scene has one of is wanted in two places.
 
 Conditions are checked one at a time and remembered (:class:`FeasibilityCheck`): the
 candidates of one instruction share most of their conditions, and the team check is the
@@ -19,7 +20,7 @@ from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
 from emboteam.pfg.offline.consistency import opposed
 from emboteam.sim.capability import analyse_condition
 from emboteam.world.checker import GoalValidationError, validate_goal
-from emboteam.world.goals import Condition, Goal
+from emboteam.world.goals import Condition, Goal, Predicate
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -62,7 +63,17 @@ class FeasibilityCheck:
                                     for c in goals if c not in self.base)
 
     def __call__(self, goals: tuple[Condition, ...]) -> bool:
-        return all(self.condition(c) for c in goals) and consistent(goals)
+        return all(self.condition(c) for c in goals) and consistent(goals) and self.one_place(goals)
+
+    def one_place(self, goals: Sequence[Condition]) -> bool:
+        """No thing the scene has one of is wanted in two places at once (a doubt that
+        keeps the candle where it is, and another that moves it to the drawer)."""
+        places: dict[str, set[tuple[str, ...]]] = {}
+        for c in goals:
+            if c.predicate is Predicate.inside and c.receptacle is not None and len(c.subject.types) == 1:
+                places.setdefault(c.subject.types[0], set()).add(c.receptacle.types or (str(c.receptacle.id),))
+        # a type with none yet (slices) or several may be in several places
+        return all(len(where) < 2 or len(list(self.state.of_type(t))) != 1 for t, where in places.items())
 
 
 def consistent(goals: Sequence[Condition]) -> bool:

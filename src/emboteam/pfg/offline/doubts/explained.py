@@ -1,5 +1,6 @@
 """Why a mention of a scene thing that ends in no goal was not dropped: it is a place or
-a landmark, a called-off or negated act, an excluded item or a condition.
+a landmark, a called-off or negated act, an excluded item, a condition or chatter (a chatter cue of
+:mod:`.mention_cues`: "we used to have ...").
 
 A mention none of these explain is an *unexplained mention* (:mod:`.unexplained`): the
 reading may have dropped a requested end state.
@@ -7,6 +8,7 @@ reading may have dropped a requested end state.
 
 from __future__ import annotations
 
+from emboteam.pfg.offline.doubts import mention_cues
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.world.catalogue import load_catalogue
 
@@ -30,11 +32,13 @@ CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "
                          "clutter", "cluttered", "cluttering", "clean", "empty"})
 #: the explanation of a mention the person negated or excluded
 NEGATED = "negated or excluded"
+#: the explanation of a mention a chatter cue frames ("we used to have ...": :mod:`.mention_cues`)
+CHATTER = "chatter"
 #: how far back (in words) an excluder or a place preposition reaches
 _REACH = 4
 
 
-def _after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
+def after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
     """Whether the mention at ``k`` is the object of a preposition: one stands before it
     within reach, with no verb, state word or conjunction between ("to the box", not
     "to an open the blinds": a preposition governs its noun phrase, not past a verb)."""
@@ -59,7 +63,7 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool =
         return "in a goal"
     start, _ = ctx.clause_bounds(k)
     before = ctx.items[max(start, k - _REACH):k]
-    if _after_preposition(ctx, k, start):
+    if after_preposition(ctx, k, start):
         return "a place or landmark"
     if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
             ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):
@@ -72,4 +76,6 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool =
         return "called off by a self-correction"
     if any(m.role in ("place", "dest") and set(types) & m.ref.types for m in ctx.history):
         return "a place or landmark"
+    if mention_cues.chatter(ctx, k):
+        return CHATTER
     return None

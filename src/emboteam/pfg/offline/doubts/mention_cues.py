@@ -1,0 +1,376 @@
+"""Point of doubt: what a mention's own words ask of a thing the reading gave no goal.
+
+One general mechanism instead of a phrase rule per sentence: every mention of a scene
+thing that ends in no goal (and that nothing but a negation explains) is read in its own
+stretch of words (its clause, cut at the neighbouring things that are not places) for
+
+- a *keeping* cue ("stays", "remains", "leave X", "where it is", "is fine there"): the
+  thing kept as it is, its start place or its start state read from the scene, or the
+  state its stretch names ("the floor lamp stays on" -> on);
+- a *state* word or participle ("the floor lamp glowing", "blinds down", "laptop: shut");
+- a *direction* to a receptacle named after it ("mug -> desk", "kettle 2 the stove").
+
+*Chatter* cues ("we used to have", "last time", "can't find") make the mention chatter
+instead: :func:`chatter` is also one of :mod:`.explained`'s explanations. The cue words
+are data (``mention_cues.json``, schema :class:`MentionCues` checked at load); the
+alternative's prior is in ``priors.json`` (kind ``mention_cue``, one label per cue).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import cache
+from pathlib import Path
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from emboteam.pfg.candidates import AS_READ, Choice, Doubt
+from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.rule_words import Words, find, sentence_bounds, starts_at
+from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
+from emboteam.pfg.offline.knowledge import read
+from emboteam.pfg.offline.tagger import Item
+from emboteam.pfg.sentences import clause, type_name
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import Condition, Predicate
+
+KIND = "mention_cue"
+MENTION_CUES_FILE = Path(__file__).with_name("mention_cues.json")
+#: the predicates of one family: a thing keeps one place, one switch state, one open state
+_FAMILIES = ({Predicate.inside}, {Predicate.switched_on, Predicate.switched_off}, {Predicate.open, Predicate.closed})
+#: the property a predicate needs of the thing (a state word that cannot apply is no cue)
+_OPPOSITE = {Predicate.switched_on: Predicate.switched_off, Predicate.switched_off: Predicate.switched_on,
+             Predicate.open: Predicate.closed, Predicate.closed: Predicate.open}
+_NEEDS = {Predicate.switched_on: "toggleable", Predicate.switched_off: "toggleable",
+          Predicate.open: "openable", Predicate.closed: "openable"}
+
+
+class _Closed(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class SidedCue(_Closed):
+    words: Words = Field(min_length=1)
+    #: where the cue stands from the thing: "the lamp stays" (after), "leave the lamp" (before)
+    side: Literal["before", "after", "either"]
+
+
+class MentionCues(_Closed):
+    about: str = ""
+    keep: list[SidedCue]
+    #: participles and words the tagger reads as no state -> the predicate they ask
+    states: dict[str, Predicate]
+    #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
+    place_preps: list[str]
+    directions: list[Words]
+    #: what names the place after "leave X" / "keep X" ("leave the phone on the bed")
+    placing: list[Words]
+    #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
+    direction_reach: int = Field(4, ge=1, le=12)
+    #: words that say a state as it is (with the tagger's copulas): "its broken anyway"
+    copulas: list[str]
+    #: words between a copula and a state that make it wanted: "should be", "is always on"
+    wishes: list[str]
+    #: words that start a condition: a state after one is not asked of the thing
+    condition_words: list[str]
+    #: things switched as a group ("lights off"): one kept out of its group's switch is an exception
+    groups: list[list[str]]
+    chatter: list[SidedCue]
+    #: how far from the thing a keeping cue may stand ("the keys stay on the little table")
+    cue_reach: int = Field(6, ge=1, le=20)
+    chatter_reach: int = Field(4, ge=1, le=12)
+
+
+    @field_validator("groups")
+    @classmethod
+    def _known(cls, v: list[list[str]]) -> list[list[str]]:
+        cat = load_catalogue()
+        for group in v:
+            for t in group:
+                try:
+                    cat.type(t)
+                except Exception as exc:    # the catalogue's own error says which type
+                    raise ValueError(f"unknown object type: {exc}") from None
+        return v
+
+
+@cache
+def load_mention_cues(path: Path = MENTION_CUES_FILE) -> MentionCues:
+    """The cue file, checked by its schema (a malformed entry is a
+    :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
+    return read(path, MentionCues)
+
+
+def _props(type_: str) -> frozenset[str]:
+    return frozenset(load_catalogue().type(type_).properties)
+
+
+def _is_place(ctx: DoubtContext, m: int) -> bool:
+    from emboteam.pfg.offline.doubts.explained import after_preposition
+
+    return after_preposition(ctx, m, ctx.clause_bounds(m)[0])
+
+
+def _memo(ctx: DoubtContext) -> dict[object, object]:
+    """This module's answers for one context, kept on it (the rules and the explanations
+    ask the same mentions and stretches many times per instruction; the context is frozen,
+    so they are stored as its cached properties are, in its ``__dict__``)."""
+    return ctx.__dict__.setdefault("_mention_cues_memo", {})     # type: ignore[no-any-return]
+
+
+def segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
+    """[start, end) of the mention's own words: its sentence, cut at the nearest mentions
+    of other things that are not places (a place belongs to the stretch of its thing; a
+    clause after a comma is still about it: "the phone, which stays on the desk")."""
+    memo = _memo(ctx)
+    if ("segment", k) not in memo:
+        memo["segment", k] = _segment(ctx, k)
+    return memo["segment", k]      # type: ignore[return-value]
+
+
+def _segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
+    start, end = sentence_bounds(ctx.items, k)
+    thing = set(ctx.named_types(ctx.items[k], verbs_too=True))
+    # every word that may name another thing cuts, a verb-like one too ("- microwave's fine")
+    for m in range(start, end):
+        types = ctx.named_types(ctx.items[m], verbs_too=True)
+        if m == k or not types or set(types) & thing or _is_place(ctx, m):
+            continue
+        if m < k:
+            start = m + 1
+        else:
+            end = m
+            break
+    return start, end
+
+
+def _found(ctx: DoubtContext, lo: int, hi: int, words: Words) -> list[int]:
+    """Where the words start between ``lo`` and ``hi`` (the whole phrase inside)."""
+    return [s for s in range(lo, hi - len(words) + 1) if starts_at(ctx.items, s, words)]
+
+
+def _side(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> str | None:
+    """On which side of ``k`` ("before", "after") a cue stands within [lo, hi) (and
+    ``cue_reach`` words), not right after a negation; None when none does."""
+    reach = load_mention_cues().cue_reach
+    lo, hi = max(lo, k - reach), min(hi, k + 1 + reach)
+    for cue in cues:
+        starts = []
+        if cue.side in ("before", "either"):
+            starts += _found(ctx, lo, k, cue.words)
+        if cue.side in ("after", "either"):
+            starts += _found(ctx, k + 1, hi, cue.words)
+        for s in starts:
+            if not any(i.neg for i in ctx.items[max(lo, s - 2):s]):
+                return "before" if s < k else "after"
+    return None
+
+
+def _sided(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> bool:
+    return _side(ctx, k, lo, hi, cues) is not None
+
+
+def chatter(ctx: DoubtContext, k: int) -> bool:
+    """Whether a chatter cue frames the mention ("we used to have a magazine rack")."""
+    data = load_mention_cues()
+    start, end = segment(ctx, k)
+    return _sided(ctx, k, max(start, k - data.chatter_reach), min(end, k + 1 + data.chatter_reach), data.chatter)
+
+
+def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predicate | None:
+    """The state the word at ``j`` asks; a word that may be a preposition or a particle
+    ("on", "up") is one only with no place or preposition after it ("stays on the shelf",
+    "ends up on the dresser")."""
+    item = ctx.items[j]
+    if item.text not in data.states and item.state is None:
+        return None
+    if (item.text in data.states or item.text in data.place_preps) and j + 1 < end:
+        nxt = ctx.items[j + 1]
+        if nxt.det or nxt.noun is not None or (nxt.prep is not None and item.text in data.states):
+            return None
+    return data.states[item.text] if item.text in data.states else asked_predicate(item)
+
+
+def _described(ctx: DoubtContext, k: int, j: int, data: MentionCues) -> bool:
+    """Whether the state at ``j`` is said of the thing as it is ("the phone, it's broken
+    anyway"): after a copula, with no wish, rule or narrative that makes it an end state
+    ("should be on", "is never on", "when I walk in the TV is on")."""
+    between = ctx.items[k + 1:j]
+    if not any(i.copula or i.text in data.copulas for i in between):
+        return False
+    return not (ctx.narrative or any(i.text in data.wishes for i in between))
+
+
+def _fits(pred: Predicate | None, thing: str) -> bool:
+    return pred is not None and pred is not Predicate.inside and _NEEDS.get(pred, "") in _props(thing) | {""}
+
+
+def _state_before(ctx: DoubtContext, k: int, start: int, thing: str) -> Predicate | None:
+    """A state said before the thing and outside its noun phrase ("put open the blinds",
+    "lights off, the floor lamp too"); an adjective of the noun phrase ("the dirty
+    clothes", "a hot cup") describes it and asks nothing."""
+    j = k - 1
+    while j >= max(start, k - 3) and (ctx.items[j].det or ctx.items[j].punct is not None):
+        j -= 1
+    if j < start or j == k - 1:
+        return None
+    pred = _state_at(ctx, j, k, load_mention_cues())
+    return pred if _fits(pred, thing) else None
+
+
+def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: bool) -> Predicate | None:
+    """The state the words after the thing name that it can take (up to a condition:
+    "the knife, and once it is sliced ..."); a negated one ("never left burning") is its
+    opposite, or none; else one said before it (:func:`_state_before`)."""
+    data = load_mention_cues()
+    for j in range(k + 1, end):
+        item = ctx.items[j]
+        if item.sub is not None or item.text in data.condition_words or (item.pron is not None and not item.det):
+            return None      # a condition, or a state said of what a pronoun names ("press it down")
+        pred = _state_at(ctx, j, end, data)
+        if not _fits(pred, thing) or _described(ctx, k, j, data):
+            continue
+        if any(i.neg for i in ctx.items[max(k + 1, j - 3):j]):
+            return _OPPOSITE.get(pred)     # type: ignore[arg-type]
+        return pred
+    return _state_before(ctx, k, start, thing) if before else None
+
+
+def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words] | None = None) -> str | None:
+    """The receptacle a direction after the thing leads to ("mug -> desk"; with ``cues``,
+    a place named after those: "leave the phone on the bed")."""
+    data = load_mention_cues()
+    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues or data.directions):
+        place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
+        if place is not None and place != thing and "receptacle" in _props(place):
+            return place
+    return None
+
+
+def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool) -> Predicate:
+    """The switch state a thing kept as it is ends in: its start state, unless the
+    reading switches the rest of its group to that state ("lights off (desk lamp can
+    stay)": an exception to the group, it stays as the person believes it is: the other)."""
+    now = Predicate.switched_on if is_on else Predicate.switched_off
+    group = next((set(g) for g in load_mention_cues().groups if thing in g), set())
+    if any(c.predicate is now and (ref_types(c.subject) & group) - {thing} for c in ctx.goals):
+        return _OPPOSITE[now]
+    return now
+
+
+def kept(ctx: DoubtContext, thing: str, state: Predicate | None) -> tuple[Condition, ...]:
+    """The thing as it is: its start place (a thing that is picked up) and the state its
+    words name ("the candle stays and gets lit"), else its start switch or open state."""
+    objs = list(ctx.state.of_type(thing))
+    if not objs:
+        return ()
+    o, props = objs[0], _props(thing)
+    out = [one_object(state, thing)] if state is not None else []
+    if "pickupable" in props and o.parent is not None:
+        out.append(placed(thing, ctx.state.obj(o.parent).type))
+    elif state is None and "toggleable" in props:
+        out.append(one_object(_kept_switch(ctx, thing, o.is_on), thing))
+    elif state is None and "openable" in props:
+        out.append(one_object(Predicate.open if o.is_open else Predicate.closed, thing))
+    return tuple(out)
+
+
+def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str, tuple[Condition, ...]] | None:
+    """(label, goals) the mention's cues ask for, or None."""
+    data = load_mention_cues()
+    start, end = segment(ctx, k)
+    keep = _side(ctx, k, start, end, data.keep)
+    # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
+    # the state of the clause before ("lights off, the desk lamp can stay")
+    state = _state(ctx, k, start, end, thing, before=keep is None)
+    if keep == "after":
+        goals = kept(ctx, thing, state)
+        return ("keep", goals) if goals else None
+    if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
+        goals = kept(ctx, thing, state)
+        if (there := _destination(ctx, k, end, thing, data.placing)) is not None:
+            goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there))
+        return ("leave", goals) if goals else None
+    if negated:
+        return None      # "not the lamp on": only a keeping cue speaks past a negation
+    dest = _destination(ctx, k, end, thing)
+    goals = tuple(c for c in (one_object(state, thing) if state is not None else None,
+                              placed(thing, dest) if dest is not None else None) if c is not None)
+    label = "_".join(n for n, c in (("state", state), ("place", dest)) if c is not None)
+    return (label, goals) if goals else None
+
+
+def _choice(ctx: DoubtContext, thing: str, label: str, goals: tuple[Condition, ...]) -> Choice | None:
+    """The alternative a mention's cues give, or None when the reading has it already.
+    A state or a place its words ask is for a thing with no goal; a thing kept as it is
+    may have goals of other kinds ("the candle stays and gets lit"), and a place the
+    reading moves it to is dropped ("the soap stays by the sink": by the sink is where it
+    is, not where it goes)."""
+    if label not in ("keep", "leave"):
+        return None if thing in ctx.goal_types() else Choice(label, _how(thing, goals), add=goals)
+    mine = [c for c in ctx.goals if thing in ref_types(c.subject)]
+    add = tuple(g for g in goals if g not in mine)
+    families = [f for f in _FAMILIES if any(g.predicate in f for g in add)]
+    clash = tuple(c for c in mine if any(c.predicate in f for f in families))
+    if not add or any(c.predicate is not Predicate.inside or label != "keep" for c in clash):
+        return None
+    if clash:
+        return Choice("keep_moved", _how(thing, add), drop=clash, add=add)
+    return Choice(label, _how(thing, add), add=add)
+
+
+def _how(thing: str, goals: Sequence[Condition]) -> str:
+    return f"{type_name(thing)}: " + "; ".join(clause(c) for c in goals)
+
+
+def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
+    """The context's mentions, and a word that may be a verb after a determiner ("leave
+    the light as it is": the light)."""
+    memo = _memo(ctx)
+    if "mentions" in memo:
+        return memo["mentions"]    # type: ignore[return-value]
+    found = {k for k, _, _ in ctx.mentions()}
+    more = [(k, i, types) for k, i in enumerate(ctx.items)
+            if k not in found and k > 0 and ctx.items[k - 1].det and i.verb is not None
+            and (types := ctx.named_types(i, verbs_too=True))]
+    memo["mentions"] = sorted([*ctx.mentions(), *more], key=lambda m: m[0])
+    return memo["mentions"]    # type: ignore[return-value]
+
+
+def _chatter_doubt(ctx: DoubtContext, k: int, item: Item, thing: str) -> Doubt | None:
+    """A thing named only in chatter ("we used to have a laptop") that the reading gave
+    goals: those goals dropped is the alternative."""
+    from emboteam.pfg.offline.doubts.explained import CHATTER, explanation
+
+    if any(m != k and thing in ts and explanation(ctx, m, ts, goals=False) != CHATTER for m, _, ts in _mentions(ctx)):
+        return None      # named again outside the chatter
+    goals = tuple(c for c in ctx.goals if thing in ref_types(c.subject))
+    if not goals:
+        return None
+    return Doubt(KIND, item.text, (Choice(AS_READ, f"{item.text!r}: as read"),
+                                   Choice("chatter", f"{item.text!r} is chatter: no goal", drop=goals)))
+
+
+def doubts(ctx: DoubtContext) -> list[Doubt]:
+    from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
+
+    out: list[Doubt] = []
+    seen: set[str] = set()
+    for k, item, types in _mentions(ctx):
+        why = explanation(ctx, k, types, goals=False)
+        if types[0] in seen or why not in (None, NEGATED, CHATTER):
+            continue
+        if why == CHATTER:
+            found = _chatter_doubt(ctx, k, item, types[0])
+            if found is not None:
+                seen.add(types[0])
+                out.append(found)
+            continue
+        made = _proposal(ctx, k, types[0], negated=why == NEGATED)
+        choice = None if made is None else _choice(ctx, types[0], *made)
+        if choice is None:
+            continue
+        seen.add(types[0])
+        out.append(Doubt(KIND, item.text, (Choice(AS_READ, f"{item.text!r}: as read"), choice)))
+    return out
