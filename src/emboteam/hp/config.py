@@ -85,6 +85,11 @@ class PlannerConfig:
     #: planned again; kept when the simulated makespan is shorter (:mod:`emboteam.hp.routes`,
     #: :mod:`emboteam.hp.stages.route`; no planner call). Tried after the container split
     route: bool = True
+    #: drives that waited for another robot to bring their object (a box carried to a
+    #: table, then a book put in it) go to the place it is brought to instead, so the
+    #: robot waits there; kept when the simulated makespan is shorter
+    #: (:mod:`emboteam.hp.drive_ahead`; no planner call). Tried after the route stage
+    drive_ahead: bool = True
     #: "fast" (the default): the stages above; "optimal": then the plan's actions given to
     #: CP-SAT's exact model of the whole schedule (:mod:`emboteam.hp.optimal`: which robot
     #: does each job, in which order, when; a deterministic time limit), and the plan

@@ -34,6 +34,7 @@ from emboteam.hp.requirements import check_team, need_of
 from emboteam.hp.stages.concatenate import plan_concatenated
 from emboteam.hp.stages.context import Context, Draft, Fallback, Solver
 from emboteam.hp.stages.decomposed import plan_decomposed
+from emboteam.hp.stages.drive_ahead import drive_ahead
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
@@ -78,6 +79,8 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(_then_reorder(split_containers, config.spot_order))
     if config.route:
         stages.append(_then_reorder(reroute, config.spot_order))
+    if config.drive_ahead:
+        stages.append(_then_reorder(drive_ahead, config.spot_order))
     stages.append(schedule if config.schedule == "optimal" else schedule_small)
     return tuple(stages)
 

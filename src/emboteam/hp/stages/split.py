@@ -21,6 +21,7 @@ from emboteam.hp.merge import GroundedStep, SeqStep
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.requirements import covers
 from emboteam.hp.rounds import Unit, attribute, polish
+from emboteam.hp.stages import drive_ahead
 from emboteam.hp.stages.context import Context, Draft, Invalid
 from emboteam.hp.stages.merge import finish_independent
 from emboteam.hp.stages.replay import replay, replay_reusing
@@ -148,7 +149,26 @@ def _split_parts(ctx: Context, plan: MergedPlan, cut: _Cut, robots: Sequence[str
         new.extend(grounded)
         reached.extend(_conds(ctx, part))
         state = after
-    return _spliced(ctx, plan, cut, state, new, f"split into {parts}")
+    found = _spliced(ctx, plan, cut, state, new, f"split into {parts}")
+    return _appended(ctx, found[0] if found else plan, cut, new, f"split into {parts}, after the helpers' work") \
+        or found
+
+
+def _appended(ctx: Context, plan: MergedPlan, cut: _Cut, new: Sequence[GroundedStep], what: str
+              ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+    """The new parts after the rest of the plan instead of in the cluster's place: each
+    helper first does its own jobs, then its part (spliced in place, a helper's part
+    delays all its own jobs; FloorPlan201 goal seed 1, 8 x 32). The parts' steps are
+    replayed where their robots then stand (the replay drives within reach). The plan and
+    its sequence when shorter than ``plan``, else None."""
+    trial = cut.here.copy()
+    tail, why = replay_reusing(trial, cut.rest, set(), cut.universe, cut.gone)
+    if why is not None:
+        return None
+    parts, why = replay(trial, [SeqStep(g.robot, g.action, g.subtask, g.group) for g in new], cut.universe)
+    if why is not None or not all(check_condition(c, trial).holds for c in ctx.spec.goal().conditions):
+        return None
+    return _kept(ctx, plan, [*cut.before, *tail, *parts], what)
 
 
 def _spliced(ctx: Context, plan: MergedPlan, cut: _Cut, state: WorldState, new: Sequence[GroundedStep],
@@ -159,12 +179,20 @@ def _spliced(ctx: Context, plan: MergedPlan, cut: _Cut, state: WorldState, new: 
     tail, why = replay_reusing(trial, cut.rest, set(), cut.universe, [*cut.gone, *new])
     if why is not None or not all(check_condition(c, trial).holds for c in ctx.spec.goal().conditions):
         return None
-    sequence = [*cut.before, *new, *tail]
+    return _kept(ctx, plan, [*cut.before, *new, *tail], what)
+
+
+def _kept(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], what: str
+          ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+    """``sequence`` merged and simulated (its waiting drives driven ahead): the plan and
+    its sequence when shorter than ``plan``, else None."""
     try:
         other = finish_independent(ctx, sequence)
     except Invalid as exc:
         log.debug("%s fails in the simulator: %s", what, exc)
         return None
+    if ctx.config.drive_ahead:  # the helpers' drives to the container, ahead to where it goes
+        other, sequence = drive_ahead.ahead(ctx, other, sequence) or (other, sequence)
     log.debug("%s: makespan %.1f -> %.1f", what, plan.makespan, other.makespan)
     if other.makespan < plan.makespan - 1e-6:
         return other, sequence
