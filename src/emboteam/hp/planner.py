@@ -10,7 +10,8 @@ own module with one entry point:
 2. the improvements ``PlannerConfig`` turns on, each ``(Context, Draft) -> Draft``, kept
    only when the simulated makespan is shorter: re-allocation, cluster split, spot order,
    container split (then the spot order again), the jobs on shorter routes with their
-   drives planned again (then the spot order again), CP-SAT over the whole schedule
+   drives planned again (then the spot order again), the drives that waited for their
+   object sent ahead to where it is brought (then the spot order again), CP-SAT over the whole schedule
    (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
 3. if decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
    validate), :mod:`~emboteam.hp.stages.joint`: the whole goal as ONE joint problem.
