@@ -50,8 +50,9 @@ def _watched(config: PlannerConfig) -> tuple[HybridPlanner, list[tuple[Draft, Dr
 
 def test_drives_that_waited_for_a_carried_box_go_to_where_it_is_brought() -> None:
     # FloorPlan201, 8 robots x 8 goals, seed 1: a box carried to a side table, three
-    # helpers put a pencil, a book and a statue in it; they drove to the box once it was
-    # there (22.0 s); driving to the side table while it is carried: 18.0 s
+    # helpers put a pencil, a book and a statue in it; they drive to the box once it is
+    # there (22.0 s with the helpers that end first, 18.25 with the nearest); driving to
+    # the side table while it is carried: 18.0 s (the box arrives at 15.0, three puts)
     spec, state = sweep_cell("FloorPlan201", 8, 8, 1)
     config = PlannerConfig(route=False, drive_ahead=False)
     planner, seen = _watched(config)
@@ -62,7 +63,8 @@ def test_drives_that_waited_for_a_carried_box_go_to_where_it_is_brought() -> Non
     assert all(sequence[i].action.skill is Skill.GoToObject for i in found)
     assert set(found.values()) == {"SideTable_3"}
     assert _waiting_drives(before.plan)
-    assert after.plan.makespan < before.plan.makespan - 2.0
+    assert after.plan.makespan < before.plan.makespan
+    assert after.plan.makespan <= 18.0
     assert not _waiting_drives(after.plan)
     assert any("went ahead" in n for n in plan.notes)
     timing = simulate(plan, state, spec.goal())
@@ -84,6 +86,9 @@ def test_the_stage_never_makes_a_plan_longer_and_gives_the_same_plan_again() -> 
     assert [(s.id, s.robot, str(s.action), s.after, s.est_end) for s in one.steps] == [
         (s.id, s.robot, str(s.action), s.after, s.est_end) for s in two.steps]
     assert not _waiting_drives(one)
+    # the book's robot waited for the box, then drove 5 s: 14.5 s before drives went ahead
+    # (now in the container split's candidates, then the route stage keeps them)
+    assert one.makespan <= 11.5
 
 
 def test_a_drive_is_retargeted_only_when_another_robot_put_its_object_and_it_waited() -> None:
