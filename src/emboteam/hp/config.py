@@ -68,8 +68,9 @@ class PlannerConfig:
     #: least three blocks (``cluster_split.blocks``: a pencil, a book and a statue put in a
     #: box, the box put on a table), plan it again in one part per block (at most
     #: ``cluster_split.MAX_PARTS``): the part that moves the container first, for the
-    #: robot, then the helpers' parts for the able robots that end earliest, each from the
-    #: state the previous one leaves; kept when the simulated makespan is shorter (one
+    #: robot, then the helpers' parts for the able robots that could be at each part's
+    #: first thing earliest, each from the state the previous one leaves, spliced in the
+    #: cluster's place or after the helpers' own jobs; kept when the simulated makespan is shorter (one
     #: Fast Downward call a part). Tried after ``split_clusters`` and ``spot_order``
     split_containers: bool = True
     #: move blocks of steps that waited at a shared spot (the microwave) before the other

@@ -95,8 +95,9 @@ def _steps_of(ctx: Context, problem: Problem, result: SolveResult, part: Sequenc
 
 def split_containers(ctx: Context, draft: Draft) -> Draft:
     """One part per block among several robots: the part that moves the container first
-    for the cluster's robot (or last), the helpers' parts for the able robots that end
-    earliest, each from the state the previous one leaves; kept when shorter."""
+    for the cluster's robot (or last), the helpers' parts for the able robots that could
+    be at each part's first thing earliest (:func:`near_helpers`), each from the state the
+    previous one leaves; kept when shorter."""
     cut = _cut(ctx, draft)
     if cut is None:
         return draft
