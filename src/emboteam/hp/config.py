@@ -68,8 +68,9 @@ class PlannerConfig:
     #: least three blocks (``cluster_split.blocks``: a pencil, a book and a statue put in a
     #: box, the box put on a table), plan it again in one part per block (at most
     #: ``cluster_split.MAX_PARTS``): the part that moves the container first, for the
-    #: robot, then the helpers' parts for the able robots that end earliest, each from the
-    #: state the previous one leaves; kept when the simulated makespan is shorter (one
+    #: robot, then the helpers' parts for the able robots that could be at each part's
+    #: first thing earliest, each from the state the previous one leaves, spliced in the
+    #: cluster's place or after the helpers' own jobs; kept when the simulated makespan is shorter (one
     #: Fast Downward call a part). Tried after ``split_clusters`` and ``spot_order``
     split_containers: bool = True
     #: move blocks of steps that waited at a shared spot (the microwave) before the other
@@ -85,6 +86,11 @@ class PlannerConfig:
     #: planned again; kept when the simulated makespan is shorter (:mod:`emboteam.hp.routes`,
     #: :mod:`emboteam.hp.stages.route`; no planner call). Tried after the container split
     route: bool = True
+    #: drives that waited for another robot to bring their object (a box carried to a
+    #: table, then a book put in it) go to the place it is brought to instead, so the
+    #: robot waits there; kept when the simulated makespan is shorter
+    #: (:mod:`emboteam.hp.drive_ahead`; no planner call). Tried after the route stage
+    drive_ahead: bool = True
     #: "fast" (the default): the stages above; "optimal": then the plan's actions given to
     #: CP-SAT's exact model of the whole schedule (:mod:`emboteam.hp.optimal`: which robot
     #: does each job, in which order, when; a deterministic time limit), and the plan

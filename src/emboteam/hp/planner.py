@@ -10,7 +10,8 @@ own module with one entry point:
 2. the improvements ``PlannerConfig`` turns on, each ``(Context, Draft) -> Draft``, kept
    only when the simulated makespan is shorter: re-allocation, cluster split, spot order,
    container split (then the spot order again), the jobs on shorter routes with their
-   drives planned again (then the spot order again), CP-SAT over the whole schedule
+   drives planned again (then the spot order again), the drives that waited for their
+   object sent ahead to where it is brought (then the spot order again), CP-SAT over the whole schedule
    (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
 3. if decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
    validate), :mod:`~emboteam.hp.stages.joint`: the whole goal as ONE joint problem.
@@ -34,6 +35,7 @@ from emboteam.hp.requirements import check_team, need_of
 from emboteam.hp.stages.concatenate import plan_concatenated
 from emboteam.hp.stages.context import Context, Draft, Fallback, Solver
 from emboteam.hp.stages.decomposed import plan_decomposed
+from emboteam.hp.stages.drive_ahead import drive_ahead
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
@@ -78,6 +80,8 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(_then_reorder(split_containers, config.spot_order))
     if config.route:
         stages.append(_then_reorder(reroute, config.spot_order))
+    if config.drive_ahead:
+        stages.append(_then_reorder(drive_ahead, config.spot_order))
     stages.append(schedule if config.schedule == "optimal" else schedule_small)
     return tuple(stages)
 

@@ -21,6 +21,7 @@ from emboteam.hp.merge import GroundedStep, SeqStep
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.requirements import covers
 from emboteam.hp.rounds import Unit, attribute, polish
+from emboteam.hp.stages import drive_ahead
 from emboteam.hp.stages.context import Context, Draft, Invalid
 from emboteam.hp.stages.merge import finish_independent
 from emboteam.hp.stages.replay import replay, replay_reusing
@@ -28,6 +29,7 @@ from emboteam.pddl.domain import Universe
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import SolveResult
+from emboteam.sim.durations import navigation_seconds
 from emboteam.sim.rules import apply_action
 from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, ObjectRef
@@ -93,8 +95,9 @@ def _steps_of(ctx: Context, problem: Problem, result: SolveResult, part: Sequenc
 
 def split_containers(ctx: Context, draft: Draft) -> Draft:
     """One part per block among several robots: the part that moves the container first
-    for the cluster's robot (or last), the helpers' parts for the able robots that end
-    earliest, each from the state the previous one leaves; kept when shorter."""
+    for the cluster's robot (or last), the helpers' parts for the able robots that could
+    be at each part's first thing earliest (:func:`near_helpers`), each from the state the
+    previous one leaves; kept when shorter."""
     cut = _cut(ctx, draft)
     if cut is None:
         return draft
@@ -105,7 +108,7 @@ def split_containers(ctx: Context, draft: Draft) -> Draft:
                                           min(cluster_split.MAX_PARTS, len(target.helpers) + 1))
     if not parts:
         return draft
-    helpers = list(target.helpers[:len(parts) - 1])
+    helpers = near_helpers(ctx, draft, target.helpers, parts[:-1])
     found: tuple[MergedPlan, list[GroundedStep]] | None = None
     for order in cluster_split.CONTAINER_ORDERS:
         if order == "last":
@@ -123,6 +126,47 @@ def split_containers(ctx: Context, draft: Draft) -> Draft:
     ctx.notes.append(f"{', '.join(target.members)}: parted among {', '.join(helpers)} and "
                      f"{target.robot}: makespan {plan.makespan:.1f} -> {best.makespan:.1f} s")
     return Draft(best, draft.record)
+
+
+def near_helpers(ctx: Context, draft: Draft, able: Sequence[str], parts: Sequence[Sequence[str]]) -> list[str]:
+    """A helper for each part, in order: the able robot not chosen yet that could be at
+    the part's first thing earliest (its end in the plan, then the drive from where the
+    plan leaves it). The robot that merely ends first may stand across the room
+    (FloorPlan201, goal seed 1, 32 x 32: a 9.75 s drive to the remote control)."""
+    ends: dict[str, float] = {}
+    for s in draft.plan.steps:
+        ends[s.robot] = max(ends.get(s.robot, 0.0), s.est_end)
+    final = ctx.start.copy()
+    for g in draft.record.sequence:
+        apply_action(final, g.robot, g.action)
+    chosen: list[str] = []
+    for part in parts:
+        place = _first_place(ctx, part)
+        free = [r for r in able if r not in chosen]
+        if not free:
+            break
+        chosen.append(min(free, key=lambda r: (ends.get(r, 0.0) + _drive(final, r, place), r)))
+    return chosen
+
+
+def _drive(state: WorldState, robot: str, place: tuple[float, float] | None) -> float:
+    """Seconds ``robot`` drives from where it stands in ``state`` to ``place``."""
+    if place is None:
+        return 0.0
+    r = state.robots[robot]
+    return navigation_seconds(r.position, place, r.profile.speed, state.floor_plan)
+
+
+def _first_place(ctx: Context, part: Sequence[str]) -> tuple[float, float] | None:
+    """Where the first thing a part drives to stands at the start (None: nothing)."""
+    objects = ctx.start.objects
+    for m in part:
+        for need in ctx.needs.get(m, ()):
+            for oid in need.visits:
+                o = objects.get(oid) or objects.get(oid.split("_Slice_")[0])
+                if o is not None:
+                    return o.position[0], o.position[2]
+    return None
 
 
 def _split_parts(ctx: Context, plan: MergedPlan, cut: _Cut, robots: Sequence[str], parts: Sequence[Sequence[str]]
@@ -148,7 +192,26 @@ def _split_parts(ctx: Context, plan: MergedPlan, cut: _Cut, robots: Sequence[str
         new.extend(grounded)
         reached.extend(_conds(ctx, part))
         state = after
-    return _spliced(ctx, plan, cut, state, new, f"split into {parts}")
+    found = _spliced(ctx, plan, cut, state, new, f"split into {parts}")
+    return _appended(ctx, found[0] if found else plan, cut, new, f"split into {parts}, after the helpers' work") \
+        or found
+
+
+def _appended(ctx: Context, plan: MergedPlan, cut: _Cut, new: Sequence[GroundedStep], what: str
+              ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+    """The new parts after the rest of the plan instead of in the cluster's place: each
+    helper first does its own jobs, then its part (spliced in place, a helper's part
+    delays all its own jobs; FloorPlan201 goal seed 1, 8 x 32). The parts' steps are
+    replayed where their robots then stand (the replay drives within reach). The plan and
+    its sequence when shorter than ``plan``, else None."""
+    trial = cut.here.copy()
+    tail, why = replay_reusing(trial, cut.rest, set(), cut.universe, cut.gone)
+    if why is not None:
+        return None
+    parts, why = replay(trial, [SeqStep(g.robot, g.action, g.subtask, g.group) for g in new], cut.universe)
+    if why is not None or not all(check_condition(c, trial).holds for c in ctx.spec.goal().conditions):
+        return None
+    return _kept(ctx, plan, [*cut.before, *tail, *parts], what)
 
 
 def _spliced(ctx: Context, plan: MergedPlan, cut: _Cut, state: WorldState, new: Sequence[GroundedStep],
@@ -159,12 +222,20 @@ def _spliced(ctx: Context, plan: MergedPlan, cut: _Cut, state: WorldState, new: 
     tail, why = replay_reusing(trial, cut.rest, set(), cut.universe, [*cut.gone, *new])
     if why is not None or not all(check_condition(c, trial).holds for c in ctx.spec.goal().conditions):
         return None
-    sequence = [*cut.before, *new, *tail]
+    return _kept(ctx, plan, [*cut.before, *new, *tail], what)
+
+
+def _kept(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], what: str
+          ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+    """``sequence`` merged and simulated (its waiting drives driven ahead): the plan and
+    its sequence when shorter than ``plan``, else None."""
     try:
         other = finish_independent(ctx, sequence)
     except Invalid as exc:
         log.debug("%s fails in the simulator: %s", what, exc)
         return None
+    if ctx.config.drive_ahead:  # the helpers' drives to the container, ahead to where it goes
+        other, sequence = drive_ahead.ahead(ctx, other, sequence) or (other, sequence)
     log.debug("%s: makespan %.1f -> %.1f", what, plan.makespan, other.makespan)
     if other.makespan < plan.makespan - 1e-6:
         return other, sequence
