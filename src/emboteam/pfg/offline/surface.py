@@ -1,0 +1,361 @@
+"""The surface of an instruction, made into the reader's usual input: speech-to-text
+transcripts, text messages and non-native calques.
+
+Before the reader normalises the text (:mod:`.text`), the rules of ``data/surface.json``
+rewrite what people type or dictate: texting abbreviations ("b4", "2 the stove"),
+homophones ("a draw" when the scene has a drawer, "sell fone"), misheard function words
+("switch the lamp of", "turn it on to", "end" for "and"), split words checked against
+the scene's object names ("micro wave", "news paper", "so far"), non-native calques ("make
+it to burn", "the curtain of the shower") and the clause breaks an unpunctuated transcript
+leaves out. A rewrite is either *certain* (a symbol, a word that is no English, a cue the
+scene settles) and made on the text that is read, or a guess (a misheard "in" may be a real
+"in", "the apple of the sink" may be a compound) made only on an *alternative* text, which
+the front end reads beside it and offers as a point of doubt of kind ``surface``
+(:func:`surface_doubt`), priced by ``doubts/priors.json``.
+
+Kept by hand (regular expressions and a few word tests against the lexicon): the rules are
+small, closed and must know the lexicon and the scene; a speech or texting normaliser
+library would know neither and add a dependency.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Collection, Iterable, Sequence
+from dataclasses import dataclass
+from functools import cache
+
+from pydantic import Field
+
+from emboteam.pfg.candidates import AS_READ, Choice, Doubt
+from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
+from emboteam.pfg.offline.morphology import edit_distance, singular, verb_lemma
+from emboteam.pfg.offline.text import split_camel
+from emboteam.world.goals import Condition
+
+KIND = "surface"
+
+
+class SurfaceRewrite(Rewrite):
+    """A rewrite of the text as typed, of a kind; certain or a guess; for scenes with one
+    of ``needs`` (any scene when empty)."""
+
+    kind: str
+    certain: bool = True
+    needs: tuple[str, ...] = ()
+
+
+class Transcript(Strict):
+    """When an unpunctuated text is a transcript and where its clauses start."""
+
+    min_words: int = Field(12, ge=3)
+    #: "the potato goes in ...": a noun phrase before one of these starts a clause
+    clause_verbs: tuple[str, ...]
+    #: a verb after one of these continues the clause ("can you put", "please close")
+    no_break_after: tuple[str, ...]
+
+
+class Calque(Strict):
+    """"the N of the M": heads that are parts, portions or amounts, no calque."""
+
+    not_heads: tuple[str, ...]
+    place_preposition: str = "in"
+
+
+class SurfaceFile(Strict):
+    """``data/surface.json``."""
+
+    about: str = ""
+    rewrites: tuple[SurfaceRewrite, ...]
+    and_sounds: tuple[str, ...]
+    transcript: Transcript
+    calque: Calque
+
+
+@dataclass(frozen=True)
+class Surface:
+    """The text to read (the certain rewrites made), the alternative text (the guesses
+    made too; None when there is none) and the kinds of rewrite that fired in each."""
+
+    text: str
+    alternative: str | None = None
+    kinds: tuple[str, ...] = ()
+    guesses: tuple[str, ...] = ()
+
+
+@cache
+def _data() -> tuple[SurfaceFile, tuple[tuple[re.Pattern[str], SurfaceRewrite], ...]]:
+    data = load("surface.json", SurfaceFile)
+    return data, tuple((re.compile(r.pattern, re.IGNORECASE), r) for r in data.rewrites)
+
+
+def _rewrite(text: str, scene_types: Collection[str], certain: bool, kinds: list[str]) -> str:
+    """The rules of one certainty, in order; the kinds that changed the text noted."""
+    for pattern, rule in _data()[1]:
+        if rule.certain != certain or (rule.needs and not any(t in scene_types for t in rule.needs)):
+            continue
+        new = pattern.sub(rule.replace, text)
+        if new != text:
+            kinds.append(rule.kind)
+            text = new
+    return text
+
+
+# -- words: what a word is to the reader --------------------------------------------------
+
+_PARTS = re.compile(r"\s+|[A-Za-z0-9']+|[^\sA-Za-z0-9']+")
+
+
+def _parts(text: str) -> tuple[list[str], list[int]]:
+    """The text cut losslessly into spaces, words and runs of symbols, and where the
+    non-space parts are: a pass edits words (same count: a word it drops becomes "") and
+    the rest of the text stays as typed."""
+    parts = _PARTS.findall(text)
+    return parts, [i for i, p in enumerate(parts) if not p.isspace()]
+
+
+def _words(text: str) -> list[str]:
+    parts, at = _parts(text)
+    return [parts[i] for i in at]
+
+
+def _with_words(text: str, words: list[str]) -> str:
+    parts, at = _parts(text)
+    for i, w in zip(at, words, strict=True):
+        parts[i] = w
+    return "".join(parts)
+
+
+def _is_noun(word: str) -> bool:
+    return singular(word.lower(), lx.nouns())[0] in lx.nouns()
+
+
+def _is_verb(word: str) -> bool:
+    found = verb_lemma(word.lower())
+    return found is not None and found[1] == "base"
+
+
+@cache
+def _closed_words() -> frozenset[str]:
+    """Function words: never part of a misheard name ("off ty" is no "post")."""
+    preps = {w for p in lx.PREPOSITIONS for w in p.split()}
+    return frozenset(lx.DETERMINERS | lx.PARTICLES | lx.PRONOUNS | lx.COPULAS | preps
+                     | {"and", "or", "but", "then", "to", "of", "so"})
+
+
+def _closed(word: str) -> bool:
+    return word.lower() in _closed_words()
+
+
+def _opens_phrase(word: str) -> bool:
+    w = word.lower()
+    return w in lx.DETERMINERS or w in lx.PRONOUNS or w in {"i", "you", "then", "also", "please"} or _is_verb(w)
+
+
+# -- "and" heard as "an", "end", "in" ----------------------------------------------------
+
+def _and_sounds(words: list[str], sounds: Collection[str]) -> list[str]:
+    """A word that sounds like "and", not after a determiner, before a determiner, a
+    pronoun or a verb, is "and" ("switch it on end the potato goes ...")."""
+    out = list(words)
+    for k in range(1, len(words) - 1):
+        w = words[k].lower()
+        vowel_next = w == "an" and words[k + 1][:1].lower() in "aeiou"     # "an empty room"
+        if w in sounds and words[k - 1].lower() not in lx.DETERMINERS and _opens_phrase(words[k + 1]) \
+                and words[k - 1].isalpha() and not vowel_next:
+            out[k] = "and"
+    return out
+
+
+def _in_as_and(words: list[str]) -> list[str]:
+    """A second "in the X" right after a place ("in the draw in the key chain to", "on the
+    coffee table in the news paper on the sofa stays"): more likely "and" in a transcript."""
+    out = list(words)
+    for k in range(3, len(words) - 1):
+        if words[k].lower() != "in" or words[k + 1].lower() not in lx.DETERMINERS:
+            continue
+        back = [w.lower() for w in words[max(0, k - 4):k]]
+        if any(p in back[:-1] for p in ("in", "on", "into", "onto")) and _is_noun(words[k - 1]):
+            out[k] = "and"
+    return out
+
+
+# -- split and run-together names, against the scene ---------------------------------------
+
+@cache
+def _scene_names(scene_types: frozenset[str]) -> dict[str, str]:
+    """Every noun phrase of a scene type, run together -> the phrase ("newspaper" ->
+    "newspaper", "remotecontrol" -> "remote control")."""
+    out: dict[str, str] = {}
+    for phrase, concept in lx.nouns().items():
+        if any(t in scene_types for t in (*concept.types, *concept.fallback)):
+            out.setdefault(phrase.replace(" ", ""), phrase)
+    return out
+
+
+def _sounds_like(joined: str, scene_types: frozenset[str]) -> str | None:
+    from emboteam.pfg.offline.doubts.sound_alike import _closest, sound
+
+    said = sound(joined)
+    types = _closest(said, scene_types)
+    if types is None:
+        return None
+    names = [p for p in _scene_names(scene_types).values() if (c := lx.nouns()[p]).types and c.types[0] == types[0]]
+    return min(names, key=lambda p: (edit_distance(sound(p), said, 4), p)) if names else None
+
+
+def _split_words(words: list[str], scene_types: frozenset[str], guess: bool) -> list[str]:
+    """Two or three words that run together into a scene thing's name ("micro wave",
+    "tele vision", "remote con troll") are that name: for certain when the run names it
+    exactly and its first word names nothing, as a guess when it only sounds like it ("so
+    far", "to motto", "hold her"). The words after the first of a run become ""."""
+    out = list(words)
+    k = 0
+    while k < len(words):
+        name, n = _run_name(words, k, scene_types, guess)
+        if name is not None:
+            out[k:k + n] = [name] + [""] * (n - 1)
+        k += n
+    return out
+
+
+def _run_name(words: list[str], k: int, scene_types: frozenset[str], guess: bool) -> tuple[str | None, int]:
+    """The scene name the run of words from ``k`` says, and the run's length (1: none)."""
+    names = _scene_names(scene_types)
+    for n in (3, 2):
+        run = words[k:k + n]
+        if len(run) < n or not all(w.isalpha() for w in run) or _is_noun(" ".join(run).lower()):
+            continue
+        joined = "".join(run).lower()
+        exact = names.get(joined) or names.get(singular(joined, names)[0])
+        if exact and not _is_noun(run[0]):
+            return exact, n
+        if guess and len(joined) >= 5 and not _is_noun(run[-1]) and not any(_closed(w) for w in run) \
+                and not any(verb_lemma(w.lower()) for w in run[1:]) and any(w.lower() not in lx.vocabulary() for w in run):
+            heard = _sounds_like(joined, scene_types)
+            if heard:
+                return heard, n
+    return None, 1
+
+
+# -- "the N of the M" --------------------------------------------------------------------
+
+_OF = re.compile(r"\b(the|a|an|its|my|your) +([a-z]+) +of +(the +|its +|a +)?([a-z]+)\b", re.IGNORECASE)
+
+
+def _calques(text: str, scene_types: frozenset[str], guess: bool) -> str:
+    """"the curtain of the shower": the shower curtain when that names a scene type (for
+    certain); "the apple of the sink", both things of the scene, as a guess: the apple in the
+    sink."""
+    calque = _data()[0].calque
+    names = _scene_names(scene_types)
+
+    def one(m: re.Match[str]) -> str:
+        det, head, of_det, owner = m.group(1), m.group(2).lower(), m.group(3), m.group(4).lower()
+        if head in calque.not_heads or head in lx.MEASURE_WORDS:
+            return m.group(0)
+        owner_one = singular(owner, lx.nouns())[0]
+        for front in dict.fromkeys((owner_one, owner)):
+            compound = f"{front} {head}"
+            if compound in lx.nouns() and compound.replace(" ", "") in names and (of_det or not _is_noun(owner)):
+                return f"{det} {compound}"
+        if guess and of_det and head in names and owner_one in names and head != owner_one:
+            return f"{det} {head} {calque.place_preposition} {of_det}{owner}"
+        return m.group(0)
+
+    return _OF.sub(one, text)
+
+
+# -- unpunctuated transcripts: where clauses start ------------------------------------------
+
+def _clause_starts(words: list[str]) -> list[str]:
+    """Commas where an unpunctuated transcript starts a new clause: before an imperative
+    verb after a finished phrase ("grab the mug put it in"), before "(and) the X goes/stays"."""
+    tr = _data()[0].transcript
+    out = list(words)
+    for k in range(1, len(words)):
+        w, prev = words[k], words[k - 1].lower()
+        if not prev.isalpha() or not w.isalpha():
+            continue
+        if prev in {"and", "then"} and k > 1 and w.lower() in lx.DETERMINERS and _ended(words[k - 2].lower(), True) \
+                and _subject_then_verb(words, k, tr.clause_verbs):
+            out[k - 1] = ", " + words[k - 1]       # "... on the coffee table and the paper on the sofa stays"
+        elif prev not in tr.no_break_after and _ended(prev, True) and _starts_clause(words, k, tr.clause_verbs):
+            out[k] = ", " + w
+    return out
+
+
+def _ended(word: str, particles: bool) -> bool:
+    """Whether a phrase can end with ``word`` (a noun, a pronoun, a state; a particle
+    when a verb follows: "switch it on put ...")."""
+    if word in lx.DETERMINERS:
+        return False
+    return _is_noun(word) or word in lx.PRONOUNS or word in {"there", "here"} or \
+        (particles and (word in lx.PARTICLES or word in lx.STATES))
+
+
+def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str]) -> bool:
+    """An imperative verb with its object ("put it", "turn on the"), or "the X goes"."""
+    w, prev = words[k].lower(), words[k - 1].lower()
+    after = words[k + 1].lower() if k + 1 < len(words) else ""
+    if _is_verb(w) and not _is_noun(w) and not (w in lx.STATES and _is_noun(prev)):     # "the curtains open"
+        return after in lx.DETERMINERS or after in lx.PRONOUNS or after in lx.PARTICLES
+    preps = {x for p in lx.PREPOSITIONS for x in p.split()}
+    return w in lx.DETERMINERS and prev not in preps and _subject_then_verb(words, k, clause_verbs)
+
+
+def _subject_then_verb(words: list[str], k: int, verbs: Collection[str]) -> bool:
+    """"the X (on the Y) goes ...": a noun phrase from ``k`` followed by a clause verb."""
+    for j in range(k + 2, min(k + 8, len(words))):
+        if words[j].lower() in verbs and _is_noun(words[j - 1]):
+            return True
+        if not words[j - 1].isalpha() or (_is_verb(words[j - 1]) and not _is_noun(words[j - 1])):
+            return False
+    return False
+
+
+def _transcript(text: str) -> bool:
+    words = text.split()
+    return not re.search(r"[.,;:!?]", text) and len(words) >= _data()[0].transcript.min_words
+
+
+def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
+    """The text with its certain rewrites made and, when a guess applies, the alternative."""
+    types = frozenset(scene_types)
+    data = _data()[0]
+    kinds: list[str] = []
+    transcript = _transcript(text)
+    said = split_camel(_rewrite(text, types, True, kinds))
+    words = _words(said)
+    fixed = _split_words(_and_sounds(words, data.and_sounds), types, guess=False)
+    if fixed != words:
+        kinds.append("spoken")
+        said = _with_words(said, fixed)
+    certain = _calques(said, types, guess=False)
+    if certain != said:
+        kinds.append("calque")
+    guesses: list[str] = []
+    alt = _rewrite(certain, types, False, guesses)
+    alt_words = _words(alt)
+    guessed = _split_words(_in_as_and(alt_words), types, guess=True)
+    if transcript:
+        guessed = _clause_starts(guessed)
+    if guessed != alt_words:
+        guesses.append("spoken")
+        alt = _with_words(alt, guessed)
+    alternative = _calques(alt, types, guess=True)
+    if alternative != alt:
+        guesses.append("calque")
+    text_out = certain if kinds else text
+    return Surface(text_out, alternative if guesses and alternative != text_out else None,
+                   tuple(dict.fromkeys(kinds)), tuple(dict.fromkeys(guesses)))
+
+
+def surface_doubts(goals: tuple[Condition, ...], alternatives: Sequence[tuple[str, str, tuple[Condition, ...]]]
+                   ) -> list[Doubt]:
+    """A point of doubt of kind ``surface`` per alternative text whose reading differs:
+    the reading as said, or the reading of the text with the guesses made (``label`` the
+    kinds of guess, ``how`` the text)."""
+    return [Doubt(KIND, how, (Choice(AS_READ, "as said"), Choice(label, f"read as {how!r}", drop=goals, add=alt)))
+            for label, how, alt in alternatives if alt and set(alt) != set(goals)]
