@@ -52,8 +52,11 @@ class Transcript(Strict):
     min_words: int = Field(12, ge=3)
     #: "the potato goes in ...": a noun phrase before one of these starts a clause
     clause_verbs: tuple[str, ...]
-    #: a verb after one of these continues the clause ("can you put", "please close")
+    #: a verb after one of these continues the clause ("can you put", "to boil")
     no_break_after: tuple[str, ...]
+    #: words that may end a clause besides nouns, pronouns and states ("leave it there",
+    #: "the paper in the bin is fine", "the soap in the sink please")
+    phrase_ends: tuple[str, ...] = ()
 
 
 class Calque(Strict):
@@ -278,21 +281,20 @@ def _clause_starts(words: list[str]) -> list[str]:
         w, prev = words[k], words[k - 1].lower()
         if not prev.isalpha() or not w.isalpha():
             continue
-        if prev in {"and", "then"} and k > 1 and w.lower() in lx.DETERMINERS and _ended(words[k - 2].lower(), True) \
-                and _subject_then_verb(words, k, tr.clause_verbs):
+        if prev in {"and", "then"} and k > 1 and w.lower() in lx.DETERMINERS \
+                and _ended(words[k - 2].lower(), tr.phrase_ends) and _subject_then_verb(words, k, tr.clause_verbs):
             out[k - 1] = ", " + words[k - 1]       # "... on the coffee table and the paper on the sofa stays"
-        elif prev not in tr.no_break_after and _ended(prev, True) and _starts_clause(words, k, tr.clause_verbs):
+        elif prev not in tr.no_break_after and _ended(prev, tr.phrase_ends) and _starts_clause(words, k, tr.clause_verbs):
             out[k] = ", " + w
     return out
 
 
-def _ended(word: str, particles: bool) -> bool:
-    """Whether a phrase can end with ``word`` (a noun, a pronoun, a state; a particle
-    when a verb follows: "switch it on put ...")."""
+def _ended(word: str, phrase_ends: Collection[str]) -> bool:
+    """Whether a phrase can end with ``word``: a noun, a pronoun, a state, a particle
+    ("switch it on put ..."), one of ``phrase_ends``."""
     if word in lx.DETERMINERS:
         return False
-    return _is_noun(word) or word in lx.PRONOUNS or word in {"there", "here"} or \
-        (particles and (word in lx.PARTICLES or word in lx.STATES))
+    return _is_noun(word) or word in lx.PRONOUNS or word in phrase_ends or word in lx.PARTICLES or word in lx.STATES
 
 
 def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str]) -> bool:
@@ -308,8 +310,9 @@ def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str]) -> b
 def _subject_then_verb(words: list[str], k: int, verbs: Collection[str]) -> bool:
     """"the X (on the Y) goes ...": a noun phrase from ``k`` followed by a clause verb."""
     for j in range(k + 2, min(k + 8, len(words))):
-        if words[j].lower() in verbs and _is_noun(words[j - 1]):
-            return True
+        if _is_noun(words[j - 1]) and (words[j].lower() in verbs or (_is_verb(words[j]) and not _is_noun(words[j])
+                                       and j + 1 < len(words) and words[j + 1].lower() in {"it", "them"})):
+            return True     # "the X goes ...", "the shower door close it"
         if not words[j - 1].isalpha() or (_is_verb(words[j - 1]) and not _is_noun(words[j - 1])):
             return False
     return False
