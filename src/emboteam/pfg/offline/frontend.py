@@ -291,7 +291,7 @@ class OfflineFrontend:
             read = self._read(text, tag(surface.alternative), scene, state, team, candidates=False)
         except OfflineParseError:
             return {}
-        return {"+".join(surface.guesses): (surface.alternative, read)}
+        return {surface.label: (surface.alternative, read)}
 
     @staticmethod
     def _surfaced(reading: Reading, alternatives: dict[str, tuple[str, Reading]]) -> Reading:

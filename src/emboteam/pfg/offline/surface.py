@@ -76,6 +76,11 @@ class SurfaceFile(Strict):
     calque: Calque
 
 
+#: the kind of guess that names an alternative text for the priors, when several fired:
+#: the one that changes the reading most (a transcript's clause breaks) first
+_LABEL_ORDER = ("clause_breaks", "transcript", "sound_join", "calque", "and_heard")
+
+
 @dataclass(frozen=True)
 class Surface:
     """The text to read (the certain rewrites made), the alternative text (the guesses
@@ -85,6 +90,11 @@ class Surface:
     alternative: str | None = None
     kinds: tuple[str, ...] = ()
     guesses: tuple[str, ...] = ()
+
+    @property
+    def label(self) -> str:
+        """The alternative's label for the priors (``surface`` in ``priors.json``)."""
+        return min(self.guesses, key=lambda g: _LABEL_ORDER.index(g) if g in _LABEL_ORDER else len(_LABEL_ORDER))
 
 
 @cache
@@ -340,13 +350,15 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
         kinds.append("calque")
     guesses: list[str] = []
     alt = _rewrite(certain, types, False, guesses)
-    alt_words = _words(alt)
-    guessed = _split_words(_in_as_and(alt_words), types, guess=True)
-    if transcript:
-        guessed = _clause_starts(guessed)
-    if guessed != alt_words:
-        guesses.append("spoken")
-        alt = _with_words(alt, guessed)
+    for kind, step in (("and_heard", _in_as_and), ("sound_join", lambda w: _split_words(w, types, guess=True)),
+                       ("clause_breaks", _clause_starts if transcript else None)):
+        if step is None:
+            continue
+        words = _words(alt)
+        changed = step(words)
+        if changed != words:
+            guesses.append(kind)
+            alt = _with_words(alt, changed)
     alternative = _calques(alt, types, guess=True)
     if alternative != alt:
         guesses.append("calque")
