@@ -144,6 +144,11 @@ def _is_noun(word: str) -> bool:
     return singular(word.lower(), lx.nouns())[0] in lx.nouns()
 
 
+def _nounish(word: str) -> bool:
+    """A noun, or a word of a noun phrase ("door" of "shower door")."""
+    return _is_noun(word) or word.lower() in lx.noun_words()
+
+
 def _is_verb(word: str) -> bool:
     found = verb_lemma(word.lower())
     return found is not None and found[1] == "base"
@@ -284,18 +289,24 @@ def _calques(text: str, scene_types: frozenset[str], guess: bool) -> str:
 
 def _clause_starts(words: list[str]) -> list[str]:
     """Commas where an unpunctuated transcript starts a new clause: before an imperative
-    verb after a finished phrase ("grab the mug put it in"), before "(and) the X goes/stays"."""
+    verb after a finished phrase that has its own verb ("grab the mug put it in"; not "desk
+    lamp turn off", an object said first), before "(and) the X goes/stays"."""
     tr = _data()[0].transcript
     out = list(words)
+    has_verb = False
     for k in range(1, len(words)):
         w, prev = words[k], words[k - 1].lower()
+        has_verb = has_verb or _is_verb(prev)
         if not prev.isalpha() or not w.isalpha():
             continue
         if prev in {"and", "then"} and k > 1 and w.lower() in lx.DETERMINERS \
                 and _ended(words[k - 2].lower(), tr.phrase_ends) and _subject_then_verb(words, k, tr.clause_verbs):
             out[k - 1] = ", " + words[k - 1]       # "... on the coffee table and the paper on the sofa stays"
-        elif prev not in tr.no_break_after and _ended(prev, tr.phrase_ends) and _starts_clause(words, k, tr.clause_verbs):
+            has_verb = False
+        elif prev not in tr.no_break_after and _ended(prev, tr.phrase_ends) \
+                and _starts_clause(words, k, tr.clause_verbs, has_verb):
             out[k] = ", " + w
+            has_verb = False
     return out
 
 
@@ -307,12 +318,13 @@ def _ended(word: str, phrase_ends: Collection[str]) -> bool:
     return _is_noun(word) or word in lx.PRONOUNS or word in phrase_ends or word in lx.PARTICLES or word in lx.STATES
 
 
-def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str]) -> bool:
-    """An imperative verb with its object ("put it", "turn on the"), or "the X goes"."""
+def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str], has_verb: bool) -> bool:
+    """An imperative verb with its object ("put it", "turn on the") after a clause with a
+    verb, or "the X goes"."""
     w, prev = words[k].lower(), words[k - 1].lower()
     after = words[k + 1].lower() if k + 1 < len(words) else ""
     if _is_verb(w) and not _is_noun(w) and not (w in lx.STATES and _is_noun(prev)):     # "the curtains open"
-        return after in lx.DETERMINERS or after in lx.PRONOUNS or after in lx.PARTICLES
+        return has_verb and (after in lx.DETERMINERS or after in lx.PRONOUNS or after in lx.PARTICLES)
     preps = {x for p in lx.PREPOSITIONS for x in p.split()}
     return w in lx.DETERMINERS and prev not in preps and _subject_then_verb(words, k, clause_verbs)
 
@@ -320,7 +332,7 @@ def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str]) -> b
 def _subject_then_verb(words: list[str], k: int, verbs: Collection[str]) -> bool:
     """"the X (on the Y) goes ...": a noun phrase from ``k`` followed by a clause verb."""
     for j in range(k + 2, min(k + 8, len(words))):
-        if _is_noun(words[j - 1]) and (words[j].lower() in verbs or (_is_verb(words[j]) and not _is_noun(words[j])
+        if _nounish(words[j - 1]) and (words[j].lower() in verbs or (_is_verb(words[j]) and not _is_noun(words[j])
                                        and j + 1 < len(words) and words[j + 1].lower() in {"it", "them"})):
             return True     # "the X goes ...", "the shower door close it"
         if not words[j - 1].isalpha() or (_is_verb(words[j - 1]) and not _is_noun(words[j - 1])):
