@@ -103,8 +103,17 @@ def _data() -> tuple[SurfaceFile, tuple[tuple[re.Pattern[str], SurfaceRewrite], 
     return data, tuple((re.compile(r.pattern, re.IGNORECASE), r) for r in data.rewrites)
 
 
+@cache
+def _any_rule(certain: bool) -> re.Pattern[str]:
+    """Every rule of one certainty as one alternation: most texts match none, and one
+    search says so (the reader's time budget)."""
+    return re.compile("|".join(f"(?:{r.pattern})" for _, r in _data()[1] if r.certain == certain), re.IGNORECASE)
+
+
 def _rewrite(text: str, scene_types: Collection[str], certain: bool, kinds: list[str]) -> str:
     """The rules of one certainty, in order; the kinds that changed the text noted."""
+    if not _any_rule(certain).search(text):
+        return text
     for pattern, rule in _data()[1]:
         if rule.certain != certain or (rule.needs and not any(t in scene_types for t in rule.needs)):
             continue
@@ -241,16 +250,18 @@ def _split_words(words: list[str], scene_types: frozenset[str], guess: bool) -> 
 def _run_name(words: list[str], k: int, scene_types: frozenset[str], guess: bool) -> tuple[str | None, int]:
     """The scene name the run of words from ``k`` says, and the run's length (1: none)."""
     names = _scene_names(scene_types)
+    vocabulary = lx.vocabulary()
     for n in (3, 2):
         run = words[k:k + n]
-        if len(run) < n or not all(w.isalpha() for w in run) or _is_noun(" ".join(run).lower()):
+        if len(run) < n or not all(w.isalpha() for w in run):
             continue
         joined = "".join(run).lower()
-        exact = names.get(joined) or names.get(singular(joined, names)[0])
-        if exact and not _is_noun(run[0]):
+        exact = names.get(joined) or (names.get(joined[:-1]) if joined.endswith("s") else None)
+        if exact and not _is_noun(run[0]) and not _is_noun(" ".join(run).lower()):
             return exact, n
-        if guess and len(joined) >= 5 and not _is_noun(run[-1]) and not any(_closed(w) for w in run) \
-                and not any(verb_lemma(w.lower()) for w in run[1:]) and any(w.lower() not in lx.vocabulary() for w in run):
+        if guess and len(joined) >= 5 and any(w.lower() not in vocabulary for w in run) \
+                and not any(_closed(w) for w in run) and not _is_noun(run[-1]) \
+                and not any(verb_lemma(w.lower()) for w in run[1:]) and not _is_noun(" ".join(run).lower()):
             heard = _sounds_like(joined, scene_types)
             if heard:
                 return heard, n
