@@ -155,7 +155,7 @@ def _is_noun(word: str) -> bool:
 
 def _nounish(word: str) -> bool:
     """A noun, or a word of a noun phrase ("door" of "shower door")."""
-    return _is_noun(word) or word.lower() in lx.noun_words()
+    return _is_noun(word) or (word.lower() in lx.noun_words() and not _closed(word))
 
 
 def _is_verb(word: str) -> bool:
@@ -301,10 +301,13 @@ def _calques(text: str, scene_types: frozenset[str], guess: bool) -> str:
 def _clause_starts(words: list[str]) -> list[str]:
     """Commas where an unpunctuated transcript starts a new clause: before an imperative
     verb after a finished phrase that has its own verb ("grab the mug put it in"; not "desk
-    lamp turn off", an object said first), before "(and) the X goes/stays"."""
+    lamp turn off", an object said first), before "(and) the X goes/stays". In a transcript
+    that says its objects first ("desk lamp turn off the cloth throw in trash"), the break
+    goes before the next object, not before its verb."""
     tr = _data()[0].transcript
     out = list(words)
     has_verb = False
+    object_first = bool(words) and _nounish(words[0]) and not _is_verb(words[0])
     for k in range(1, len(words)):
         w, prev = words[k], words[k - 1].lower()
         has_verb = has_verb or _is_verb(prev)
@@ -316,9 +319,19 @@ def _clause_starts(words: list[str]) -> list[str]:
             has_verb = False
         elif prev not in tr.no_break_after and _ended(prev, tr.phrase_ends) \
                 and _starts_clause(words, k, tr.clause_verbs, has_verb):
-            out[k] = ", " + w
+            at = _object_start(words, k) if object_first and _is_verb(w) else k
+            out[at] = ", " + out[at]
             has_verb = False
     return out
+
+
+def _object_start(words: list[str], k: int) -> int:
+    """Where the object said before the verb at ``k`` starts ("the cloth throw": at "the";
+    "and watch put": at "and")."""
+    at = k
+    while at > 1 and (_nounish(words[at - 1]) or words[at - 1].lower() in lx.DETERMINERS):
+        at -= 1
+    return at - 1 if at > 1 and words[at - 1].lower() in {"and", "then"} else at
 
 
 def _ended(word: str, phrase_ends: Collection[str]) -> bool:
