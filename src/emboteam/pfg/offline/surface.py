@@ -250,7 +250,6 @@ def _split_words(words: list[str], scene_types: frozenset[str], guess: bool) -> 
 def _run_name(words: list[str], k: int, scene_types: frozenset[str], guess: bool) -> tuple[str | None, int]:
     """The scene name the run of words from ``k`` says, and the run's length (1: none)."""
     names = _scene_names(scene_types)
-    vocabulary = lx.vocabulary()
     for n in (3, 2):
         run = words[k:k + n]
         if len(run) < n or not all(w.isalpha() for w in run):
@@ -259,13 +258,26 @@ def _run_name(words: list[str], k: int, scene_types: frozenset[str], guess: bool
         exact = names.get(joined) or (names.get(joined[:-1]) if joined.endswith("s") else None)
         if exact and not _is_noun(run[0]) and not _is_noun(" ".join(run).lower()):
             return exact, n
-        if guess and len(joined) >= 5 and any(w.lower() not in vocabulary for w in run) \
-                and not any(_closed(w) for w in run) and not _is_noun(run[-1]) \
-                and not any(verb_lemma(w.lower()) for w in run[1:]) and not _is_noun(" ".join(run).lower()):
+        after_det = k > 0 and words[k - 1].lower() in lx.DETERMINERS
+        if guess and len(joined) >= 5 and _may_mishear(run, after_det):
             heard = _sounds_like(joined, scene_types)
             if heard:
                 return heard, n
     return None, 1
+
+
+def _may_mishear(run: list[str], after_det: bool) -> bool:
+    """Whether a run of words may be a misheard name: no noun ends it and it is no noun
+    phrase; after a determiner, where no function word or verb can stand ("the to motto",
+    "on the hold her"), any run of words that name nothing; elsewhere only one with a word the lexicon does not
+    know and no function word or later verb in it ("the dish sponje")."""
+    if _is_noun(run[-1]) or _is_noun(" ".join(run).lower()):
+        return False
+    if after_det:
+        return not any(_nounish(w) for w in run)
+    vocabulary = lx.vocabulary()
+    return any(w.lower() not in vocabulary for w in run) and not any(_closed(w) for w in run) \
+        and not any(verb_lemma(w.lower()) for w in run[1:])
 
 
 # -- "the N of the M" --------------------------------------------------------------------
@@ -307,7 +319,8 @@ def _clause_starts(words: list[str]) -> list[str]:
     tr = _data()[0].transcript
     out = list(words)
     has_verb = False
-    object_first = bool(words) and _nounish(words[0]) and not _is_verb(words[0])
+    object_first = bool(words) and not _is_verb(words[0]) and \
+        (_nounish(words[0]) or words[0].lower() in lx.DETERMINERS)
     for k in range(1, len(words)):
         w, prev = words[k], words[k - 1].lower()
         has_verb = has_verb or _is_verb(prev)
@@ -329,7 +342,8 @@ def _object_start(words: list[str], k: int) -> int:
     """Where the object said before the verb at ``k`` starts ("the cloth throw": at "the";
     "and watch put": at "and")."""
     at = k
-    while at > 1 and (_nounish(words[at - 1]) or words[at - 1].lower() in lx.DETERMINERS):
+    while at > 1 and (_nounish(words[at - 1]) or words[at - 1].lower() in lx.DETERMINERS
+                      or (words[at - 1].lower() == "of" and _nounish(words[at - 2]))):    # "the light of kitchen"
         at -= 1
     return at - 1 if at > 1 and words[at - 1].lower() in {"and", "then"} else at
 
