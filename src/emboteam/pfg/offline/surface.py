@@ -273,8 +273,8 @@ def _may_mishear(run: list[str], after_det: bool) -> bool:
     know and no function word or later verb in it ("the dish sponje")."""
     if _is_noun(run[-1]) or _is_noun(" ".join(run).lower()):
         return False
-    if after_det:
-        return not any(_nounish(w) for w in run)
+    if after_det and not any(_nounish(w) for w in run):
+        return True
     vocabulary = lx.vocabulary()
     return any(w.lower() not in vocabulary for w in run) and not any(_closed(w) for w in run) \
         and not any(verb_lemma(w.lower()) for w in run[1:])
