@@ -364,7 +364,9 @@ def _starts_clause(words: list[str], k: int, clause_verbs: Collection[str], has_
     if _is_verb(w) and not _is_noun(w) and not (w in lx.STATES and _is_noun(prev)):     # "the curtains open"
         return has_verb and (after in lx.DETERMINERS or after in lx.PRONOUNS or after in lx.PARTICLES)
     preps = {x for p in lx.PREPOSITIONS for x in p.split()}
-    return w in lx.DETERMINERS and prev not in preps and _subject_then_verb(words, k, clause_verbs)
+    # "the lettuce that is in the sink": a relative clause, no new one
+    return w in lx.DETERMINERS and w not in {"that", "which"} and prev not in preps \
+        and _subject_then_verb(words, k, clause_verbs)
 
 
 def _subject_then_verb(words: list[str], k: int, verbs: Collection[str]) -> bool:
@@ -378,9 +380,13 @@ def _subject_then_verb(words: list[str], k: int, verbs: Collection[str]) -> bool
     return False
 
 
+def _unpunctuated(text: str) -> bool:
+    return not re.search(r"[.,;:!?]", text)
+
+
 def _transcript(text: str) -> bool:
-    words = text.split()
-    return not re.search(r"[.,;:!?]", text) and len(words) >= _data()[0].transcript.min_words
+    """An unpunctuated text long enough to hold several clauses: a speech-to-text transcript."""
+    return _unpunctuated(text) and len(text.split()) >= _data()[0].transcript.min_words
 
 
 def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
@@ -400,7 +406,9 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
         kinds.append("calque")
     guesses: list[str] = []
     alt = _rewrite(certain, types, False, guesses)
-    for kind, step in (("and_heard", _in_as_and), ("sound_join", lambda w: _split_words(w, types, guess=True)),
+    # a misheard "in" is speech-to-text's: only in a text without punctuation
+    for kind, step in (("and_heard", _in_as_and if _unpunctuated(text) else None),
+                       ("sound_join", lambda w: _split_words(w, types, guess=True)),
                        ("clause_breaks", _clause_starts if transcript else None)):
         if step is None:
             continue
