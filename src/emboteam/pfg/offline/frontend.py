@@ -66,7 +66,7 @@ from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.surface import KIND as SURFACE
-from emboteam.pfg.offline.surface import Surface, read_surface
+from emboteam.pfg.offline.surface import Surface, read_surface, warm_surface
 from emboteam.pfg.offline.tagger import Item, tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.reading import Reading, ReadingNote
@@ -236,6 +236,7 @@ class OfflineFrontend:
         lexicon.nouns()
         lexicon.vocabulary()
         warm_spelling()
+        warm_surface()
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile]) -> TaskSpec:

@@ -211,14 +211,18 @@ def _in_as_and(words: list[str]) -> list[str]:
 # -- split and run-together names, against the scene ---------------------------------------
 
 @cache
-def _scene_names(scene_types: frozenset[str]) -> dict[str, str]:
-    """Every noun phrase of a scene type, run together -> the phrase ("newspaper" ->
-    "newspaper", "remotecontrol" -> "remote control")."""
-    out: dict[str, str] = {}
+def _joined_names() -> dict[str, tuple[tuple[str, frozenset[str]], ...]]:
+    """Every noun phrase run together -> (the phrase, the types it names): "newspaper",
+    "remotecontrol" -> "remote control". Built once; a scene only filters it."""
+    out: dict[str, list[tuple[str, frozenset[str]]]] = {}
     for phrase, concept in lx.nouns().items():
-        if any(t in scene_types for t in (*concept.types, *concept.fallback)):
-            out.setdefault(phrase.replace(" ", ""), phrase)
-    return out
+        out.setdefault(phrase.replace(" ", ""), []).append((phrase, frozenset((*concept.types, *concept.fallback))))
+    return {k: tuple(v) for k, v in out.items()}
+
+
+def _scene_name(joined: str, scene_types: frozenset[str]) -> str | None:
+    """The noun phrase that, run together, is ``joined`` and names a type of the scene."""
+    return next((p for p, types in _joined_names().get(joined, ()) if types & scene_types), None)
 
 
 def _sounds_like(joined: str, scene_types: frozenset[str]) -> str | None:
@@ -228,7 +232,7 @@ def _sounds_like(joined: str, scene_types: frozenset[str]) -> str | None:
     types = _closest(said, scene_types)
     if types is None:
         return None
-    names = [p for p in _scene_names(scene_types).values() if (c := lx.nouns()[p]).types and c.types[0] == types[0]]
+    names = [p for p, c in lx.nouns().items() if c.types and c.types[0] == types[0]]
     return min(names, key=lambda p: (edit_distance(sound(p), said, 4), p)) if names else None
 
 
@@ -249,13 +253,13 @@ def _split_words(words: list[str], scene_types: frozenset[str], guess: bool) -> 
 
 def _run_name(words: list[str], k: int, scene_types: frozenset[str], guess: bool) -> tuple[str | None, int]:
     """The scene name the run of words from ``k`` says, and the run's length (1: none)."""
-    names = _scene_names(scene_types)
     for n in (3, 2):
         run = words[k:k + n]
         if len(run) < n or not all(w.isalpha() for w in run):
             continue
         joined = "".join(run).lower()
-        exact = names.get(joined) or (names.get(joined[:-1]) if joined.endswith("s") else None)
+        exact = _scene_name(joined, scene_types) or \
+            (_scene_name(joined[:-1], scene_types) if joined.endswith("s") else None)
         if exact and not _is_noun(run[0]) and not _is_noun(" ".join(run).lower()):
             return exact, n
         after_det = k > 0 and words[k - 1].lower() in lx.DETERMINERS
@@ -290,7 +294,9 @@ def _calques(text: str, scene_types: frozenset[str], guess: bool) -> str:
     certain); "the apple of the sink", both things of the scene, as a guess: the apple in the
     sink."""
     calque = _data()[0].calque
-    names = _scene_names(scene_types)
+
+    def named(words: str) -> bool:
+        return _scene_name(words.replace(" ", ""), scene_types) is not None
 
     def one(m: re.Match[str]) -> str:
         det, head, of_det, owner = m.group(1), m.group(2).lower(), m.group(3), m.group(4).lower()
@@ -299,9 +305,9 @@ def _calques(text: str, scene_types: frozenset[str], guess: bool) -> str:
         owner_one = singular(owner, lx.nouns())[0]
         for front in dict.fromkeys((owner_one, owner)):
             compound = f"{front} {head}"
-            if compound in lx.nouns() and compound.replace(" ", "") in names and (of_det or not _is_noun(owner)):
+            if compound in lx.nouns() and named(compound) and (of_det or not _is_noun(owner)):
                 return f"{det} {compound}"
-        if guess and of_det and head in names and owner_one in names and head != owner_one:
+        if guess and of_det and named(head) and named(owner_one) and head != owner_one:
             return f"{det} {head} {calque.place_preposition} {of_det}{owner}"
         return m.group(0)
 
@@ -387,6 +393,15 @@ def _unpunctuated(text: str) -> bool:
 def _transcript(text: str) -> bool:
     """An unpunctuated text long enough to hold several clauses: a speech-to-text transcript."""
     return _unpunctuated(text) and len(text.split()) >= _data()[0].transcript.min_words
+
+
+def warm_surface() -> None:
+    """Load the rules and index the names ahead of the first instruction."""
+    _data()
+    _any_rule(True)
+    _any_rule(False)
+    _joined_names()
+    _closed_words()
 
 
 def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
