@@ -18,6 +18,7 @@ from emboteam.pfg.offline.frames import PreambleFile
 from emboteam.pfg.offline.idioms import IdiomsFile
 from emboteam.pfg.offline.knowledge import DATA_DIR, KnowledgeDataError, WordsFile, WordTables, read
 from emboteam.pfg.offline.lexicon import LexiconFile
+from emboteam.pfg.offline.surface import SurfaceFile
 from emboteam.pfg.offline.text import TextFile
 
 
@@ -33,7 +34,8 @@ def _broken(tmp_path: Path, name: str, change: Any) -> Path:
 @pytest.mark.parametrize(("name", "schema"), [("lexicon.json", LexiconFile), ("idioms.json", IdiomsFile),
                                               ("text.json", TextFile), ("words.json", WordsFile),
                                               ("preamble.json", PreambleFile), ("acts.json", ActsFile),
-                                              ("constructions.json", ConstructionsFile)])
+                                              ("constructions.json", ConstructionsFile),
+                                              ("surface.json", SurfaceFile)])
 def test_every_shipped_knowledge_file_passes_its_schema(name: str, schema: Any) -> None:
     read(DATA_DIR / name, schema)
 

@@ -65,11 +65,13 @@ from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
+from emboteam.pfg.offline.surface import KIND as SURFACE
+from emboteam.pfg.offline.surface import Surface, read_surface, warm_surface
 from emboteam.pfg.offline.tagger import Item, tag
 from emboteam.pfg.offline.text import normalize
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.world.goals import ObjectRef
+from emboteam.world.goals import Condition, ObjectRef
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
@@ -187,11 +189,12 @@ def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dic
 
 
 def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
-                     team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None) -> Reading:
+                     team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None,
+                     surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
     """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
     list of the mentions nothing explains, and the conditions a close
     alternative would change marked unsure."""
-    found = choices(reading.spec, items, scene, state, team, semantics.history, priors)
+    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface)
     best = found.candidates[0]
     notes = reading.notes
     unsure = reading.unsure
@@ -233,6 +236,7 @@ class OfflineFrontend:
         lexicon.nouns()
         lexicon.vocabulary()
         warm_spelling()
+        warm_surface()
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile]) -> TaskSpec:
@@ -248,12 +252,24 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        tagged = tag(text)     # as said, self-corrections and all: what the points of doubt read
+        surface = read_surface(text, scene.types())
+        tagged = tag(surface.text)     # as said, self-corrections and all: what the points of doubt read
         try:
-            return self._read(text, tagged, scene, state, team)
+            alternatives = self._surface_readings(text, surface, scene, state, team)
+            return self._surfaced(self._read(text, tagged, scene, state, team, alternatives), alternatives)
         except ContradictoryInstruction:
             raise
         except OfflineParseError as exc:
+            if surface.alternative is not None:
+                try:
+                    return self._read(text, tag(surface.alternative), scene, state, team)
+                except OfflineParseError:
+                    pass
+            if surface.text != text:
+                try:
+                    return self._read(text, tag(text), scene, state, team)
+                except OfflineParseError:
+                    pass
             # "the pineapple", "two bottles" (only one): what the scene lacks stands, unless
             # the words' structure reads it ("everything on the dresser except ...")
             words_only = isinstance(exc, GroundingError) and not isinstance(exc, IncapableError)
@@ -265,9 +281,37 @@ class OfflineFrontend:
             unsure = tuple(str(c) for c in spec.goal().conditions)
             return Reading(spec, (note,), unsure, candidates=made.candidates, doubts=made.doubts)
 
+    def _surface_readings(self, text: str, surface: Surface, scene: Scene, state: WorldState,
+                          team: Sequence[RobotProfile]) -> dict[str, tuple[str, Reading]]:
+        """The reading of the surface's alternative text (:mod:`.surface`: a misheard
+        "in", a split name that only sounds like a thing, a transcript's clause breaks),
+        read only when a guess fired (a re-read costs a reading)."""
+        if surface.alternative is None:
+            return {}
+        try:
+            read = self._read(text, tag(surface.alternative), scene, state, team, candidates=False)
+        except OfflineParseError:
+            return {}
+        return {surface.label: (surface.alternative, read)}
+
+    @staticmethod
+    def _surfaced(reading: Reading, alternatives: dict[str, tuple[str, Reading]]) -> Reading:
+        """The reading, its spec the alternative text's own when the ranker put that first
+        (its subtasks keep their order and dependencies)."""
+        best = reading.candidates[0] if reading.candidates else None
+        if best is None or not any(r.kind == SURFACE for r in best.resolves):
+            return reading
+        for _, alt in alternatives.values():
+            if set(alt.spec.goal().conditions) == set(best.goals):
+                return replace(reading, spec=alt.spec)
+        return reading
+
     def _read(self, text: str, tagged: list[Item], scene: Scene, state: WorldState,
-              team: Sequence[RobotProfile]) -> Reading:
-        """The grammar's reading (raises when it finds nothing to act on)."""
+              team: Sequence[RobotProfile], alternatives: dict[str, tuple[str, Reading]] | None = None,
+              candidates: bool = True) -> Reading:
+        """The grammar's reading (raises when it finds nothing to act on); with its ranked
+        candidates, the ``alternatives`` (readings of the surface's guesses) among them,
+        unless ``candidates`` is False."""
         items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tagged)))))
         clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))
@@ -412,8 +456,11 @@ class OfflineFrontend:
         unsure = _unsure(spec, semantics.g.doubts)
         unsure += tuple(dict.fromkeys(str(c) for ci in sorted(guessed) for d in drafts.get(ci, [])
                                       for c in d.conditions if str(c) not in unsure))
+        if not candidates:
+            return Reading(spec, notes, unsure)
+        surface = [(label, how, tuple(r.spec.goal().conditions)) for label, (how, r) in (alternatives or {}).items()]
         return _with_candidates(Reading(spec, notes, unsure), tagged, scene, state, team, semantics,
-                                self.priors)
+                                self.priors, surface)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,

@@ -16,6 +16,7 @@ from emboteam.pfg.offline.doubts.coverage import Coverage
 from emboteam.pfg.offline.doubts.from_mentions import from_mentions
 from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 from emboteam.pfg.offline.doubts.unexplained import unexplained_spans
+from emboteam.pfg.offline.surface import surface_doubts
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.ranker import rank
 from emboteam.pfg.sentences import sentence
@@ -34,13 +35,15 @@ class Choices:
 
 
 def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldState,
-            team: Sequence[RobotProfile], history: Sequence[Mention] = (), priors: Priors | None = None) -> Choices:
+            team: Sequence[RobotProfile], history: Sequence[Mention] = (), priors: Priors | None = None,
+            surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Choices:
     """The candidates of a reading (best first, the reader's own among them) and the
-    words of each mention nothing explains."""
+    words of each mention nothing explains; ``surface``: the readings of the instruction
+    with the surface's guesses made (:func:`~emboteam.pfg.offline.surface.surface_doubts`)."""
     ctx = DoubtContext(items=items, goals=tuple(spec.goal().conditions), scene=scene, state=state,
                        history=history, steps=tuple(c for s in spec.subtasks if not s.final for c in s.goal))
     priors = priors or load_priors()
-    doubts = find_doubts(ctx, priors)
+    doubts = [*find_doubts(ctx, priors), *surface_doubts(ctx.goals, surface)]
     check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
     ranked = rank(spec, doubts, priors, check, Coverage(ctx))
     # the team check for the candidates that may run or be offered (the best and the close ones)
