@@ -11,7 +11,7 @@ import pytest
 
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.doubts.check import FeasibilityCheck
-from emboteam.pfg.offline.doubts.mention_cues import MENTION_CUES_FILE, load_mention_cues
+from emboteam.pfg.offline.doubts.mention_words import MENTION_CUES_FILE, load_mention_cues
 from emboteam.pfg.offline.knowledge import KnowledgeDataError
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 from emboteam.world.robots import parse_team

@@ -8,8 +8,9 @@ reading may have dropped a requested end state.
 
 from __future__ import annotations
 
-from emboteam.pfg.offline.doubts import mention_cues
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.mention_words import REACH as _REACH
+from emboteam.pfg.offline.doubts.mention_words import after_preposition, chatter
 from emboteam.world.catalogue import load_catalogue
 
 
@@ -34,21 +35,6 @@ CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "
 NEGATED = "negated or excluded"
 #: the explanation of a mention a chatter cue frames ("we used to have ...": :mod:`.mention_cues`)
 CHATTER = "chatter"
-#: how far back (in words) an excluder or a place preposition reaches
-_REACH = 4
-
-
-def after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
-    """Whether the mention at ``k`` is the object of a preposition: one stands before it
-    within reach, with no verb, state word or conjunction between ("to the box", not
-    "to an open the blinds": a preposition governs its noun phrase, not past a verb)."""
-    for j in range(k - 1, max(start, k - _REACH) - 1, -1):
-        item = ctx.items[j]
-        if item.prep is not None and item.noun is None:
-            return True
-        if item.verb is not None or item.state is not None or item.conj is not None:
-            return False
-    return False
 
 
 def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool = True) -> str | None:
@@ -76,6 +62,6 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool =
         return "called off by a self-correction"
     if any(m.role in ("place", "dest") and set(types) & m.ref.types for m in ctx.history):
         return "a place or landmark"
-    if mention_cues.chatter(ctx, k):
+    if chatter(ctx, k):
         return CHATTER
     return None

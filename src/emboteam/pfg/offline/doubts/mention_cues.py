@@ -19,24 +19,25 @@ alternative's prior is in ``priors.json`` (kind ``mention_cue``, one label per c
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import cache
-from pathlib import Path
-from typing import Literal
-
-from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
-from emboteam.pfg.offline.doubts.rule_words import Words, find, sentence_bounds, starts_at
+from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
+from emboteam.pfg.offline.doubts.mention_words import (
+    MentionCues,
+    answers,
+    load_mention_cues,
+    segment,
+    side,
+)
+from emboteam.pfg.offline.doubts.rule_words import Words, find
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
-from emboteam.pfg.offline.knowledge import read
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, Predicate
 
 KIND = "mention_cue"
-MENTION_CUES_FILE = Path(__file__).with_name("mention_cues.json")
 #: the predicates of one family: a thing keeps one place, one switch state, one open state
 _FAMILIES = ({Predicate.inside}, {Predicate.switched_on, Predicate.switched_off}, {Predicate.open, Predicate.closed})
 #: the property a predicate needs of the thing (a state word that cannot apply is no cue)
@@ -46,136 +47,8 @@ _NEEDS = {Predicate.switched_on: "toggleable", Predicate.switched_off: "toggleab
           Predicate.open: "openable", Predicate.closed: "openable"}
 
 
-class _Closed(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-
-
-class SidedCue(_Closed):
-    words: Words = Field(min_length=1)
-    #: where the cue stands from the thing: "the lamp stays" (after), "leave the lamp" (before)
-    side: Literal["before", "after", "either"]
-
-
-class MentionCues(_Closed):
-    about: str = ""
-    keep: list[SidedCue]
-    #: participles and words the tagger reads as no state -> the predicate they ask
-    states: dict[str, Predicate]
-    #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
-    place_preps: list[str]
-    directions: list[Words]
-    #: what names the place after "leave X" / "keep X" ("leave the phone on the bed")
-    placing: list[Words]
-    #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
-    direction_reach: int = Field(4, ge=1, le=12)
-    #: words that say a state as it is (with the tagger's copulas): "its broken anyway"
-    copulas: list[str]
-    #: words between a copula and a state that make it wanted: "should be", "is always on"
-    wishes: list[str]
-    #: words that start a condition: a state after one is not asked of the thing
-    condition_words: list[str]
-    #: things switched as a group ("lights off"): one kept out of its group's switch is an exception
-    groups: list[list[str]]
-    chatter: list[SidedCue]
-    #: how far from the thing a keeping cue may stand ("the keys stay on the little table")
-    cue_reach: int = Field(6, ge=1, le=20)
-    chatter_reach: int = Field(4, ge=1, le=12)
-
-
-    @field_validator("groups")
-    @classmethod
-    def _known(cls, v: list[list[str]]) -> list[list[str]]:
-        cat = load_catalogue()
-        for group in v:
-            for t in group:
-                try:
-                    cat.type(t)
-                except Exception as exc:    # the catalogue's own error says which type
-                    raise ValueError(f"unknown object type: {exc}") from None
-        return v
-
-
-@cache
-def load_mention_cues(path: Path = MENTION_CUES_FILE) -> MentionCues:
-    """The cue file, checked by its schema (a malformed entry is a
-    :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
-    return read(path, MentionCues)
-
-
 def _props(type_: str) -> frozenset[str]:
     return frozenset(load_catalogue().type(type_).properties)
-
-
-def _is_place(ctx: DoubtContext, m: int) -> bool:
-    from emboteam.pfg.offline.doubts.explained import after_preposition
-
-    return after_preposition(ctx, m, ctx.clause_bounds(m)[0])
-
-
-def _memo(ctx: DoubtContext) -> dict[object, object]:
-    """This module's answers for one context, kept on it (the rules and the explanations
-    ask the same mentions and stretches many times per instruction; the context is frozen,
-    so they are stored as its cached properties are, in its ``__dict__``)."""
-    return ctx.__dict__.setdefault("_mention_cues_memo", {})     # type: ignore[no-any-return]
-
-
-def segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
-    """[start, end) of the mention's own words: its sentence, cut at the nearest mentions
-    of other things that are not places (a place belongs to the stretch of its thing; a
-    clause after a comma is still about it: "the phone, which stays on the desk")."""
-    memo = _memo(ctx)
-    if ("segment", k) not in memo:
-        memo["segment", k] = _segment(ctx, k)
-    return memo["segment", k]      # type: ignore[return-value]
-
-
-def _segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
-    start, end = sentence_bounds(ctx.items, k)
-    thing = set(ctx.named_types(ctx.items[k], verbs_too=True))
-    # every word that may name another thing cuts, a verb-like one too ("- microwave's fine")
-    for m in range(start, end):
-        types = ctx.named_types(ctx.items[m], verbs_too=True)
-        if m == k or not types or set(types) & thing or _is_place(ctx, m):
-            continue
-        if m < k:
-            start = m + 1
-        else:
-            end = m
-            break
-    return start, end
-
-
-def _found(ctx: DoubtContext, lo: int, hi: int, words: Words) -> list[int]:
-    """Where the words start between ``lo`` and ``hi`` (the whole phrase inside)."""
-    return [s for s in range(lo, hi - len(words) + 1) if starts_at(ctx.items, s, words)]
-
-
-def _side(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> str | None:
-    """On which side of ``k`` ("before", "after") a cue stands within [lo, hi) (and
-    ``cue_reach`` words), not right after a negation; None when none does."""
-    reach = load_mention_cues().cue_reach
-    lo, hi = max(lo, k - reach), min(hi, k + 1 + reach)
-    for cue in cues:
-        starts = []
-        if cue.side in ("before", "either"):
-            starts += _found(ctx, lo, k, cue.words)
-        if cue.side in ("after", "either"):
-            starts += _found(ctx, k + 1, hi, cue.words)
-        for s in starts:
-            if not any(i.neg for i in ctx.items[max(lo, s - 2):s]):
-                return "before" if s < k else "after"
-    return None
-
-
-def _sided(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> bool:
-    return _side(ctx, k, lo, hi, cues) is not None
-
-
-def chatter(ctx: DoubtContext, k: int) -> bool:
-    """Whether a chatter cue frames the mention ("we used to have a magazine rack")."""
-    data = load_mention_cues()
-    start, end = segment(ctx, k)
-    return _sided(ctx, k, max(start, k - data.chatter_reach), min(end, k + 1 + data.chatter_reach), data.chatter)
 
 
 def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predicate | None:
@@ -280,7 +153,7 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     """(label, goals) the mention's cues ask for, or None."""
     data = load_mention_cues()
     start, end = segment(ctx, k)
-    keep = _side(ctx, k, start, end, data.keep)
+    keep = side(ctx, k, start, end, data.keep)
     # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
     # the state of the clause before ("lights off, the desk lamp can stay")
     state = _state(ctx, k, start, end, thing, before=keep is None)
@@ -327,7 +200,7 @@ def _how(thing: str, goals: Sequence[Condition]) -> str:
 def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
     """The context's mentions, and a word that may be a verb after a determiner ("leave
     the light as it is": the light)."""
-    memo = _memo(ctx)
+    memo = answers(ctx)
     if "mentions" in memo:
         return memo["mentions"]    # type: ignore[return-value]
     found = {k for k, _, _ in ctx.mentions()}
@@ -341,8 +214,6 @@ def _mentions(ctx: DoubtContext) -> list[tuple[int, Item, tuple[str, ...]]]:
 def _chatter_doubt(ctx: DoubtContext, k: int, item: Item, thing: str) -> Doubt | None:
     """A thing named only in chatter ("we used to have a laptop") that the reading gave
     goals: those goals dropped is the alternative."""
-    from emboteam.pfg.offline.doubts.explained import CHATTER, explanation
-
     if any(m != k and thing in ts and explanation(ctx, m, ts, goals=False) != CHATTER for m, _, ts in _mentions(ctx)):
         return None      # named again outside the chatter
     goals = tuple(c for c in ctx.goals if thing in ref_types(c.subject))
@@ -353,8 +224,6 @@ def _chatter_doubt(ctx: DoubtContext, k: int, item: Item, thing: str) -> Doubt |
 
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
-    from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
-
     out: list[Doubt] = []
     seen: set[str] = set()
     for k, item, types in _mentions(ctx):
