@@ -164,3 +164,35 @@ def test_hybrid_lets_the_model_settle_close_readings() -> None:
         anthropic = HybridFrontend(make_client(server.spec("claude-test"), timeout=5), reader.parse)
         assert anthropic.read(task.instruction, scene, state, team).spec == draft.spec
         assert server.requests == []
+
+
+def test_a_scoring_time_out_leaves_the_prior_reading_and_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The model only settles close calls: when its scoring times out (a loaded machine)
+    the task goes on with the prior's first reading, marked unsure with the reason; a
+    replay miss stays loud (the cassette does not cover the run)."""
+    from emboteam.llm.errors import LLMReplayMiss, LLMTimeout
+    from emboteam.pfg.hybrid import HybridFrontend
+    from emboteam.pfg.offline import OfflineFrontend
+
+    task = _dev_task("blind_r6", "Heat the egg: crack it into the pan")
+    scene, state, team = load_scene(task.floor_plan), task.initial_state(), task.team()
+    reader = OfflineFrontend()
+    draft = reader.parse(task.instruction, scene, state, team)
+    root = Path(__file__).resolve().parents[1]
+    client = make_client(f"replay:{root / 'benchmarks' / 'pmi_dev' / 'cassette'}")
+
+    def time_out(request: object) -> None:
+        raise LLMTimeout("scoring outlived the 5 s time-out", stage="pfg.score")
+
+    monkeypatch.setattr(client, "score", time_out)
+    reading = HybridFrontend(client, reader.parse).read(task.instruction, scene, state, team)
+    assert reading.spec == draft.spec
+    note = next(n for n in reading.notes if n.span == "(model ranking)")
+    assert note.kind == "unsure" and "LLMTimeout" in note.reason
+
+    def miss(request: object) -> None:
+        raise LLMReplayMiss("no recorded score", stage="pfg.score")
+
+    monkeypatch.setattr(client, "score", miss)
+    with pytest.raises(LLMReplayMiss):
+        HybridFrontend(client, reader.parse).read(task.instruction, scene, state, team)

@@ -32,7 +32,14 @@ from dataclasses import replace
 from typing import Any, Literal
 
 from emboteam.llm.client import LLMClient
-from emboteam.llm.errors import LLMMalformedOutput, LLMScoringUnsupported
+from emboteam.llm.errors import (
+    LLMMalformedOutput,
+    LLMRateLimited,
+    LLMScoringUnsupported,
+    LLMServerError,
+    LLMTimeout,
+    LLMUnreachable,
+)
 from emboteam.llm.messages import LLMRequest, Message
 from emboteam.llm.structured import Rejected, ask_structured
 from emboteam.pfg.answer_checks import repetition_problems, sure_condition_problems
@@ -52,6 +59,9 @@ from emboteam.world.scene import Scene
 from emboteam.world.state import WorldState
 
 log = logging.getLogger(__name__)
+#: scoring failures the reading survives (configuration errors, replay misses and spent
+#: budgets stay loud: they are the user's to fix)
+SCORING_OUTAGES = (LLMTimeout, LLMUnreachable, LLMServerError, LLMRateLimited)
 
 LLMWhen = Literal["doubt", "always", "close"]
 
@@ -155,6 +165,15 @@ class HybridFrontend:
                                       prior_only=lambda c: any(r.kind in kinds for r in c.resolves))
         except LLMScoringUnsupported:
             return draft
+        except SCORING_OUTAGES as exc:
+            # the model only settles close calls: when it cannot answer (a time-out on a
+            # loaded machine, a server down), the prior's order is still a complete reading,
+            # so the task goes on with it and the reading says why the model was not heard
+            log.warning("scoring skipped: %s", exc)
+            unheard = ReadingNote(span="(model ranking)", kind="unsure",
+                                  reason=f"the local model could not score the close readings "
+                                         f"({type(exc).__name__}); the prior's order stands")
+            return replace(draft, notes=(*draft.notes, unheard))
         self.last_ranking = ranking
         if not ranking.overturned:
             return draft
