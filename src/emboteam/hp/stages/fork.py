@@ -60,6 +60,8 @@ def improved(ctx: Context, draft: Draft, stages: Sequence[Stage]) -> Draft:
     except Fallback:  # the split's plan could not be improved: the plan as it is stands
         tried = None
     if tried is not None and tried.plan.makespan < kept.plan.makespan - 1e-6:
+        ctx.notes.append(f"the longest cluster split in two before the improvements: makespan "
+                         f"{kept.plan.makespan:.1f} -> {tried.plan.makespan:.1f} s")
         return tried
     ctx.notes[:] = notes
     return kept
