@@ -64,7 +64,7 @@ def test_the_split_plan_is_kept_only_when_shorter_and_the_goal_holds() -> None:
     # FloorPlan1, 32 robots x 32 conditions: one robot's cluster of four subtasks (26.9 s)
     # against a bound of 17.7 s; its pot and lettuce parted between it and a helper: 19.7 s
     spec, state = sweep_cell("FloorPlan1", 32, 32)
-    off = HybridPlanner(PlannerConfig(split_clusters=False, spot_order=False)).plan(spec, state)
+    off = HybridPlanner(PlannerConfig(split_clusters=False, split_critical=False, spot_order=False)).plan(spec, state)
     on = HybridPlanner(PlannerConfig(split_clusters=True, spot_order=False)).plan(spec, state)
     note = next(n for n in on.notes if ": split between " in n)
     # on the navigation grid 23.25 -> 22.0 s (the helpers' drives there are longer than the
@@ -82,7 +82,7 @@ def test_a_split_that_is_not_shorter_is_not_kept() -> None:
     # FloorPlan201, 16 robots x 8 conditions: open the book and put it on the shelf; parted
     # between two robots it takes longer (one must wait for the other), so the plan stays
     spec, state = sweep_cell("FloorPlan201", 16, 8)
-    off = HybridPlanner(PlannerConfig(split_clusters=False, spot_order=False)).plan(spec, state)
+    off = HybridPlanner(PlannerConfig(split_clusters=False, split_critical=False, spot_order=False)).plan(spec, state)
     on = HybridPlanner(PlannerConfig(split_clusters=True, spot_order=False)).plan(spec, state)
     assert on.planner_calls > off.planner_calls  # it was tried
     assert on.makespan == off.makespan

@@ -104,7 +104,7 @@ def _cells() -> list[tuple[TaskSpec, WorldState]]:
 def test_the_route_stage_never_makes_a_plan_longer_and_its_plans_run_in_the_simulator() -> None:
     shorter = 0
     for spec, state in _cells():
-        planner, seen = _watched(PlannerConfig(route=False))
+        planner, seen = _watched(PlannerConfig(route=False, split_critical=False))  # one pass of the stages
         plan = planner.plan(spec, state)
         [(before, after, out)] = seen
         assert after <= before

@@ -64,6 +64,12 @@ class PlannerConfig:
     #: from the state the first leaves, and keep the plan when the simulated makespan is
     #: shorter (:mod:`emboteam.hp.cluster_split`; at most ``SPLIT_CALLS`` Fast Downward calls)
     split_clusters: bool = False
+    #: when ``split_clusters`` is off and the longest cluster one robot does is more than
+    #: ``fork.LOAD_EXCESS`` x the team's mean load on a plan of at most ``fork.MAX_STEPS``
+    #: steps, also run the improvements on the plan with that cluster split in two
+    #: (``split_clusters``' split) and keep whichever plan simulates shorter
+    #: (:mod:`emboteam.hp.stages.fork`; the plan without it is made first, unchanged)
+    split_critical: bool = True
     #: when one robot's cluster is longer than the resource-aware bound allows and has at
     #: least three blocks (``cluster_split.blocks``: a pencil, a book and a statue put in a
     #: box, the box put on a table), plan it again in one part per block (at most

@@ -13,6 +13,9 @@ own module with one entry point:
    drives planned again (then the spot order again), the drives that waited for their
    object sent ahead to where it is brought (then the spot order again), CP-SAT over the whole schedule
    (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
+   when one robot's cluster is far above the team's mean load on a small plan, the
+   improvements also run on the plan with that cluster split in two, and the shorter
+   plan is kept (:mod:`~emboteam.hp.stages.fork`);
 3. if decomposition fails (subtasks interleave, a unit keeps failing, the merge does not
    validate), :mod:`~emboteam.hp.stages.joint`: the whole goal as ONE joint problem.
 
@@ -36,6 +39,7 @@ from emboteam.hp.stages.concatenate import plan_concatenated
 from emboteam.hp.stages.context import Context, Draft, Fallback, Solver
 from emboteam.hp.stages.decomposed import plan_decomposed
 from emboteam.hp.stages.drive_ahead import drive_ahead
+from emboteam.hp.stages.fork import improved
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
@@ -135,8 +139,11 @@ class HybridPlanner:
             return plan_joint(ctx)
         try:
             draft = plan_decomposed(ctx)
-            for stage in self.stages:
-                draft = stage(ctx, draft)
+            if self.config.split_critical and not self.config.split_clusters and self.stages:
+                draft = improved(ctx, draft, self.stages)
+            else:
+                for stage in self.stages:
+                    draft = stage(ctx, draft)
         except Fallback as fb:
             ctx.notes.append(f"decomposition failed ({fb}): planned as one joint problem")
             return plan_joint(ctx)

@@ -13,7 +13,7 @@ final and independent (the splice keeps no dependency waits).
 from __future__ import annotations
 
 import logging
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from emboteam.hp import cluster_split
@@ -56,17 +56,20 @@ class _Cut:
     subjects: dict[str, frozenset[str]]
 
 
+def able_of(ctx: Context) -> Callable[[str, Sequence[str]], bool]:
+    """``able(robot, members)``: can that robot do every one of those subtasks alone."""
+    def able(robot: str, members: Sequence[str]) -> bool:
+        profile = ctx.start.robots[robot].profile
+        return all(covers([profile], n) for m in members for n in ctx.needs.get(m, ()))
+    return able
+
+
 def _cut(ctx: Context, draft: Draft) -> _Cut | None:
     """The longest cluster to split and the plan cut around it (None: nothing to split)."""
     if not ctx.independent:
         return None
-    start, needs = ctx.start, ctx.needs
-
-    def able(robot: str, members: Sequence[str]) -> bool:
-        profile = start.robots[robot].profile
-        return all(covers([profile], n) for m in members for n in needs.get(m, ()))
-
-    target = cluster_split.find_target(draft.plan, draft.record.cluster, able)
+    start = ctx.start
+    target = cluster_split.find_target(draft.plan, draft.record.cluster, able_of(ctx))
     if target is None or len(draft.record.sequence) != len(draft.plan.steps):
         return None
     before, gone, rest = cluster_split.splice(draft.record.sequence, target)
