@@ -43,7 +43,7 @@ from emboteam.pfg.offline.constructions import (
     parts_as_places,
     places_to_locations,
 )
-from emboteam.pfg.offline.corrections import apply_corrections
+from emboteam.pfg.offline.corrections import Corrected, correct
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble, refs_overlap
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
@@ -190,11 +190,12 @@ def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dic
 
 def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
                      team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None,
-                     surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
+                     surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = (),
+                     corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
     """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
     list of the mentions nothing explains, and the conditions a close
     alternative would change marked unsure."""
-    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface)
+    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface, corrections)
     best = found.candidates[0]
     notes = reading.notes
     unsure = reading.unsure
@@ -309,10 +310,44 @@ class OfflineFrontend:
     def _read(self, text: str, tagged: list[Item], scene: Scene, state: WorldState,
               team: Sequence[RobotProfile], alternatives: dict[str, tuple[str, Reading]] | None = None,
               candidates: bool = True) -> Reading:
-        """The grammar's reading (raises when it finds nothing to act on); with its ranked
-        candidates, the ``alternatives`` (readings of the surface's guesses) among them,
-        unless ``candidates`` is False."""
-        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tagged)))))
+        """The grammar's reading of the words as corrected (:mod:`.corrections`), with the
+        other readings of a correction whose slot is in doubt among its candidates; when
+        the first reading finds nothing to act on, the first other reading that does."""
+        fixed = correct(tagged, alternatives=True)
+        try:
+            reading = self._read_items(text, tagged, fixed.items, scene, state, team, alternatives, candidates,
+                                       self._corrections(text, tagged, fixed, scene, state, team, candidates))
+        except ContradictoryInstruction:
+            raise
+        except OfflineParseError:
+            for _, _, items in fixed.alternatives:
+                try:
+                    return self._read_items(text, tagged, items, scene, state, team, alternatives, candidates)
+                except OfflineParseError:
+                    continue
+            raise
+        return reading
+
+    def _corrections(self, text: str, tagged: list[Item], fixed: Corrected, scene: Scene, state: WorldState,
+                     team: Sequence[RobotProfile], candidates: bool) -> list[tuple[str, str, tuple[Condition, ...]]]:
+        """The goal of each other reading of a self-correction (label, how, goal)."""
+        out: list[tuple[str, str, tuple[Condition, ...]]] = []
+        for label, how, items in fixed.alternatives if candidates else ():
+            try:
+                read = self._read_items(text, tagged, items, scene, state, team, candidates=False)
+            except OfflineParseError:
+                continue
+            out.append((label, how, tuple(read.spec.goal().conditions)))
+        return out
+
+    def _read_items(self, text: str, tagged: list[Item], corrected: list[Item], scene: Scene, state: WorldState,
+                    team: Sequence[RobotProfile], alternatives: dict[str, tuple[str, Reading]] | None = None,
+                    candidates: bool = True,
+                    corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
+        """The grammar's reading of ``corrected`` (raises when it finds nothing to act on);
+        with its ranked candidates, the ``alternatives`` (readings of the surface's guesses)
+        and ``corrections`` among them, unless ``candidates`` is False."""
+        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(corrected))))
         clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
@@ -460,7 +495,7 @@ class OfflineFrontend:
             return Reading(spec, notes, unsure)
         surface = [(label, how, tuple(r.spec.goal().conditions)) for label, (how, r) in (alternatives or {}).items()]
         return _with_candidates(Reading(spec, notes, unsure), tagged, scene, state, team, semantics,
-                                self.priors, surface)
+                                self.priors, surface, corrections)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,
