@@ -28,6 +28,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
@@ -45,10 +46,13 @@ _ALSO = _W.phrases("also")
 _SWAPS = _W.phrases("swaps")
 _NOT_PLACES = _W.set("not_places")
 _PRONOUNS = _W.set("pronouns")
+_ARTICLES = _W.set("articles")
 _BREAK = frozenset(".!?;:,")
+#: acts whose "on" / "off" is a particle, no place ("turn on the lamp")
+_SWITCHING = frozenset({Act.SWITCH, Act.SWITCH_ON, Act.SWITCH_OFF, Act.TOGGLE})
 _SENTENCE = frozenset(".!?;:")
 #: markers that need no punctuation before them
-_LOOSE = (("i", "mean"), ("or", "rather"), ("no", "wait"), ("no", "actually"), ("actually", "no"),
+_LOOSE = (("i", "mean"), ("i", "meant"), ("or", "rather"), ("no", "wait"), ("no", "actually"), ("actually", "no"),
           ("nah", "actually"))
 #: markers that also open ordinary requests ("actually, could you ..."): they correct only
 #: what they name again
@@ -91,6 +95,8 @@ def _marker_at(items: list[Item], k: int) -> int:
             return len(m)    # "put the spray bottle and the no the soap bar ...": said again
         if before is None and m not in _LOOSE:
             continue
+        if m[0] == "i" and any(x.text == "by" for x in items[max(0, k - 3):k]):
+            continue     # "by valuables I mean the watch and the keys": what a word stands for
         return len(m)
     return 0
 
@@ -138,10 +144,10 @@ def _runs(items: Sequence[Item], lo: int, hi: int) -> list[_Run]:
         while end < hi and _np_word(items[end]) and not _new_np(items, k, end):
             end += 1
         types = frozenset(t for x in items[k:end] if x.noun is not None for t in x.noun.concept.types)
-        words = " ".join(x.text for x in items[k:end] if not x.det or x.number is not None)
+        words = " ".join(x.text for x in items[k:end] if x.text not in _ARTICLES)
         # "turn on the lamp": a verb's particle, no place
-        particle = k - 2 >= lo and items[k - 1].particle is not None and items[k - 2].verb is not None \
-            and items[k - 2].noun is None
+        verb = items[k - 2].verb if k - 2 >= lo and items[k - 2].noun is None else None
+        particle = items[k - 1].particle is not None and verb is not None and verb.sense.act in _SWITCHING
         after = k > lo and items[k - 1].prep is not None and not particle
         prep = k - 1 if after and items[k - 1].text not in _NOT_PLACES else None
         if types or words:
@@ -209,14 +215,26 @@ def _members(items: Sequence[Item], runs: list[_Run], run: _Run, lo: int) -> lis
     return [r for r in runs if not r.place and start <= r.start < end and r.text not in _PRONOUNS] + pronouns
 
 
-def _called_back(items: list[Item], lo: int, run: _Run, runs: list[_Run]) -> list[Item]:
+def _called_back(items: list[Item], lo: int, run: _Run, runs: list[_Run], topic: bool = True) -> list[Item]:
     """The clause of ``run`` called back (its things stay as a topic)."""
-    return _as_topic(items, _clause_start(items, lo, run.start), _clause_end(items, run.start), runs)
+    return _as_topic(items, _clause_start(items, lo, run.start), _clause_end(items, run.start), runs, topic)
+
+
+def _pronoun_in(items: Sequence[Item]) -> bool:
+    """Whether the first clause of ``items`` names a thing by a pronoun ("that one goes ...")."""
+    stop = next((k for k, i in enumerate(items) if i.punct in _SENTENCE), len(items))
+    return any(i.pron is not None for i in items[:stop])
 
 
 def _drop_member(items: list[Item], run: _Run, lo: int) -> list[Item]:
-    """The items without a list member: its joining "and" or comma and a "too" after it."""
+    """The items without a list member: its joining "and" or comma, a "too" after it, and
+    where it is ("... goes in the sink, and the spray bottle on the toilet too") when the
+    clause's place was said before it."""
     start, end = run.start, run.end
+    said = any(items[j].prep is not None and items[j].text not in _NOT_PLACES
+               for j in range(_clause_start(items, lo, start), start))
+    if said and end < len(items) and items[end].prep is not None:
+        end = _np_end(items, end + 1)
     while end < len(items) and (items[end].text in _ALSO_ONE or _phrase_at(items, end, _ALSO)):
         end += max(1, _phrase_at(items, end, _ALSO))
     if start > lo and (items[start - 1].conj is not None or items[start - 1].punct == ","):
@@ -226,10 +244,11 @@ def _drop_member(items: list[Item], run: _Run, lo: int) -> list[Item]:
     return [*items[:start], *items[end:]]
 
 
-def _as_topic(items: list[Item], lo: int, hi: int, runs: list[_Run]) -> list[Item]:
+def _as_topic(items: list[Item], lo: int, hi: int, runs: list[_Run], topic: bool = True) -> list[Item]:
     """The clause [lo, hi) called back: only its things stay, as a topic a pronoun after
-    it can name ("take the tomato to the fridge - no, that one goes in the sink")."""
-    things = [x for r in runs if not r.place and lo <= r.start < hi for x in items[r.start:r.end]]
+    it can name ("take the tomato to the fridge - no, that one goes in the sink"); without
+    ``topic`` nothing stays."""
+    things = [x for r in runs if topic and not r.place and lo <= r.start < hi for x in items[r.start:r.end]]
     stop = [Item(".", punct=".")] if things else []
     return [*items[:lo], *things, *stop, *items[hi:]]
 
@@ -251,7 +270,8 @@ def _strip_fillers(items: list[Item]) -> list[Item]:
         if items[0].punct is not None:
             items = items[1:]
             continue
-        n = _phrase_at(items, 0, _FILLERS) or _phrase_at(items, 0, _MARKERS)
+        n = _phrase_at(items, 0, _FILLERS) or _phrase_at(items, 0, _MARKERS) or int(
+            items[0].text in _ONLY and len(items) > 1 and _starts_clause(items[1]))
         if not n or (items[0].text in ("no", "nope") and len(items) > 1 and items[1].det):
             return items
         items = items[n:]
@@ -307,17 +327,27 @@ def _slot_edits(before: list[Item], lo: int, fix: list[Item], weak: bool = False
     if (len(fix) == 1 or fix[1].punct is not None) and head.state is not None and head.noun is None:
         return _state(before, lo, head, fix[1:])
     edits = _clause(before, lo, runs, fix, weak)
-    comma = next((k for k, i in enumerate(fix) if i.punct == ","), None)
-    if edits or comma is None or comma + 1 >= len(fix) or weak or nested:
-        return edits
-    # "no, the dog sleeps there, into the box with it": a reason first, the slot after it
-    later = _slot_edits(before, lo, fix[comma + 1:], nested=True)
-    return [_Edit(e.label, e.how, e.before, [*fix[:comma + 1], *e.fix]) for e in later]
+    stop = next((k for k, i in enumerate(fix) if i.punct is not None), len(fix))
+    if edits or weak or nested or any(r.place and _same(r, o) for r in runs for o in _runs(fix, 0, stop) if o.types):
+        return edits     # "- no, in the bowl. hang on, the bowl is shut away ...": a remark on the place
+    # "no, the dog sleeps there, into the box with it", "scratch the dresser, it's cluttered,
+    # onto the stool": a reason first, the slot after it (a fragment, no clause)
+    for comma in (k for k, i in enumerate(fix) if i.punct == "," and k + 1 < len(fix)):
+        seg = fix[comma + 1:]
+        stop = next((k for k, i in enumerate(seg) if i.punct is not None), len(seg))
+        if any(i.verb is not None and i.noun is None for i in seg[:stop]):
+            # "..., put it into the box": the request said again (by a pronoun only)
+            later = _clause(before, lo, runs, seg) if _pronoun_in(seg[:stop]) else []
+        else:
+            later = _slot_edits(before, lo, seg, nested=True)
+        if later:
+            return [_Edit(e.label, e.how, e.before, [*fix[:comma + 1], *e.fix]) for e in later]
+    return []
 
 
 def _fix_run(fix: list[Item]) -> _Run:
     types = frozenset(t for x in fix if x.noun is not None for t in x.noun.concept.types)
-    return _Run(0, len(fix), types, " ".join(x.text for x in fix if not x.det), None)
+    return _Run(0, len(fix), types, " ".join(x.text for x in fix if x.text not in _ARTICLES), None)
 
 
 def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None, np: list[Item],
@@ -326,10 +356,11 @@ def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None,
     destination (then a place said later in the correcting part takes its place)."""
     x = _fix_run(np)
     if dest is not None and _same(dest, x) and dest.prep_at is not None:
-        if tail and tail[0].det:
-            # "not the micro wave the fridge": the place named right after
-            end = _np_end(tail, 0)
-            return [_Edit("place", "the place corrected", [*before[:dest.start], *tail[:end], *before[dest.end:]],
+        at = 1 if tail and tail[0].punct == "," else 0
+        if len(tail) > at and tail[at].det:
+            # "not the micro wave (,) the fridge": the place named right after
+            end = _np_end(tail, at)
+            return [_Edit("place", "the place corrected", [*before[:dest.start], *tail[at:end], *before[dest.end:]],
                           tail[end:])]
         where = next((k for k, i in enumerate(tail) if i.prep is not None and i.text not in _NOT_PLACES
                       and k + 1 < len(tail) and _is_np_item(tail[k + 1])), None)
@@ -344,7 +375,7 @@ def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None,
     run = hit[-1]
     if len(_members(before, runs, run, lo)) > 1:
         return [_Edit("member", f"{x.text!r} taken out of the list", _drop_member(before, run, lo), tail)]
-    return [_Edit("member", f"{x.text!r} called back", _called_back(before, lo, run, runs), tail)]
+    return [_Edit("member", f"{x.text!r} called back", _called_back(before, lo, run, runs, _pronoun_in(tail)), tail)]
 
 
 def _only(before: list[Item], lo: int, runs: list[_Run], np: list[Item], tail: list[Item]) -> list[_Edit]:
@@ -411,8 +442,11 @@ def _clause(before: list[Item], lo: int, runs: list[_Run], fix: list[Item], weak
     if _CALLED_OFF.at(fix):
         return []
     stop = next((k for k, i in enumerate(fix) if i.punct in _BREAK), len(fix))
-    own = [r for r in _runs(fix, 0, stop) if not r.place and r.types]
+    own = [r for r in _runs(fix, 0, stop) if not r.place and r.text not in _PRONOUNS
+           and (r.types or any(_same(r, x) for x in runs))]
     named = [r for r in runs if not r.place and any(_same(r, o) for o in own)]
+    if any(r.place and _same(r, o) for r in runs for o in own if o.types):
+        return []
     if named:
         out = list(before)
         for r in sorted(named, key=lambda r: -r.start):
@@ -420,16 +454,16 @@ def _clause(before: list[Item], lo: int, runs: list[_Run], fix: list[Item], weak
             if any(not any(_same(m, n) for n in named) for m in members):
                 out = _drop_member(out, r, lo)
             else:
-                out = _called_back(out, lo, r, _runs(out, lo, len(out)))
+                out = _called_back(out, lo, r, _runs(out, lo, len(out)), False)
         return [_Edit("member", "the things it names said again", out, fix)]
     things = [r for r in runs if not r.place and r.text not in _PRONOUNS]
     if not things or weak:
         return []
     last = things[-1]
-    again = _called_back(before, lo, last, runs)
     pronoun = any(i.pron is not None for i in fix[:stop])
     if pronoun and not own:
-        return [_Edit("clause", "the clause said again", again, fix)]
+        return [_Edit("clause", "the clause said again", _called_back(before, lo, last, runs), fix)]
+    again = _called_back(before, lo, last, runs, False)
     if own and (_starts_clause(fix[0]) or len(_members(before, runs, last, lo)) == 1):
         return [_Edit("clause", "the clause said again", again, fix),
                 _Edit("keep_first", "both requests stand", before, fix)]
@@ -475,6 +509,9 @@ def _one(out: list[Item], k: int, size: int) -> tuple[list[_Edit], list[Item], l
         return None
     if _CALLED_OFF.at(fix):
         return [_Edit("called_off", "the act called off", _called_off(before, fix), [])], before, rest
+    if _starts_clause(before[-1]) and fix[0].det is False and _starts_clause(fix[0]):
+        # "crack- well, just put the egg ...": a verb broken off
+        return [_Edit("clause", "a verb broken off", before[:-1], fix)], before, rest
     told = _told_apart(before, fix)
     if told is not None:
         return [_Edit("thing", "the same thing told apart", told, [])], before, rest
@@ -482,8 +519,18 @@ def _one(out: list[Item], k: int, size: int) -> tuple[list[_Edit], list[Item], l
     if k > 0 and out[k].text == "no" and _RESTART.at(out, k - 1) and _starts_clause(fix[0]):
         # "throw the pencil away. no wait, throw the pen away": the request said again
         cut = max((i + 1 for i, x in enumerate(before) if x.punct in _BREAK), default=0)
-        return [_Edit("clause", "the request said again", before[:cut], fix)], before, rest
-    return _slot_edits(before, lo, fix, tuple(x.text for x in out[k:k + size]) in _WEAK), before, rest
+        return [_Edit("clause", "the request said again", _as_topic(before, cut, len(before), _runs(
+            before, cut, len(before)), _pronoun_in(fix)), fix)], before, rest
+    edits = _slot_edits(before, lo, fix, tuple(x.text for x in out[k:k + size]) in _WEAK)
+    return [_ended(e) for e in edits], before, rest
+
+
+def _ended(edit: _Edit) -> _Edit:
+    """After a corrected place, thing or state, what follows a comma is a sentence of its
+    own ("- no, on the armchair, the sofa is for sitting"), not more of the list."""
+    if edit.label in ("place", "thing", "state", "list") and edit.fix and edit.fix[0].punct == ",":
+        return _Edit(edit.label, edit.how, edit.before, [Item(".", punct="."), *edit.fix[1:]])
+    return edit
 
 
 def _not_after_list(items: Sequence[Item], k: int) -> bool:
