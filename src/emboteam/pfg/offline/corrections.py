@@ -533,6 +533,13 @@ def _ended(edit: _Edit) -> _Edit:
     return edit
 
 
+def _after_stop(fix: list[Item]) -> list[Item]:
+    """The correcting part as a sentence of its own."""
+    if not fix or fix[0].punct in _SENTENCE:
+        return fix
+    return [Item(".", punct="."), *(fix[1:] if fix[0].punct == "," else fix)]
+
+
 def _not_after_list(items: Sequence[Item], k: int) -> bool:
     """"put the pen, the pencil and the cd in the drawer, not the cd": "not" after a comma
     takes a member out as a correction does (only a member: "not on the floor" is a place
@@ -554,6 +561,9 @@ def correct(items: list[Item], alternatives: bool = True) -> Corrected:
             k += max(size, 1)
             continue
         edits, _, rest = found
+        # a correction that opens a sentence keeps the sentence break before it
+        stop = any(x.punct in _SENTENCE for x in out[max(0, k - 2):k])
+        edits = [_Edit(e.label, e.how, e.before, _after_stop(e.fix) if stop else e.fix) for e in edits]
         first = edits[0]
         fixed = [*first.before, *first.fix, *rest]
         if alternatives:
