@@ -284,6 +284,9 @@ class _Edit:
     how: str
     before: list[Item]
     fix: list[Item]
+    #: what follows a comma after the slot is a sentence of its own (False: the retracted
+    #: clause goes on after an aside, "put the pen - no, the pencil, the pen can stay - in ...")
+    ends: bool = True
 
 
 def _destination(runs: list[_Run], items: Sequence[Item]) -> _Run | None:
@@ -418,12 +421,24 @@ def _thing_or_place(before: list[Item], lo: int, runs: list[_Run], dest: _Run | 
         members = _members(before, runs, last, lo)
         score = _likeness(x.types, last.types)
         edits.append((score, _Edit("thing", f"{x.text!r} instead of {last.text!r}",
-                                   [*before[:last.start], *np, *before[last.end:]], tail)))
+                                   *_aside([*before[:last.start], *np, *before[last.end:]], tail), dest is not None)))
         if len(members) > 1:
             first = members[0]
             edits.append((score - 0.2, _Edit("list", f"{x.text!r} instead of the whole list",
                                              [*before[:first.start], *np, *before[last.end:]], tail)))
     return [e for _, e in sorted(edits, key=lambda e: -e[0])]
+
+
+def _aside(before: list[Item], tail: list[Item]) -> tuple[list[Item], list[Item]]:
+    """"put the pen - no, the pencil, the pen can stay - in the drawer, ...": the retracted
+    clause goes on after an aside; the aside follows it as a sentence of its own."""
+    commas = [k for k, i in enumerate(tail) if i.punct in (",", ":")]
+    for a, b in zip(commas, commas[1:], strict=False):
+        nxt = tail[b + 1] if b + 1 < len(tail) else None
+        if a == 0 and nxt is not None and nxt.prep is not None and nxt.text not in _NOT_PLACES:
+            end = next((k for k in range(b + 1, len(tail)) if tail[k].punct is not None), len(tail))
+            return [*before, *tail[b + 1:end]], [*tail[end:], Item(".", punct="."), *tail[1:b]]
+    return before, tail
 
 
 def _state(before: list[Item], lo: int, new: Item, tail: list[Item]) -> list[_Edit]:
@@ -528,7 +543,7 @@ def _one(out: list[Item], k: int, size: int) -> tuple[list[_Edit], list[Item], l
 def _ended(edit: _Edit) -> _Edit:
     """After a corrected place, thing or state, what follows a comma is a sentence of its
     own ("- no, on the armchair, the sofa is for sitting"), not more of the list."""
-    if edit.label in ("place", "thing", "state", "list") and edit.fix and edit.fix[0].punct == ",":
+    if edit.label in ("place", "thing", "state", "list") and edit.ends and edit.fix and edit.fix[0].punct == ",":
         return _Edit(edit.label, edit.how, edit.before, [Item(".", punct="."), *edit.fix[1:]])
     return edit
 
