@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import pairwise
 
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.lexicon import Act
@@ -433,7 +434,7 @@ def _aside(before: list[Item], tail: list[Item]) -> tuple[list[Item], list[Item]
     """"put the pen - no, the pencil, the pen can stay - in the drawer, ...": the retracted
     clause goes on after an aside; the aside follows it as a sentence of its own."""
     commas = [k for k, i in enumerate(tail) if i.punct in (",", ":")]
-    for a, b in zip(commas, commas[1:], strict=False):
+    for a, b in pairwise(commas):
         nxt = tail[b + 1] if b + 1 < len(tail) else None
         if a == 0 and nxt is not None and nxt.prep is not None and nxt.text not in _NOT_PLACES:
             end = next((k for k in range(b + 1, len(tail)) if tail[k].punct is not None), len(tail))
@@ -536,8 +537,11 @@ def _one(out: list[Item], k: int, size: int) -> tuple[list[_Edit], list[Item], l
         cut = max((i + 1 for i, x in enumerate(before) if x.punct in _BREAK), default=0)
         return [_Edit("clause", "the request said again", _as_topic(before, cut, len(before), _runs(
             before, cut, len(before)), _pronoun_in(fix)), fix)], before, rest
-    edits = _slot_edits(before, lo, fix, tuple(x.text for x in out[k:k + size]) in _WEAK)
-    return [_ended(e) for e in edits], before, rest
+    edits = [_ended(e) for e in _slot_edits(before, lo, fix, tuple(x.text for x in out[k:k + size]) in _WEAK)]
+    if edits and not any(e.label == "keep_first" for e in edits):
+        # the rejected side stays a reading: the person may not have meant to take it back
+        edits.append(_Edit("keep_first", "the first request stands", before, edits[0].fix))
+    return edits, before, rest
 
 
 def _ended(edit: _Edit) -> _Edit:
