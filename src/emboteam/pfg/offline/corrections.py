@@ -41,6 +41,7 @@ _W = word_tables("corrections")
 _CALLED_OFF, _RESTART = (pattern_tables("corrections").pattern(name) for name in ("called_off", "restart"))
 #: marker word sequences; a bare "no"/"sorry" is a marker only between punctuation
 _MARKERS = _W.phrases("markers")
+_FIRST_WORDS = frozenset(m[0] for m in _MARKERS)
 _FILLERS = _W.phrases("fillers")
 _NEGATORS, _ONLY, _ALSO_ONE = _W.set("negators"), _W.set("only"), _W.set("also")
 _ALSO = _W.phrases("also")
@@ -80,6 +81,8 @@ def _phrase_at(items: Sequence[Item], k: int, phrases: Sequence[tuple[str, ...]]
 
 def _marker_at(items: list[Item], k: int) -> int:
     """Length of a correction marker starting at ``items[k]`` (0 if none)."""
+    if items[k].text not in _FIRST_WORDS:
+        return 0
     for m in _MARKERS:
         if tuple(x.text for x in items[k:k + len(m)]) != m:
             continue
@@ -563,7 +566,7 @@ def _not_after_list(items: Sequence[Item], k: int) -> bool:
     """"put the pen, the pencil and the cd in the drawer, not the cd": "not" after a comma
     takes a member out as a correction does (only a member: "not on the floor" is a place
     said as rejected)."""
-    return k > 0 and items[k].text == "not" and items[k - 1].punct == "," and k + 1 < len(items) \
+    return items[k].text == "not" and k > 0 and items[k - 1].punct == "," and k + 1 < len(items) \
         and bool(items[k + 1].det)
 
 
