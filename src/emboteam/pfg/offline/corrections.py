@@ -1,25 +1,12 @@
-"""Self-corrections, one mechanism: a correction marker ("no wait", "sorry", "I mean",
-"actually no") splits what was said into the retracted part and the correcting part; what
-the correcting part starts with names the *slot* it corrects, and only that slot of the
-retracted part is replaced:
-
-| the correcting part | slot | "put the pen and the pencil in the drawer - ..." |
-| --- | --- | --- |
-| a place: "on the desk" | the destination | the place phrase replaced |
-| a thing: "the mug" | the thing, or the destination (by what the scene's type affords) | the nearest member (or the place) replaced |
-| "not / scratch X", "X not" | a member taken out (or the destination, when X is it) | "- no, not the pen" |
-| "only / just X" | the list cut to X | "- no, only the pencil" |
-| "X instead of Y" | a member or the place swapped | |
-| a state word: "on" | the state | "turn the tv off, sorry, on" |
-| a clause: "the pen stays on the desk" | the members it names leave the list; none named: the clause it re-says | |
-| "don't" | the act called off | |
-
-The rest of the retracted part stands, and so does what follows the slot ("the pen stays on
-the desk" adds its keep). Where the correcting part fits two slots ("put the cup and the
-mug in the sink - no, the bowl": the mug or both?), :func:`correct` returns the other
-readings as alternatives: the front end reads each and offers it as a candidate (a point of
-doubt of kind ``correction``). Done on the tagged items, before clause segmentation. The
-words are data (``words.json``, ``corrections``).
+"""Self-corrections, one mechanism: a marker ("no wait", "sorry", "I mean") splits what was
+said into the retracted part and the correcting part; what the correcting part starts with
+names the slot it corrects (the place, the thing, a list member taken out / kept / swapped,
+the state, a clause said again, the act called off) and only that slot of the retracted part
+is replaced: the rest of the earlier request, and what the correcting part goes on to say
+("the pen stays on the desk"), stand. Where the slot is in doubt, :func:`correct` also
+returns the other readings; the front end offers each as a candidate of kind ``correction``.
+Done on the tagged items, before clause segmentation; the words are data (``words.json``,
+``corrections``). The table of slots: docs/offline_parser.md, "Self-corrections".
 """
 
 from __future__ import annotations

@@ -45,7 +45,7 @@ from emboteam.pfg.offline.constructions import (
 )
 from emboteam.pfg.offline.corrections import Corrected, correct
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
-from emboteam.pfg.offline.decompose import assemble, refs_overlap
+from emboteam.pfg.offline.decompose import assemble
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
 from emboteam.pfg.offline.doubts.priors import Priors
@@ -151,41 +151,6 @@ def _vague_phrase(clause: Clause) -> str | None:
         if m:
             return m.group(0)
     return None
-
-
-#: "leave the spray bottle", "forget the vase", "skip the candle": no change to it
-_LEAVE_VERBS = _W.set("leave_verbs")
-
-
-def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dict[int, list[Draft]]) -> bool:
-    """"... and the spray bottle too. Actually no, leave the spray bottle, just the soap":
-    a thing to be left as it is, after a request about it, takes that request back (the
-    earlier drafts that act on it go). True when the clause was read this way."""
-    frames = [f for f in parsed.frames if f.verb in _LEAVE_VERBS and not f.negated and f.state is None
-              and f.targets and all(not t.dest and t.state is None and t.particle is None and t.head.pron is None
-                                    for t in f.targets)]
-    words = [i for i in parsed.clause.items if i.punct is None]
-    verb_at = next((k for k, i in enumerate(words) if i.verb is not None and i.verb.lemma in _LEAVE_VERBS), None)
-    if not frames or not drafts or verb_at is None or known_objects(words[verb_at + 1:]) is None:
-        return False    # "leave the slice in there": a place, a wish of its own
-    refs = []
-    for f in frames:
-        for t in f.targets:
-            try:
-                refs.append(semantics.ground(t.head, None, -1 - ci, ci))
-            except OfflineParseError:
-                continue
-    subjects = [r for ref in refs for r, _ in ref.groups]
-    taken_back = [k for k, ds in drafts.items() if k < ci and any(
-        any(refs_overlap(c.subject, x) for x in subjects) for d in ds for c in d.conditions)]
-    for k in taken_back:
-        drafts[k] = [d for d in drafts[k] if not any(refs_overlap(c.subject, x) for c in d.conditions
-                                                     for x in subjects)]
-        for d in drafts[k]:
-            d.after = []
-        if not drafts[k]:
-            del drafts[k]
-    return bool(taken_back)
 
 
 def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
@@ -432,8 +397,6 @@ class OfflineFrontend:
                 for h in named:
                     semantics.note(h, ci, "place" if pronoun_subject else None)
                 unknown.extend(parsed.unknown)
-                continue
-            if _left_alone(parsed, semantics, ci, drafts):
                 continue
             out: list[Draft] = []
             failed_before = len(failed)
