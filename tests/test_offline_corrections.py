@@ -47,6 +47,9 @@ def goal(text: str, fp: int) -> set[str]:
     ("Heat the potato - I mean, cook it.", 1, {"cooked(Potato)"}),
     ("Put the book on the bed, no not the book, the laptop goes on the bed.", 301, {"inside(Laptop, Bed)"}),
     ("Slice the bread, no wait, don't, just put it in the fridge.", 1, {"inside(Bread, Fridge)"}),
+    # said without a pause: the member taken out goes where the correcting part says
+    ("put the fork and the spoon in the drawer and the knife as well no not the knife that goes in the sink", 1,
+     {"inside(Fork, Drawer)", "inside(Spoon, Drawer)", "inside(Knife, SinkBasin)"}),
 ])
 def test_the_correcting_part_replaces_its_slot_only(text: str, fp: int, expected: set[str]) -> None:
     assert goal(text, fp) == expected

@@ -78,14 +78,14 @@ def _marker_at(items: list[Item], k: int) -> int:
         if after is None:
             return 0
         restart = m == ("no",) and k > 0 and _RESTART.at(items, k - 1)
-        if len(m) == 1 and not restart and (before is None or not (
+        if len(m) == 1 and not restart and after.text != "not" and (before is None or not (
                 after.punct == "," or after.prep is not None or after.text in _NEGATORS
                 or (after.det and before == ","))):
             continue     # "no one", "sorry to bother you", "rather the mug than ..."
         if restart:
             return len(m)    # "put the spray bottle and the no the soap bar ...": said again
-        if before is None and m not in _LOOSE:
-            continue
+        if before is None and m not in _LOOSE and not (m == ("no",) and after.text == "not"):
+            continue     # ("... and the cloth as well no not the cloth": said without a pause)
         if m[0] == "i" and any(x.text == "by" for x in items[max(0, k - 3):k]):
             continue     # "by valuables I mean the watch and the keys": what a word stands for
         return len(m)
@@ -368,7 +368,11 @@ def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None,
         return []
     run = hit[-1]
     if len(_members(before, runs, run, lo)) > 1:
-        return [_Edit("member", f"{x.text!r} taken out of the list", _drop_member(before, run, lo), tail)]
+        out = _drop_member(before, run, lo)
+        if _pronoun_in(tail) and run is runs[-1]:
+            # "... and the cloth as well, no, not the cloth, that goes in the bin": a topic
+            out = [*out, Item(".", punct="."), *before[run.start:run.end], Item(".", punct=".")]
+        return [_Edit("member", f"{x.text!r} taken out of the list", out, tail)]
     return [_Edit("member", f"{x.text!r} called back", _called_back(before, lo, run, runs, _pronoun_in(tail)), tail)]
 
 
