@@ -21,7 +21,7 @@ object that cannot go in/on the receptacle directly may get there in a *vessel* 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
 from itertools import combinations
 
@@ -89,9 +89,14 @@ class _View:
     def type_of_source(self, o: ObjectState) -> str | None:
         return self.objects[o.source].type if o.source is not None and o.source in self.objects else None
 
-    def matches_types(self, o: ObjectState, types: Iterable[str]) -> bool:
-        ts = set(types)
-        return o.type in ts or self.type_of_source(o) in ts
+    def matches_types(self, o: ObjectState, types: Collection[str]) -> bool:
+        # asked of every object of the scene per reference (the reader's feasibility
+        # checks compile hundreds of conditions): no set built per call, no method call
+        # for the objects that are no piece
+        if o.type in types:
+            return True
+        source = self.objects.get(o.source) if o.source is not None else None
+        return source is not None and source.type in types
 
     def pieces_of(self, whole: str) -> list[str]:
         return [p.id for p in self.objects.values() if p.source == whole]
