@@ -39,6 +39,7 @@ class FeasibilityCheck:
         # the wholes the reading cuts (slicing_targets is a union over conditions: the
         # reading's part is computed once)
         self._base_slices: set[str] | None = None
+        self._team_known: dict[Condition, bool] = {}
 
     def condition(self, c: Condition) -> bool:
         if c not in self.known:
@@ -59,8 +60,14 @@ class FeasibilityCheck:
     def team_can(self, goals: tuple[Condition, ...]) -> bool:
         """Whether the team has the skills for the goals' new conditions (the costly part,
         a few ms a condition: asked only of the candidates that may run or be offered)."""
-        return not self.team or all(analyse_condition(c, self.state).team_method(self.team) is not None
-                                    for c in goals if c not in self.base)
+        return not self.team or all(self._team_can(c) for c in goals if c not in self.base)
+
+    def _team_can(self, c: Condition) -> bool:
+        # remembered per condition, like :meth:`condition`: the close candidates share
+        # most of their conditions, and the state and team are fixed for this check
+        if c not in self._team_known:
+            self._team_known[c] = analyse_condition(c, self.state).team_method(self.team) is not None
+        return self._team_known[c]
 
     def __call__(self, goals: tuple[Condition, ...]) -> bool:
         return all(self.condition(c) for c in goals) and consistent(goals) and self.one_place(goals)
