@@ -16,7 +16,7 @@ import itertools
 from collections.abc import Sequence
 
 from emboteam.pddl.errors import ImpossibleGoalError
-from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.pddl.goal_compiler import StateView, compile_condition, shared_view, slicing_targets
 from emboteam.pfg.offline.consistency import opposed
 from emboteam.sim.capability import analyse_condition
 from emboteam.world.checker import GoalValidationError, validate_goal
@@ -40,6 +40,8 @@ class FeasibilityCheck:
         # reading's part is computed once)
         self._base_slices: set[str] | None = None
         self._team_known: dict[Condition, bool] = {}
+        # one view of the state for all the checks (the state does not change meanwhile)
+        self._view: StateView | None = None
 
     def condition(self, c: Condition) -> bool:
         if c not in self.known:
@@ -49,10 +51,11 @@ class FeasibilityCheck:
     def _check(self, c: Condition) -> bool:
         try:
             validate_goal(Goal(conditions=(c,)), self.scene)
-            if self._base_slices is None:
-                self._base_slices = slicing_targets(list(self.base), self.state, self.robots)
-            slices = self._base_slices | slicing_targets([c], self.state, self.robots)
-            compile_condition(c, self.state, self.robots, slices=slices, narrow=False)
+            if self._view is None or self._base_slices is None:
+                self._view = shared_view(self.state)
+                self._base_slices = slicing_targets(list(self.base), self.state, self.robots, self._view)
+            slices = self._base_slices | slicing_targets([c], self.state, self.robots, self._view)
+            compile_condition(c, self.state, self.robots, slices=slices, narrow=False, view=self._view)
         except (GoalValidationError, ImpossibleGoalError):
             return False
         return True
