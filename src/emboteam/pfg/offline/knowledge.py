@@ -78,8 +78,13 @@ def apply_rewrites(rules: tuple[CompiledRewrite, ...], text: str) -> str:
     """Each rule in order, every match rewritten (``re.sub``); a rule none of whose
     needles is in the text cannot match and is skipped (:mod:`.regex_filter`)."""
     for pattern, repl, required in rules:
-        if required is None or any(n in text for n in required):
-            text = pattern.sub(repl, text)
+        if required is not None:
+            for needle in required:     # a loop, not any(): no generator per rule
+                if needle in text:
+                    break
+            else:
+                continue
+        text = pattern.sub(repl, text)
     return text
 
 
