@@ -58,11 +58,13 @@ def apply_choices(goals: Sequence[Condition], choices: Sequence[Choice]) -> tupl
     return tuple(out)
 
 
-def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...]) -> TaskSpec | None:
+def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...],
+              base: Sequence[Condition] | None = None) -> TaskSpec | None:
     """The reader's TaskSpec with its goal changed to ``goals``: a subtask keeps the
     conditions still wanted, a replaced condition takes its place, the rest become new
-    subtasks. None when nothing is left."""
-    if set(goals) == set(spec.goal().conditions):
+    subtasks. None when nothing is left. ``base``: ``spec.goal().conditions`` when the
+    caller has them (the walk asks for many candidates of one spec)."""
+    if set(goals) == set(base if base is not None else spec.goal().conditions):
         return spec
     wanted = list(goals)
     kept: list[Subtask] = []
@@ -154,7 +156,7 @@ def _candidate(spec: TaskSpec, base: tuple[Condition, ...], factors: Sequence[_F
         return None
     if goals != base and not feasible(goals):
         return None
-    edited = edit_spec(spec, goals)
+    edited = edit_spec(spec, goals, base)
     if edited is None:
         return None
     resolves = tuple(Resolution(f.doubt.kind, f.doubt.span, c.label, c.how)

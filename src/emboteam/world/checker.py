@@ -8,6 +8,7 @@ different apples, as in SMART-LLM's and ALFRED's goal checks.
 
 from __future__ import annotations
 
+from collections import Counter
 from functools import lru_cache
 
 from pydantic import BaseModel, ConfigDict
@@ -185,12 +186,13 @@ def _instances(ref: ObjectRef, scene: Scene) -> int:
     """How many objects could stand for a type reference, counting possible slices."""
     cat = load_catalogue()
     n = 0
-    for o in scene.objects:
-        product = cat.slice_product(o.type)
-        if o.type in ref.types:
-            n += product[1] if product is not None and product[0] in ref.types else 1
+    # by type, not by object (asked for every condition the reader checks)
+    for t, count in Counter(o.type for o in scene.objects).items():
+        product = cat.slice_product(t)
+        if t in ref.types:
+            n += count * (product[1] if product is not None and product[0] in ref.types else 1)
         elif product is not None and product[0] in ref.types:
-            n += product[1]
+            n += count * product[1]
     return n
 
 
