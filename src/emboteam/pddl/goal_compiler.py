@@ -87,6 +87,8 @@ class _View:
         self.objects: dict[str, ObjectState] = {**state.objects, **self.pending}
         #: the objects each reference may stand for (:func:`_raw_subjects`), found once per view
         self.subjects: dict[ObjectRef, list[ObjectState]] = {}
+        #: the receptacles each place reference stands for (:func:`_places`), found once per view
+        self.places: dict[ObjectRef, list[str]] = {}
 
     def type_of_source(self, o: ObjectState) -> str | None:
         return self.objects[o.source].type if o.source is not None and o.source in self.objects else None
@@ -248,6 +250,14 @@ def _find_subjects(ref: ObjectRef, view: _View) -> list[ObjectState]:
 
 
 def _places(cond: Condition, view: _View) -> list[str]:
+    assert cond.receptacle is not None
+    found = view.places.get(cond.receptacle)
+    if found is None:
+        found = view.places[cond.receptacle] = _find_places(cond, view)
+    return list(found)
+
+
+def _find_places(cond: Condition, view: _View) -> list[str]:
     assert cond.receptacle is not None
     ref = cond.receptacle
     state = view.state

@@ -8,7 +8,6 @@ different apples, as in SMART-LLM's and ALFRED's goal checks.
 
 from __future__ import annotations
 
-from collections import Counter
 from functools import lru_cache
 
 from pydantic import BaseModel, ConfigDict
@@ -161,7 +160,7 @@ def _candidates(ref: ObjectRef, scene: Scene) -> list[str]:
             product = cat.slice_product(scene.get(base).type)
             return [product[0]] if product else []
         return []
-    present = scene.types()
+    present = scene.type_counts()
     out = []
     for t in ref.types:
         if t in present:
@@ -187,7 +186,7 @@ def _instances(ref: ObjectRef, scene: Scene) -> int:
     cat = load_catalogue()
     n = 0
     # by type, not by object (asked for every condition the reader checks)
-    for t, count in Counter(o.type for o in scene.objects).items():
+    for t, count in scene.type_counts().items():
         product = cat.slice_product(t)
         if t in ref.types:
             n += count * (product[1] if product is not None and product[0] in ref.types else 1)
