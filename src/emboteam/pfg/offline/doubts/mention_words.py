@@ -156,7 +156,10 @@ def side(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) 
     ``cue_reach`` words), not right after a negation; None when none does."""
     reach = load_mention_cues().cue_reach
     lo, hi = max(lo, k - reach), min(hi, k + 1 + reach)
+    said = _positions(ctx)
     for cue in cues:
+        if cue.words[0] not in said:
+            continue        # not in the instruction at all
         starts = []
         if cue.side in ("before", "either"):
             starts += found(ctx, lo, k, cue.words)
