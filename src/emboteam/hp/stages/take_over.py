@@ -13,8 +13,11 @@ from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.stages.context import Context, Draft, Invalid
 from emboteam.hp.stages.merge import finish_independent
-from emboteam.hp.stages.replay import replay_to_goal
+from emboteam.hp.stages.replay import replay_reusing
 from emboteam.hp.take_over import candidates, taken_over
+from emboteam.pddl.domain import Universe
+from emboteam.sim.rules import apply_action
+from emboteam.world.checker import check_condition
 
 log = logging.getLogger(__name__)
 
@@ -26,18 +29,27 @@ ROBOTS_PER_STEP = 1
 
 def _tried(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], index: int, robot: str
            ) -> tuple[MergedPlan, list[GroundedStep]] | None:
-    """The plan with step ``index`` done by ``robot``, when it simulates shorter."""
-    grounded, why = replay_to_goal(ctx.start, taken_over(sequence, index, robot), ctx.spec.goal())
+    """The plan with step ``index`` done by ``robot``, when it simulates shorter. The
+    steps before it are applied as they are; from it on, only what reads or writes what
+    the change touches is grounded again (:func:`replay_reusing`)."""
+    state = ctx.start.copy()
+    for g in sequence[:index]:
+        apply_action(state, g.robot, g.action)
+    tail = [taken_over(sequence, index, robot), *sequence[index + 1:]]
+    grounded, why = replay_reusing(state, tail, {0}, Universe(ctx.start.copy()), [sequence[index]])
+    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
+        why = "misses the goal"
     if why is not None:
         log.debug("%s taking over step %d fails: %s", robot, index, why)
         return None
+    candidate = [*sequence[:index], *grounded]
     try:
-        other = finish_independent(ctx, grounded)
+        other = finish_independent(ctx, candidate)
     except Invalid as exc:
         log.debug("%s taking over step %d fails in the simulator: %s", robot, index, exc)
         return None
     log.debug("%s takes over step %d: makespan %.2f -> %.2f", robot, index, plan.makespan, other.makespan)
-    return (other, grounded) if other.makespan < plan.makespan - 1e-6 else None
+    return (other, candidate) if other.makespan < plan.makespan - 1e-6 else None
 
 
 def take_over(ctx: Context, draft: Draft) -> Draft:
