@@ -51,7 +51,8 @@ def test_the_budget_counts_stops_walked() -> None:
 def _watched() -> tuple[HybridPlanner, list[tuple[Draft, Draft]]]:
     """The default planner, recording what its route stage got and gave."""
     seen: list[tuple[Draft, Draft]] = []
-    planner = HybridPlanner(PlannerConfig(route=False))
+    # the take-over off: the route stage goes where the take-over would come after it
+    planner = HybridPlanner(PlannerConfig(route=False, take_over=False))
 
     def route(ctx: Context, draft: Draft) -> Draft:
         out = route_stage.reroute(ctx, draft)

@@ -97,6 +97,11 @@ class PlannerConfig:
     #: robot waits there; kept when the simulated makespan is shorter
     #: (:mod:`emboteam.hp.drive_ahead`; no planner call). Tried after the route stage
     drive_ahead: bool = True
+    #: a switch or a door other robots waited for (the faucet another robot turns on late
+    #: in its own chain) is done by the waiting robot free earliest; kept when the
+    #: simulated makespan is shorter (:mod:`emboteam.hp.take_over`; no planner call).
+    #: Tried after the drives ahead
+    take_over: bool = True
     #: "fast" (the default): the stages above; "optimal": then the plan's actions given to
     #: CP-SAT's exact model of the whole schedule (:mod:`emboteam.hp.optimal`: which robot
     #: does each job, in which order, when; a deterministic time limit), and the plan

@@ -11,7 +11,8 @@ own module with one entry point:
    only when the simulated makespan is shorter: re-allocation, cluster split, spot order,
    container split (then the spot order again), the jobs on shorter routes with their
    drives planned again (then the spot order again), the drives that waited for their
-   object sent ahead to where it is brought (then the spot order again), CP-SAT over the whole schedule
+   object sent ahead to where it is brought (then the spot order again), a switch others
+   waited for done by one of them (then the spot order again), CP-SAT over the whole schedule
    (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
    when one robot's cluster is far above the team's mean load on a small plan, the
    improvements also run on the plan with that cluster split in two, and the shorter
@@ -46,6 +47,7 @@ from emboteam.hp.stages.reorder import reorder
 from emboteam.hp.stages.route import reroute
 from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers
+from emboteam.hp.stages.take_over import take_over
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.problem import planning_state
 from emboteam.pddl.runner import FastDownward, PlanCache
@@ -86,6 +88,8 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(_then_reorder(reroute, config.spot_order))
     if config.drive_ahead:
         stages.append(_then_reorder(drive_ahead, config.spot_order))
+    if config.take_over:
+        stages.append(_then_reorder(take_over, config.spot_order))
     stages.append(schedule if config.schedule == "optimal" else schedule_small)
     return tuple(stages)
 

@@ -11,7 +11,8 @@ planning :class:`~emboteam.hp.stages.context.Context` and returns a typed result
   makespan is shorter: :mod:`.reallocate` (re-allocation from measured plans),
   :mod:`.split` (two or more robots on one long cluster), :mod:`.reorder` (who goes first
   at a shared spot), :mod:`.route` (the jobs on shorter routes, walked as the simulator
-  drives, the drives planned again), :mod:`.schedule` (CP-SAT over the whole schedule:
+  drives, the drives planned again), :mod:`.take_over` (a switch others waited for,
+  done by one of them), :mod:`.schedule` (CP-SAT over the whole schedule:
   small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
 - the fallback and the ablation: :mod:`.joint` (one joint problem), :mod:`.concatenate`
   (the no-HP pipeline).

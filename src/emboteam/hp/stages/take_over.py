@@ -1,0 +1,80 @@
+"""The take-over stage: a switch or a door other robots waited for is done by one of them
+(:mod:`emboteam.hp.take_over`), the plan replayed (the replay drives the robot within reach
+where it must), merged and simulated, and kept when its makespan is shorter; then the next
+one, from the plan kept. No planner call; at most :data:`TRIES` rebuilds (a count, never
+seconds). Only for specs whose subtasks are final and independent, as the other stages
+that rebuild a plan."""
+
+from __future__ import annotations
+
+import logging
+
+from emboteam.hp.merge import GroundedStep
+from emboteam.hp.plan import MergedPlan
+from emboteam.hp.stages.context import Context, Draft, Invalid
+from emboteam.hp.stages.merge import finish_independent
+from emboteam.hp.stages.replay import replay_reusing
+from emboteam.hp.take_over import candidates, taken_over
+from emboteam.pddl.domain import Universe
+from emboteam.sim.rules import apply_action
+from emboteam.world.checker import check_condition
+
+log = logging.getLogger(__name__)
+
+#: rebuilds one planning call may try (each a replay, a merge and a simulation)
+TRIES = 3
+#: waiting robots tried per step (the ones free earliest)
+ROBOTS_PER_STEP = 1
+
+
+def _tried(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], index: int, robot: str
+           ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+    """The plan with step ``index`` done by ``robot``, when it simulates shorter. The
+    steps before it are applied as they are; from it on, only what reads or writes what
+    the change touches is grounded again (:func:`replay_reusing`)."""
+    state = ctx.start.copy()
+    for g in sequence[:index]:
+        apply_action(state, g.robot, g.action)
+    tail = [taken_over(sequence, index, robot), *sequence[index + 1:]]
+    grounded, why = replay_reusing(state, tail, {0}, Universe(ctx.start.copy()), [sequence[index]])
+    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
+        why = "misses the goal"
+    if why is not None:
+        log.debug("%s taking over step %d fails: %s", robot, index, why)
+        return None
+    candidate = [*sequence[:index], *grounded]
+    try:
+        other = finish_independent(ctx, candidate)
+    except Invalid as exc:
+        log.debug("%s taking over step %d fails in the simulator: %s", robot, index, exc)
+        return None
+    log.debug("%s takes over step %d: makespan %.2f -> %.2f", robot, index, plan.makespan, other.makespan)
+    return (other, candidate) if other.makespan < plan.makespan - 1e-6 else None
+
+
+def take_over(ctx: Context, draft: Draft) -> Draft:
+    """The draft with the toggles others waited for done by a waiting robot (each kept
+    when shorter), or the draft itself."""
+    plan, sequence = draft.plan, draft.record.sequence
+    if not ctx.independent or len(sequence) != len(plan.steps):
+        return draft
+    tries, skip = 0, set()
+    while tries < TRIES:
+        todo = [c for c in candidates(plan) if str(plan.steps[c.index].action) not in skip]
+        if not todo:
+            break
+        c = todo[0]
+        skip.add(str(plan.steps[c.index].action))
+        for robot in c.robots[:ROBOTS_PER_STEP]:
+            tries += 1
+            found = _tried(ctx, plan, sequence, c.index, robot)
+            if found is not None:
+                ctx.notes.append(f"{robot} did {plan.steps[c.index].action} itself instead of waiting for "
+                                 f"{plan.steps[c.index].robot}: makespan {plan.makespan:.1f} -> "
+                                 f"{found[0].makespan:.1f} s")
+                plan, sequence = found
+                break
+    if plan is draft.plan:
+        return draft
+    draft.record.sequence = sequence
+    return Draft(plan, draft.record)
