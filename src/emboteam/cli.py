@@ -127,17 +127,28 @@ def cli_errors(fn: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-def episode_exit_code(success: bool, error: str | None) -> int:
+def episode_exit_code(success: bool, error: str | None, not_attempted: int = 0) -> int:
     """``run``'s exit code: 0 goal reached; else the code of the error that ended the
     episode (recorded as ``"ClassName: message"``: 2 bad input, 3 a service), and 1 for an
-    episode that ran and did not reach its goal."""
-    if success:
+    episode that ran and did not reach its goal, or did only part of it (``not_attempted``
+    requested conditions the planner could not plan: never 0, whatever the truth says)."""
+    if success and not not_attempted:
         return EXIT_OK
     if error:
         code = exit_code_of(error.split(":", 1)[0].strip())
         if code is not None and code != EXIT_OK:
             return code
     return EXIT_FAILED
+
+
+def partly_done(episode: Any) -> str | None:
+    """The failure message of an episode that ran the part of its goal the planner could
+    plan (None when nothing was left out)."""
+    if not episode.not_attempted:
+        return None
+    left = "; ".join(str(n.condition) for n in episode.not_attempted)
+    return (f"the episode ran the part of the goal that could be planned; "
+            f"{len(episode.not_attempted)} requested condition(s) not attempted: {left}")
 
 
 def print_json(payload: Any) -> None:
@@ -531,14 +542,14 @@ def run(
             save_episode_report(episode, out_dir)
         except OSError as exc:
             raise write_error(out_dir, exc) from None
-    code = episode_exit_code(episode.success, episode.error)
+    code = episode_exit_code(episode.success, episode.error, len(episode.not_attempted))
     error_type, message = split_error(episode.error) if episode.error else (None, None)
     if code not in (EXIT_OK, EXIT_FAILED) and message:  # bad input or a service: say it on stderr too
         err.print(f"[red]error:[/red] {escape(one_line(message))}", highlight=False, soft_wrap=True)
     if as_json:
         summary = episode.summary()
         if code != EXIT_OK:  # the error object every command prints (error, exit_code)
-            failure = message or "the episode ran and did not reach its goal"
+            failure = message or partly_done(episode) or "the episode ran and did not reach its goal"
             summary.update({k: v for k, v in error_object(failure, code, error_type).items() if k != "success"})
         print_json(summary)
         raise typer.Exit(code)
