@@ -38,6 +38,8 @@ from emboteam.world.navfit import UnreachableObjectError
 #: the planner's answers that say "this goal cannot be planned here" (a reading's fault,
 #: worth another reading); other errors (a missing skill, bad input) stay errors
 INFEASIBLE: tuple[type[Exception], ...] = (UnsolvableSubtaskError, PlannerLimitError, UnreachableObjectError)
+#: what ends a fallback's try (a candidate or a part may fail the planner any way)
+NOT_PLANNED: tuple[type[Exception], ...] = (*INFEASIBLE, PlanningError)
 #: how many of the reading's other candidates are planned before falling back to a part
 #: of it (each failed try can cost the planner's time limit)
 MAX_CANDIDATES = 3
@@ -88,7 +90,7 @@ def _next_candidate(spec: TaskSpec, plan: PlanFn, candidates: Sequence[Candidate
     for rank, cand in enumerate(others, start=2):
         try:
             planned = plan(cand.spec)
-        except (*INFEASIBLE, PlanningError):
+        except NOT_PLANNED:
             continue
         note = (f"unsure (planning): the reading as read cannot be planned ({_why(first)}); "
                 f"took the next reading that plans, candidate {rank}: {cand.sentence}")
@@ -102,7 +104,7 @@ def _fails(spec: TaskSpec | None, plan: PlanFn) -> Exception | None:
         return None
     try:
         plan(spec)
-    except (*INFEASIBLE, PlanningError) as exc:
+    except NOT_PLANNED as exc:
         return exc
     return None
 
@@ -138,7 +140,7 @@ def _try_part(spec: TaskSpec, goals: tuple[Condition, ...],
         return None
     try:
         return sub, plan(sub)
-    except (*INFEASIBLE, PlanningError):
+    except NOT_PLANNED:
         return None
 
 
