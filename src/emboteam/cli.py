@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from functools import wraps
 from pathlib import Path
@@ -141,14 +141,16 @@ def episode_exit_code(success: bool, error: str | None, not_attempted: int = 0) 
     return EXIT_FAILED
 
 
+def partly_done_message(left: Sequence[Any]) -> str:
+    """What a partly done job says: the conditions the planner could not plan."""
+    return (f"only the part of the goal that could be planned was done; {len(left)} requested "
+            f"condition(s) not attempted: {'; '.join(str(n.condition) for n in left)}")
+
+
 def partly_done(episode: Any) -> str | None:
     """The failure message of an episode that ran the part of its goal the planner could
     plan (None when nothing was left out)."""
-    if not episode.not_attempted:
-        return None
-    left = "; ".join(str(n.condition) for n in episode.not_attempted)
-    return (f"the episode ran the part of the goal that could be planned; "
-            f"{len(episode.not_attempted)} requested condition(s) not attempted: {left}")
+    return partly_done_message(episode.not_attempted) if episode.not_attempted else None
 
 
 def print_json(payload: Any) -> None:
@@ -461,6 +463,7 @@ def plan(
     import time
 
     from emboteam.modes import EpisodeContext, plan_task
+    from emboteam.pfg.feasible import Feasible
     from emboteam.views import plan_json, plan_table, spec_json, spec_table
 
     task = _resolve_task(target, scene_fp, robots_list)
@@ -471,19 +474,28 @@ def plan(
     client = ctx.llm
     t0 = time.perf_counter()
     notes: list[str] = []        # what the front end could not read, or read with doubt
-    spec, merged = plan_task(ctx, notes)
+    feasible: list[Feasible] = []    # the reading taken, what of it could not be planned
+    spec, merged = plan_task(ctx, notes, feasible=feasible)
     seconds = time.perf_counter() - t0
+    left = feasible[-1].not_attempted if feasible else ()
+    code = EXIT_FAILED if left else EXIT_OK     # a plan of part of the goal is a partly done job
     if as_json:
+        partial = error_object(partly_done_message(left), code, None) if left else {}
         print_json({"task": task.key, "instruction": task.instruction, "scene": task.floor_plan,
                     "subtasks": spec_json(spec), **plan_json(merged), "plan_seconds": round(seconds, 4),
-                    "llm_calls": client.usage.calls if client else 0, "notes": notes})
-        return
+                    "llm_calls": client.usage.calls if client else 0, "notes": notes,
+                    "not_attempted": [n.model_dump() for n in left],
+                    **{k: v for k, v in partial.items() if k != "success"}})
+        raise typer.Exit(code)
     _echo_task(task)
     out.print(spec_table(spec))
     for note in notes:
         out.print(f"[yellow]note:[/yellow] {escape(one_line(note))}", highlight=False)
+    for n in left:
+        out.print(f"[red]not attempted:[/red] {escape(one_line(str(n)))}", highlight=False)
     out.print(plan_table(merged))
     out.print(f"planned in {seconds:.2f} s")
+    raise typer.Exit(code)
 
 
 @app.command()

@@ -40,6 +40,7 @@ from emboteam.sim.simulator import Simulator
 from emboteam.sim.traffic import Traffic
 from emboteam.task import EpisodeTask
 from emboteam.world.actions import Action
+from emboteam.world.checker import check_goal
 from emboteam.world.goals import Goal
 from emboteam.world.navfit import check_reachable
 from emboteam.world.robots import RobotProfile
@@ -191,7 +192,9 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = Non
         spec = review_spec(llm, spec, ctx.task.instruction, *args, avoid_set=example_set(ctx.task)).spec
 
     def checked_plan(s: TaskSpec) -> MergedPlan:
-        check_reachable(s.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
+        # an object beyond the grid's reach: exit 2; a condition true already ("the vase stays
+        # where it is") needs no robot to reach anything
+        check_reachable(Goal(conditions=tuple(check_goal(s.goal(), ctx.state).unmet())), ctx.scene)
         return planner.plan(s, ctx.state)
 
     try:
@@ -232,7 +235,6 @@ def plan_task(ctx: EpisodeContext, notes: list[str] | None = None, readings: lis
     spec, plan = plan_spec(ctx, spec, read[-1] if read else None, found)
     if notes is not None and found:
         notes.extend(found[-1].notes)
-        notes.extend(f"not attempted {n}" for n in found[-1].not_attempted)
     return spec, plan
 
 

@@ -28,7 +28,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from emboteam.hp.plan import MergedPlan
-from emboteam.pddl.errors import PlannerLimitError, PlanningError, UnsolvableSubtaskError
+from emboteam.pddl.errors import PlannerLimitError, PlanningError, PlanValidationError, UnsolvableSubtaskError
 from emboteam.pfg.candidates import Candidate, NotAttempted
 from emboteam.pfg.ranker import edit_spec
 from emboteam.pfg.taskspec import TaskSpec
@@ -37,7 +37,8 @@ from emboteam.world.navfit import UnreachableObjectError
 
 #: the planner's answers that say "this goal cannot be planned here" (a reading's fault,
 #: worth another reading); other errors (a missing skill, bad input) stay errors
-INFEASIBLE: tuple[type[Exception], ...] = (UnsolvableSubtaskError, PlannerLimitError, UnreachableObjectError)
+INFEASIBLE: tuple[type[Exception], ...] = (UnsolvableSubtaskError, PlannerLimitError, PlanValidationError,
+                                           UnreachableObjectError)
 #: what ends a fallback's try (a candidate or a part may fail the planner any way)
 NOT_PLANNED: tuple[type[Exception], ...] = (*INFEASIBLE, PlanningError)
 #: how many of the reading's other candidates are planned before falling back to a part
