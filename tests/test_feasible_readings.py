@@ -152,6 +152,20 @@ def test_a_time_out_on_the_whole_goal_is_a_reason_to_plan_a_part() -> None:
     assert len(found.not_attempted) == 1 and "PlannerTimeoutError" in found.not_attempted[0].reason
 
 
+def test_after_two_time_outs_no_more_candidates_are_tried() -> None:
+    spec = _spec("open(Fridge)")
+    others = [Candidate(goals=(Condition.parse(f"open(Cabinet_{i})"),), sentence=f"c{i}", score=-i,
+                        spec=_spec(f"open(Cabinet_{i})")) for i in (1, 2)]
+    calls: list[str] = []
+
+    def plan(s: TaskSpec) -> MergedPlan:
+        calls.append(str(s.goal().conditions[0]))
+        raise PlannerTimeoutError("Fast Downward: search out of time")
+    with pytest.raises(PlannerTimeoutError):
+        plan_feasible(spec, plan, others)
+    assert calls == ["open(Fridge)", "open(Cabinet_1)"]
+
+
 # ---- the command line ---------------------------------------------------------------------------
 
 def test_run_json_lists_what_was_not_attempted_and_exits_1() -> None:

@@ -5,7 +5,8 @@ The ranker checks a reading against the scene, the placement rules and the team,
 against the planner (a Fast Downward call per candidate would cost the reader its
 milliseconds). So a reading can still fail there: a spurious ``held(Pen)`` next to
 ``closed(Box)``, a mug "in" the bed, a table no grid cell reaches, a joint problem too big
-for the time limit. Then the whole task failed although the reader had other readings.
+for the time limit, a plan the simulator refuses. Then the whole task failed although the
+reader had other readings.
 Here, only after the reading failed to plan:
 
 1. the reading's next candidates (best first, as the ranker made them) are planned, at
@@ -91,6 +92,10 @@ def _next_candidate(spec: TaskSpec, plan: PlanFn, candidates: Sequence[Candidate
     for rank, cand in enumerate(others, start=2):
         try:
             planned = plan(cand.spec)
+        except PlannerLimitError:
+            if isinstance(first, PlannerLimitError):
+                break       # near copies of a problem too big for the limit: the next one is too
+            continue
         except NOT_PLANNED:
             continue
         note = (f"unsure (planning): the reading as read cannot be planned ({_why(first)}); "
