@@ -209,6 +209,12 @@ def test_a_corrected_state_offers_the_earlier_state() -> None:
     assert any([str(g) for g in c.goals] == ["switched_off(LightSwitch)"] for c in reading.candidates)
 
 
+def test_a_condition_is_no_self_correction_its_stated_state_is_no_candidate() -> None:
+    reading = _read("If the desk lamp is still on, it should be switched off.", "FloorPlan315")
+    assert [str(c) for c in reading.spec.goal().conditions] == ["switched_off(DeskLamp)"]
+    assert not any("switched_on(DeskLamp)" in map(str, c.goals) for c in reading.candidates)
+
+
 @pytest.mark.parametrize("text", ["put the apple in the fridge and put the apple in the sink",
                                   "Open and close the fridge."])
 def test_two_requests_said_with_the_same_weight_are_still_refused(text: str) -> None:

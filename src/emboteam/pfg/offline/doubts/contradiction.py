@@ -35,6 +35,9 @@ from emboteam.pfg.offline.tagger import Item
 
 #: at most this many contradictions are settled in one instruction (then the error stands)
 _MOST = 3
+#: cues of a condition, not a self-correction: "if the lamp is on, it should be off" says
+#: what is, then what is wanted; the earlier side was never a request, so it is no candidate
+_CONDITIONS = frozenset({"if", "unless", "when", "whenever"})
 
 
 def _clause_of(drafts: dict[int, list[Draft]], draft: Draft) -> int | None:
@@ -63,7 +66,7 @@ def settle_placements(clauses: Sequence[Clause], superseded: Sequence[tuple[int,
     object placed twice in one breath with a self-correction between keeps the later
     place as read and the earlier as a candidate (appended to ``doubts``); with no cue the
     error stands (module docs: why)."""
-    cues = set(load_rule_words().contradiction.cues)
+    cues = set(load_rule_words().contradiction.cues) - _CONDITIONS
     notes: list[tuple[str, str]] = []
     for entry in superseded:
         try:
@@ -97,7 +100,7 @@ def settle(clauses: Sequence[Clause], drafts: dict[int, list[Draft]],
             if ci is None or cj is None or len(notes) >= _MOST or not _cued(clauses, ci, cj, said, cues):
                 raise
             first.conditions.remove(a)
-            if doubts is not None:
+            if doubts is not None and _cued(clauses, ci, cj, said, cues - _CONDITIONS):
                 doubts.append(both_sides(exc))
             if not first.conditions:
                 drafts[ci] = [d for d in drafts[ci] if d is not first]
