@@ -195,8 +195,9 @@ def test_a_run_that_did_everything_lists_nothing_not_attempted() -> None:
 
 # ---- a self-correction between two opposed requests: a choice -----------------------------------
 
-def test_a_corrected_place_keeps_the_later_and_offers_the_earlier() -> None:
-    reading = _read(CORRECTED)
+@pytest.mark.parametrize("text", [CORRECTED, "Put the tomato in the fridge and put the tomato in the sink instead."])
+def test_a_corrected_place_keeps_the_later_and_offers_the_earlier(text: str) -> None:
+    reading = _read(text)
     assert [str(c) for c in reading.spec.goal().conditions] == ["inside(Tomato, SinkBasin)"]
     assert "inside(Tomato, SinkBasin)" in reading.unsure
     earlier = [c for c in reading.candidates if [str(g) for g in c.goals] == ["inside(Tomato, Fridge)"]]

@@ -442,7 +442,7 @@ class OfflineFrontend:
         # a self-correction between two places of one object: the later, the earlier a candidate
         sides: list[Doubt] = []
         unread += [ReadingNote(span, why, "assumed") for span, why in
-                   settle_placements(clauses, superseded, tagged, sides)]
+                   settle_placements(clauses, superseded, tagged, sides, text)]
         for what, why in drop_impossible(drafts, scene, state):
             unread.append(ReadingNote(what, f"left out, the scene cannot have it: {why}"))
         if not drafts:

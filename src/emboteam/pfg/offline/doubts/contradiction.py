@@ -24,6 +24,7 @@ says which one.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Sequence
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
@@ -44,11 +45,13 @@ def _clause_of(drafts: dict[int, list[Draft]], draft: Draft) -> int | None:
     return next((ci for ci, ds in drafts.items() if any(d is draft for d in ds)), None)
 
 
-def _cued(clauses: Sequence[Clause], ci: int, cj: int, said: Sequence[Item], cues: set[str]) -> bool:
+def _cued(clauses: Sequence[Clause], ci: int, cj: int, said: Sequence[Item], cues: set[str],
+          typed: frozenset[str] = frozenset()) -> bool:
     """Whether a cue stands in the two clauses or between them, or is their link ("if"),
-    or (self-corrections are taken out of the clauses) was said in the instruction."""
+    or (self-corrections are taken out of the clauses) was said in the instruction (its
+    tagged words, or its ``typed`` words: the tagger drops a filler like "instead")."""
     return any(i.text in cues for c in clauses[ci:cj + 1] for i in c.items) or \
-        any(c.link in cues for c in clauses[ci:cj + 1]) or any(i.text in cues for i in said)
+        any(c.link in cues for c in clauses[ci:cj + 1]) or any(i.text in cues for i in said) or bool(typed & cues)
 
 
 def both_sides(exc: ContradictoryInstruction) -> Doubt:
@@ -61,7 +64,7 @@ def both_sides(exc: ContradictoryInstruction) -> Doubt:
 
 
 def settle_placements(clauses: Sequence[Clause], superseded: Sequence[tuple[int, Draft, int, Draft]],
-                      said: Sequence[Item], doubts: list[Doubt]) -> list[tuple[str, str]]:
+                      said: Sequence[Item], doubts: list[Doubt], typed: str = "") -> list[tuple[str, str]]:
     """:func:`.check_placements` (notes for a later place said later), except that one
     object placed twice in one breath with a self-correction between keeps the later
     place as read and the earlier as a candidate (appended to ``doubts``); with no cue the
@@ -73,7 +76,7 @@ def settle_placements(clauses: Sequence[Clause], superseded: Sequence[tuple[int,
             notes += check_placements(clauses, [entry])
         except ContradictoryInstruction as exc:
             ci, cj = sorted((entry[0], entry[2]))
-            if not _cued(clauses, ci, cj, said, cues):
+            if not _cued(clauses, ci, cj, said, cues, frozenset(re.findall(r"[a-z]+", typed.lower()))):
                 raise
             doubts.append(both_sides(exc))
             notes.append((exc.first.description, f"a self-correction settles it ({exc.second.description!r}): "
