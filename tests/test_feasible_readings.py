@@ -75,6 +75,13 @@ def test_a_reading_the_planner_refuses_runs_its_plannable_part_and_says_what_was
     assert any(n.startswith("unsure (planning)") for n in part.notes)
 
 
+def test_the_report_page_gets_what_was_not_attempted(part: Episode) -> None:
+    from emboteam.report.episode_report import episode_view, render_episode_report
+
+    assert episode_view(part)["meta"]["not_attempted"][0]["condition"] == "inside(Mug, Bowl)"
+    assert "Not attempted (the planner could not plan it)" in render_episode_report(part)
+
+
 def test_the_same_input_gives_the_same_outcome_twice(part: Episode) -> None:
     again = _episode(PART)
     assert again.not_attempted == part.not_attempted
