@@ -180,7 +180,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = Non
               feasible: list[Feasible] | None = None) -> tuple[TaskSpec, MergedPlan]:
     """The HP. With an LLM front end in the full system, the paper's LLM validation stage
     reviews the TaskSpec first, and one planner error goes back to the LLM for repair.
-    Any other front end's reading that cannot be planned gives way to its next candidate
+    The offline or hybrid reading that cannot be planned gives way to its next candidate
     that plans, or to its largest part that does (:mod:`emboteam.pfg.feasible`); what was
     taken and left out goes to ``feasible``."""
     cfg, llm = ctx.cfg, ctx.llm
@@ -190,22 +190,14 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = Non
         from emboteam.hp.llm_stages import review_spec
 
         spec = review_spec(llm, spec, ctx.task.instruction, *args, avoid_set=example_set(ctx.task)).spec
-
-    def checked_plan(s: TaskSpec) -> MergedPlan:
-        # an object beyond the grid's reach: exit 2; a condition true already ("the vase stays
-        # where it is") needs no robot to reach anything
-        check_reachable(Goal(conditions=tuple(check_goal(s.goal(), ctx.state).unmet())), ctx.scene)
-        return planner.plan(s, ctx.state)
-
     try:
-        if cfg.frontend == "llm":    # the LLM repairs its own spec instead (below)
-            plan = checked_plan(spec)
+        if cfg.frontend in ("offline", "hybrid"):
+            spec, plan = _plan_reading(ctx, planner, spec, reading, feasible)
         else:
-            found = plan_feasible(spec, checked_plan, reading.candidates if reading else (),
-                                  reading.unsure if reading else ())
-            spec, plan = found.spec, found.plan
-            if feasible is not None:
-                feasible.append(found)
+            # a reading's fallback only: the LLM repairs its own spec instead (below), and
+            # the oracle's ground-truth goal is planned whole (its errors measure the planner)
+            check_reachable(spec.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
+            plan = planner.plan(spec, ctx.state)
     except PlanningError as exc:
         if llm is None or cfg.frontend != "llm":
             raise
@@ -222,6 +214,22 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = Non
         if ordered != spec:
             spec, plan = ordered, planner.plan(ordered, ctx.state)
     return spec, plan
+
+
+def _plan_reading(ctx: EpisodeContext, planner: HybridPlanner, spec: TaskSpec, reading: Reading | None,
+                  feasible: list[Feasible] | None) -> tuple[TaskSpec, MergedPlan]:
+    """A reading planned, or its next candidate or largest part that plans
+    (:func:`~emboteam.pfg.feasible.plan_feasible`); what was taken goes to ``feasible``."""
+    def checked_plan(s: TaskSpec) -> MergedPlan:
+        # an object beyond the grid's reach: exit 2; a condition true already ("the vase stays
+        # where it is") needs no robot to reach anything
+        check_reachable(Goal(conditions=tuple(check_goal(s.goal(), ctx.state).unmet())), ctx.scene)
+        return planner.plan(s, ctx.state)
+
+    found = plan_feasible(spec, checked_plan, reading.candidates if reading else (), reading.unsure if reading else ())
+    if feasible is not None:
+        feasible.append(found)
+    return found.spec, found.plan
 
 
 def plan_task(ctx: EpisodeContext, notes: list[str] | None = None, readings: list[Reading] | None = None,
