@@ -61,7 +61,7 @@ def test_run_json_has_the_documented_fields_and_writes_a_report(tmp_path: Path) 
     data = one_json(cli("run", "mace-thor/fp1-fridge-apple-tomato", "--frontend", "oracle",
                         "--faults", "0.2", "--seed", "1", "--out", str(out), "--json"))
     assert set(data) == {"task", "success", "gcr", "exec", "makespan", "actions", "llm_calls", "tokens",
-                         "plan_seconds", "error", "notes", "unexplained", "candidates", "clarification"}
+                         "plan_seconds", "error", "notes", "unexplained", "candidates", "not_attempted", "clarification"}
     assert data["success"] is True and data["llm_calls"] == 0 and data["notes"] == [] and data["clarification"] is None
     assert (out / "episode.json").exists() and (out / "trace.jsonl").exists()
     assert (out / "report.html").read_text().startswith("<!DOCTYPE html>")

@@ -200,7 +200,7 @@ def test_summary_numbers() -> None:
 
 def test_summary_json_is_the_bench_contract() -> None:
     data = summarize(EPISODES).to_json()
-    assert set(data) == CONTRACT | {"sr_ci", "collisions", "nav_waits", "nav_replans"}
+    assert set(data) == CONTRACT | {"sr_ci", "collisions", "nav_waits", "nav_replans", "partly_done"}
     assert set(data["by_category"]["parallel"]) == {"n", "sr", "gcr", "exec", "sr_ci"}  # type: ignore[index]
     assert BenchSummary.model_validate(data) == summarize(EPISODES)
 

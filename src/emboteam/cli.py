@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from functools import wraps
 from pathlib import Path
@@ -127,17 +127,30 @@ def cli_errors(fn: F) -> F:
     return wrapper  # type: ignore[return-value]
 
 
-def episode_exit_code(success: bool, error: str | None) -> int:
+def episode_exit_code(success: bool, error: str | None, not_attempted: int = 0) -> int:
     """``run``'s exit code: 0 goal reached; else the code of the error that ended the
     episode (recorded as ``"ClassName: message"``: 2 bad input, 3 a service), and 1 for an
-    episode that ran and did not reach its goal."""
-    if success:
+    episode that ran and did not reach its goal, or did only part of it (``not_attempted``
+    requested conditions the planner could not plan: never 0, whatever the truth says)."""
+    if success and not not_attempted:
         return EXIT_OK
     if error:
         code = exit_code_of(error.split(":", 1)[0].strip())
         if code is not None and code != EXIT_OK:
             return code
     return EXIT_FAILED
+
+
+def partly_done_message(left: Sequence[Any]) -> str:
+    """What a partly done job says: the conditions the planner could not plan."""
+    return (f"only the part of the goal that could be planned was done; {len(left)} requested "
+            f"condition(s) not attempted: {'; '.join(str(n.condition) for n in left)}")
+
+
+def partly_done(episode: Any) -> str | None:
+    """The failure message of an episode that ran the part of its goal the planner could
+    plan (None when nothing was left out)."""
+    return partly_done_message(episode.not_attempted) if episode.not_attempted else None
 
 
 def print_json(payload: Any) -> None:
@@ -450,6 +463,7 @@ def plan(
     import time
 
     from emboteam.modes import EpisodeContext, plan_task
+    from emboteam.pfg.feasible import Feasible
     from emboteam.views import plan_json, plan_table, spec_json, spec_table
 
     task = _resolve_task(target, scene_fp, robots_list)
@@ -460,19 +474,28 @@ def plan(
     client = ctx.llm
     t0 = time.perf_counter()
     notes: list[str] = []        # what the front end could not read, or read with doubt
-    spec, merged = plan_task(ctx, notes)
+    feasible: list[Feasible] = []    # the reading taken, what of it could not be planned
+    spec, merged = plan_task(ctx, notes, feasible=feasible)
     seconds = time.perf_counter() - t0
+    left = feasible[-1].not_attempted if feasible else ()
+    code = EXIT_FAILED if left else EXIT_OK     # a plan of part of the goal is a partly done job
     if as_json:
+        partial = error_object(partly_done_message(left), code, None) if left else {}
         print_json({"task": task.key, "instruction": task.instruction, "scene": task.floor_plan,
                     "subtasks": spec_json(spec), **plan_json(merged), "plan_seconds": round(seconds, 4),
-                    "llm_calls": client.usage.calls if client else 0, "notes": notes})
-        return
+                    "llm_calls": client.usage.calls if client else 0, "notes": notes,
+                    "not_attempted": [n.model_dump() for n in left],
+                    **{k: v for k, v in partial.items() if k != "success"}})
+        raise typer.Exit(code)
     _echo_task(task)
     out.print(spec_table(spec))
     for note in notes:
         out.print(f"[yellow]note:[/yellow] {escape(one_line(note))}", highlight=False)
+    for n in left:
+        out.print(f"[red]not attempted:[/red] {escape(one_line(str(n)))}", highlight=False)
     out.print(plan_table(merged))
     out.print(f"planned in {seconds:.2f} s")
+    raise typer.Exit(code)
 
 
 @app.command()
@@ -531,14 +554,14 @@ def run(
             save_episode_report(episode, out_dir)
         except OSError as exc:
             raise write_error(out_dir, exc) from None
-    code = episode_exit_code(episode.success, episode.error)
+    code = episode_exit_code(episode.success, episode.error, len(episode.not_attempted))
     error_type, message = split_error(episode.error) if episode.error else (None, None)
     if code not in (EXIT_OK, EXIT_FAILED) and message:  # bad input or a service: say it on stderr too
         err.print(f"[red]error:[/red] {escape(one_line(message))}", highlight=False, soft_wrap=True)
     if as_json:
         summary = episode.summary()
         if code != EXIT_OK:  # the error object every command prints (error, exit_code)
-            failure = message or "the episode ran and did not reach its goal"
+            failure = message or partly_done(episode) or "the episode ran and did not reach its goal"
             summary.update({k: v for k, v in error_object(failure, code, error_type).items() if k != "success"})
         print_json(summary)
         raise typer.Exit(code)

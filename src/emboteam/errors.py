@@ -12,7 +12,8 @@ from __future__ import annotations
 # not do.
 #: the goal was reached (``run``), or the job was done (every other command)
 EXIT_OK = 0
-#: the episode ran and did not reach its goal (``run``)
+#: the episode ran and did not reach its goal (``run``), or did only the part of it the
+#: planner could plan (``run``, ``plan``: ``not_attempted`` lists the rest)
 EXIT_FAILED = 1
 #: bad input or configuration: an unknown task, option or file, a bad ``--out``, a goal
 #: the scene or team cannot have, an instruction that cannot be understood
@@ -28,7 +29,7 @@ EXIT_INTERRUPTED = 130
 #: (code, meaning) for the docs and ``--help``
 EXIT_CODES: tuple[tuple[int, str], ...] = (
     (EXIT_OK, "goal reached (run) / job done (every other command)"),
-    (EXIT_FAILED, "the episode ran and did not reach its goal"),
+    (EXIT_FAILED, "the episode ran and did not reach its goal, or did only the part of it that could be planned"),
     (EXIT_BAD_INPUT, "bad input or configuration (options, task, instruction, --out, goal)"),
     (EXIT_SERVICE, "a service could not be used (LLM endpoint unreachable, timed out, failing)"),
     (EXIT_INTERNAL, "internal error: a bug (EMBOTEAM_DEBUG=1 shows the traceback)"),

@@ -30,6 +30,7 @@ from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
 from emboteam.pfg.clarification import Clarification, ClarifyHook
+from emboteam.pfg.feasible import Feasible, plan_feasible
 from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
@@ -39,6 +40,7 @@ from emboteam.sim.simulator import Simulator
 from emboteam.sim.traffic import Traffic
 from emboteam.task import EpisodeTask
 from emboteam.world.actions import Action
+from emboteam.world.checker import check_goal
 from emboteam.world.goals import Goal
 from emboteam.world.navfit import check_reachable
 from emboteam.world.robots import RobotProfile
@@ -174,9 +176,13 @@ def plan_summary(plan: MergedPlan) -> str:
     return "\n".join(lines)
 
 
-def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan]:
+def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = None,
+              feasible: list[Feasible] | None = None) -> tuple[TaskSpec, MergedPlan]:
     """The HP. With an LLM front end in the full system, the paper's LLM validation stage
-    reviews the TaskSpec first, and one planner error goes back to the LLM for repair."""
+    reviews the TaskSpec first, and one planner error goes back to the LLM for repair.
+    The offline or hybrid reading that cannot be planned gives way to its next candidate
+    that plans, or to its largest part that does (:mod:`emboteam.pfg.feasible`); what was
+    taken and left out goes to ``feasible``."""
     cfg, llm = ctx.cfg, ctx.llm
     args = (ctx.scene, ctx.state, ctx.team)
     planner = planner_for(cfg.mode, cfg.planner_input, cfg.schedule)
@@ -184,9 +190,14 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
         from emboteam.hp.llm_stages import review_spec
 
         spec = review_spec(llm, spec, ctx.task.instruction, *args, avoid_set=example_set(ctx.task)).spec
-    check_reachable(spec.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
     try:
-        plan = planner.plan(spec, ctx.state)
+        if cfg.frontend in ("offline", "hybrid"):
+            spec, plan = _plan_reading(ctx, planner, spec, reading, feasible)
+        else:
+            # a reading's fallback only: the LLM repairs its own spec instead (below), and
+            # the oracle's ground-truth goal is planned whole (its errors measure the planner)
+            check_reachable(spec.goal(), ctx.scene)  # an object beyond the grid's reach: exit 2
+            plan = planner.plan(spec, ctx.state)
     except PlanningError as exc:
         if llm is None or cfg.frontend != "llm":
             raise
@@ -205,10 +216,34 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec) -> tuple[TaskSpec, MergedPlan
     return spec, plan
 
 
-def plan_task(ctx: EpisodeContext, notes: list[str] | None = None,
-              readings: list[Reading] | None = None) -> tuple[TaskSpec, MergedPlan]:
-    """PFG then HP: what ``emboteam plan`` shows and a planning mode executes."""
-    return plan_spec(ctx, understand(ctx, notes, readings))
+def _plan_reading(ctx: EpisodeContext, planner: HybridPlanner, spec: TaskSpec, reading: Reading | None,
+                  feasible: list[Feasible] | None) -> tuple[TaskSpec, MergedPlan]:
+    """A reading planned, or its next candidate or largest part that plans
+    (:func:`~emboteam.pfg.feasible.plan_feasible`); what was taken goes to ``feasible``."""
+    def checked_plan(s: TaskSpec) -> MergedPlan:
+        # an object beyond the grid's reach: exit 2; a condition true already ("the vase stays
+        # where it is") needs no robot to reach anything
+        check_reachable(Goal(conditions=tuple(check_goal(s.goal(), ctx.state).unmet())), ctx.scene)
+        return planner.plan(s, ctx.state)
+
+    found = plan_feasible(spec, checked_plan, reading.candidates if reading else (), reading.unsure if reading else ())
+    if feasible is not None:
+        feasible.append(found)
+    return found.spec, found.plan
+
+
+def plan_task(ctx: EpisodeContext, notes: list[str] | None = None, readings: list[Reading] | None = None,
+              feasible: list[Feasible] | None = None) -> tuple[TaskSpec, MergedPlan]:
+    """PFG then HP: what ``emboteam plan`` shows and a planning mode executes. A reading
+    the planner refuses gives way to a candidate or a part that plans (``feasible`` gets
+    what was taken and left out; ``notes`` says so)."""
+    read: list[Reading] = [] if readings is None else readings
+    spec = understand(ctx, notes, read)
+    found: list[Feasible] = [] if feasible is None else feasible
+    spec, plan = plan_spec(ctx, spec, read[-1] if read else None, found)
+    if notes is not None and found:
+        notes.extend(found[-1].notes)
+    return spec, plan
 
 
 def action_lists(ctx: EpisodeContext) -> dict[str, list[Action]]:
@@ -292,13 +327,14 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     spec: TaskSpec | None = None
     notes: list[str] = []
     readings: list[Reading] = []
+    feasible: list[Feasible] = []
     if wiring(cfg.mode).planner is None:
         lists = action_lists(ctx)
         plan_seconds = time.perf_counter() - t0
         result, sim = _run_lists(ctx, lists, task.ground_truth or Goal(conditions=()))
     else:
         try:
-            spec, plan = plan_task(ctx, notes, readings)
+            spec, plan = plan_task(ctx, notes, readings, feasible)
         except EmboTeamError as exc:
             # a goal read and then refused by the planner is a reading's failure: keep what
             # was read (notes, candidates, the model's overturn) for the failed episode
@@ -306,7 +342,9 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
             raise
         plan_seconds = time.perf_counter() - t0
         result, sim = execute(ctx, plan, spec.goal(), finish_plan=any(not s.final for s in spec.subtasks))
-    truth = task.ground_truth or (spec.goal() if spec else Goal(conditions=()))
+    # an instruction without a ground truth is scored on all it asked, a part not attempted included
+    requested = feasible[-1].requested if feasible else spec
+    truth = task.ground_truth or (requested.goal() if requested else Goal(conditions=()))
     success, gcr, conditions = score(truth, sim.state)
     fields = result.episode_fields()
     fields.update(success=success, gcr=gcr, conditions=conditions)
@@ -322,6 +360,7 @@ def run_mode(task: EpisodeTask, cfg: RunConfig, llm: LLMClient | None = None) ->
     return Episode.model_validate({
         **header, "llm_calls": llm.usage.calls if llm else 0, "tokens": llm.usage.tokens if llm else 0,
         "plan_seconds": round(plan_seconds, 4), "taskspec": spec, "notes": tuple(notes), "error": error,
+        "not_attempted": feasible[-1].not_attempted if feasible else (),
         **reading_fields(readings[-1] if readings else None), **fields,
     })
 

@@ -96,6 +96,9 @@ def episode_panel(episode: Episode, *, out_dir: str | None = None) -> Panel:
                       + (f"  [{'; '.join(r['how'] for r in c['resolves'])}]" if c["resolves"] else ""),
                       style="bold" if k == 0 else "dim")
                  for k, c in enumerate(episode.candidates)]
+    if episode.not_attempted:    # requested, but the planner could not plan it: left out of the run
+        body += [Text(""), Text("not attempted (the planner could not plan it):", style="red")]
+        body += [Text(f"  ✗ {one_line(str(n))}", style="red") for n in episode.not_attempted]
     if episode.error:
         body += [Text(""), Text(f"error: {one_line(user_message(episode.error))}", style="red")]
     if out_dir:

@@ -147,6 +147,8 @@ class BenchSummary(BaseModel):
     llm_calls_mean: float = 0.0
     tokens_mean: float = 0.0
     errors: int = Field(0, description="episodes ended by a typed error")
+    partly_done: int = Field(0, description="episodes that ran only the part of their reading the planner "
+                                            "could plan (their not_attempted conditions: pfg/feasible.py)")
     collisions: int = Field(0, description="vertex and edge conflicts the independent trace checker "
                                            "found (exec/nav_check.py), over all episodes")
     nav_waits: int = Field(0, description="times a robot waited for another on the grid, over all episodes")
@@ -235,7 +237,7 @@ def summarize(episodes: Iterable[Episode], *, suite: str = "", seed: int = CI_SE
         makespan_mean=_mean([e.makespan for e in eps if e.success]),
         llm_calls_mean=_mean([float(e.llm_calls) for e in eps]),
         tokens_mean=_mean([float(e.tokens) for e in eps]),
-        errors=sum(1 for e in eps if e.error),
+        errors=sum(1 for e in eps if e.error), partly_done=sum(1 for e in eps if e.not_attempted),
         collisions=sum(e.collisions for e in eps), nav_waits=sum(e.nav_waits for e in eps),
         nav_replans=sum(e.nav_replans for e in eps),
         disturbance=summarize_disturbance(eps), disturbance_by_mode=disturbance_by_mode(eps),

@@ -19,6 +19,7 @@ from emboteam.config import RunConfig
 from emboteam.exec.disturbance import DisturbanceOutcome
 from emboteam.exec.trace import TraceEvent, write_jsonl
 from emboteam.hp.plan import MergedPlan
+from emboteam.pfg.candidates import NotAttempted
 from emboteam.pfg.clarification import Clarification
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.faults import FaultConfig
@@ -95,6 +96,8 @@ class Episode(BaseModel):
                                          "goal and that nothing explains (offline front end)")
     candidates: tuple[dict[str, Any], ...] = Field((), description="the readings considered, best first: "
                                                    "sentence, goals, score, the doubts each settles")
+    not_attempted: tuple[NotAttempted, ...] = Field((), description="requested goal conditions the planner "
+                                                    "could not plan, left out of the run, each with why")
     clarification: Clarification | None = Field(None, description="the question the front end asked instead "
                                                 "of guessing (the episode then ends with ClarificationNeeded)")
 
@@ -114,6 +117,7 @@ class Episode(BaseModel):
             "plan_seconds": round(self.plan_seconds, 4), "error": self.error,
             "notes": list(self.notes), "unexplained": list(self.unexplained),
             "candidates": list(self.candidates),
+            "not_attempted": [n.model_dump() for n in self.not_attempted],
             "clarification": self.clarification.to_json() if self.clarification is not None else None,
         }
 

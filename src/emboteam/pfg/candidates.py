@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from pydantic import BaseModel, ConfigDict
+
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.goals import Condition
 
@@ -103,3 +105,16 @@ class Clarification:
     def render(self) -> str:
         """The question and the numbered readings, as a terminal shows them."""
         return "\n".join([self.question, *(f"  {i}. {r}" for i, r in enumerate(self.readings, start=1))])
+
+
+class NotAttempted(BaseModel):
+    """A requested goal condition the planner could not plan, left out of the run, and
+    why (:mod:`emboteam.pfg.feasible`); recorded in the episode and ``--json``."""
+
+    model_config = ConfigDict(frozen=True)
+
+    condition: str
+    reason: str
+
+    def __str__(self) -> str:
+        return f"{self.condition}: {self.reason}"

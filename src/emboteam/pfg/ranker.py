@@ -16,12 +16,15 @@ import heapq
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from emboteam.pfg.candidates import AS_READ, Candidate, Choice, Doubt, Resolution
-from emboteam.pfg.offline.doubts.priors import Priors
 from emboteam.pfg.sentences import sentence
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.goals import Condition
+
+if TYPE_CHECKING:    # (a type only: importing the offline reader here would be a cycle)
+    from emboteam.pfg.offline.doubts.priors import Priors
 
 #: how many combinations the walk looks at before it stops (keeps the reader within
 #: its time budget on long, doubtful instructions)

@@ -100,6 +100,7 @@ def episode_view(episode: Episode) -> dict[str, Any]:
             "disturbance": episode.disturbance.model_dump(mode="json") if episode.disturbance else None,
             "error": episode.error, "notes": list(episode.notes),
             "unexplained": list(episode.unexplained), "candidates": list(episode.candidates),
+            "not_attempted": [n.model_dump() for n in episode.not_attempted],
         },
         "metrics": {
             "success": episode.success, "gcr": episode.gcr, "exec": episode.exec,

@@ -37,7 +37,7 @@ class ContradictoryInstruction(OfflineParseError):
 
     def __init__(self, first: Draft, second: Draft, a: Condition, b: Condition) -> None:
         self.readings = (first.description, second.description)
-        self.first, self.second, self.a = first, second, a
+        self.first, self.second, self.a, self.b = first, second, a, b
         super().__init__(
             f"the instruction asks both to {first.description!r} ({a}) and to "
             f"{second.description!r} ({b}) at once: say which end state you want",

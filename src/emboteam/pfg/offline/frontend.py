@@ -7,6 +7,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
+from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
 from emboteam.pfg.offline.clause_passes import (
@@ -33,7 +34,6 @@ from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
 from emboteam.pfg.offline.consistency import (
     ContradictoryInstruction,
     check_consistent,
-    check_placements,
     narrow_choices,
     narrow_contrasts,
 )
@@ -48,6 +48,7 @@ from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
+from emboteam.pfg.offline.doubts.contradiction import settle_placements
 from emboteam.pfg.offline.doubts.priors import Priors
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
@@ -156,11 +157,13 @@ def _vague_phrase(clause: Clause) -> str | None:
 def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
                      team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None,
                      surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = (),
-                     corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
+                     corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = (),
+                     extra: Sequence[Doubt] = ()) -> Reading:
     """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
     list of the mentions nothing explains, and the conditions a close
     alternative would change marked unsure."""
-    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface, corrections)
+    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface, corrections,
+                    extra)
     best = found.candidates[0]
     notes = reading.notes
     unsure = reading.unsure
@@ -435,7 +438,10 @@ class OfflineFrontend:
         drop_self_placements(drafts)
         superseded = drop_superseded_placements(drafts, semantics.g)
         # one object in two places: an error when asked at once, else the later one wins
-        unread += [ReadingNote(span, why, "assumed") for span, why in check_placements(clauses, superseded)]
+        # a self-correction between two places of one object: the later, the earlier a candidate
+        sides: list[Doubt] = []
+        unread += [ReadingNote(span, why, "assumed") for span, why in
+                   settle_placements(clauses, superseded, tagged, sides, text)]
         for what, why in drop_impossible(drafts, scene, state):
             unread.append(ReadingNote(what, f"left out, the scene cannot have it: {why}"))
         if not drafts:
@@ -448,17 +454,19 @@ class OfflineFrontend:
             log.info("offline parser: %s", note)
         narrow_contrasts(drafts)
         narrow_choices(drafts)
-        settled = settle_contradictions(clauses, drafts, check_consistent, tagged)
+        settled = settle_contradictions(clauses, drafts, check_consistent, tagged, sides)
         notes = (*notes, *(ReadingNote(span, why, "assumed") for span, why in settled))
         spec = assemble(text, clauses, drafts, team)
         unsure = _unsure(spec, semantics.g.doubts)
         unsure += tuple(dict.fromkeys(str(c) for ci in sorted(guessed) for d in drafts.get(ci, [])
                                       for c in d.conditions if str(c) not in unsure))
+        # the later side of a settled contradiction is a choice made with doubt
+        unsure += tuple(dict.fromkeys(str(c) for d in sides for c in d.choices[1].drop if str(c) not in unsure))
         if not candidates:
             return Reading(spec, notes, unsure)
         surface = [(label, how, tuple(r.spec.goal().conditions)) for label, (how, r) in (alternatives or {}).items()]
         return _with_candidates(Reading(spec, notes, unsure), tagged, scene, state, team, semantics,
-                                self.priors, surface, corrections)
+                                self.priors, surface, corrections, sides)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,

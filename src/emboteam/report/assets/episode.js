@@ -70,6 +70,12 @@
       b.hidden = false;
       b.textContent = "Episode ended with an error: " + m.error;
     }
+    if (m.not_attempted && m.not_attempted.length) {   // requested, but the planner could not plan it
+      var na = document.getElementById("error-banner");
+      na.hidden = false;
+      na.textContent = (m.error ? na.textContent + " " : "") + "Not attempted (the planner could not plan it): " +
+        m.not_attempted.map(function (n) { return n.condition + " (" + n.reason + ")"; }).join("; ");
+    }
     if (m.notes && m.notes.length) {     // spans the front end did not read, or read with doubt
       var notes = document.getElementById("reading-notes");
       notes.hidden = false;
