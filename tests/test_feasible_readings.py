@@ -18,10 +18,10 @@ import pytest
 
 from emboteam.config import RunConfig
 from emboteam.exec.episode import Episode
+from emboteam.hp.feasible import MAX_CANDIDATES, plan_feasible
 from emboteam.hp.plan import MergedPlan
 from emboteam.pddl.errors import PlannerTimeoutError, UnsolvableSubtaskError
 from emboteam.pfg.candidates import Candidate
-from emboteam.pfg.feasible import MAX_CANDIDATES, plan_feasible
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.consistency import ContradictoryInstruction
 from emboteam.pfg.reading import Reading

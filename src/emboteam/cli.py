@@ -462,8 +462,8 @@ def plan(
     """Decompose and plan a task (PFG + HP) without executing it."""
     import time
 
+    from emboteam.hp.feasible import Feasible
     from emboteam.modes import EpisodeContext, plan_task
-    from emboteam.pfg.feasible import Feasible
     from emboteam.views import plan_json, plan_table, spec_json, spec_table
 
     task = _resolve_task(target, scene_fp, robots_list)

@@ -22,6 +22,7 @@ from emboteam.exec.executor import ExecutorSettings
 from emboteam.exec.nav_check import check_motion
 from emboteam.exec.result import ExecutionResult
 from emboteam.exec.trace import TraceEvent
+from emboteam.hp.feasible import Feasible, plan_feasible
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner
 from emboteam.llm.client import LLMClient, make_client
@@ -30,7 +31,6 @@ from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
 from emboteam.pfg.clarification import Clarification, ClarifyHook
-from emboteam.pfg.feasible import Feasible, plan_feasible
 from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
@@ -181,7 +181,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = Non
     """The HP. With an LLM front end in the full system, the paper's LLM validation stage
     reviews the TaskSpec first, and one planner error goes back to the LLM for repair.
     The offline or hybrid reading that cannot be planned gives way to its next candidate
-    that plans, or to its largest part that does (:mod:`emboteam.pfg.feasible`); what was
+    that plans, or to its largest part that does (:mod:`emboteam.hp.feasible`); what was
     taken and left out goes to ``feasible``."""
     cfg, llm = ctx.cfg, ctx.llm
     args = (ctx.scene, ctx.state, ctx.team)
@@ -219,7 +219,7 @@ def plan_spec(ctx: EpisodeContext, spec: TaskSpec, reading: Reading | None = Non
 def _plan_reading(ctx: EpisodeContext, planner: HybridPlanner, spec: TaskSpec, reading: Reading | None,
                   feasible: list[Feasible] | None) -> tuple[TaskSpec, MergedPlan]:
     """A reading planned, or its next candidate or largest part that plans
-    (:func:`~emboteam.pfg.feasible.plan_feasible`); what was taken goes to ``feasible``."""
+    (:func:`~emboteam.hp.feasible.plan_feasible`); what was taken goes to ``feasible``."""
     def checked_plan(s: TaskSpec) -> MergedPlan:
         # an object beyond the grid's reach: exit 2; a condition true already ("the vase stays
         # where it is") needs no robot to reach anything

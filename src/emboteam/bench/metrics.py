@@ -148,7 +148,7 @@ class BenchSummary(BaseModel):
     tokens_mean: float = 0.0
     errors: int = Field(0, description="episodes ended by a typed error")
     partly_done: int = Field(0, description="episodes that ran only the part of their reading the planner "
-                                            "could plan (their not_attempted conditions: pfg/feasible.py)")
+                                            "could plan (their not_attempted conditions: hp/feasible.py)")
     collisions: int = Field(0, description="vertex and edge conflicts the independent trace checker "
                                            "found (exec/nav_check.py), over all episodes")
     nav_waits: int = Field(0, description="times a robot waited for another on the grid, over all episodes")

@@ -109,7 +109,7 @@ class Clarification:
 
 class NotAttempted(BaseModel):
     """A requested goal condition the planner could not plan, left out of the run, and
-    why (:mod:`emboteam.pfg.feasible`); recorded in the episode and ``--json``."""
+    why (:mod:`emboteam.hp.feasible`); recorded in the episode and ``--json``."""
 
     model_config = ConfigDict(frozen=True)
 

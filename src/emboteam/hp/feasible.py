@@ -1,5 +1,6 @@
 """Readings checked by the planner: when the reading cannot be planned, its next
-candidates, then the most of it that can be.
+candidates, then the most of it that can be. (In hp, not pfg: it plans, and hp already
+reads pfg; pfg reading hp would make the packages import each other.)
 
 The ranker checks a reading against the scene, the placement rules and the team, not
 against the planner (a Fast Downward call per candidate would cost the reader its
@@ -70,7 +71,7 @@ def _why(exc: Exception) -> str:
 def plan_feasible(spec: TaskSpec, plan: PlanFn, candidates: Sequence[Candidate] = (),
                   unsure: Sequence[str] = ()) -> Feasible:
     """The reading planned as it is, else its next plannable candidate, else its largest
-    plannable part (:mod:`module docs <emboteam.pfg.feasible>`); raises the reading's own
+    plannable part (:mod:`module docs <emboteam.hp.feasible>`); raises the reading's own
     error when nothing of it plans."""
     try:
         return Feasible(spec, plan(spec), spec)
