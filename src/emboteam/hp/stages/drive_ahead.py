@@ -28,7 +28,9 @@ def ahead(ctx: Context, plan: MergedPlan, sequence: Sequence[GroundedStep]
     targets = retargets(sequence, waited(plan))
     if not targets:
         return None
-    grounded, why = replay_to_goal(ctx.start, driven_ahead(sequence, targets), ctx.spec.goal())
+    first = min(targets)  # the steps before the first retargeted drive stay as they are
+    grounded, why = replay_to_goal(ctx.start, driven_ahead(sequence, targets)[first:], ctx.spec.goal(),
+                                   head=sequence[:first])
     if why is not None:
         log.debug("driving ahead fails: %s", why)
         return None

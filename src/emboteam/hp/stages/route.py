@@ -60,6 +60,12 @@ LARGE_WALKS = 50
 LARGE_MISPRICED = 1.05
 #: rounds of the stage (a count, not a clock)
 ROUNDS = 2
+#: the spot order runs again after the large-plan search only for a team of at most this
+#: many robots: on the 32-robot, 96-goal cells it gained nothing that the drive-ahead
+#: stage after it did not find too (FloorPlan1, goal seeds 0-4: the same makespans),
+#: for about 0.09 s of CPU (a tenth of that cell's planning, issue 28's 1 s target);
+#: on the 8-robot cells it pays (seed 4: 60.0 -> 55.25 s with it)
+REORDER_TEAM = 8
 
 
 @dataclass(frozen=True)
@@ -92,6 +98,13 @@ def reroute(ctx: Context, draft: Draft) -> Draft:
             break
         draft = better
     return draft
+
+
+def reorder_after(ctx: Context, draft: Draft) -> bool:
+    """Is the spot order worth running again once the stage has rerouted ``draft`` (the
+    draft it was given): after the search of a small plan, or after the large-plan
+    search of a team of at most :data:`REORDER_TEAM` robots."""
+    return len(draft.plan.steps) <= ROUTE_STEPS or len(ctx.team) <= REORDER_TEAM
 
 
 def _once(ctx: Context, draft: Draft) -> Draft:
