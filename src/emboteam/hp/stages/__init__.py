@@ -13,6 +13,8 @@ planning :class:`~emboteam.hp.stages.context.Context` and returns a typed result
   at a shared spot), :mod:`.route` (the jobs on shorter routes, walked as the simulator
   drives, the drives planned again), :mod:`.schedule` (CP-SAT over the whole schedule:
   small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
+- :mod:`.rebuilt`: what the improvements that rebuild a plan share (replay to the goal,
+  merge and simulate, keep when shorter);
 - the fallback and the ablation: :mod:`.joint` (one joint problem), :mod:`.concatenate`
   (the no-HP pipeline).
 """
