@@ -7,13 +7,15 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from emboteam.hp.drive_ahead import retargets, waited
+from emboteam.hp.drive_ahead import driven_ahead, retargets, waited
 from emboteam.hp.goalgen import sweep_cell
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.stages.context import Context, Draft
 from emboteam.hp.stages.drive_ahead import drive_ahead
+from emboteam.hp.stages.replay import replay_to_goal
 from emboteam.hp.validate import simulate
+from emboteam.pddl.problem import planning_state
 from emboteam.world.actions import Skill
 
 
@@ -103,3 +105,22 @@ def test_a_drive_is_retargeted_only_when_another_robot_put_its_object_and_it_wai
                   and g.action.target == sequence[i].action.target)
         assert sequence[put].robot != sequence[i].robot
         assert sequence[put].action.receptacle == place
+
+
+def test_replaying_from_the_first_moved_drive_grounds_as_the_whole_replay() -> None:
+    # the stage replays only from its first retargeted drive, the steps before it kept as
+    # grounded (a replay of a replay's own steps grounds them as they are): the same
+    # grounded sequence as replaying the whole plan from the start
+    spec, state = sweep_cell("FloorPlan201", 8, 8, 1)
+    planner, seen = _watched(PlannerConfig(route=False, drive_ahead=False))
+    planner.plan(spec, state)
+    [(before, _, found)] = seen
+    sequence = before.record.sequence
+    start, steps = planning_state(state), driven_ahead(sequence, found)
+    whole, why = replay_to_goal(start, steps, spec.goal())
+    assert why is None and len(whole) == len(sequence)
+    first = min(found)
+    assert first > 0
+    for k in (0, first // 2, first):
+        from_head, why = replay_to_goal(start, steps[k:], spec.goal(), head=sequence[:k])
+        assert why is None and from_head == whole

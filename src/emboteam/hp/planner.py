@@ -44,7 +44,7 @@ from emboteam.hp.stages.fork import improved
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
-from emboteam.hp.stages.route import reroute
+from emboteam.hp.stages.route import reorder_after, reroute
 from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers
 from emboteam.hp.stages.take_over import take_over
@@ -61,11 +61,15 @@ __all__ = ["HybridPlanner", "PlannerConfig", "Stage", "improvements"]
 Stage = Callable[[Context, Draft], Draft]
 
 
-def _then_reorder(improve: Stage, reorder_too: bool) -> Stage:
-    """``improve``, and the spot order again when it changed the plan."""
+def _then_reorder(improve: Stage, reorder_too: bool,
+                  worth: Callable[[Context, Draft], bool] | None = None) -> Stage:
+    """``improve``, and the spot order again when it changed the plan (and ``worth`` says
+    it pays on the draft ``improve`` was given)."""
     def stage(ctx: Context, draft: Draft) -> Draft:
         out = improve(ctx, draft)
-        return reorder(ctx, out) if reorder_too and out.plan is not draft.plan else out
+        if not reorder_too or out.plan is draft.plan or (worth is not None and not worth(ctx, draft)):
+            return out
+        return reorder(ctx, out)
     stage.__name__ = f"{improve.__name__}_then_reorder"
     return stage
 
@@ -85,7 +89,7 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
     if config.split_containers:
         stages.append(_then_reorder(split_containers, config.spot_order))
     if config.route:
-        stages.append(_then_reorder(reroute, config.spot_order))
+        stages.append(_then_reorder(reroute, config.spot_order, reorder_after))
     if config.drive_ahead:
         stages.append(_then_reorder(drive_ahead, config.spot_order))
     if config.take_over:

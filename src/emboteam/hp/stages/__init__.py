@@ -14,6 +14,8 @@ planning :class:`~emboteam.hp.stages.context.Context` and returns a typed result
   drives, the drives planned again), :mod:`.take_over` (a switch others waited for,
   done by one of them), :mod:`.schedule` (CP-SAT over the whole schedule:
   small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
+- :mod:`.rebuilt`: what the improvements that rebuild a plan share (replay to the goal,
+  merge and simulate, keep when shorter);
 - the fallback and the ablation: :mod:`.joint` (one joint problem), :mod:`.concatenate`
   (the no-HP pipeline).
 """

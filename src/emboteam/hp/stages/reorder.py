@@ -10,9 +10,8 @@ import logging
 
 from emboteam.hp import spot_order
 from emboteam.hp.merge import GroundedStep
-from emboteam.hp.plan import MergedPlan
-from emboteam.hp.stages.context import Context, Draft, Invalid
-from emboteam.hp.stages.merge import finish_independent
+from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.rebuilt import Rebuilt, simulated
 from emboteam.hp.stages.replay import replay_reusing
 from emboteam.pddl.domain import Universe
 from emboteam.sim.rules import apply_action
@@ -51,7 +50,7 @@ def reorder(ctx: Context, draft: Draft) -> Draft:
 
 
 def _moved(ctx: Context, seq: list[GroundedStep], block: spot_order.Block, new_order: list[int],
-           universe: Universe) -> tuple[MergedPlan, list[GroundedStep]] | None:
+           universe: Universe) -> Rebuilt | None:
     """The plan with ``block`` moved (the sequence in ``new_order``), or None when it no
     longer runs, misses the goal or fails in the simulator."""
     p = next(i for i, k in enumerate(new_order) if i != k)
@@ -65,9 +64,4 @@ def _moved(ctx: Context, seq: list[GroundedStep], block: spot_order.Block, new_o
     if why is not None:
         log.debug("moving %s fails: %s", block, why)
         return None
-    candidate = [*seq[:p], *grounded]
-    try:
-        return finish_independent(ctx, candidate), candidate
-    except Invalid as exc:
-        log.debug("moving %s fails in the simulator: %s", block, exc)
-        return None
+    return simulated(ctx, [*seq[:p], *grounded], f"moving {block}")

@@ -20,7 +20,6 @@ budget of :data:`LARGE_WALKS` walks of the plan, one round and one rebuild."""
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -30,14 +29,11 @@ from emboteam.hp.dependencies import Footprint
 from emboteam.hp.merge import GroundedStep, SeqStep
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.routes import Node, Routes, Stop, Walker, improve, timetable
-from emboteam.hp.stages.context import Context, Draft, Invalid
-from emboteam.hp.stages.merge import finish_independent
-from emboteam.hp.stages.replay import replay_to_goal
+from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.rebuilt import Rebuilt, adopted, replayed, shorter
 from emboteam.sim.rules import apply_action
 from emboteam.world.actions import Skill
 from emboteam.world.state import WorldState
-
-log = logging.getLogger(__name__)
 
 #: the walked routes must promise at least this many seconds less than the plan's own
 #: (each rebuild costs a replay and a simulation; a smaller promise rarely survives them)
@@ -60,6 +56,12 @@ LARGE_WALKS = 50
 LARGE_MISPRICED = 1.05
 #: rounds of the stage (a count, not a clock)
 ROUNDS = 2
+#: the spot order runs again after the large-plan search only for a team of at most this
+#: many robots: on the 32-robot, 96-goal cells it gained nothing that the drive-ahead
+#: stage after it did not find too (FloorPlan1, goal seeds 0-4: the same makespans),
+#: for about 0.09 s of CPU (a tenth of that cell's planning, issue 28's 1 s target);
+#: on the 8-robot cells it pays (seed 4: 60.0 -> 55.25 s with it)
+REORDER_TEAM = 8
 
 
 @dataclass(frozen=True)
@@ -92,6 +94,13 @@ def reroute(ctx: Context, draft: Draft) -> Draft:
             break
         draft = better
     return draft
+
+
+def reorder_after(ctx: Context, draft: Draft) -> bool:
+    """Is the spot order worth running again once the stage has rerouted ``draft`` (the
+    draft it was given): after the search of a small plan, or after the large-plan
+    search of a team of at most :data:`REORDER_TEAM` robots."""
+    return len(draft.plan.steps) <= ROUTE_STEPS or len(ctx.team) <= REORDER_TEAM
 
 
 def _once(ctx: Context, draft: Draft) -> Draft:
@@ -149,16 +158,14 @@ def _once_large(ctx: Context, draft: Draft) -> Draft:
     return _kept(ctx, draft, other, f"{before[0]:.1f} -> {routes.cost()[0]:.1f} s, the late robots' jobs")
 
 
-def _kept(ctx: Context, draft: Draft, other: tuple[MergedPlan, list[GroundedStep]] | None, walked: str) -> Draft:
+def _kept(ctx: Context, draft: Draft, other: Rebuilt | None, walked: str) -> Draft:
     """The rebuilt plan when it simulates shorter than the draft, else the draft."""
     plan = draft.plan
-    if other is None or other[0].makespan >= plan.makespan - 1e-6:
-        log.debug("rerouted plan not shorter: %s", None if other is None else other[0].makespan)
+    found = shorter(other, plan, "rerouted plan")
+    if found is None:
         return draft
-    ctx.notes.append(f"jobs rerouted (walked routes {walked}, drives planned "
-                     f"again): makespan {plan.makespan:.1f} -> {other[0].makespan:.1f} s")
-    draft.record.sequence = other[1]
-    return Draft(other[0], draft.record)
+    return adopted(ctx, draft, found, f"jobs rerouted (walked routes {walked}, drives planned "
+                                      f"again): makespan {plan.makespan:.1f} -> {found.plan.makespan:.1f} s")
 
 
 def _xz(p: Sequence[float]) -> tuple[float, float]:
@@ -299,17 +306,7 @@ def _sequence(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> 
             for sid in kept]
 
 
-def _rebuilt(ctx: Context, steps: list[SeqStep] | None) -> tuple[MergedPlan, list[GroundedStep]] | None:
+def _rebuilt(ctx: Context, steps: list[SeqStep] | None) -> Rebuilt | None:
     """The plan of ``steps`` with its drives planned again by the replay, merged and
     simulated; None when it no longer runs, misses the goal or fails in the simulator."""
-    if steps is None:
-        return None
-    grounded, why = replay_to_goal(ctx.start, steps, ctx.spec.goal(), spot_order.reopen)
-    if why is not None:
-        log.debug("rerouted plan does not replay: %s", why)
-        return None
-    try:
-        return finish_independent(ctx, grounded), grounded
-    except Invalid as exc:
-        log.debug("rerouted plan fails in the simulator: %s", exc)
-        return None
+    return None if steps is None else replayed(ctx, steps, "rerouted plan", spot_order.reopen)

@@ -8,16 +8,12 @@ as the split (the rebuilt sequence keeps no dependency waits)."""
 
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
 
 from emboteam.hp import optimal
 from emboteam.hp.merge import SeqStep
-from emboteam.hp.stages.context import Context, Draft, Invalid
-from emboteam.hp.stages.merge import finish_independent
-from emboteam.hp.stages.replay import replay_to_goal
-
-log = logging.getLogger(__name__)
+from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.rebuilt import adopted, replayed, shorter
 
 #: ``schedule="optimal"``: CP-SAT's deterministic time limit (about seconds of one core)
 #: and the largest model (:func:`emboteam.hp.optimal.arcs`) it is given
@@ -104,20 +100,9 @@ def _once(ctx: Context, draft: Draft, budget: Budget) -> Draft:
     robot_of = {s.id: ref.robots.get(s.id, s.robot) for s in plan.steps}
     order = sorted(range(len(seq)), key=lambda i: (*key[plan.steps[i].id], i))
     steps = [SeqStep(robot_of[plan.steps[i].id], seq[i].action, seq[i].subtask, seq[i].group) for i in order]
-    grounded, why = replay_to_goal(ctx.start, steps, ctx.spec.goal())
-    if why is not None:
-        log.debug("CP-SAT's schedule does not replay: %s", why)
+    what = f"CP-SAT's schedule ({ref.makespan:.1f} s in its model)"
+    found = shorter(replayed(ctx, steps, what), plan, what)
+    if found is None:
         return draft
-    try:
-        other = finish_independent(ctx, grounded)
-    except Invalid as exc:
-        log.debug("CP-SAT's schedule fails in the simulator: %s", exc)
-        return draft
-    if other.makespan >= plan.makespan - 1e-6:
-        log.debug("CP-SAT's schedule (%.1f s in its model) simulates %.1f s, not shorter", ref.makespan,
-                  other.makespan)
-        return draft
-    ctx.notes.append(f"rescheduled by CP-SAT ({ref.status}, {ref.makespan:.1f} s in its model): makespan "
-                     f"{plan.makespan:.1f} -> {other.makespan:.1f} s")
-    draft.record.sequence = grounded
-    return Draft(other, draft.record)
+    return adopted(ctx, draft, found, f"rescheduled by CP-SAT ({ref.status}, {ref.makespan:.1f} s in its model): "
+                                      f"makespan {plan.makespan:.1f} -> {found.plan.makespan:.1f} s")

@@ -22,8 +22,8 @@ from emboteam.hp.plan import MergedPlan
 from emboteam.hp.requirements import covers
 from emboteam.hp.rounds import Unit, attribute, polish
 from emboteam.hp.stages import drive_ahead
-from emboteam.hp.stages.context import Context, Draft, Invalid
-from emboteam.hp.stages.merge import finish_independent
+from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.rebuilt import shorter, simulated
 from emboteam.hp.stages.replay import replay, replay_reusing
 from emboteam.pddl.domain import Universe
 from emboteam.pddl.errors import PlanningError
@@ -232,17 +232,10 @@ def _kept(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], what: st
           ) -> tuple[MergedPlan, list[GroundedStep]] | None:
     """``sequence`` merged and simulated (its waiting drives driven ahead): the plan and
     its sequence when shorter than ``plan``, else None."""
-    try:
-        other = finish_independent(ctx, sequence)
-    except Invalid as exc:
-        log.debug("%s fails in the simulator: %s", what, exc)
-        return None
-    if ctx.config.drive_ahead:  # the helpers' drives to the container, ahead to where it goes
-        other, sequence = drive_ahead.ahead(ctx, other, sequence) or (other, sequence)
-    log.debug("%s: makespan %.1f -> %.1f", what, plan.makespan, other.makespan)
-    if other.makespan < plan.makespan - 1e-6:
-        return other, sequence
-    return None
+    found = simulated(ctx, sequence, what)
+    if found is not None and ctx.config.drive_ahead:  # the helpers' drives to the container, ahead
+        found = drive_ahead.ahead(ctx, found.plan, found.sequence) or found
+    return shorter(found, plan, what)
 
 
 def split_clusters(ctx: Context, draft: Draft) -> Draft:
