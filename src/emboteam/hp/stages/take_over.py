@@ -11,8 +11,8 @@ import logging
 
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
-from emboteam.hp.stages.context import Context, Draft, Invalid
-from emboteam.hp.stages.merge import finish_independent
+from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.rebuilt import Rebuilt, adopted, shorter, simulated
 from emboteam.hp.stages.replay import replay_reusing
 from emboteam.hp.take_over import candidates, taken_over
 from emboteam.pddl.domain import Universe
@@ -28,7 +28,7 @@ ROBOTS_PER_STEP = 1
 
 
 def _tried(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], index: int, robot: str
-           ) -> tuple[MergedPlan, list[GroundedStep]] | None:
+           ) -> Rebuilt | None:
     """The plan with step ``index`` done by ``robot``, when it simulates shorter. The
     steps before it are applied as they are; from it on, only what reads or writes what
     the change touches is grounded again (:func:`replay_reusing`)."""
@@ -42,14 +42,8 @@ def _tried(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], index: 
     if why is not None:
         log.debug("%s taking over step %d fails: %s", robot, index, why)
         return None
-    candidate = [*sequence[:index], *grounded]
-    try:
-        other = finish_independent(ctx, candidate)
-    except Invalid as exc:
-        log.debug("%s taking over step %d fails in the simulator: %s", robot, index, exc)
-        return None
-    log.debug("%s takes over step %d: makespan %.2f -> %.2f", robot, index, plan.makespan, other.makespan)
-    return (other, candidate) if other.makespan < plan.makespan - 1e-6 else None
+    what = f"{robot} taking over step {index}"
+    return shorter(simulated(ctx, [*sequence[:index], *grounded], what), plan, what)
 
 
 def take_over(ctx: Context, draft: Draft) -> Draft:
@@ -69,12 +63,9 @@ def take_over(ctx: Context, draft: Draft) -> Draft:
             tries += 1
             found = _tried(ctx, plan, sequence, c.index, robot)
             if found is not None:
-                ctx.notes.append(f"{robot} did {plan.steps[c.index].action} itself instead of waiting for "
-                                 f"{plan.steps[c.index].robot}: makespan {plan.makespan:.1f} -> "
-                                 f"{found[0].makespan:.1f} s")
-                plan, sequence = found
+                step = plan.steps[c.index]
+                draft = adopted(ctx, draft, found, f"{robot} did {step.action} itself instead of waiting for "
+                                f"{step.robot}: makespan {plan.makespan:.1f} -> {found.plan.makespan:.1f} s")
+                plan, sequence = draft.plan, draft.record.sequence
                 break
-    if plan is draft.plan:
-        return draft
-    draft.record.sequence = sequence
-    return Draft(plan, draft.record)
+    return draft
