@@ -42,6 +42,12 @@ class Contents(_Closed):
     destination_preps: list[str]
     pronoun_places: list[str]
     excluders: list[Words]
+    #: excluders that follow their thing ("the knife excepted")
+    post_excluders: list[Words]
+    #: words that tie an excepted thing to its own place ("..., which goes in a drawer")
+    own_place_links: list[str]
+    #: prepositions of a landmark after a place ("the counter by the sink")
+    landmark_preps: list[str]
     trash_acts: list[str]
     trash_place: str
     reach: int = Field(8, ge=1, le=30)
