@@ -54,6 +54,15 @@ class Contents(_Closed):
     note: str = ""
 
 
+class Others(_Closed):
+    #: words for the instances of a kind not singled out ("the other ones", "the spare")
+    others: list[str]
+    #: what stands before them ("the", "both")
+    determiners: list[str]
+    #: keeping words after them ("stays", "where they are")
+    keepers: list[str]
+
+
 class Cue(_Closed):
     words: Words = Field(min_length=1)
     #: where the thing kept on stands: before the cue, after it, either (after first), or
@@ -120,6 +129,7 @@ class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
     contents: Contents
+    others: Others
     exclusive: Exclusive
     next_place: NextPlace
     stated: Stated
