@@ -104,15 +104,14 @@ def _excepted(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[
     """(position, types) of each thing excepted: named after an excluder ("except the
     watch", "all but the mug and the phone") or just before a post-positive one ("the
     knife excepted"); every pickupable type the word may name ("the dishes")."""
-    out: list[tuple[int, tuple[str, ...]]] = []
-    mentions = ctx.mentions()
+    spots: list[tuple[int, tuple[str, ...]]] = []
     for _, after in find(ctx.items, start, end, words.excluders):
         stop = _span_end(ctx, after, end, words)
-        out += [(m, types) for m, _, types in mentions if after <= m < stop]
+        spots += [(m, ctx.named_types(ctx.items[m], verbs_too=True)) for m in range(after, stop)]
     for at, _ in find(ctx.items, start, end, words.post_excluders):
-        named = [(m, types) for m, _, types in mentions if start <= m < at]
-        out += named[-1:]
-    return [(m, tuple(t for t in types if _is(t, "pickupable"))) for m, types in out
+        named = [(m, types) for m, _, types in ctx.mentions() if start <= m < at]
+        spots += named[-1:]
+    return [(m, tuple(t for t in types if _is(t, "pickupable"))) for m, types in spots
             if any(_is(t, "pickupable") for t in types)]
 
 
@@ -141,8 +140,14 @@ def _own_place(ctx: DoubtContext, at: int, end: int, words: Contents) -> str | N
     return None
 
 
+def _linked(ctx: DoubtContext, at: int, m: int, words: Contents) -> bool:
+    """Whether a mark or a pronoun stands between an excepted thing and a later place (the
+    place is then the thing's own: "except the knife, which goes in a drawer")."""
+    return any(i.punct is not None or i.text in words.own_place_links for i in ctx.items[at + 1:m])
+
+
 def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
-                 skip: set[int], words: Contents) -> str | None:
+                 skip: set[int], excepted: set[str], words: Contents) -> str | None:
     """The receptacle a placing preposition leads to after the trigger, with only excepted
     things named between ("clear my desk: the mug goes on ..." is a list, not contents)."""
     for m, _, types in ctx.mentions():
@@ -151,7 +156,7 @@ def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
         if _is(types[0], "receptacle") and \
                 any(i.text in words.destination_preps for i in ctx.items[max(min(k, src_at) + 1, m - 2):m]):
             return types[0]
-        if _is(types[0], "pickupable") and m > max(k, src_at):
+        if _is(types[0], "pickupable") and m > max(k, src_at) and not set(types) & excepted:
             return None
     start, _ = sentence_bounds(ctx.items, k)
     if any(i.verb is not None and i.verb.sense.act.value in words.trash_acts for i in ctx.items[start:end]):
@@ -241,11 +246,11 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
         return None
     src_at, source = found
     spots = _excepted(ctx, start, exc_end, words)
-    own = {m for m, _, _ in ctx.mentions() if spots and m > spots[0][0]}
-    dest = _destination(ctx, k, src_at, end, source, own if spots and spots[0][0] < end else set(), words)
+    named = {t for _, types in spots for t in types}
+    own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and _linked(ctx, spots[0][0], m, words)}
+    dest = _destination(ctx, k, src_at, end, source, own, named, words)
     if dest is None:
         return None
-    named = {t for _, types in spots for t in types}
     choices = []
     for holders in _source_sets(ctx, src_at, source, named):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}

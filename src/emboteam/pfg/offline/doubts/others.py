@@ -79,7 +79,7 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
     for k, item in enumerate(ctx.items):
         if item.text not in words.others or k == 0 or ctx.items[k - 1].text not in words.determiners:
             continue
-        start, end = ctx.clause_bounds(k)
+        _, end = ctx.clause_bounds(k)
         if not any(i.text in words.keepers for i in ctx.items[k + 1:min(end + 4, len(ctx.items))]):
             continue
         d = _doubt(ctx, k)
