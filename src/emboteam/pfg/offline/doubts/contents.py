@@ -178,7 +178,10 @@ def _source_sets(ctx: DoubtContext, src_at: int, source: str, excepted: set[str]
     item = ctx.items[src_at]
     if len(holders) <= 1 or (item.noun is not None and item.noun.plural):
         return [holders] if holders else []
-    with_excepted = [h for h in holders if any(ctx.state.obj(o).type in excepted for o in _inside(ctx, [h]))]
+    # the instance holding an excepted thing and something else ("the shelf ... apart
+    # from the watch": the watch's shelf, unless the watch stands there alone)
+    with_excepted = [h for h in holders if {ctx.state.obj(o).type for o in _inside(ctx, [h])} & excepted
+                     and {ctx.state.obj(o).type for o in _inside(ctx, [h])} - excepted]
     if len(with_excepted) == 1:
         return [with_excepted]
     return [[h] for h in holders[:MAX_SOURCES]]
@@ -212,7 +215,10 @@ def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: st
     moved = {t: n for t, n in types.items() if t not in excepted and t != dest and cat.can_place(t, dest)}
     if not moved:
         return None
-    kept = {t: n for t, n in types.items() if t in excepted}
+    # an excepted thing keeps its place, also on another instance of the source
+    every = Counter(cat.source_type(ctx.state.obj(o).type) or ctx.state.obj(o).type
+                    for o in _inside(ctx, _holders(ctx, source)))
+    kept = {t: n for t, n in every.items() if t in excepted}
     add = [_goal(t, dest, n) for t, n in moved.items()]
     add += [_goal(t, excepted[t] or source, n) for t, n in kept.items()]
     add += [placed(t, p) for t, p in excepted.items() if p is not None and t not in kept]
