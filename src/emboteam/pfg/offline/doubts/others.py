@@ -61,6 +61,8 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
     move = moving[0]
     dest = ref_types(move.receptacle) if move.receptacle is not None else frozenset()
     one = _the_one(ctx, type_, k, [o for o in objs if ctx.state.obj(str(o.parent)).type not in dest] or objs)
+    if one.parent is not None and ctx.state.obj(one.parent).type in dest:
+        return None     # the goal read is where the one is already: not the move meant
     kept = Counter(ctx.state.obj(str(o.parent)).type for o in objs if o.id != one.id)
     subject = ObjectRef(id=one.id) if len(kept) > 1 or one.parent is None or \
         ctx.state.obj(one.parent).type in kept else ObjectRef(types=(type_,))
