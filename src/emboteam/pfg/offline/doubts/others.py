@@ -28,12 +28,14 @@ KIND = "others"
 
 def _type_at(ctx: DoubtContext, k: int) -> str | None:
     """The type "the other ..." at ``k`` is about: the word after it, else the thing
-    named last before it (of a type the scene has several of)."""
-    if k + 1 < len(ctx.items):
-        after = ctx.named_types(ctx.items[k + 1], verbs_too=True)
-        if after and len(list(ctx.state.of_type(after[0]))) > 1:
-            return after[0]
-    before = [types[0] for m, _, types in ctx.mentions() if m < k and len(list(ctx.state.of_type(types[0]))) > 1]
+    named last before it; a thing the scene has several of and the reading places."""
+    placed_types = {t for c in ctx.goals if c.predicate is Predicate.inside for t in ref_types(c.subject)}
+
+    def several(types: tuple[str, ...]) -> str | None:
+        return next((t for t in types if t in placed_types and len(list(ctx.state.of_type(t))) > 1), None)
+    if k + 1 < len(ctx.items) and (after := several(ctx.named_types(ctx.items[k + 1], verbs_too=True))):
+        return after
+    before = [t for m, _, types in ctx.mentions() if m < k and (t := several(types))]
     return before[-1] if before else None
 
 
@@ -64,9 +66,8 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
     if one.parent is not None and ctx.state.obj(one.parent).type in dest:
         return None     # the goal read is where the one is already: not the move meant
     kept = Counter(ctx.state.obj(str(o.parent)).type for o in objs if o.id != one.id)
-    subject = ObjectRef(id=one.id) if len(kept) > 1 or one.parent is None or \
-        ctx.state.obj(one.parent).type in kept else ObjectRef(types=(type_,))
-    add: list[Condition] = [move.model_copy(update={"subject": subject, "count": 1})]
+    # by type: with every other instance kept where it is, only the one can move
+    add: list[Condition] = [move.model_copy(update={"subject": ObjectRef(types=(type_,)), "count": 1})]
     add += [placed(type_, p).model_copy(update={"count": n}) if n > 1 else placed(type_, p) for p, n in kept.items()]
     if set(add) == set(moving):
         return None
@@ -75,14 +76,26 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
                                                   drop=tuple(moving), add=tuple(add))))
 
 
+def _kept(ctx: DoubtContext, k: int, keepers: list[str]) -> bool:
+    """Whether what the phrase at ``k`` says of them is to stay: the first verb or keeping
+    word after it is a keeping word ("the other ones stay", "the one on the holder stays";
+    not "the one on the table goes in the box")."""
+    _, end = ctx.clause_bounds(k)
+    for item in ctx.items[k + 1:min(end + 4, len(ctx.items))]:
+        if item.text in keepers:
+            return True
+        if item.verb is not None and item.noun is None:
+            return False
+    return False
+
+
 def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_rule_words().others
     out = []
     for k, item in enumerate(ctx.items):
         if item.text not in words.others or k == 0 or ctx.items[k - 1].text not in words.determiners:
             continue
-        _, end = ctx.clause_bounds(k)
-        if not any(i.text in words.keepers for i in ctx.items[k + 1:min(end + 4, len(ctx.items))]):
+        if not _kept(ctx, k, words.keepers):
             continue
         d = _doubt(ctx, k)
         if d is not None:
