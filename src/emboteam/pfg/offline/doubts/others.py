@@ -51,6 +51,15 @@ def _the_one(ctx: DoubtContext, type_: str, k: int, objs: list[ObjectState]) -> 
     return objs[0]
 
 
+def _place_after(ctx: DoubtContext, k: int) -> tuple[str, ...]:
+    """The place named right after the phrase ("the one on the holder")."""
+    words = load_rule_words().others
+    for m, _, types in ctx.mentions():
+        if k < m <= k + 3 and any(i.text in words.place_preps for i in ctx.items[k + 1:m]):
+            return types
+    return ()
+
+
 def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
     type_ = _type_at(ctx, k)
     if type_ is None:
@@ -62,7 +71,13 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
         return None
     move = moving[0]
     dest = ref_types(move.receptacle) if move.receptacle is not None else frozenset()
-    one = _the_one(ctx, type_, k, [o for o in objs if ctx.state.obj(str(o.parent)).type not in dest] or objs)
+    here = _place_after(ctx, k)
+    staying = [o for o in objs if ctx.state.obj(str(o.parent)).type in here]
+    if staying and len(staying) < len(objs):
+        # "the one on the holder stays": the place after the phrase names the kept ones
+        one = next(o for o in objs if o not in staying)
+    else:
+        one = _the_one(ctx, type_, k, [o for o in objs if ctx.state.obj(str(o.parent)).type not in dest] or objs)
     if one.parent is not None and ctx.state.obj(one.parent).type in dest:
         return None     # the goal read is where the one is already: not the move meant
     kept = Counter(ctx.state.obj(str(o.parent)).type for o in objs if o.id != one.id)
@@ -81,7 +96,7 @@ def _kept(ctx: DoubtContext, k: int, keepers: list[str]) -> bool:
     word after it is a keeping word ("the other ones stay", "the one on the holder stays";
     not "the one on the table goes in the box")."""
     _, end = ctx.clause_bounds(k)
-    for item in ctx.items[k + 1:min(end + 4, len(ctx.items))]:
+    for item in ctx.items[k + 1:end]:
         if item.text in keepers:
             return True
         if item.verb is not None and item.noun is None:

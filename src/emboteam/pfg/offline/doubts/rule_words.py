@@ -61,6 +61,8 @@ class Others(_Closed):
     determiners: list[str]
     #: keeping words after them ("stays", "where they are")
     keepers: list[str]
+    #: prepositions of the place that names which ones ("the one on the holder stays")
+    place_preps: list[str]
 
 
 class Cue(_Closed):
