@@ -85,3 +85,10 @@ def test_the_one_on_a_place_that_stays_keeps_it_there() -> None:
 def test_no_other_ones_without_a_keeping_word() -> None:
     reading = read("Put the statue from the TV stand in the box and the other one on the sofa.", 206)
     assert not any(d.kind == "others" for d in reading.doubts)
+
+
+def test_a_quantified_pronoun_takes_up_the_counted_things_said_before() -> None:
+    # FloorPlan412: two toilet rolls, one in each of two cabinets
+    got = goals("The toilet rolls in the cabinets, both of them you put on the counter.", 412)
+    assert "inside(2 of ToiletPaper, CounterTop)" in got
+    assert not any("Cabinet)" in g and "ToiletPaper" in g for g in got)

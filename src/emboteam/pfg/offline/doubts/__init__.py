@@ -18,6 +18,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | instance | :mod:`.instances` (one object, or any of its type) |
 | stays | :mod:`.stays` (a thing kept as it is: its present place or switch state as a goal) |
 | contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
+| resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
@@ -44,6 +45,7 @@ from emboteam.pfg.offline.doubts import (
     next_place,
     of_compound,
     others,
+    resumed,
     scene_type,
     scope,
     slices,
@@ -58,9 +60,10 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     """The doubts that may give a whole reading from the words (also when the grammar
-    found nothing): contents, exclusive purposes, next places, stated states, corrected things."""
+    found nothing): contents, exclusive purposes, next places, stated states, corrected things,
+    things taken up by a quantified pronoun."""
     found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
-             *correction_object.doubts(ctx)]
+             *correction_object.doubts(ctx), *resumed.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 

@@ -65,6 +65,11 @@ class Others(_Closed):
     place_preps: list[str]
 
 
+class Resumed(_Closed):
+    #: quantified pronouns that take up the plural thing said before ("all of them")
+    pronouns: list[Words]
+
+
 class Cue(_Closed):
     words: Words = Field(min_length=1)
     #: where the thing kept on stands: before the cue, after it, either (after first), or
@@ -132,6 +137,7 @@ class RuleWords(_Closed):
     sentence_ends: list[str]
     contents: Contents
     others: Others
+    resumed: Resumed
     exclusive: Exclusive
     next_place: NextPlace
     stated: Stated
