@@ -92,3 +92,9 @@ def test_a_quantified_pronoun_takes_up_the_counted_things_said_before() -> None:
     got = goals("The toilet rolls in the cabinets, both of them you put on the counter.", 412)
     assert "inside(2 of ToiletPaper, CounterTop)" in got
     assert not any("Cabinet)" in g and "ToiletPaper" in g for g in got)
+
+
+def test_a_thing_said_to_stay_or_sent_elsewhere_later_is_no_part_of_the_cleared_set() -> None:
+    got = goals("Clear the desk into the drawer - the keys stay. The pen goes on the shelf.", 312)
+    assert {"inside(Book, Drawer)", "inside(Pencil, Drawer)", "inside(Pen, Shelf)"} <= got
+    assert "inside(KeyChain, Drawer)" not in got and "inside(Pen, Drawer)" not in got

@@ -111,6 +111,9 @@ def _excepted(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[
     for at, _ in find(ctx.items, start, end, words.post_excluders):
         named = [(m, types) for m, _, types in ctx.mentions() if start <= m < at]
         spots += named[-1:]
+    # a thing said to stay ("..., the soap bottle stays by the sink")
+    spots += [(m, types) for m, _, types in ctx.mentions() if start <= m < end
+              and any(i.text in words.stay_verbs for i in ctx.items[m + 1:m + 3])]
     return [(m, tuple(t for t in types if _is(t, "pickupable"))) for m, types in spots
             if any(_is(t, "pickupable") for t in types)]
 
@@ -207,12 +210,21 @@ def _closed_again(ctx: DoubtContext, source: str) -> list[Condition]:
     return []
 
 
+def _placed_elsewhere(ctx: DoubtContext, start: int, end: int, places: set[str]) -> set[str]:
+    """The types another sentence gives a place of their own ("clear the counter into the
+    drawers. ... toilet roll from the counter -> holder"): no part of the set."""
+    inside = {t for m, _, ts in ctx.mentions() if start <= m < end for t in ts}
+    return {t for c in ctx.goals if c.predicate is Predicate.inside and c.receptacle is not None
+            and not ref_types(c.receptacle) & places for t in ref_types(c.subject) if t not in inside}
+
+
 def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: str,
-            excepted: dict[str, str | None]) -> Choice | None:
+            excepted: dict[str, str | None], elsewhere: set[str]) -> Choice | None:
     cat = load_catalogue()
     types = Counter(cat.source_type(ctx.state.obj(o).type) or ctx.state.obj(o).type for o in _inside(ctx, holders))
     # what cannot go there is no part of the set ("everything into the cabinet": not the knife)
-    moved = {t: n for t, n in types.items() if t not in excepted and t != dest and cat.can_place(t, dest)}
+    moved = {t: n for t, n in types.items()
+             if t not in excepted and t not in elsewhere and t != dest and cat.can_place(t, dest)}
     if not moved:
         return None
     # an excepted thing keeps its place, also on another instance of the source
@@ -257,11 +269,12 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     dest = _destination(ctx, k, src_at, end, source, own, named, words)
     if dest is None:
         return None
+    elsewhere = _placed_elsewhere(ctx, start, exc_end, {source, dest})
     choices = []
     for holders in _source_sets(ctx, src_at, source, named):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
         excepted = {t: _own_place(ctx, m, exc_end, words) for m, types in spots for t in _which(types, present)}
-        c = _choice(ctx, holders, source, dest, excepted)
+        c = _choice(ctx, holders, source, dest, excepted, elsewhere)
         if c is not None and not set(c.add) <= set(ctx.goals):
             choices.append(c)
     if not choices:

@@ -48,6 +48,8 @@ class Contents(_Closed):
     own_place_links: list[str]
     #: prepositions of a landmark after a place ("the counter by the sink")
     landmark_preps: list[str]
+    #: verbs that keep the thing just before them out of the set ("the soap stays")
+    stay_verbs: list[str]
     trash_acts: list[str]
     trash_place: str
     reach: int = Field(8, ge=1, le=30)
