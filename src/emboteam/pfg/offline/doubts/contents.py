@@ -210,21 +210,33 @@ def _closed_again(ctx: DoubtContext, source: str) -> list[Condition]:
     return []
 
 
-def _placed_elsewhere(ctx: DoubtContext, start: int, end: int, places: set[str]) -> set[str]:
-    """The types another sentence gives a place of their own ("clear the counter into the
-    drawers. ... toilet roll from the counter -> holder"): no part of the set."""
+def _placed_elsewhere(ctx: DoubtContext, start: int, end: int, places: set[str]) -> list[Condition]:
+    """The placements another sentence gives things ("clear the counter into the drawers.
+    ... toilet roll from the counter -> holder"): their things are no part of the set."""
     inside = {t for m, _, ts in ctx.mentions() if start <= m < end for t in ts}
-    return {t for c in ctx.goals if c.predicate is Predicate.inside and c.receptacle is not None
-            and not ref_types(c.receptacle) & places for t in ref_types(c.subject) if t not in inside}
+    outside = {t for m, _, ts in ctx.mentions() if not start <= m < end for t in ts}
+    return [c for c in ctx.goals if c.predicate is Predicate.inside and c.receptacle is not None
+            and not ref_types(c.receptacle) & places and ref_types(c.subject) & outside
+            and not ref_types(c.subject) & inside]
+
+
+def _assigned(ctx: DoubtContext, o: ObjectState, holders: Sequence[ObjectState], goals: list[Condition]) -> bool:
+    """Whether a placement of another sentence is about this object: by its id, or by its
+    type when no instance of the type stands outside the source."""
+    here = {h.id for h in holders}
+    alone = all(x.parent in here for x in ctx.state.of_type(o.type))
+    return any(c.subject.id == o.id or (c.subject.id is None and o.type in c.subject.types and alone)
+               for c in goals)
 
 
 def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: str,
-            excepted: dict[str, str | None], elsewhere: set[str]) -> Choice | None:
+            excepted: dict[str, str | None], elsewhere: list[Condition]) -> Choice | None:
     cat = load_catalogue()
-    types = Counter(cat.source_type(ctx.state.obj(o).type) or ctx.state.obj(o).type for o in _inside(ctx, holders))
+    objs = [ctx.state.obj(o) for o in _inside(ctx, holders)]
+    types = Counter(cat.source_type(o.type) or o.type for o in objs if not _assigned(ctx, o, holders, elsewhere))
     # what cannot go there is no part of the set ("everything into the cabinet": not the knife)
     moved = {t: n for t, n in types.items()
-             if t not in excepted and t not in elsewhere and t != dest and cat.can_place(t, dest)}
+             if t not in excepted and t != dest and cat.can_place(t, dest)}
     if not moved:
         return None
     # an excepted thing keeps its place, also on another instance of the source
