@@ -98,3 +98,11 @@ def test_a_thing_said_to_stay_or_sent_elsewhere_later_is_no_part_of_the_cleared_
     got = goals("Clear the desk into the drawer - the keys stay. The pen goes on the shelf.", 312)
     assert {"inside(Book, Drawer)", "inside(Pencil, Drawer)", "inside(Pen, Shelf)"} <= got
     assert "inside(KeyChain, Drawer)" not in got and "inside(Pen, Drawer)" not in got
+
+
+def test_a_source_of_several_instances_offers_each_as_an_alternative() -> None:
+    # FloorPlan5: three shelves (a statue; two vases; one vase): "the shelf" is uncertain
+    reading = read("Everything on the shelf goes on the counter.", 5)
+    sets = [{str(c) for c in ch.add} for d in reading.doubts if d.kind == "contents" for ch in d.choices[1:]]
+    assert {"inside(2 of Vase, CounterTop)"} in sets and {"inside(Statue, CounterTop)"} in sets
+    assert any(s in sets for s in ({"inside(Vase, CounterTop)"},))

@@ -111,9 +111,18 @@ def _excepted(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[
     for at, _ in find(ctx.items, start, end, words.post_excluders):
         named = [(m, types) for m, _, types in ctx.mentions() if start <= m < at]
         spots += named[-1:]
-    # a thing said to stay ("..., the soap bottle stays by the sink")
-    spots += [(m, types) for m, _, types in ctx.mentions() if start <= m < end
-              and any(i.text in words.stay_verbs for i in ctx.items[m + 1:m + 3])]
+    return [(m, types) for m, types in spots if types]
+
+
+def _staying(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[tuple[int, tuple[str, ...]]]:
+    """The things said to stay ("..., the soap bottle stays by the sink"): out of the set,
+    but, unlike an excepted thing, no sign of which instance of the source is meant ("the
+    laptop stays put on the other stand")."""
+    return _pickupable([(m, types) for m, _, types in ctx.mentions() if start <= m < end
+                        and any(i.text in words.stay_verbs for i in ctx.items[m + 1:m + 3])])
+
+
+def _pickupable(spots: list[tuple[int, tuple[str, ...]]]) -> list[tuple[int, tuple[str, ...]]]:
     return [(m, tuple(t for t in types if _is(t, "pickupable"))) for m, types in spots
             if any(_is(t, "pickupable") for t in types)]
 
@@ -175,19 +184,18 @@ def _holders(ctx: DoubtContext, source: str) -> list[ObjectState]:
 
 
 def _source_sets(ctx: DoubtContext, src_at: int, source: str, excepted: set[str]) -> list[list[ObjectState]]:
-    """The instances of the source meant: the one holding an excepted thing, all of them
-    for a plural, else each instance that holds something (alternatives)."""
+    """The instances of the source meant: all of them for a plural ("the shelves"), else
+    each instance that holds something, as alternatives, those holding more of the
+    excepted things first ("everything on the TV stand except the TV": the TV's stand),
+    then the fuller ones."""
     holders = _holders(ctx, source)
     item = ctx.items[src_at]
     if len(holders) <= 1 or (item.noun is not None and item.noun.plural):
         return [holders] if holders else []
-    # the instance holding an excepted thing and something else ("the shelf ... apart
-    # from the watch": the watch's shelf, unless the watch stands there alone)
-    with_excepted = [h for h in holders if {ctx.state.obj(o).type for o in _inside(ctx, [h])} & excepted
-                     and {ctx.state.obj(o).type for o in _inside(ctx, [h])} - excepted]
-    if len(with_excepted) == 1:
-        return [with_excepted]
-    return [[h] for h in holders[:MAX_SOURCES]]
+
+    def excepted_there(h: ObjectState) -> int:
+        return len({o.type for o in ctx.state.objects.values() if o.parent == h.id} & excepted)
+    return [[h] for h in sorted(holders, key=lambda h: -excepted_there(h))[:MAX_SOURCES]]
 
 
 def _inside(ctx: DoubtContext, holders: Sequence[ObjectState]) -> list[str]:
@@ -240,8 +248,12 @@ def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: st
     if not moved:
         return None
     # an excepted thing keeps its place, also on another instance of the source
+    all_holders = {h.id for h in _holders(ctx, source)}
     every = Counter(cat.source_type(ctx.state.obj(o).type) or ctx.state.obj(o).type
                     for o in _inside(ctx, _holders(ctx, source)))
+    # also what stands on those things ("the tomato on the plate on the counter")
+    nested = {o.type for o in ctx.state.objects.values() if o.has("pickupable")
+              and set(ctx.state.ancestors(o.id)) & all_holders}
     kept = {t: n for t, n in every.items() if t in excepted}
     add = [_goal(t, dest, n) for t, n in moved.items()]
     add += [_goal(t, excepted[t] or source, n) for t, n in kept.items()]
@@ -252,9 +264,13 @@ def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: st
     # no instance outside the source ("the loo roll stays on the loo" beside a counter's)
     outside = {cat.source_type(o.type) or o.type for o in ctx.state.objects.values()
                if o.parent is not None and o.parent not in {h.id for h in holders}}
-    drop = tuple(c for c in ctx.goals if c not in add and (ref_types(c.subject) & touched) and
-                 not (ref_types(c.subject) & outside and c.receptacle is not None
-                      and not ref_types(c.receptacle) & {source, dest}))
+    # ... and so is a goal sending another instance's contents there (the reader took
+    # every shelf; this alternative is one of them)
+    drop = tuple(c for c in ctx.goals if c not in add and (
+        (ref_types(c.subject) & touched and not (ref_types(c.subject) & outside and c.receptacle is not None
+                                                  and not ref_types(c.receptacle) & {source, dest}))
+        or (ref_types(c.subject) & (set(every) | nested) and c.receptacle is not None
+            and dest in ref_types(c.receptacle))))
     how = f"what is in/on the {type_name(source)} goes to the {type_name(dest)}" + (
         f", except {', '.join(type_name(t) for t in excepted)}" if excepted else "")
     return Choice("all_contents", how, drop=drop, add=tuple(dict.fromkeys(add)))
@@ -275,19 +291,24 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     if found is None:
         return None
     src_at, source = found
-    spots = _excepted(ctx, start, exc_end, words)
+    excepting = _excepted(ctx, start, exc_end, words)
+    spots = excepting + _staying(ctx, start, exc_end, words)
     named = {t for _, types in spots for t in types}
     own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and _linked(ctx, spots[0][0], m, words)}
     dest = _destination(ctx, k, src_at, end, source, own, named, words)
     if dest is None:
         return None
     elsewhere = _placed_elsewhere(ctx, start, exc_end, {source, dest})
-    choices = []
-    for holders in _source_sets(ctx, src_at, source, named):
+    choices: list[Choice] = []
+    for holders in _source_sets(ctx, src_at, source, {t for _, types in excepting for t in types}):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
         excepted = {t: _own_place(ctx, m, exc_end, words) for m, types in spots for t in _which(types, present)}
         c = _choice(ctx, holders, source, dest, excepted, elsewhere)
-        if c is not None and not set(c.add) <= set(ctx.goals):
+        if c is not None and not c.drop and set(c.add) <= set(ctx.goals):
+            if not choices:
+                return None     # the likeliest set is the reading as read
+            continue
+        if c is not None:
             choices.append(c)
     if not choices:
         return None
