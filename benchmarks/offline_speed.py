@@ -7,6 +7,12 @@ machine says little about the code, so it is measured here and reported, not ass
 
     .venv/bin/python benchmarks/offline_speed.py          # a line of numbers
     .venv/bin/python benchmarks/offline_speed.py --json   # one JSON object on stdout
+    .venv/bin/python benchmarks/offline_speed.py --cpu    # CPU time of this process instead
+
+``--cpu`` times each instruction with ``time.process_time`` (CPU time of this process) rather
+than the wall clock: other jobs on a loaded machine then inflate it far less, which makes it
+the number to compare two versions of the reader on a shared machine. The target is checked
+on wall time on an idle machine.
 
 Exit status 0 when the target is met, 1 when it is not.
 """
@@ -19,6 +25,7 @@ import json
 import statistics
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from emboteam.errors import EmboTeamError
@@ -31,7 +38,7 @@ DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
 TARGET_MS = 5.0
 
 
-def measure() -> dict[str, float | int]:
+def measure(clock: Callable[[], float] = time.perf_counter) -> dict[str, float | int]:
     records = load_records(DATA / "offline_dev.jsonl") + load_records(DATA / "offline_heldout.jsonl")
     frontend = OfflineFrontend()     # builds the lexicon and spelling caches
     team = parse_team("1,2")
@@ -41,10 +48,10 @@ def measure() -> dict[str, float | int]:
         prepared.append((str(r["instruction"]), scene, initial_state(r, scene, team)))
     times = []
     for text, scene, state in prepared:
-        start = time.perf_counter()
+        start = clock()
         with contextlib.suppress(EmboTeamError):   # errors are timed too
             frontend.decompose(text, scene, state, team)
-        times.append(time.perf_counter() - start)
+        times.append(clock() - start)
     return {"instructions": len(times), "mean_ms": round(statistics.mean(times) * 1000, 3),
             "median_ms": round(statistics.median(times) * 1000, 3),
             "p95_ms": round(statistics.quantiles(times, n=20)[-1] * 1000, 3),
@@ -54,13 +61,16 @@ def measure() -> dict[str, float | int]:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--json", action="store_true", help="one JSON object on stdout")
+    parser.add_argument("--cpu", action="store_true",
+                        help="time with the CPU time of this process (less sensitive to load)")
     args = parser.parse_args()
-    result = measure()
+    result = {**measure(time.process_time if args.cpu else time.perf_counter),
+              "clock": "cpu" if args.cpu else "wall"}
     met = result["mean_ms"] < TARGET_MS and result["p95_ms"] < TARGET_MS
     if args.json:
         print(json.dumps({**result, "target_met": met}))
     else:
-        print(f"parse time over {result['instructions']} instructions: mean {result['mean_ms']} ms, "
+        print(f"{result['clock']} parse time over {result['instructions']} instructions: mean {result['mean_ms']} ms, "
               f"median {result['median_ms']} ms, p95 {result['p95_ms']} ms, max {result['max_ms']} ms "
               f"(target < {TARGET_MS:g} ms mean and p95: {'met' if met else 'NOT met'})")
     return 0 if met else 1

@@ -21,7 +21,7 @@ object that cannot go in/on the receptacle directly may get there in a *vessel* 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
 from itertools import combinations
 
@@ -85,13 +85,22 @@ class _View:
         self.state = state
         self.pending = pending_pieces(state)
         self.objects: dict[str, ObjectState] = {**state.objects, **self.pending}
+        #: the objects each reference may stand for (:func:`_raw_subjects`), found once per view
+        self.subjects: dict[ObjectRef, list[ObjectState]] = {}
+        #: the receptacles each place reference stands for (:func:`_places`), found once per view
+        self.places: dict[ObjectRef, list[str]] = {}
 
     def type_of_source(self, o: ObjectState) -> str | None:
         return self.objects[o.source].type if o.source is not None and o.source in self.objects else None
 
-    def matches_types(self, o: ObjectState, types: Iterable[str]) -> bool:
-        ts = set(types)
-        return o.type in ts or self.type_of_source(o) in ts
+    def matches_types(self, o: ObjectState, types: Collection[str]) -> bool:
+        # asked of every object of the scene per reference (the reader's feasibility
+        # checks compile hundreds of conditions): no set built per call, no method call
+        # for the objects that are no piece
+        if o.type in types:
+            return True
+        source = self.objects.get(o.source) if o.source is not None else None
+        return source is not None and source.type in types
 
     def pieces_of(self, whole: str) -> list[str]:
         return [p.id for p in self.objects.values() if p.source == whole]
@@ -156,12 +165,29 @@ def _pred_atom(pred: Predicate, o: str, places: Sequence[str], robots: Sequence[
     return f"(and (available {o}) {core})"
 
 
-def slicing_targets(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str] = ()) -> set[str]:
+#: what :func:`shared_view` gives, for annotations
+StateView = _View
+
+
+def shared_view(state: WorldState) -> _View:
+    """A view of ``state`` to pass (``view=``) to several :func:`compile_condition` and
+    :func:`slicing_targets` calls made while the state does not change (the offline
+    reader's checks of one instruction): the pieces and each reference's objects are
+    then found once, not per call."""
+    return _View(state)
+
+
+def _view_of(state: WorldState, view: _View | None) -> _View:
+    return view if view is not None and view.state is state else _View(state)
+
+
+def slicing_targets(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str] = (),
+                    view: _View | None = None) -> set[str]:
     """Wholes a goal asks to slice, or whose pieces it names or needs: ``cooked(Bread)``
     (only bread slices cook), ``inside(Bread, Toaster)`` (only slices go in a toaster,
     even in a container), a whole too heavy for every robot of ``robots`` that can pick
     up when its pieces are not."""
-    view = _View(state)
+    view = _view_of(state, view)
     cat = load_catalogue()
     lifters = [state.robots[r].profile.mass_capacity for r in robots
                if r in state.robots and state.robots[r].profile.can(Skill.PickupObject)]
@@ -208,6 +234,13 @@ def slicing_targets(conditions: Sequence[Condition], state: WorldState, robots: 
 
 def _raw_subjects(ref: ObjectRef, view: _View) -> list[ObjectState]:
     """Objects (and pending pieces) a reference can stand for, before any filtering."""
+    found = view.subjects.get(ref)
+    if found is None:
+        found = view.subjects[ref] = _find_subjects(ref, view)
+    return list(found)
+
+
+def _find_subjects(ref: ObjectRef, view: _View) -> list[ObjectState]:
     if ref.id is not None:
         o = view.objects.get(ref.id)
         if o is None:
@@ -217,6 +250,14 @@ def _raw_subjects(ref: ObjectRef, view: _View) -> list[ObjectState]:
 
 
 def _places(cond: Condition, view: _View) -> list[str]:
+    assert cond.receptacle is not None
+    found = view.places.get(cond.receptacle)
+    if found is None:
+        found = view.places[cond.receptacle] = _find_places(cond, view)
+    return list(found)
+
+
+def _find_places(cond: Condition, view: _View) -> list[str]:
     assert cond.receptacle is not None
     ref = cond.receptacle
     state = view.state
@@ -250,15 +291,16 @@ def _rank(view: _View, robots: Sequence[str], oid: str) -> tuple[float, str]:
 
 
 def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str], *,
-                      slices: set[str] | None = None, narrow: bool = True) -> GoalPart:
+                      slices: set[str] | None = None, narrow: bool = True, view: _View | None = None) -> GoalPart:
     """Compile one condition for a problem whose acting robots are ``robots``.
 
     ``slices`` are the wholes the whole goal will cut (their pieces become candidates);
     with ``narrow``, a condition that already holds commits to the objects that satisfy it
-    now (small problems; the caller retries without ``narrow`` if that proves unsolvable).
+    now (small problems; the caller retries without ``narrow`` if that proves unsolvable);
+    ``view``: a :func:`shared_view` of ``state``.
     """
-    view = _View(state)
-    slices = slices if slices is not None else slicing_targets([cond], state, robots)
+    view = _view_of(state, view)
+    slices = slices if slices is not None else slicing_targets([cond], state, robots, view)
     pred = cond.predicate
     result = check_condition(cond, state)
     raw = _raw_subjects(cond.subject, view)

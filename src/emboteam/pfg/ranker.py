@@ -58,11 +58,13 @@ def apply_choices(goals: Sequence[Condition], choices: Sequence[Choice]) -> tupl
     return tuple(out)
 
 
-def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...]) -> TaskSpec | None:
+def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...],
+              base: Sequence[Condition] | None = None) -> TaskSpec | None:
     """The reader's TaskSpec with its goal changed to ``goals``: a subtask keeps the
     conditions still wanted, a replaced condition takes its place, the rest become new
-    subtasks. None when nothing is left."""
-    if set(goals) == set(spec.goal().conditions):
+    subtasks. None when nothing is left. ``base``: ``spec.goal().conditions`` when the
+    caller has them (the walk asks for many candidates of one spec)."""
+    if set(goals) == set(base if base is not None else spec.goal().conditions):
         return spec
     wanted = list(goals)
     kept: list[Subtask] = []
@@ -114,14 +116,21 @@ def rank(spec: TaskSpec, doubts: Sequence[Doubt], priors: Priors,
     heap: list[tuple[float, tuple[int, ...]]] = [(-_score(factors, start), start)]
     seen = {start}
     found: dict[frozenset[Condition], Candidate] = {}
+    # goals already found (a likelier settling reached them) or already refused are not
+    # checked again: their candidate would be dropped, or refused again
+    refused: set[tuple[Condition, ...]] = set()
     expansions = 0
     while heap and len(found) < priors.max_candidates and expansions < MAX_EXPANSIONS:
         neg, pos = heapq.heappop(heap)
         expansions += 1
-        picks = [f.order[p] for f, p in zip(factors, pos, strict=True)]
-        candidate = _candidate(spec, base, factors, picks, -neg, feasible)
-        if candidate is not None and frozenset(candidate.goals) not in found:
-            found[frozenset(candidate.goals)] = candidate
+        chosen = [f.doubt.choices[f.order[p]] for f, p in zip(factors, pos, strict=True)]
+        goals = apply_choices(base, chosen)
+        if goals is not None and goals not in refused and frozenset(goals) not in found:
+            candidate = _candidate(spec, base, factors, chosen, goals, -neg, feasible)
+            if candidate is None:
+                refused.add(goals)
+            else:
+                found[frozenset(goals)] = candidate
         for i, f in enumerate(factors):
             if pos[i] + 1 < len(f.order):
                 nxt = (*pos[:i], pos[i] + 1, *pos[i + 1:])
@@ -140,15 +149,14 @@ def _score(factors: Sequence[_Factor], pos: tuple[int, ...]) -> float:
     return sum(f.logp[f.order[p]] for f, p in zip(factors, pos, strict=True))
 
 
-def _candidate(spec: TaskSpec, base: tuple[Condition, ...], factors: Sequence[_Factor], picks: Sequence[int],
-               score: float, feasible: Callable[[tuple[Condition, ...]], bool]) -> Candidate | None:
-    chosen = [f.doubt.choices[i] for f, i in zip(factors, picks, strict=True)]
-    goals = apply_choices(base, chosen)
-    if goals is None or not goals:
+def _candidate(spec: TaskSpec, base: tuple[Condition, ...], factors: Sequence[_Factor], chosen: Sequence[Choice],
+               goals: tuple[Condition, ...], score: float,
+               feasible: Callable[[tuple[Condition, ...]], bool]) -> Candidate | None:
+    if not goals:
         return None
     if goals != base and not feasible(goals):
         return None
-    edited = edit_spec(spec, goals)
+    edited = edit_spec(spec, goals, base)
     if edited is None:
         return None
     resolves = tuple(Resolution(f.doubt.kind, f.doubt.span, c.label, c.how)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from functools import lru_cache
 
 from emboteam.world.goals import Condition, ObjectRef, Predicate
 
@@ -31,6 +32,7 @@ _PLAIN_NAMES: dict[str, str] = {
 }
 
 
+@lru_cache(maxsize=1024)     # a type's name is asked per clause of every candidate sentence
 def type_name(type_: str) -> str:
     """An AI2-THOR type in everyday lower-case words: ``AppleSliced`` -> "apple slice"."""
     if type_ in _PLAIN_NAMES:
@@ -69,6 +71,7 @@ def _plural(noun: str) -> str:
     return noun + "s"
 
 
+@lru_cache(maxsize=4096)     # conditions are frozen; the candidates of one reading share most
 def clause(c: Condition) -> str:
     """One condition as a clause: "the apple is in the fridge"."""
     subject = ref_phrase(c.subject, c.count)

@@ -160,7 +160,7 @@ def _candidates(ref: ObjectRef, scene: Scene) -> list[str]:
             product = cat.slice_product(scene.get(base).type)
             return [product[0]] if product else []
         return []
-    present = scene.types()
+    present = scene.type_counts()
     out = []
     for t in ref.types:
         if t in present:
@@ -185,12 +185,13 @@ def _instances(ref: ObjectRef, scene: Scene) -> int:
     """How many objects could stand for a type reference, counting possible slices."""
     cat = load_catalogue()
     n = 0
-    for o in scene.objects:
-        product = cat.slice_product(o.type)
-        if o.type in ref.types:
-            n += product[1] if product is not None and product[0] in ref.types else 1
+    # by type, not by object (asked for every condition the reader checks)
+    for t, count in scene.type_counts().items():
+        product = cat.slice_product(t)
+        if t in ref.types:
+            n += count * (product[1] if product is not None and product[0] in ref.types else 1)
         elif product is not None and product[0] in ref.types:
-            n += product[1]
+            n += count * product[1]
     return n
 
 

@@ -11,7 +11,8 @@ import gzip
 import json
 import math
 import re
-from collections.abc import Sequence
+from collections import Counter
+from collections.abc import Mapping, Sequence
 from functools import cache
 from importlib import resources
 from typing import Literal
@@ -74,6 +75,7 @@ class Scene(BaseModel):
     objects: tuple[SceneObject, ...]
     _index: dict[str, SceneObject] = PrivateAttr(default_factory=dict)
     _starts: list[tuple[float, float]] = PrivateAttr(default_factory=list)
+    _type_counts: dict[str, int] = PrivateAttr(default_factory=dict)
 
     def model_post_init(self, __context: object) -> None:
         self._index = {o.id: o for o in self.objects}
@@ -92,6 +94,12 @@ class Scene(BaseModel):
 
     def types(self) -> set[str]:
         return {o.type for o in self.objects}
+
+    def type_counts(self) -> Mapping[str, int]:
+        """How many objects of each type (counted once: the scene is frozen; read-only)."""
+        if not self._type_counts:
+            self._type_counts = dict(Counter(o.type for o in self.objects))
+        return self._type_counts
 
     def robot_start(self, index: int) -> tuple[float, float]:
         """Start pose (x, z) of the ``index``-th robot of a team: a cell of the floor

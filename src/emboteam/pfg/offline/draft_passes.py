@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from emboteam.pddl.errors import ImpossibleGoalError
-from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.pddl.goal_compiler import compile_condition, shared_view, slicing_targets
 from emboteam.pfg.offline.decompose import refs_overlap
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.semantics import Draft
@@ -165,13 +165,14 @@ def drop_impossible(drafts: dict[int, list[Draft]], scene: Scene, state: WorldSt
     planner will (with the pieces the whole reading cuts). Returns (description, why)."""
     conditions = [c for ds in drafts.values() for d in ds for c in d.conditions]
     robots = list(state.robots)
-    slices = slicing_targets(conditions, state, robots)
+    view = shared_view(state)     # one for every draft: the state does not change meanwhile
+    slices = slicing_targets(conditions, state, robots, view)
 
     def why_not(d: Draft) -> str | None:
         try:
             validate_goal(Goal(conditions=tuple(d.conditions)), scene)
             for c in d.conditions:
-                compile_condition(c, state, robots, slices=slices, narrow=False)
+                compile_condition(c, state, robots, slices=slices, narrow=False, view=view)
         except (GoalValidationError, ImpossibleGoalError) as exc:
             return str(exc)
         return None

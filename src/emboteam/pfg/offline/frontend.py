@@ -43,9 +43,9 @@ from emboteam.pfg.offline.constructions import (
     parts_as_places,
     places_to_locations,
 )
-from emboteam.pfg.offline.corrections import apply_corrections
+from emboteam.pfg.offline.corrections import Corrected, correct
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
-from emboteam.pfg.offline.decompose import assemble, refs_overlap
+from emboteam.pfg.offline.decompose import assemble
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
 from emboteam.pfg.offline.doubts.priors import Priors
@@ -153,48 +153,14 @@ def _vague_phrase(clause: Clause) -> str | None:
     return None
 
 
-#: "leave the spray bottle", "forget the vase", "skip the candle": no change to it
-_LEAVE_VERBS = _W.set("leave_verbs")
-
-
-def _left_alone(parsed: ParsedClause, semantics: Semantics, ci: int, drafts: dict[int, list[Draft]]) -> bool:
-    """"... and the spray bottle too. Actually no, leave the spray bottle, just the soap":
-    a thing to be left as it is, after a request about it, takes that request back (the
-    earlier drafts that act on it go). True when the clause was read this way."""
-    frames = [f for f in parsed.frames if f.verb in _LEAVE_VERBS and not f.negated and f.state is None
-              and f.targets and all(not t.dest and t.state is None and t.particle is None and t.head.pron is None
-                                    for t in f.targets)]
-    words = [i for i in parsed.clause.items if i.punct is None]
-    verb_at = next((k for k, i in enumerate(words) if i.verb is not None and i.verb.lemma in _LEAVE_VERBS), None)
-    if not frames or not drafts or verb_at is None or known_objects(words[verb_at + 1:]) is None:
-        return False    # "leave the slice in there": a place, a wish of its own
-    refs = []
-    for f in frames:
-        for t in f.targets:
-            try:
-                refs.append(semantics.ground(t.head, None, -1 - ci, ci))
-            except OfflineParseError:
-                continue
-    subjects = [r for ref in refs for r, _ in ref.groups]
-    taken_back = [k for k, ds in drafts.items() if k < ci and any(
-        any(refs_overlap(c.subject, x) for x in subjects) for d in ds for c in d.conditions)]
-    for k in taken_back:
-        drafts[k] = [d for d in drafts[k] if not any(refs_overlap(c.subject, x) for c in d.conditions
-                                                     for x in subjects)]
-        for d in drafts[k]:
-            d.after = []
-        if not drafts[k]:
-            del drafts[k]
-    return bool(taken_back)
-
-
 def _with_candidates(reading: Reading, items: list[Item], scene: Scene, state: WorldState,
                      team: Sequence[RobotProfile], semantics: Semantics, priors: Priors | None,
-                     surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
+                     surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = (),
+                     corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
     """The reading with its ranked candidates (:mod:`.doubts`): the best one's spec, an
     list of the mentions nothing explains, and the conditions a close
     alternative would change marked unsure."""
-    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface)
+    found = choices(reading.spec, items, scene, state, team, semantics.history, priors, surface, corrections)
     best = found.candidates[0]
     notes = reading.notes
     unsure = reading.unsure
@@ -309,10 +275,44 @@ class OfflineFrontend:
     def _read(self, text: str, tagged: list[Item], scene: Scene, state: WorldState,
               team: Sequence[RobotProfile], alternatives: dict[str, tuple[str, Reading]] | None = None,
               candidates: bool = True) -> Reading:
-        """The grammar's reading (raises when it finds nothing to act on); with its ranked
-        candidates, the ``alternatives`` (readings of the surface's guesses) among them,
-        unless ``candidates`` is False."""
-        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(apply_corrections(tagged)))))
+        """The grammar's reading of the words as corrected (:mod:`.corrections`), with the
+        other readings of a correction whose slot is in doubt among its candidates; when
+        the first reading finds nothing to act on, the first other reading that does."""
+        fixed = correct(tagged, alternatives=True)
+        try:
+            reading = self._read_items(text, tagged, fixed.items, scene, state, team, alternatives, candidates,
+                                       self._corrections(text, tagged, fixed, scene, state, team, candidates))
+        except ContradictoryInstruction:
+            raise
+        except OfflineParseError:
+            for _, _, items in fixed.alternatives:
+                try:
+                    return self._read_items(text, tagged, items, scene, state, team, alternatives, candidates)
+                except OfflineParseError:
+                    continue
+            raise
+        return reading
+
+    def _corrections(self, text: str, tagged: list[Item], fixed: Corrected, scene: Scene, state: WorldState,
+                     team: Sequence[RobotProfile], candidates: bool) -> list[tuple[str, str, tuple[Condition, ...]]]:
+        """The goal of each other reading of a self-correction (label, how, goal)."""
+        out: list[tuple[str, str, tuple[Condition, ...]]] = []
+        for label, how, items in fixed.alternatives if candidates else ():
+            try:
+                read = self._read_items(text, tagged, items, scene, state, team, candidates=False)
+            except OfflineParseError:
+                continue
+            out.append((label, how, tuple(read.spec.goal().conditions)))
+        return out
+
+    def _read_items(self, text: str, tagged: list[Item], corrected: list[Item], scene: Scene, state: WorldState,
+                    team: Sequence[RobotProfile], alternatives: dict[str, tuple[str, Reading]] | None = None,
+                    candidates: bool = True,
+                    corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Reading:
+        """The grammar's reading of ``corrected`` (raises when it finds nothing to act on);
+        with its ranked candidates, the ``alternatives`` (readings of the surface's guesses)
+        and ``corrections`` among them, unless ``candidates`` is False."""
+        items = object_first(commaless_lists(parts_as_places(drop_time_adjuncts(corrected))))
         clauses = segment(items)
         semantics = Semantics(Grounder(scene, state))
         drafts: dict[int, list[Draft]] = {}
@@ -398,8 +398,6 @@ class OfflineFrontend:
                     semantics.note(h, ci, "place" if pronoun_subject else None)
                 unknown.extend(parsed.unknown)
                 continue
-            if _left_alone(parsed, semantics, ci, drafts):
-                continue
             out: list[Draft] = []
             failed_before = len(failed)
             for frame in parsed.frames:
@@ -460,7 +458,7 @@ class OfflineFrontend:
             return Reading(spec, notes, unsure)
         surface = [(label, how, tuple(r.spec.goal().conditions)) for label, (how, r) in (alternatives or {}).items()]
         return _with_candidates(Reading(spec, notes, unsure), tagged, scene, state, team, semantics,
-                                self.priors, surface)
+                                self.priors, surface, corrections)
 
     @staticmethod
     def _nothing_actionable(text: str, floor_plan: str, semantics: Semantics,

@@ -18,6 +18,7 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ConfigDict, ValidationError, model_validator
 
 from emboteam.errors import EmboTeamError
+from emboteam.pfg.offline.regex_filter import needles
 
 #: where the knowledge files are (package data)
 DATA_DIR = Path(__file__).with_name("data")
@@ -65,13 +66,24 @@ class Rewrite(Strict):
         return re.compile(self.pattern), self.replace
 
 
-def compile_rewrites(rules: tuple[Rewrite, ...]) -> tuple[tuple[re.Pattern[str], str], ...]:
-    return tuple(rule.compiled() for rule in rules)
+#: a compiled rewrite: the pattern, its replacement, strings one of which any match contains
+CompiledRewrite = tuple[re.Pattern[str], str, frozenset[str] | None]
 
 
-def apply_rewrites(rules: tuple[tuple[re.Pattern[str], str], ...], text: str) -> str:
-    """Each rule in order, every match rewritten (``re.sub``)."""
-    for pattern, repl in rules:
+def compile_rewrites(rules: tuple[Rewrite, ...]) -> tuple[CompiledRewrite, ...]:
+    return tuple((pattern, repl, needles(pattern)) for pattern, repl in (rule.compiled() for rule in rules))
+
+
+def apply_rewrites(rules: tuple[CompiledRewrite, ...], text: str) -> str:
+    """Each rule in order, every match rewritten (``re.sub``); a rule none of whose
+    needles is in the text cannot match and is skipped (:mod:`.regex_filter`)."""
+    for pattern, repl, required in rules:
+        if required is not None:
+            for needle in required:     # a loop, not any(): no generator per rule
+                if needle in text:
+                    break
+            else:
+                continue
         text = pattern.sub(repl, text)
     return text
 

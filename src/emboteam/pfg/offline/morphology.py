@@ -87,6 +87,32 @@ def edit_distance(a: str, b: str, limit: int = 3) -> int:
     return prev[-1]
 
 
+def distance_within(a: str, b: str, k: int) -> int:
+    """:func:`edit_distance` when it is at most ``k``, else ``k + 1``: only the band of
+    cells within ``k`` of the diagonal is filled (a cell outside it already costs more than
+    ``k``), which makes the many comparisons of a sound-alike search cheap."""
+    n, m = len(a), len(b)
+    over = k + 1
+    if abs(n - m) > k:
+        return over
+    prev2: list[int] = []
+    prev = [j if j <= k else over for j in range(m + 1)]
+    for i in range(1, n + 1):
+        cur = [over] * (m + 1)
+        if i <= k:
+            cur[0] = i
+        lo, hi = max(1, i - k), min(m, i + k)
+        for j in range(lo, hi + 1):
+            v = min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1]))
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                v = min(v, prev2[j - 2] + 1)
+            cur[j] = min(v, over)
+        if min(cur[lo - 1:hi + 1]) > k:
+            return over
+        prev2, prev = prev, cur
+    return prev[m]
+
+
 def allowed_distance(word: str) -> int:
     """How many edits a typo of this length may have: none below 4 letters (pan/pen/pot
     are different things), one up to 6, two from 7."""

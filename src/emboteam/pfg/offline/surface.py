@@ -440,10 +440,11 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
                    tuple(dict.fromkeys(kinds)), tuple(dict.fromkeys(guesses)))
 
 
-def surface_doubts(goals: tuple[Condition, ...], alternatives: Sequence[tuple[str, str, tuple[Condition, ...]]]
-                   ) -> list[Doubt]:
+def surface_doubts(goals: tuple[Condition, ...], alternatives: Sequence[tuple[str, str, tuple[Condition, ...]]],
+                   kind: str = KIND) -> list[Doubt]:
     """A point of doubt of kind ``surface`` per alternative text whose reading differs:
     the reading as said, or the reading of the text with the guesses made (``label`` the
-    kinds of guess, ``how`` the text)."""
-    return [Doubt(KIND, how, (Choice(AS_READ, "as said"), Choice(label, f"read as {how!r}", drop=goals, add=alt)))
+    kinds of guess, ``how`` the text). Also the other readings of a self-correction
+    (``kind`` ``correction``: :mod:`..corrections`)."""
+    return [Doubt(kind, how, (Choice(AS_READ, "as said"), Choice(label, f"read as {how!r}", drop=goals, add=alt)))
             for label, how, alt in alternatives if alt and set(alt) != set(goals)]

@@ -221,13 +221,19 @@ def _robot_at(words: list[str], i: int) -> tuple[Item, int] | None:
     return None
 
 
+#: the prepositions and subordinators of several words (the lexicon's tables are fixed at
+#: import: found once, not per word)
+_MULTI_WORD_PREPS = {p: p for p in lx.PREPOSITIONS if " " in p}
+_MULTI_WORD_SUBS = {s: s for s in lx.SUBORDINATORS if " " in s}
+
+
 def _unit_at(words: list[str], i: int, noun: tuple[int, NounReading] | None) -> tuple[Item, int] | None:
     """A unit of several words at ``i``: a preposition ("on top of", unless a longer noun
     starts there), a subordinator, a sequence marker ("after that"), a noun phrase."""
-    prep = _multi(words, i, {p: p for p in lx.PREPOSITIONS if " " in p})
+    prep = _multi(words, i, _MULTI_WORD_PREPS)
     if prep is not None and (noun is None or prep[0] >= noun[0]):
         return Item(prep[1], prep=lx.PREPOSITIONS[prep[1]]), prep[0]
-    sub = _multi(words, i, {s: s for s in lx.SUBORDINATORS if " " in s}, (3, 2))
+    sub = _multi(words, i, _MULTI_WORD_SUBS, (3, 2))
     if sub is not None:
         return Item(sub[1], sub=lx.SUBORDINATORS[sub[1]]), sub[0]
     seq = _multi(words, i, lx.SEQUENCE_MARKERS, (4, 3, 2, 1))

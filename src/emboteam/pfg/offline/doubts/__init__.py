@@ -12,7 +12,8 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | state | :mod:`.state` |
 | slices | :mod:`.slices` |
 | device | :mod:`.device` |
-| exclusion, correction | :mod:`.scope` |
+| exclusion | :mod:`.scope` |
+| correction | :mod:`..corrections` (a self-correction's slot read another way: the other readings) |
 | of_compound | :mod:`.of_compound` |
 | means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |
 | instance | :mod:`.instances` (one object, or any of its type) |
@@ -23,10 +24,9 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
 | stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
-| correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
 
-The words of contents, exclusive, next_place, stated, correction_object (and of stays) are
+The words of contents, exclusive, next_place, stated (and of stays) are
 data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
 ``mention_cues.json``.
 """
@@ -36,7 +36,6 @@ from __future__ import annotations
 from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline.doubts import (
     contents,
-    correction_object,
     device,
     exclusive,
     instances,
@@ -60,10 +59,10 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     """The doubts that may give a whole reading from the words (also when the grammar
-    found nothing): contents, exclusive purposes, next places, stated states, corrected things,
-    things taken up by a quantified pronoun."""
+    found nothing): contents, exclusive purposes, next places, stated states, things taken
+    up by a quantified pronoun."""
     found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
-             *correction_object.doubts(ctx), *resumed.doubts(ctx)]
+             *resumed.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 

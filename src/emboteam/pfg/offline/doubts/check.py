@@ -16,7 +16,7 @@ import itertools
 from collections.abc import Sequence
 
 from emboteam.pddl.errors import ImpossibleGoalError
-from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.pddl.goal_compiler import StateView, compile_condition, shared_view, slicing_targets
 from emboteam.pfg.offline.consistency import opposed
 from emboteam.sim.capability import analyse_condition
 from emboteam.world.checker import GoalValidationError, validate_goal
@@ -39,6 +39,9 @@ class FeasibilityCheck:
         # the wholes the reading cuts (slicing_targets is a union over conditions: the
         # reading's part is computed once)
         self._base_slices: set[str] | None = None
+        self._team_known: dict[Condition, bool] = {}
+        # one view of the state for all the checks (the state does not change meanwhile)
+        self._view: StateView | None = None
 
     def condition(self, c: Condition) -> bool:
         if c not in self.known:
@@ -48,10 +51,11 @@ class FeasibilityCheck:
     def _check(self, c: Condition) -> bool:
         try:
             validate_goal(Goal(conditions=(c,)), self.scene)
-            if self._base_slices is None:
-                self._base_slices = slicing_targets(list(self.base), self.state, self.robots)
-            slices = self._base_slices | slicing_targets([c], self.state, self.robots)
-            compile_condition(c, self.state, self.robots, slices=slices, narrow=False)
+            if self._view is None or self._base_slices is None:
+                self._view = shared_view(self.state)
+                self._base_slices = slicing_targets(list(self.base), self.state, self.robots, self._view)
+            slices = self._base_slices | slicing_targets([c], self.state, self.robots, self._view)
+            compile_condition(c, self.state, self.robots, slices=slices, narrow=False, view=self._view)
         except (GoalValidationError, ImpossibleGoalError):
             return False
         return True
@@ -59,8 +63,14 @@ class FeasibilityCheck:
     def team_can(self, goals: tuple[Condition, ...]) -> bool:
         """Whether the team has the skills for the goals' new conditions (the costly part,
         a few ms a condition: asked only of the candidates that may run or be offered)."""
-        return not self.team or all(analyse_condition(c, self.state).team_method(self.team) is not None
-                                    for c in goals if c not in self.base)
+        return not self.team or all(self._team_can(c) for c in goals if c not in self.base)
+
+    def _team_can(self, c: Condition) -> bool:
+        # remembered per condition, like :meth:`condition`: the close candidates share
+        # most of their conditions, and the state and team are fixed for this check
+        if c not in self._team_known:
+            self._team_known[c] = analyse_condition(c, self.state).team_method(self.team) is not None
+        return self._team_known[c]
 
     def __call__(self, goals: tuple[Condition, ...]) -> bool:
         return all(self.condition(c) for c in goals) and consistent(goals) and self.one_place(goals)

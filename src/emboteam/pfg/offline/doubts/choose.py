@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from emboteam.pfg.candidates import Candidate, Doubt
+from emboteam.pfg.offline.corrections import KIND as CORRECTION
 from emboteam.pfg.offline.discourse import Mention
 from emboteam.pfg.offline.doubts import find_doubts, reading_doubts
 from emboteam.pfg.offline.doubts.check import FeasibilityCheck
@@ -36,14 +37,17 @@ class Choices:
 
 def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldState,
             team: Sequence[RobotProfile], history: Sequence[Mention] = (), priors: Priors | None = None,
-            surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Choices:
+            surface: Sequence[tuple[str, str, tuple[Condition, ...]]] = (),
+            corrections: Sequence[tuple[str, str, tuple[Condition, ...]]] = ()) -> Choices:
     """The candidates of a reading (best first, the reader's own among them) and the
     words of each mention nothing explains; ``surface``: the readings of the instruction
-    with the surface's guesses made (:func:`~emboteam.pfg.offline.surface.surface_doubts`)."""
+    with the surface's guesses made (:func:`~emboteam.pfg.offline.surface.surface_doubts`),
+    ``corrections``: with a self-correction's slot read another way (:mod:`..corrections`)."""
     ctx = DoubtContext(items=items, goals=tuple(spec.goal().conditions), scene=scene, state=state,
                        history=history, steps=tuple(c for s in spec.subtasks if not s.final for c in s.goal))
     priors = priors or load_priors()
-    doubts = [*find_doubts(ctx, priors), *surface_doubts(ctx.goals, surface)]
+    doubts = [*find_doubts(ctx, priors), *surface_doubts(ctx.goals, surface),
+              *surface_doubts(ctx.goals, corrections, CORRECTION)]
     check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
     ranked = rank(spec, doubts, priors, check, Coverage(ctx))
     # the team check for the candidates that may run or be offered (the best and the close ones)

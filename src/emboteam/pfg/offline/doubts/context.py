@@ -106,10 +106,10 @@ class DoubtContext:
 
     @cached_property
     def corrected(self) -> bool:
-        """Whether a self-correction cue was said (``correction_object`` cues)."""
+        """Whether a self-correction cue was said (``rule_words.json``, ``correction``)."""
         from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 
-        cues = set(load_rule_words().correction_object.cues)
+        cues = set(load_rule_words().correction.cues)
         return any(i.text in cues for i in self.items)
 
     @cached_property

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.mention_words import REACH as _REACH
-from emboteam.pfg.offline.doubts.mention_words import after_preposition, chatter
+from emboteam.pfg.offline.doubts.mention_words import after_preposition, answers, chatter
 from emboteam.world.catalogue import load_catalogue
 
 
@@ -41,6 +41,15 @@ def explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool =
     """Why the mention at ``k`` needs no goal of its own, or None when nothing explains
     it. A mention whose thing is in a goal is explained by that goal (unless ``goals`` is
     false: then only the words explain it)."""
+    # asked of each mention by several rules: answered once per context (it is frozen)
+    memo = answers(ctx)
+    key = ("explanation", k, types, goals)
+    if key not in memo:
+        memo[key] = _explanation(ctx, k, types, goals)
+    return memo[key]      # type: ignore[return-value]
+
+
+def _explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool) -> str | None:
     item = ctx.items[k]
     if goals and set(types) & ctx.goal_types():
         return "in a goal"

@@ -134,7 +134,21 @@ def _segment(ctx: DoubtContext, k: int) -> tuple[int, int]:
 
 def found(ctx: DoubtContext, lo: int, hi: int, words: Words) -> list[int]:
     """Where the words start between ``lo`` and ``hi`` (the whole phrase inside)."""
-    return [s for s in range(lo, hi - len(words) + 1) if starts_at(ctx.items, s, words)]
+    # only where the first word stands (every cue of every mention is looked for)
+    return [s for s in _positions(ctx).get(words[0], ()) if lo <= s <= hi - len(words)
+            and starts_at(ctx.items, s, words)]
+
+
+def _positions(ctx: DoubtContext) -> dict[str, list[int]]:
+    """Each word of the instruction -> where it stands, in order (kept on the context:
+    its items do not change)."""
+    memo = answers(ctx)
+    if "positions" not in memo:
+        at: dict[str, list[int]] = {}
+        for k, item in enumerate(ctx.items):
+            at.setdefault(item.text, []).append(k)
+        memo["positions"] = at
+    return memo["positions"]      # type: ignore[return-value]
 
 
 def side(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) -> str | None:
@@ -142,7 +156,10 @@ def side(ctx: DoubtContext, k: int, lo: int, hi: int, cues: Sequence[SidedCue]) 
     ``cue_reach`` words), not right after a negation; None when none does."""
     reach = load_mention_cues().cue_reach
     lo, hi = max(lo, k - reach), min(hi, k + 1 + reach)
+    said = _positions(ctx)
     for cue in cues:
+        if cue.words[0] not in said:
+            continue        # not in the instruction at all
         starts = []
         if cue.side in ("before", "either"):
             starts += found(ctx, lo, k, cue.words)

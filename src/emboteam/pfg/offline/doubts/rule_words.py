@@ -122,10 +122,10 @@ class Stays(_Closed):
     keepers: list[str]
 
 
-class CorrectionObject(_Closed):
-    #: words that start a self-correction of the thing ("the pen - no, the pencil")
+class Correction(_Closed):
+    #: words that say a self-correction was made (the rules that keep away from its places:
+    #: ``next_place``; the correction itself is read by ``pfg/offline/corrections.py``)
     cues: list[str]
-    reach: int = Field(4, ge=1, le=12)
 
 
 class Contradiction(_Closed):
@@ -144,7 +144,7 @@ class RuleWords(_Closed):
     next_place: NextPlace
     stated: Stated
     stays: Stays
-    correction_object: CorrectionObject
+    correction: Correction
     contradiction: Contradiction
 
 

@@ -20,7 +20,7 @@ from pydantic import BaseModel
 
 from emboteam.pfg.offline.knowledge import read
 from emboteam.pfg.offline.lexicon import nouns
-from emboteam.pfg.offline.morphology import edit_distance, is_english_word
+from emboteam.pfg.offline.morphology import distance_within, is_english_word
 from emboteam.pfg.offline.tagger import Item
 
 SOUND_FILE = Path(__file__).with_name("sound_alike.json")
@@ -104,7 +104,7 @@ def _closest(said: str, scene_types: frozenset[str], limit: int | None = None) -
     for s, types in _sounds(scene_types).get(said[0], ()):
         if abs(len(s) - len(said)) > limit:
             continue
-        d = edit_distance(said, s, limit + 1)
+        d = distance_within(said, s, limit)
         if d <= limit and (best is None or d < best[0]):
             best = (d, types)
     return best[1] if best is not None else None
