@@ -75,7 +75,7 @@ def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...],
         still = tuple(c for c in s.goal if c in wanted or not s.final)
         if still:
             kept.append(s.model_copy(update={"goal": still}))
-    present = {c for s in kept for c in s.goal}
+    present = {c for s in kept if s.final for c in s.goal}    # a step's condition is no end state
     ids = {s.id for s in kept}
     kept = [s.model_copy(update={"depends_on": tuple(d for d in s.depends_on if d in ids)}) for s in kept]
     n = len(spec.subtasks)

@@ -19,6 +19,8 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | instance | :mod:`.instances` (one object, or any of its type) |
 | stays | :mod:`.stays` (a thing kept as it is: its present place or switch state as a goal) |
 | contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
+| resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
+| others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
 | stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
@@ -41,6 +43,8 @@ from emboteam.pfg.offline.doubts import (
     mention_cues,
     next_place,
     of_compound,
+    others,
+    resumed,
     scene_type,
     scope,
     slices,
@@ -55,8 +59,10 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     """The doubts that may give a whole reading from the words (also when the grammar
-    found nothing): contents, exclusive purposes, next places, stated states."""
-    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx)]
+    found nothing): contents, exclusive purposes, next places, stated states, things taken
+    up by a quantified pronoun."""
+    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
+             *resumed.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 
@@ -70,7 +76,7 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said), *reading_doubts(ctx)]
+             *instances.doubts(ctx), *others.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said), *reading_doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 

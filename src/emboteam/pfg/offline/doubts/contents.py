@@ -1,109 +1,207 @@
-"""Point of doubt: "everything on X except Y goes in Z", "empty the fridge onto the
-counter, except the egg": an exclusion over a receptacle's contents.
+"""Point of doubt: a receptacle's contents named as a set ("everything on X except Y goes
+in Z", "clear the shelf onto the bed, all but the lamp", "whatever is in the basin goes in
+a cupboard, the knife excepted - that one lives in a drawer").
 
-The grammar reads "everything" only for switching off and closing; here the words give a
-source (the receptacle after a quantifier or an emptying verb), a destination (a
-receptacle after a placing preposition, or the bin for a throwing verb) and the excluded
-things (after "except", "apart from", ...). The alternative moves every pickupable thing
-that stands in the source now (the world state says which) to the destination, keeps
-each excluded thing where it is and closes a source that is closed now; goals the reader
-gave those things are replaced. The
+Every quantifier or emptying verb of the instruction is tried (not only the first): its
+source is the receptacle after a source preposition (or right after the emptying verb;
+"up there", "empty it": the receptacle named last before), its destination a receptacle
+after a placing preposition (or the bin for a throwing verb), and its exceptions the things
+named after an excluder ("except the mug") or before a post-positive one ("the knife
+excepted"). The set is resolved against the scene: the pickupable objects whose parent is
+the source now, minus the excepted ones. When the source type has several instances the
+set is that of the instance holding an excepted thing, of all of them for a plural
+("the shelves"), else one alternative per instance that holds something (the point of
+doubt: "everything up there" with two shelves). An excepted thing keeps its present place
+(a goal), unless its own words send it somewhere ("..., which goes in a drawer"). The
 words are data (``rule_words.json``, ``contents``).
 """
 
 from __future__ import annotations
 
+from collections import Counter
+from collections.abc import Sequence
+
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object, placed
+from emboteam.pfg.offline.morphology import verb_lemma
 from emboteam.pfg.sentences import type_name
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, Predicate
+from emboteam.world.state import ObjectState
 
 KIND = "contents"
+#: how many per-instance alternatives a source of several instances may offer
+MAX_SOURCES = 3
 
 
 def _is(type_: str, prop: str) -> bool:
     return prop in load_catalogue().type(type_).properties
 
 
-def _trigger(ctx: DoubtContext, words: Contents) -> int | None:
-    for k, item in enumerate(ctx.items):
-        if item.text in words.quantifiers or item.text in words.emptying_verbs:
-            return k
-    return None
+def _emptying(text: str, words: Contents) -> bool:
+    """An emptying verb in any form ("clears", "emptied"; not all are lexicon verbs)."""
+    found = verb_lemma(text)
+    forms = {text, found[0] if found is not None else text, text.removesuffix("s"), text.removesuffix("es"),
+             text.removesuffix("ed"), text.removesuffix("ied") + "y", text.removesuffix("ing")}
+    return bool(forms & set(words.emptying_verbs))
+
+
+def _triggers(ctx: DoubtContext, words: Contents) -> list[int]:
+    return [k for k, item in enumerate(ctx.items) if item.text in words.quantifiers or _emptying(item.text, words)]
+
+
+def _named(ctx: DoubtContext, j: int) -> tuple[str, ...]:
+    """The scene types a word names; after a determiner also a word that may be a verb
+    ("the shelves")."""
+    return ctx.named_types(ctx.items[j], verbs_too=j > 0 and ctx.items[j - 1].det)
+
+
+def _place_before(ctx: DoubtContext, k: int, words: Contents) -> tuple[int, str] | None:
+    """The receptacle named last before ``k``; not a landmark of it ("the counter by the
+    sink ... empty it": the counter)."""
+    before = [(m, ts[0]) for m, _, ts in ctx.mentions() if m < k and _is(ts[0], "receptacle")]
+    while len(before) > 1 and before[-1][0] - before[-2][0] <= 3 and \
+            any(i.text in words.landmark_preps for i in ctx.items[before[-2][0] + 1:before[-1][0]]):
+        before.pop()
+    return before[-1] if before else None
 
 
 def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, str] | None:
     """The receptacle whose contents are meant: after a source preposition (or right after
-    an emptying verb) within reach; "in there" is the receptacle named last before."""
-    emptying = ctx.items[k].text in words.emptying_verbs
-    for m, _, types in ctx.mentions():
-        if k < m < min(end, k + words.reach):
+    an emptying verb) within reach; "in there", "up there", "empty it": the receptacle
+    named last before."""
+    emptying = _emptying(ctx.items[k].text, words)
+    for j in range(k + 1, min(end, k + 3)):
+        if ctx.items[j].text in words.pronoun_places and \
+                (emptying or ctx.items[j - 1].text in words.source_preps):
+            return _place_before(ctx, k, words)
+    for m in range(k + 1, min(end, k + words.reach)):
+        types = _named(ctx, m)
+        if types:
             if not _is(types[0], "receptacle"):
                 return None     # "all three vases on the counter": things, not contents
             lead = [i.text for i in ctx.items[max(k + 1, m - 2):m]]
             if emptying or any(w in words.source_preps for w in lead):
                 return m, types[0]
-    for j in range(k + 1, min(end, k + 3)):
-        if ctx.items[j].text in words.pronoun_places and ctx.items[j - 1].text in words.source_preps:
-            before = [(m, ts[0]) for m, _, ts in ctx.mentions() if m < k and _is(ts[0], "receptacle")]
-            return before[-1] if before else None
     return None
 
 
-def _excluded(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[str]:
-    """The things named after an excluder (a list: up to a verb, a clause mark or a
-    sequence word; marks right after the excluder do not end it)."""
-    out: list[str] = []
+def _span_end(ctx: DoubtContext, j: int, end: int, words: Contents) -> int:
+    """Where an excepted list ends: a verb, a sequence word or the sentence's end
+    (marks between the things do not end it)."""
+    while j < end:
+        item = ctx.items[j]
+        if item.seq is not None or (item.verb is not None and item.noun is None) \
+                or item.text in words.own_place_links:
+            return j
+        j += 1
+    return end
+
+
+def _excepted(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[tuple[int, tuple[str, ...]]]:
+    """(position, types) of each thing excepted: named after an excluder ("except the
+    watch", "all but the mug and the phone") or just before a post-positive one ("the
+    knife excepted"); every pickupable type the word may name ("the dishes")."""
+    spots: list[tuple[int, tuple[str, ...]]] = []
     for _, after in find(ctx.items, start, end, words.excluders):
-        j, leading = after, True
-        while j < end:
-            item = ctx.items[j]
-            if item.punct is not None and leading:
-                j += 1
-                continue
-            if item.punct is not None or item.seq is not None or (item.verb is not None and item.noun is None):
-                break
-            leading = False
-            types = ctx.named_types(item, verbs_too=True)     # "except the watch"
-            if types and _is(types[0], "pickupable"):
-                out.append(types[0])
-            j += 1
-    return out
+        stop = _span_end(ctx, after, end, words)
+        spots += [(m, ctx.named_types(ctx.items[m], verbs_too=True)) for m in range(after, stop)]
+    for at, _ in find(ctx.items, start, end, words.post_excluders):
+        named = [(m, types) for m, _, types in ctx.mentions() if start <= m < at]
+        spots += named[-1:]
+    return [(m, types) for m, types in spots if types]
 
 
-def _destination(ctx: DoubtContext, src_at: int, end: int, source: str, excluded: list[str],
-                 words: Contents) -> str | None:
-    """The receptacle after the source that a placing preposition leads to, with only
-    excluded things named between ("clear my desk: the mug goes on ..." is a list)."""
+def _staying(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[tuple[int, tuple[str, ...]]]:
+    """The things said to stay ("..., the soap bottle stays by the sink"): out of the set,
+    but, unlike an excepted thing, no sign of which instance of the source is meant ("the
+    laptop stays put on the other stand")."""
+    return _pickupable([(m, types) for m, _, types in ctx.mentions() if start <= m < end
+                        and any(i.text in words.stay_verbs for i in ctx.items[m + 1:m + 3])])
+
+
+def _pickupable(spots: list[tuple[int, tuple[str, ...]]]) -> list[tuple[int, tuple[str, ...]]]:
+    return [(m, tuple(t for t in types if _is(t, "pickupable"))) for m, types in spots
+            if any(_is(t, "pickupable") for t in types)]
+
+
+def _which(types: tuple[str, ...], present: set[str]) -> list[str]:
+    """The types an excepted word means: those the source holds ("the dishes": plates
+    and bowls), else the likeliest."""
+    return [t for t in types if t in present] or [types[0]]
+
+
+def _own_place(ctx: DoubtContext, at: int, end: int, words: Contents) -> str | None:
+    """Where an excepted thing's own words send it ("the knife excepted - that one lives
+    in a drawer", "except the phone, it comes down to the counter"): a receptacle after a
+    placing preposition, with a mark or a pronoun between (else the place is the set's:
+    "everything except the mug goes in the sink")."""
+    linked = False
+    for j in range(at + 1, end):
+        item = ctx.items[j]
+        if item.punct is not None or item.text in words.own_place_links:
+            linked = True
+        types = ctx.named_types(item)
+        if types and _is(types[0], "receptacle") and linked and \
+                any(i.text in words.destination_preps for i in ctx.items[max(at + 1, j - 3):j]):
+            return types[0]
+        if types and _is(types[0], "pickupable"):
+            return None
+    return None
+
+
+def _linked(ctx: DoubtContext, at: int, m: int, words: Contents) -> bool:
+    """Whether a mark or a pronoun stands between an excepted thing and a later place (the
+    place is then the thing's own: "except the knife, which goes in a drawer")."""
+    return any(i.punct is not None or i.text in words.own_place_links for i in ctx.items[at + 1:m])
+
+
+def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
+                 skip: set[int], excepted: set[str], words: Contents) -> str | None:
+    """The receptacle a placing preposition leads to after the trigger, with only excepted
+    things named between ("clear my desk: the mug goes on ..." is a list, not contents)."""
     for m, _, types in ctx.mentions():
-        if not src_at < m < end or types[0] == source:
+        if not min(k, src_at) < m < end or m == src_at or types[0] == source or m in skip:
             continue
         if _is(types[0], "receptacle") and \
-                any(i.text in words.destination_preps for i in ctx.items[max(src_at + 1, m - 2):m]):
+                any(i.text in words.destination_preps for i in ctx.items[max(min(k, src_at) + 1, m - 2):m]):
             return types[0]
-        if _is(types[0], "pickupable") and types[0] not in excluded:
+        if _is(types[0], "pickupable") and m > max(k, src_at) and not set(types) & excepted:
             return None
-    start, _ = sentence_bounds(ctx.items, src_at)
+    start, _ = sentence_bounds(ctx.items, k)
     if any(i.verb is not None and i.verb.sense.act.value in words.trash_acts for i in ctx.items[start:end]):
         return words.trash_place
     return None
 
 
-def _contents(ctx: DoubtContext, source: str) -> list[str]:
-    """The pickupable things standing in or on a receptacle of the type now, by type."""
-    out = []
-    for o in ctx.state.objects.values():
-        if o.parent is not None and o.has("pickupable") and ctx.state.obj(o.parent).type == source:
-            t = load_catalogue().source_type(o.type) or o.type
-            out.append(t)
-    return list(dict.fromkeys(out))
+def _holders(ctx: DoubtContext, source: str) -> list[ObjectState]:
+    """The instances of the source type, those holding most pickupable things first."""
+    held = Counter(o.parent for o in ctx.state.objects.values() if o.parent is not None and o.has("pickupable"))
+    objs = [o for o in ctx.state.of_type(source) if held[o.id]]
+    return sorted(objs, key=lambda o: -held[o.id])
 
 
-def _count(ctx: DoubtContext, type_: str, source: str) -> int:
-    return sum(1 for o in ctx.state.of_type(type_) if o.parent is not None and ctx.state.obj(o.parent).type == source)
+def _source_sets(ctx: DoubtContext, src_at: int, source: str, excepted: set[str]) -> list[list[ObjectState]]:
+    """The instances of the source meant: all of them for a plural ("the shelves"), else
+    each instance that holds something, as alternatives, those holding more of the
+    excepted things first ("everything on the TV stand except the TV": the TV's stand),
+    then the fuller ones."""
+    holders = _holders(ctx, source)
+    item = ctx.items[src_at]
+    if len(holders) <= 1 or (item.noun is not None and item.noun.plural):
+        return [holders] if holders else []
+
+    def excepted_there(h: ObjectState) -> int:
+        return len({o.type for o in ctx.state.objects.values() if o.parent == h.id} & excepted)
+    return [[h] for h in sorted(holders, key=lambda h: -excepted_there(h))[:MAX_SOURCES]]
+
+
+def _inside(ctx: DoubtContext, holders: Sequence[ObjectState]) -> list[str]:
+    ids = {h.id for h in holders}
+    return [o.id for o in ctx.state.objects.values()
+            if o.parent in ids and o.has("pickupable")]
 
 
 def _goal(type_: str, place: str, count: int) -> Condition:
@@ -120,32 +218,110 @@ def _closed_again(ctx: DoubtContext, source: str) -> list[Condition]:
     return []
 
 
-def doubts(ctx: DoubtContext) -> list[Doubt]:
-    words = load_rule_words().contents
-    k = _trigger(ctx, words)
-    if k is None:
-        return []
-    _, end = sentence_bounds(ctx.items, k)
+def _placed_elsewhere(ctx: DoubtContext, start: int, end: int, places: set[str]) -> list[Condition]:
+    """The placements another sentence gives things ("clear the counter into the drawers.
+    ... toilet roll from the counter -> holder"): their things are no part of the set."""
+    inside = {t for m, _, ts in ctx.mentions() if start <= m < end for t in ts}
+    outside = {t for m, _, ts in ctx.mentions() if not start <= m < end for t in ts}
+    return [c for c in ctx.goals if c.predicate is Predicate.inside and c.receptacle is not None
+            and not ref_types(c.receptacle) & places and ref_types(c.subject) & outside
+            and not ref_types(c.subject) & inside]
+
+
+def _assigned(ctx: DoubtContext, o: ObjectState, holders: Sequence[ObjectState], goals: list[Condition]) -> bool:
+    """Whether a placement of another sentence is about this object: by its id, or by its
+    type when no instance of the type stands outside the source."""
+    here = {h.id for h in holders}
+    alone = all(x.parent in here for x in ctx.state.of_type(o.type))
+    return any(c.subject.id == o.id or (c.subject.id is None and o.type in c.subject.types and alone)
+               for c in goals)
+
+
+def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: str,
+            excepted: dict[str, str | None], elsewhere: list[Condition]) -> Choice | None:
+    cat = load_catalogue()
+    objs = [ctx.state.obj(o) for o in _inside(ctx, holders)]
+    types = Counter(cat.source_type(o.type) or o.type for o in objs if not _assigned(ctx, o, holders, elsewhere))
+    # what cannot go there is no part of the set ("everything into the cabinet": not the knife)
+    moved = {t: n for t, n in types.items()
+             if t not in excepted and t != dest and cat.can_place(t, dest)}
+    if not moved:
+        return None
+    # an excepted thing keeps its place, also on another instance of the source
+    all_holders = {h.id for h in _holders(ctx, source)}
+    every = Counter(cat.source_type(ctx.state.obj(o).type) or ctx.state.obj(o).type
+                    for o in _inside(ctx, _holders(ctx, source)))
+    # also what stands on those things ("the tomato on the plate on the counter")
+    nested = {o.type for o in ctx.state.objects.values() if o.has("pickupable")
+              and set(ctx.state.ancestors(o.id)) & all_holders}
+    kept = {t: n for t, n in every.items() if t in excepted}
+    add = [_goal(t, dest, n) for t, n in moved.items()]
+    add += [_goal(t, excepted[t] or source, n) for t, n in kept.items()]
+    add += [placed(t, p) for t, p in excepted.items() if p is not None and t not in kept]
+    add += _closed_again(ctx, source)
+    touched = set(moved) | set(kept) | {t for t, p in excepted.items() if p is not None}
+    # a goal for a touched type is replaced when it is about the same things: the type has
+    # no instance outside the source ("the loo roll stays on the loo" beside a counter's)
+    outside = {cat.source_type(o.type) or o.type for o in ctx.state.objects.values()
+               if o.parent is not None and o.parent not in {h.id for h in holders}}
+    # ... and so is a goal sending another instance's contents there (the reader took
+    # every shelf; this alternative is one of them)
+    drop = tuple(c for c in ctx.goals if c not in add and (
+        (ref_types(c.subject) & touched and not (ref_types(c.subject) & outside and c.receptacle is not None
+                                                  and not ref_types(c.receptacle) & {source, dest}))
+        or (ref_types(c.subject) & (set(every) | nested) and c.receptacle is not None
+            and dest in ref_types(c.receptacle))))
+    how = f"what is in/on the {type_name(source)} goes to the {type_name(dest)}" + (
+        f", except {', '.join(type_name(t) for t in excepted)}" if excepted else "")
+    return Choice("all_contents", how, drop=drop, add=tuple(dict.fromkeys(add)))
+
+
+def _sentence_with_exceptions(ctx: DoubtContext, k: int, words: Contents) -> tuple[int, int, int]:
+    """The trigger's sentence, and where its exceptions may end: the next sentence too
+    when it opens with an excluder ("clear the counter. NOT the candle")."""
+    start, end = sentence_bounds(ctx.items, k)
+    if end + 1 < len(ctx.items) and find(ctx.items, end + 1, end + 2, words.excluders):
+        return start, end, sentence_bounds(ctx.items, end + 1)[1]
+    return start, end, end
+
+
+def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
+    start, end, exc_end = _sentence_with_exceptions(ctx, k, words)
     found = _source(ctx, k, end, words)
     if found is None:
-        return []
+        return None
     src_at, source = found
-    excluded = _excluded(ctx, k, end, words)
-    dest = _destination(ctx, src_at, end, source, excluded, words)
+    excepting = _excepted(ctx, start, exc_end, words)
+    spots = excepting + _staying(ctx, start, exc_end, words)
+    named = {t for _, types in spots for t in types}
+    own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and _linked(ctx, spots[0][0], m, words)}
+    dest = _destination(ctx, k, src_at, end, source, own, named, words)
     if dest is None:
-        return []
-    moved = [t for t in _contents(ctx, source) if t not in excluded and t != dest]
-    kept = [t for t in dict.fromkeys(excluded) if _count(ctx, t, source)]
-    if not moved:
-        return []
-    add = tuple([placed(t, dest) for t in moved] + [_goal(t, source, _count(ctx, t, source)) for t in kept]
-                + _closed_again(ctx, source))
-    touched = set(moved) | set(kept)
-    drop = tuple(c for c in ctx.goals if ref_types(c.subject) & touched and c not in add)
-    if set(add) <= set(ctx.goals):
-        return []
-    how = f"what is in/on the {type_name(source)} goes to the {type_name(dest)}" + (
-        f", except {', '.join(type_name(t) for t in kept)}" if kept else "")
-    return [Doubt(KIND, ctx.items[k].text, (Choice(AS_READ, "the things as read"),
-                                            Choice("all_contents", how, drop=drop, add=add)))]
+        return None
+    elsewhere = _placed_elsewhere(ctx, start, exc_end, {source, dest})
+    choices: list[Choice] = []
+    for holders in _source_sets(ctx, src_at, source, {t for _, types in excepting for t in types}):
+        present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
+        excepted = {t: _own_place(ctx, m, exc_end, words) for m, types in spots for t in _which(types, present)}
+        c = _choice(ctx, holders, source, dest, excepted, elsewhere)
+        if c is not None and not c.drop and set(c.add) <= set(ctx.goals):
+            if not choices:
+                return None     # the likeliest set is the reading as read
+            continue
+        if c is not None:
+            choices.append(c)
+    if not choices:
+        return None
+    return Doubt(KIND, ctx.items[k].text, (Choice(AS_READ, "the things as read"), *choices))
 
+
+def doubts(ctx: DoubtContext) -> list[Doubt]:
+    words = load_rule_words().contents
+    out: list[Doubt] = []
+    seen: set[tuple[Condition, ...]] = set()
+    for k in _triggers(ctx, words):
+        d = _doubt_at(ctx, k, words)
+        if d is not None and d.choices[1].add not in seen:
+            seen.add(d.choices[1].add)
+            out.append(d)
+    return out

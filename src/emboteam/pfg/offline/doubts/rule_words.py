@@ -42,10 +42,34 @@ class Contents(_Closed):
     destination_preps: list[str]
     pronoun_places: list[str]
     excluders: list[Words]
+    #: excluders that follow their thing ("the knife excepted")
+    post_excluders: list[Words]
+    #: words that tie an excepted thing to its own place ("..., which goes in a drawer")
+    own_place_links: list[str]
+    #: prepositions of a landmark after a place ("the counter by the sink")
+    landmark_preps: list[str]
+    #: verbs that keep the thing just before them out of the set ("the soap stays")
+    stay_verbs: list[str]
     trash_acts: list[str]
     trash_place: str
     reach: int = Field(8, ge=1, le=30)
     note: str = ""
+
+
+class Others(_Closed):
+    #: words for the instances of a kind not singled out ("the other ones", "the spare")
+    others: list[str]
+    #: what stands before them ("the", "both")
+    determiners: list[str]
+    #: keeping words after them ("stays", "where they are")
+    keepers: list[str]
+    #: prepositions of the place that names which ones ("the one on the holder stays")
+    place_preps: list[str]
+
+
+class Resumed(_Closed):
+    #: quantified pronouns that take up the plural thing said before ("all of them")
+    pronouns: list[Words]
 
 
 class Cue(_Closed):
@@ -114,6 +138,8 @@ class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
     contents: Contents
+    others: Others
+    resumed: Resumed
     exclusive: Exclusive
     next_place: NextPlace
     stated: Stated
