@@ -23,6 +23,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
 | correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
+| device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 
 The words of contents, exclusive, next_place, stated, correction_object (and of stays) are
 data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
@@ -36,6 +37,7 @@ from emboteam.pfg.offline.doubts import (
     contents,
     correction_object,
     device,
+    device_state,
     exclusive,
     instances,
     means,
@@ -65,14 +67,17 @@ def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
 def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     """Every point of doubt of a reading, rule by rule."""
     priors = priors or load_priors()
-    cued = mention_cues.doubts(ctx)
+    states = device_state.doubts(ctx)
+    stated_by_words = {d.span for d in states}
+    cued = [*states, *(d for d in mention_cues.doubts(ctx) if d.span not in stated_by_words)]
     # a mention whose own words give its goal is settled by that doubt, not by the weaker
     # guesses of an unexplained mention or of a kept thing
     said = {d.span for d in cued}
     found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said), *reading_doubts(ctx)]
+             *instances.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said),
+             *(d for d in reading_doubts(ctx) if d.kind != "stated" or d.span not in stated_by_words)]
     return [d for d in found if len(d.choices) > 1]
 
 

@@ -1,0 +1,216 @@
+"""Point of doubt: which end state a device is asked to be in, read from its own words.
+
+The words after a device's name say its state ("the lamp you put it off", "the blinds stay
+down", "the candle stays unlit", "the big light of" heard for off), flipped by a negation
+("is never left on"), carried to the next device ("the telly is off and so is the desk
+lamp"), or said to be as it is now ("the telly is off, same as now"); a purpose implies one
+("watching the news": the TV on). A switch word of a thing that only opens, or an open word
+of a thing that only switches, is read in the other family ("close the light" = off,
+"open the water" = on). The words are data (``state_words.json``); this module is the
+composition. Where the words settle a state the reading lacks or reads the other way, the
+alternative gives it, priced by its label (how the state was said) in ``priors.json``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from emboteam.pfg.candidates import AS_READ, Choice, Doubt
+from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words, sentence_bounds, starts_at
+from emboteam.pfg.offline.doubts.state_words import StateWords, load_state_words, state_word_index
+from emboteam.pfg.offline.doubts.wants import one_object
+from emboteam.pfg.offline.lexicon import Act
+from emboteam.pfg.offline.tagger import Item
+from emboteam.pfg.sentences import clause
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import Predicate
+
+KIND = "device_state"
+P = Predicate
+_PRED = {("switch", True): P.switched_on, ("switch", False): P.switched_off,
+         ("open", True): P.open, ("open", False): P.closed}
+_PROP = {"switch": "toggleable", "open": "openable"}
+_OTHER = {"switch": "open", "open": "switch"}
+_ACTS = {Act.SWITCH_ON: ("switch", True), Act.SWITCH_OFF: ("switch", False),
+         Act.OPEN: ("open", True), Act.CLOSE: ("open", False)}
+
+
+@dataclass(frozen=True)
+class Said:
+    """A state the words give a device: its family, polarity and how it was said."""
+
+    family: str
+    polarity: bool
+    label: str
+
+
+def _props(type_: str) -> frozenset[str]:
+    return frozenset(load_catalogue().type(type_).properties)
+
+
+def _family(type_: str, family: str) -> str | None:
+    """The family a state word of ``family`` names for ``type_``: its own, or the other
+    when the thing has only that (a calque: "close the light")."""
+    props = _props(type_)
+    if _PROP[family] in props:
+        return family
+    return _OTHER[family] if _PROP[_OTHER[family]] in props else None
+
+
+def _governs_another(items: Sequence[Item], j: int, words: StateWords) -> bool:
+    """Whether the word at ``j`` takes a noun phrase of its own ("off the bed", "close
+    the box"): then it says nothing of the device before it ("that one" is the device)."""
+    if j + 1 >= len(items):
+        return False
+    nxt = items[j + 1]
+    if nxt.text in ("that", "this") and j + 2 < len(items) and items[j + 2].text == "one":
+        return False
+    return nxt.text in words.before_object or (nxt.noun is not None and nxt.pron is None)
+
+
+def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) -> Said | None:
+    """The state the word at ``j`` says of a device of ``type_``, if any."""
+    item = items[j]
+    entry = state_word_index().get(item.text)
+    if entry is not None and (not entry.types or type_ in entry.types):
+        family, polarity, label = entry.family, entry.polarity, "said" if entry.certain else "heard"
+    elif item.verb is not None and item.verb.sense.act in _ACTS:
+        (family, polarity), label = _ACTS[item.verb.sense.act], "said"
+    else:
+        return None
+    if _governs_another(items, j, words):
+        return None
+    fam = _family(type_, family)
+    return Said(fam, polarity, label) if fam is not None else None
+
+
+def _modifier(ctx: DoubtContext, m: int, lo: int) -> bool:
+    """Whether the thing named at ``m`` only says which device ("the lamp on the desk"):
+    a preposition just before it (a determiner between)."""
+    k = m - 1
+    if k >= lo and ctx.items[k].det:
+        k -= 1
+    return k >= lo and ctx.items[k].prep is not None
+
+
+def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: set[int]) -> Said | None:
+    """The state said after the device named at ``k`` in its sentence: before the next
+    thing named (a place that says which device does not count) or a stop word."""
+    _, end = sentence_bounds(ctx.items, k)
+    flipped = False
+    verb_seen = False
+    keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
+    kept = False
+    for j in range(k + 1, min(end, k + 1 + words.reach)):
+        item = ctx.items[j]
+        if j in named and (verb_seen or not _modifier(ctx, j, k + 1)):
+            return None
+        if item.text in words.stop and not flipped:
+            return None
+        if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
+            flipped = True
+        kept = kept or item.text in keepers
+        said = _word_state(ctx.items, j, words, type_)
+        if said is not None:
+            label = said.label
+            if label == "said" and not kept and any(i.text in words.copulas for i in ctx.items[max(k + 1, j - 2):j]):
+                label = "copula"
+            elif kept and label == "said":
+                label = "kept"
+            return Said(said.family, said.polarity != flipped, label)
+        verb_seen = verb_seen or item.verb is not None
+    return None
+
+
+def _present(ctx: DoubtContext, type_: str, family: str) -> bool | None:
+    objs = list(ctx.state.of_type(type_))
+    if not objs:
+        return None
+    return bool(objs[0].is_on) if family == "switch" else bool(objs[0].is_open)
+
+
+def _device(ctx: DoubtContext, types: Sequence[str]) -> str | None:
+    """The device a name means: of its types with a switch or a lid, the one the reading
+    already gives a state (else the first)."""
+    devices = [t for t in types if _props(t) & {"toggleable", "openable"}]
+    if not devices:
+        return None
+    stated = {t for c in ctx.goals if c.predicate in _PRED.values() for t in ref_types(c.subject)}
+    return next((t for t in devices if t in stated), devices[0])
+
+
+def _purpose(ctx: DoubtContext, words: StateWords, k: int | None, type_: str | None,
+             complaints: bool = False) -> tuple[str, Said] | None:
+    """A purpose that implies the state of the device named at ``k`` (``near``) or of the
+    scene's device of its types (only the complaints with ``complaints``)."""
+    for p in words.purposes:
+        if complaints and not p.complaint:
+            continue
+        for at, _ in find(ctx.items, 0, len(ctx.items), [p.words]):
+            start, end = sentence_bounds(ctx.items, at)
+            flipped = any(i.neg for i in ctx.items[max(start, at - 3):at])
+            if p.near:
+                if k is None or type_ not in p.types or not start <= k < end:
+                    continue
+                thing = type_
+            else:
+                thing = next((t for t in p.types if t in ctx.scene_types), None)
+                if thing is None or (type_ is not None and thing != type_):
+                    continue
+            fam = _family(thing, p.family)
+            if fam is not None:
+                return thing, Said(fam, p.polarity != flipped, "complaint" if p.complaint else "purpose")
+    return None
+
+
+def _doubt(ctx: DoubtContext, span: str, type_: str, said: Said) -> Doubt | None:
+    want = one_object(_PRED[(said.family, said.polarity)], type_)
+    if want in ctx.goals:
+        return None
+    family = {_PRED[(said.family, True)], _PRED[(said.family, False)]}
+    clash = tuple(c for c in ctx.goals if c.predicate in family and ref_types(c.subject) == {type_})
+    read = "; ".join(clause(c) for c in clash) or "no goal"
+    return Doubt(KIND, span, (Choice(AS_READ, read), Choice(said.label, clause(want), drop=clash, add=(want,))))
+
+
+def doubts(ctx: DoubtContext) -> list[Doubt]:
+    words = load_state_words()
+    mentions = ctx.mentions()
+    named = {m for m, _, _ in mentions}
+    out: list[Doubt] = []
+    done: set[str] = set()
+    before: Said | None = None
+    for k, item, types in mentions:
+        type_ = _device(ctx, types)
+        if type_ is None or type_ in done:
+            continue
+        complaint = _purpose(ctx, words, k, type_, complaints=True)
+        said = complaint[1] if complaint else _own_words(ctx, k, type_, words, named)
+        if said is None and before is not None and any(
+                starts_at(ctx.items, j, c) and j + len(c) in (k, k - 1) for c in words.carry
+                for j in range(max(0, k - 4), k)):
+            fam = _family(type_, before.family)
+            said = Said(fam, before.polarity, "carried") if fam is not None else None
+        if find(ctx.items, k, min(len(ctx.items), k + words.reach + 4), words.present):
+            now = _present(ctx, type_, said.family if said else "switch")
+            if now is not None and (said is None or said.polarity == now):
+                said = Said(said.family if said else "switch", now, "present")
+        if said is None:
+            purpose = _purpose(ctx, words, k, type_)
+            said = purpose[1] if purpose else None
+        if said is None:
+            continue
+        before = said
+        doubt = _doubt(ctx, item.text, type_, said)
+        if doubt is not None:
+            done.add(type_)
+            out.append(doubt)
+    far = _purpose(ctx, words, None, None)
+    if far is not None and far[0] not in done and (doubt := _doubt(ctx, "purpose", *far)) is not None:
+        out.append(doubt)
+    return out
+
+
+__all__ = ["KIND", "Said", "doubts"]

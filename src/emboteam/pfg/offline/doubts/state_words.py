@@ -1,0 +1,109 @@
+"""The words of device end states (:mod:`.device_state`): state words with their family
+and polarity, the words that flip, stop, carry a state or say its present one, and
+purposes that imply a state. Data (``state_words.json``), checked at load: a malformed
+entry is a :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming the file and
+the entry.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from emboteam.pfg.offline.knowledge import read
+from emboteam.world.catalogue import load_catalogue
+
+STATE_WORDS_FILE = Path(__file__).with_name("state_words.json")
+
+Words = list[str]
+Family = Literal["switch", "open"]
+
+
+class _Closed(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+def _known_types(v: list[str]) -> list[str]:
+    cat = load_catalogue()
+    for t in v:
+        try:
+            cat.type(t)
+        except Exception:   # the catalogue's own error type varies; the message is ours
+            raise ValueError(f"unknown object type {t!r}") from None
+    return v
+
+
+class StateWord(_Closed):
+    """One word said after a device that asks its state."""
+
+    words: Words = Field(min_length=1, max_length=1)
+    family: Family
+    polarity: bool
+    #: False: the word may be something else ("of"): the reading keeps its own as an
+    #: alternative at a higher prior (label ``heard``)
+    certain: bool = True
+    #: the device types the word is a state of (empty: any device of its family)
+    types: list[str] = []
+    why: str = Field(min_length=1)
+
+    _check_types = field_validator("types")(_known_types)
+
+
+class Purpose(_Closed):
+    """A purpose or complaint that implies a device's state ("watching the news")."""
+
+    words: Words = Field(min_length=1)
+    types: list[str] = Field(min_length=1)
+    family: Family
+    polarity: bool
+    #: True: only a device of ``types`` named in the same sentence; False: the scene's first
+    near: bool
+    #: True: a complaint about the state the device's own words say ("a lamp burning all
+    #: night is a waste"): it comes before them
+    complaint: bool = False
+    why: str = Field(min_length=1)
+
+    _check_types = field_validator("types")(_known_types)
+
+
+class StateWords(_Closed):
+    about: str = ""
+    words: list[StateWord]
+    #: words that start a noun phrase: "on"/"off" before one is a preposition ("off the bed")
+    before_object: list[str]
+    #: words before the state that flip it ("never left on")
+    flip: list[Words]
+    #: words that end the search (a complaint, "still on"; a condition, "if it is on")
+    stop: list[str]
+    #: "same as now": the device's present state
+    present: list[Words]
+    #: "and so is the desk lamp": the state said of the device before
+    carry: list[Words]
+    #: a copula right before the state word: a state said, not asked (weaker)
+    copulas: list[str]
+    reach: int = Field(7, ge=1, le=20)
+    purposes: list[Purpose]
+
+    @field_validator("words")
+    @classmethod
+    def _one_per_word(cls, v: list[StateWord]) -> list[StateWord]:
+        seen: set[str] = set()
+        for w in v:
+            if w.words[0] in seen:
+                raise ValueError(f"word {w.words[0]!r} listed twice")
+            seen.add(w.words[0])
+        return v
+
+
+@cache
+def load_state_words(path: Path = STATE_WORDS_FILE) -> StateWords:
+    return read(path, StateWords)
+
+
+@cache
+def state_word_index() -> dict[str, StateWord]:
+    """The shipped state words by word (one lookup per token, no scan of the list)."""
+    return {w.words[0]: w for w in load_state_words().words}
