@@ -51,12 +51,13 @@ def _props(type_: str) -> frozenset[str]:
 
 
 def _family(type_: str, family: str) -> str | None:
-    """The family a state word of ``family`` names for ``type_``: its own, or the other
-    when the thing has only that (a calque: "close the light")."""
+    """The family a state word of ``family`` names for ``type_``: its own, or, for an open
+    word of a thing that only switches, the switch (a calque: "close the light", "open
+    the water"; a switch word never opens: "the kettle on" is on the stove)."""
     props = _props(type_)
     if _PROP[family] in props:
         return family
-    return _OTHER[family] if _PROP[_OTHER[family]] in props else None
+    return "switch" if family == "open" and "toggleable" in props else None
 
 
 def _governs_another(items: Sequence[Item], j: int, words: StateWords) -> bool:
@@ -74,6 +75,8 @@ def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) ->
     """The state the word at ``j`` says of a device of ``type_``, if any."""
     item = items[j]
     entry = state_word_index().get(item.text)
+    if entry is not None and j > 0 and items[j - 1].text in words.particle_of:
+        return None     # "hang on", "get on with it"
     if entry is not None and (not entry.types or type_ in entry.types):
         family, polarity, label = entry.family, entry.polarity, "said" if entry.certain else "heard"
     elif item.verb is not None and item.verb.sense.act in _ACTS:
@@ -86,42 +89,58 @@ def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) ->
     return Said(fam, polarity, label) if fam is not None else None
 
 
-def _modifier(ctx: DoubtContext, m: int, lo: int) -> bool:
+def _modifier(ctx: DoubtContext, m: int, lo: int, words: StateWords) -> bool:
     """Whether the thing named at ``m`` only says which device ("the lamp on the desk"):
-    a preposition just before it (a determiner between)."""
+    a preposition of ``modifier_preps`` just before it (a determiner between; not "in
+    the safe": a destination)."""
     k = m - 1
     if k >= lo and ctx.items[k].det:
         k -= 1
-    return k >= lo and ctx.items[k].prep is not None
+    return k >= lo and ctx.items[k].text in words.modifier_preps
 
 
 def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: set[int]) -> Said | None:
     """The state said after the device named at ``k`` in its sentence: before the next
     thing named (a place that says which device does not count) or a stop word."""
-    _, end = sentence_bounds(ctx.items, k)
+    start, end = sentence_bounds(ctx.items, k)
     flipped = False
     verb_seen = False
+    # "if the door is open, it must be closed": the first state is the condition's
+    condition = any(i.text in words.conditions for i in ctx.items[max(start, k - 4):k])
+    if any(i.text in words.roles for i in ctx.items[max(start, k - 3):k]):
+        return None
+    found: Said | None = None
     keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
     kept = False
     for j in range(k + 1, min(end, k + 1 + words.reach)):
         item = ctx.items[j]
-        if j in named and (verb_seen or not _modifier(ctx, j, k + 1)):
+        if j in named and (verb_seen or not _modifier(ctx, j, k + 1, words)):
             return None
         if item.text in words.stop and not flipped:
             return None
         if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
             flipped = True
+        condition = condition or item.text in words.conditions
         kept = kept or item.text in keepers
         said = _word_state(ctx.items, j, words, type_)
+        if said is not None and condition:
+            condition, flipped, said = False, False, None
         if said is not None:
             label = said.label
             if label == "said" and not kept and any(i.text in words.copulas for i in ctx.items[max(k + 1, j - 2):j]):
                 label = "copula"
             elif kept and label == "said":
                 label = "kept"
-            return Said(said.family, said.polarity != flipped, label)
+            if found is not None and not (found.family == said.family and _later(ctx.items, j, end, words)):
+                return found
+            found = Said(said.family, said.polarity != flipped, label)
         verb_seen = verb_seen or item.verb is not None
-    return None
+    return found
+
+
+def _later(items: Sequence[Item], j: int, end: int, words: StateWords) -> bool:
+    """Whether the state at ``j`` is said to come after another ("shut after")."""
+    return any(i.text in words.later for i in items[max(0, j - 2):min(end, j + 2)])
 
 
 def _present(ctx: DoubtContext, type_: str, family: str) -> bool | None:
@@ -131,10 +150,13 @@ def _present(ctx: DoubtContext, type_: str, family: str) -> bool | None:
     return bool(objs[0].is_on) if family == "switch" else bool(objs[0].is_open)
 
 
-def _device(ctx: DoubtContext, types: Sequence[str]) -> str | None:
-    """The device a name means: of its types with a switch or a lid, the one the reading
-    already gives a state (else the first)."""
+def _device(ctx: DoubtContext, types: Sequence[str], own: frozenset[str]) -> str | None:
+    """The device a name means: of its types with a switch or a lid and not named by a
+    name of their own elsewhere ("the big lamp" beside "the desk lamp"), the one the
+    reading already gives a state (else the first)."""
     devices = [t for t in types if _props(t) & {"toggleable", "openable"}]
+    if len(devices) > 1:
+        devices = [t for t in devices if t not in own] or devices
     if not devices:
         return None
     stated = {t for c in ctx.goals if c.predicate in _PRED.values() for t in ref_types(c.subject)}
@@ -179,12 +201,12 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_state_words()
     mentions = ctx.mentions()
     named = {m for m, _, _ in mentions}
-    out: list[Doubt] = []
-    done: set[str] = set()
+    own = frozenset(ts[0] for _, _, ts in mentions if len(ts) == 1)
+    last: dict[str, tuple[str, Said]] = {}     # the later words settle a device's state
     before: Said | None = None
     for k, item, types in mentions:
-        type_ = _device(ctx, types)
-        if type_ is None or type_ in done:
+        type_ = _device(ctx, types, own)
+        if type_ is None:
             continue
         complaint = _purpose(ctx, words, k, type_, complaints=True)
         said = complaint[1] if complaint else _own_words(ctx, k, type_, words, named)
@@ -203,14 +225,11 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         if said is None:
             continue
         before = said
-        doubt = _doubt(ctx, item.text, type_, said)
-        if doubt is not None:
-            done.add(type_)
-            out.append(doubt)
+        last[type_] = (item.text, said)
     far = _purpose(ctx, words, None, None)
-    if far is not None and far[0] not in done and (doubt := _doubt(ctx, "purpose", *far)) is not None:
-        out.append(doubt)
-    return out
+    if far is not None and far[0] not in last:
+        last[far[0]] = ("purpose", far[1])
+    return [d for type_, (span, said) in last.items() if (d := _doubt(ctx, span, type_, said)) is not None]
 
 
 __all__ = ["KIND", "Said", "doubts"]

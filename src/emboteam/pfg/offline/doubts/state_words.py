@@ -74,6 +74,19 @@ class StateWords(_Closed):
     words: list[StateWord]
     #: words that start a noun phrase: "on"/"off" before one is a preposition ("off the bed")
     before_object: list[str]
+    #: verbs whose particle "on"/"off" right after them is no state ("hang on", "get on with it")
+    particle_of: list[str]
+    #: prepositions before a thing named after the device that only say which device it is
+    #: ("the lamp on the desk", "the water of the sink"): the search goes on past it
+    modifier_preps: list[str]
+    #: words that make the next state a condition, not the goal ("if it is open, close it")
+    conditions: list[str]
+    #: words just before a device that make its sentence a role ("whoever opens drawers
+    #: opens them"): no end state
+    roles: list[str]
+    #: words that make a later state of the same device the end one ("the cupboard open
+    #: first, shut after")
+    later: list[str]
     #: words before the state that flip it ("never left on")
     flip: list[Words]
     #: words that end the search (a complaint, "still on"; a condition, "if it is on")
