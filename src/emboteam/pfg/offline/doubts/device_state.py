@@ -57,7 +57,7 @@ def _family(type_: str, family: str) -> str | None:
     props = _props(type_)
     if _PROP[family] in props:
         return family
-    return "switch" if family == "open" and "toggleable" in props else None
+    return "switch" if family == "open" and type_ in load_state_words().calque_types else None
 
 
 def _governs_another(items: Sequence[Item], j: int, words: StateWords) -> bool:
@@ -103,7 +103,9 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     """The state said after the device named at ``k`` in its sentence: before the next
     thing named (a place that says which device does not count) or a stop word."""
     start, end = sentence_bounds(ctx.items, k)
-    flipped = False
+    lo, _ = ctx.clause_bounds(k)
+    # "don't leave the toaster on": a negation before the device in its clause
+    flipped = any(i.neg for i in ctx.items[max(lo, k - 4):k])
     verb_seen = False
     # "if the door is open, it must be closed": the first state is the condition's
     condition = any(i.text in words.conditions for i in ctx.items[max(start, k - 4):k])
@@ -114,10 +116,10 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     kept = False
     for j in range(k + 1, min(end, k + 1 + words.reach)):
         item = ctx.items[j]
-        if j in named and (verb_seen or not _modifier(ctx, j, k + 1, words)):
-            return None
+        if (j in named or _names_thing(ctx, j)) and (verb_seen or not _modifier(ctx, j, k + 1, words)):
+            return found
         if item.text in words.stop and not flipped:
-            return None
+            return found
         if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
             flipped = True
         condition = condition or item.text in words.conditions
@@ -128,14 +130,27 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         if said is not None:
             label = said.label
             if label == "said" and not kept and any(i.text in words.copulas for i in ctx.items[max(k + 1, j - 2):j]):
-                label = "copula"
+                # "the TV is on": a description (a complaint) unless wanted or told as a narrative
+                wished = ctx.narrative or any(i.text in words.wishes for i in ctx.items[k + 1:j])
+                label = "said" if wished else "copula"
             elif kept and label == "said":
                 label = "kept"
-            if found is not None and not (found.family == said.family and _later(ctx.items, j, end, words)):
-                return found
+            if found is not None and found.label != "copula" and not (
+                    found.family == said.family and _later(ctx.items, j, end, words)):
+                return found    # "the tap is running, turn it off": the request after the description
             found = Said(said.family, said.polarity != flipped, label)
         verb_seen = verb_seen or item.verb is not None
     return found
+
+
+def _names_thing(ctx: DoubtContext, j: int) -> bool:
+    """Whether a word that may be a verb names a thing here ("lights off"; not "light
+    it", "light the candle")."""
+    item = ctx.items[j]
+    if item.verb is None or not ctx.named_types(item, verbs_too=True):
+        return False
+    nxt = ctx.items[j + 1] if j + 1 < len(ctx.items) else None
+    return nxt is None or not (nxt.pron is not None or nxt.det or nxt.text in ("that", "this"))
 
 
 def _later(items: Sequence[Item], j: int, end: int, words: StateWords) -> bool:
@@ -188,11 +203,14 @@ def _purpose(ctx: DoubtContext, words: StateWords, k: int | None, type_: str | N
 
 
 def _doubt(ctx: DoubtContext, span: str, type_: str, said: Said) -> Doubt | None:
-    want = one_object(_PRED[(said.family, said.polarity)], type_)
-    if want in ctx.goals:
-        return None
+    pred = _PRED[(said.family, said.polarity)]
     family = {_PRED[(said.family, True)], _PRED[(said.family, False)]}
-    clash = tuple(c for c in ctx.goals if c.predicate in family and ref_types(c.subject) == {type_})
+    mine = [c for c in (*ctx.goals, *ctx.steps) if c.predicate in family and ref_types(c.subject) == {type_}]
+    if any(c.predicate is pred for c in mine):
+        return None
+    clash = tuple(c for c in mine if c in ctx.goals)
+    # the count the reading gave ("both taps") stays
+    want = one_object(pred, type_).model_copy(update={"count": clash[0].count if clash else 1})
     read = "; ".join(clause(c) for c in clash) or "no goal"
     return Doubt(KIND, span, (Choice(AS_READ, read), Choice(said.label, clause(want), drop=clash, add=(want,))))
 

@@ -95,10 +95,16 @@ class StateWords(_Closed):
     present: list[Words]
     #: "and so is the desk lamp": the state said of the device before
     carry: list[Words]
-    #: a copula right before the state word: a state said, not asked (weaker)
+    #: a copula right before the state word: a state described, maybe a complaint (weaker)
     copulas: list[str]
+    #: words between the device and a copula's state that make it wanted ("is always on")
+    wishes: list[str]
+    #: the things an open word switches (a calque: "close the light", "open the water")
+    calque_types: list[str]
     reach: int = Field(7, ge=1, le=20)
     purposes: list[Purpose]
+
+    _check_calques = field_validator("calque_types")(_known_types)
 
     @field_validator("words")
     @classmethod
