@@ -74,7 +74,9 @@ def _governs_another(items: Sequence[Item], j: int, words: StateWords) -> bool:
 def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) -> Said | None:
     """The state the word at ``j`` says of a device of ``type_``, if any."""
     item = items[j]
-    entry = state_word_index().get(item.text)
+    index = state_word_index()
+    # a state word the tagger spelt into another ("unlit" -> "unit")
+    entry = index.get(item.corrected_from or "") or index.get(item.text)
     if entry is not None and j > 0 and items[j - 1].text in words.particle_of:
         return None     # "hang on", "get on with it"
     if entry is not None and (not entry.types or type_ in entry.types):
@@ -116,8 +118,9 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     kept = False
     for j in range(k + 1, min(end, k + 1 + words.reach)):
         item = ctx.items[j]
-        if (j in named or _names_thing(ctx, j)) and (verb_seen or not _modifier(ctx, j, k + 1, words)):
-            return found
+        if (j in named or _names_thing(ctx, j)) and _is_device(ctx, j) and (
+                verb_seen or not _modifier(ctx, j, k + 1, words)):
+            return found    # the next device's words (a place or a thing without a switch goes on)
         if item.text in words.stop and not flipped:
             return found
         if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
@@ -141,6 +144,12 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
             found = Said(said.family, said.polarity != flipped, label)
         verb_seen = verb_seen or item.verb is not None
     return found
+
+
+def _is_device(ctx: DoubtContext, j: int) -> bool:
+    types = ctx.named_types(ctx.items[j], verbs_too=True) or next(
+        (ts for m, _, ts in ctx.mentions() if m == j), ())
+    return any(_props(t) & {"toggleable", "openable"} for t in types)
 
 
 def _names_thing(ctx: DoubtContext, j: int) -> bool:
