@@ -68,6 +68,8 @@ def _governs_another(items: Sequence[Item], j: int, words: StateWords) -> bool:
     nxt = items[j + 1]
     if nxt.text in ("that", "this") and j + 2 < len(items) and items[j + 2].text == "one":
         return False
+    if items[j].verb is not None and nxt.text in state_word_index() and j + 2 < len(items):
+        nxt = items[j + 2]      # "shut off the light": a verb and its particle
     return nxt.text in words.before_object or (nxt.noun is not None and nxt.pron is None)
 
 
@@ -111,8 +113,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     verb_seen = False
     # "if the door is open, it must be closed": the first state is the condition's
     condition = any(i.text in words.conditions for i in ctx.items[max(start, k - 4):k])
-    if any(i.text in words.roles for i in ctx.items[max(start, k - 3):k]):
-        return None
+    if any(i.text in words.roles or i.text in words.stop for i in ctx.items[max(start, k - 3):k]):
+        return None     # a role ("whoever opens drawers"), a complaint ("somebody left the fridge open")
     found: Said | None = None
     keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
     kept = False
