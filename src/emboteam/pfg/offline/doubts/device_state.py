@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words, sentence_bounds, starts_at
-from emboteam.pfg.offline.doubts.state_words import StateWords, load_state_words, state_word_index
+from emboteam.pfg.offline.doubts.state_words import StateWords, load_state_words, purpose_phrases, state_word_index
 from emboteam.pfg.offline.doubts.wants import one_object
 from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.offline.tagger import Item
@@ -193,23 +193,24 @@ def _purpose(ctx: DoubtContext, words: StateWords, k: int | None, type_: str | N
              complaints: bool = False) -> tuple[str, Said] | None:
     """A purpose that implies the state of the device named at ``k`` (``near``) or of the
     scene's device of its types (only the complaints with ``complaints``)."""
-    for p in words.purposes:
+    phrases, by_words = purpose_phrases()
+    for at, after in find(ctx.items, 0, len(ctx.items), phrases):
+        p = by_words[tuple(i.text for i in ctx.items[at:after])]
         if complaints and not p.complaint:
             continue
-        for at, _ in find(ctx.items, 0, len(ctx.items), [p.words]):
-            start, end = sentence_bounds(ctx.items, at)
-            flipped = any(i.neg for i in ctx.items[max(start, at - 3):at])
-            if p.near:
-                if k is None or type_ not in p.types or not start <= k < end:
-                    continue
-                thing = type_
-            else:
-                thing = next((t for t in p.types if t in ctx.scene_types), None)
-                if thing is None or (type_ is not None and thing != type_):
-                    continue
-            fam = _family(thing, p.family)
-            if fam is not None:
-                return thing, Said(fam, p.polarity != flipped, "complaint" if p.complaint else "purpose")
+        start, end = sentence_bounds(ctx.items, at)
+        flipped = any(i.neg for i in ctx.items[max(start, at - 3):at])
+        if p.near:
+            if k is None or type_ not in p.types or not start <= k < end:
+                continue
+            thing = type_
+        else:
+            thing = next((t for t in p.types if t in ctx.scene_types), None)
+            if thing is None or (type_ is not None and thing != type_):
+                continue
+        fam = _family(thing, p.family)
+        if fam is not None:
+            return thing, Said(fam, p.polarity != flipped, "complaint" if p.complaint else "purpose")
     return None
 
 

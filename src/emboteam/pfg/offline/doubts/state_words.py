@@ -126,3 +126,11 @@ def load_state_words(path: Path = STATE_WORDS_FILE) -> StateWords:
 def state_word_index() -> dict[str, StateWord]:
     """The shipped state words by word (one lookup per token, no scan of the list)."""
     return {w.words[0]: w for w in load_state_words().words}
+
+
+@cache
+def purpose_phrases() -> tuple[list[Words], dict[tuple[str, ...], Purpose]]:
+    """The purposes' phrases (one list for the life of the process: :func:`.rule_words.find`
+    indexes a phrase list by its identity) and each phrase's purpose."""
+    purposes = load_state_words().purposes
+    return [p.words for p in purposes], {tuple(p.words): p for p in purposes}
