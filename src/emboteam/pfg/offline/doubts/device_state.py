@@ -68,6 +68,8 @@ def _governs_another(items: Sequence[Item], j: int, words: StateWords) -> bool:
     nxt = items[j + 1]
     if nxt.text in ("that", "this") and j + 2 < len(items) and items[j + 2].text == "one":
         return False
+    if items[j].verb is None and nxt.pron is not None:
+        return True             # "off it", "on them": a preposition
     if items[j].verb is not None and nxt.text in state_word_index() and j + 2 < len(items):
         nxt = items[j + 2]      # "shut off the light": a verb and its particle
     return nxt.text in words.before_object or (nxt.noun is not None and nxt.pron is None)
@@ -108,8 +110,10 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     thing named (a place that says which device does not count) or a stop word."""
     start, end = sentence_bounds(ctx.items, k)
     lo, _ = ctx.clause_bounds(k)
-    # "don't leave the toaster on": a negation before the device in its clause
-    flipped = any(i.neg for i in ctx.items[max(lo, k - 4):k])
+    # "don't leave the toaster on": a negated verb before the device in its clause (not
+    # "not the desk lamps": an exclusion)
+    flipped = any(i.neg and any(v.verb is not None for v in ctx.items[n + 1:k])
+                  for n, i in enumerate(ctx.items[max(lo, k - 4):k], start=max(lo, k - 4)))
     verb_seen = False
     # "if the door is open, it must be closed": the first state is the condition's
     condition = any(i.text in words.conditions for i in ctx.items[max(start, k - 4):k])
@@ -120,9 +124,11 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     kept = False
     for j in range(k + 1, min(end, k + 1 + words.reach)):
         item = ctx.items[j]
-        if (j in named or _names_thing(ctx, j)) and _is_device(ctx, j) and (
-                verb_seen or not _modifier(ctx, j, k + 1, words)):
-            return found    # the next device's words (a place or a thing without a switch goes on)
+        if (j in named or _names_thing(ctx, j)) and (verb_seen or not _modifier(ctx, j, k + 1, words)) and (
+                _is_device(ctx, j) or not _place(ctx, j, k + 1)):
+            return found    # the next thing's words (a place without a switch or lid goes on)
+        if item.conj is not None or item.sub is not None:
+            return found    # "..., and close it after": another clause's act
         if item.text in words.stop and not flipped:
             return found
         if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
@@ -146,6 +152,14 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
             found = Said(said.family, said.polarity != flipped, label)
         verb_seen = verb_seen or item.verb is not None
     return found
+
+
+def _place(ctx: DoubtContext, m: int, lo: int) -> bool:
+    """Whether the thing at ``m`` is a place ("on the desk"): a preposition before it."""
+    k = m - 1
+    if k >= lo and ctx.items[k].det:
+        k -= 1
+    return k >= lo and ctx.items[k].prep is not None
 
 
 def _is_device(ctx: DoubtContext, j: int) -> bool:
