@@ -19,7 +19,12 @@ from dataclasses import dataclass
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words, sentence_bounds, starts_at
-from emboteam.pfg.offline.doubts.state_words import StateWords, load_state_words, purpose_phrases, state_word_index
+from emboteam.pfg.offline.doubts.state_words import (
+    StateWords,
+    load_state_words,
+    purpose_phrases,
+    state_word_index,
+)
 from emboteam.pfg.offline.doubts.wants import one_object
 from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.offline.tagger import Item
