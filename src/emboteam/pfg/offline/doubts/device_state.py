@@ -132,8 +132,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         if (j in named or _names_thing(ctx, j)) and (verb_seen or not _modifier(ctx, j, k + 1, words)) and (
                 _is_device(ctx, j) or not _place(ctx, j, k + 1)):
             return found    # the next thing's words (a place without a switch or lid goes on)
-        if item.conj is not None or item.sub is not None:
-            return found    # "..., and close it after": another clause's act
+        if (item.conj is not None or item.sub is not None) and not _acts_on_it(ctx, k, j):
+            return found    # "when the kids shower, and close it after": another clause's act
         if item.text in words.stop and not flipped:
             return found
         if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
@@ -157,6 +157,14 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
             found = Said(said.family, said.polarity != flipped, label)
         verb_seen = verb_seen or item.verb is not None
     return found
+
+
+def _acts_on_it(ctx: DoubtContext, k: int, j: int) -> bool:
+    """Whether "and" at ``j`` joins an act on the device named at ``k`` ("put it in the
+    toaster and switch it on"): a verb and a pronoun after it, a determiner before the device."""
+    items = ctx.items
+    return (items[j].conj is not None and k > 0 and items[k - 1].det and j + 2 < len(items)
+            and items[j + 1].verb is not None and items[j + 2].pron is not None)
 
 
 def _place(ctx: DoubtContext, m: int, lo: int) -> bool:
@@ -236,10 +244,9 @@ def _purpose(ctx: DoubtContext, words: StateWords, k: int | None, type_: str | N
 def _doubt(ctx: DoubtContext, span: str, type_: str, said: Said) -> Doubt | None:
     pred = _PRED[(said.family, said.polarity)]
     family = {_PRED[(said.family, True)], _PRED[(said.family, False)]}
-    mine = [c for c in (*ctx.goals, *ctx.steps) if c.predicate in family and ref_types(c.subject) == {type_}]
-    if any(c.predicate is pred for c in mine):
+    clash = tuple(c for c in ctx.goals if c.predicate in family and ref_types(c.subject) == {type_})
+    if any(c.predicate is pred for c in clash):
         return None
-    clash = tuple(c for c in mine if c in ctx.goals)
     # the count the reading gave ("both taps") stays
     want = one_object(pred, type_).model_copy(update={"count": clash[0].count if clash else 1})
     read = "; ".join(clause(c) for c in clash) or "no goal"
