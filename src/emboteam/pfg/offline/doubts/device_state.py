@@ -38,7 +38,7 @@ _PRED = {("switch", True): P.switched_on, ("switch", False): P.switched_off,
          ("open", True): P.open, ("open", False): P.closed}
 _PROP = {"switch": "toggleable", "open": "openable"}
 _OTHER = {"switch": "open", "open": "switch"}
-_ACTS = {Act.SWITCH_ON: ("switch", True), Act.SWITCH_OFF: ("switch", False),
+_ACTS: dict[Act, tuple[str, bool]] = {Act.SWITCH_ON: ("switch", True), Act.SWITCH_OFF: ("switch", False),
          Act.OPEN: ("open", True), Act.CLOSE: ("open", False)}
 
 
@@ -89,7 +89,8 @@ def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) ->
     if entry is not None and j > 0 and items[j - 1].text in words.particle_of:
         return None     # "hang on", "get on with it"
     if entry is not None and (not entry.types or type_ in entry.types):
-        family, polarity, label = entry.family, entry.polarity, "said" if entry.certain else "heard"
+        family, polarity = str(entry.family), entry.polarity
+        label = "said" if entry.certain else "heard"
     elif item.verb is not None and item.verb.sense.act in _ACTS:
         (family, polarity), label = _ACTS[item.verb.sense.act], "said"
     else:
@@ -228,15 +229,15 @@ def _purpose(ctx: DoubtContext, words: StateWords, k: int | None, type_: str | N
         start, end = sentence_bounds(ctx.items, at)
         flipped = any(i.neg for i in ctx.items[max(start, at - 3):at])
         if p.near:
-            if k is None or type_ not in p.types or not start <= k < end:
+            if k is None or type_ is None or type_ not in p.types or not start <= k < end:
                 continue
-            thing = type_
+            thing: str | None = type_
         else:
             thing = next((t for t in p.types if t in ctx.scene_types), None)
             if thing is None or (type_ is not None and thing != type_):
                 continue
-        fam = _family(thing, p.family)
-        if fam is not None:
+        fam = _family(thing, p.family) if thing is not None else None
+        if thing is not None and fam is not None:
             return thing, Said(fam, p.polarity != flipped, "complaint" if p.complaint else "purpose")
     return None
 
