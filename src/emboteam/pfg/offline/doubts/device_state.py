@@ -49,6 +49,8 @@ class Said:
     family: str
     polarity: bool
     label: str
+    #: said by a verb ("close it"): a later act on the device settles it
+    act: bool = False
 
 
 def _props(type_: str) -> frozenset[str]:
@@ -98,7 +100,7 @@ def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) ->
     if _governs_another(items, j, words):
         return None
     fam = _family(type_, family)
-    return Said(fam, polarity, label) if fam is not None else None
+    return Said(fam, polarity, label, act=entry is None or item.verb is not None) if fam is not None else None
 
 
 def _modifier(ctx: DoubtContext, m: int, lo: int, words: StateWords) -> bool:
@@ -128,11 +130,13 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     found: Said | None = None
     keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
     kept = False
-    for j in range(k + 1, min(end, k + 1 + words.reach)):
+    for j in range(k + 1, end):
+        if j > k + words.reach and not (found is not None and found.act):
+            break       # past the reach only acts on "it" go on ("open it, put them in, then shut it")
         item = ctx.items[j]
         if (j in named or _names_thing(ctx, j)) and (verb_seen or not _modifier(ctx, j, k + 1, words)) and (
-                _is_device(ctx, j) or not _place(ctx, j, k + 1)):
-            return found    # the next thing's words (a place without a switch or lid goes on)
+                _is_device(ctx, j) or not (_place(ctx, j, k + 1) or (found is not None and found.act))):
+            return found    # the next thing's words (past a place, or a thing between acts on "it", it goes on)
         if (item.conj is not None or item.sub is not None) and not _acts_on_it(ctx, k, j):
             return found    # "when the kids shower, and close it after": another clause's act
         if item.text in words.stop and not flipped:
@@ -146,16 +150,19 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
             condition, flipped, said = False, False, None
         if said is not None:
             label = said.label
-            if label == "said" and not kept and any(i.text in words.copulas for i in ctx.items[max(k + 1, j - 2):j]):
+            described = any(i.text in words.describing for i in ctx.items[max(start, k - 3):k])
+            if label == "said" and not kept and (described or any(
+                    i.text in words.copulas for i in ctx.items[max(k + 1, j - 2):j])):
                 # "the TV is on": a description (a complaint) unless wanted or told as a narrative
                 wished = ctx.narrative or any(i.text in words.wishes for i in ctx.items[k + 1:j])
                 label = "said" if wished else "copula"
             elif kept and label == "said":
                 label = "kept"
-            if found is not None and found.label != "copula" and not (
-                    found.family == said.family and _later(ctx.items, j, end, words)):
-                return found    # "the tap is running, turn it off": the request after the description
-            found = Said(said.family, said.polarity != flipped, label)
+            if found is not None and found.label != "copula" and not (found.family == said.family and (
+                    _later(ctx.items, j, end, words) or (found.act and said.act))):
+                return found    # "the tap is running, turn it off": the request after the description;
+                # "open it, put them in, then shut it": the last act
+            found = Said(said.family, said.polarity != flipped, label, said.act)
         verb_seen = verb_seen or item.verb is not None
     return found
 

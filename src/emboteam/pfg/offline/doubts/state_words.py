@@ -97,6 +97,9 @@ class StateWords(_Closed):
     carry: list[Words]
     #: a copula right before the state word: a state described, maybe a complaint (weaker)
     copulas: list[str]
+    #: words before a device that make its state a description like a copula's ("so gloomy
+    #: with the blinds shut")
+    describing: list[str]
     #: words between the device and a copula's state that make it wanted ("is always on")
     wishes: list[str]
     #: the things an open word switches (a calque: "close the light", "open the water")
