@@ -57,6 +57,9 @@ def _read(frontend: OfflineFrontend, text: str, floor_plan: str) -> tuple[set[st
     ("The cupboard: open it first, close it after.", "FloorPlan1", {"closed(Cabinet)"}),
     # a condition's state is no goal, the request after it is
     ("If the laptop is open, it has to be closed.", "FloorPlan301", {"closed(Laptop)"}),
+    # state_words.json, words: "beaming" (the worked example of docs/teach_a_phrasing.md)
+    ("remote on the sofa, the floor lamp beaming", "FloorPlan201",
+     {"inside(RemoteControl, Sofa)", "switched_on(FloorLamp)"}),
     # a negation before the device
     ("Make me a slice of toast, please. And don't leave the toaster on.", "FloorPlan1",
      {"switched_off(Toaster)"}),
