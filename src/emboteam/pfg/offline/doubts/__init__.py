@@ -20,12 +20,11 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
-| stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
 | correction_object | :mod:`.correction_object` ("the pen - no, the pencil": the other thing) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
 | device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 
-The words of contents, exclusive, next_place, stated, correction_object (and of stays) are
+The words of contents, exclusive, next_place, correction_object (and of stays) are
 data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
 ``mention_cues.json``.
 """
@@ -48,7 +47,6 @@ from emboteam.pfg.offline.doubts import (
     scope,
     slices,
     state,
-    stated,
     stays,
     unexplained,
 )
@@ -58,8 +56,10 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     """The doubts that may give a whole reading from the words (also when the grammar
-    found nothing): contents, exclusive purposes, next places, stated states, corrected things."""
-    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
+    found nothing): contents, exclusive purposes, next places, a narrative's device states, corrected things."""
+    # a narrative's device states ("when I walk in the TV is on") may make a reading too
+    told = device_state.doubts(ctx) if ctx.narrative else []
+    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *told,
              *correction_object.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
@@ -77,7 +77,7 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
              *instances.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said),
-             *(d for d in reading_doubts(ctx) if d.kind != "stated" or d.span not in stated_by_words)]
+             *(d for d in reading_doubts(ctx) if d.kind != device_state.KIND)]
     return [d for d in found if len(d.choices) > 1]
 
 

@@ -128,6 +128,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     if any(i.text in words.roles or i.text in words.stop for i in ctx.items[max(start, k - 3):k]):
         return None     # a role ("whoever opens drawers"), a complaint ("somebody left the fridge open")
     found: Said | None = None
+    corrected = False       # a self-correction since the state found ("off - sorry, I mean leave it on")
+    corrections = set(load_rule_words().correction_object.cues)
     keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
     kept = False
     for j in range(k + 1, end):
@@ -145,6 +147,7 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
             flipped = True
         condition = condition or item.text in words.conditions
         kept = kept or item.text in keepers
+        corrected = corrected or (found is not None and item.text in corrections)
         said = _word_state(ctx.items, j, words, type_)
         if said is not None and condition:
             condition, flipped, said = False, False, None
@@ -158,8 +161,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
                 label = "said" if wished else "copula"
             elif kept and label == "said":
                 label = "kept"
-            if found is not None and found.label != "copula" and not (found.family == said.family and (
-                    _later(ctx.items, j, end, words) or (found.act and said.act))):
+            if found is not None and found.label != "copula" and not corrected and not (
+                    found.family == said.family and (_later(ctx.items, j, end, words) or (found.act and said.act))):
                 return found    # "the tap is running, turn it off": the request after the description;
                 # "open it, put them in, then shut it": the last act
             found = Said(said.family, said.polarity != flipped, label, said.act)
