@@ -32,10 +32,7 @@ class Coverage:
 
     def __init__(self, ctx: DoubtContext) -> None:
         self.mentions = [frozenset(ts) for _, ts in asked_mentions(ctx)]
-        items = ctx.items
-        # "on the dresser" asks no state: a state word that is a preposition there is none
-        self.asked = [p for k, i in enumerate(items) if (p := asked_predicate(i)) is not None
-                      and not (i.prep is not None and k + 1 < len(items) and (items[k + 1].det or items[k + 1].noun))]
+        self.asked = [p for i in ctx.items if (p := asked_predicate(i)) is not None]
 
     def __call__(self, goals: Sequence[Condition]) -> int:
         types: set[str] = set()
