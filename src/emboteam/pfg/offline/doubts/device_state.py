@@ -266,7 +266,9 @@ def _doubt(ctx: DoubtContext, span: str, type_: str, said: Said) -> Doubt | None
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_state_words()
-    mentions = ctx.mentions()
+    # a name that may be a verb names the device where no object follows ("the microwave is running")
+    nouned = [(k, i, ctx.named_types(i, verbs_too=True)) for k, i in enumerate(ctx.items) if _names_thing(ctx, k)]
+    mentions = sorted([*ctx.mentions(), *nouned], key=lambda m: m[0])
     named = {m for m, _, _ in mentions}
     own = frozenset(ts[0] for _, _, ts in mentions if len(ts) == 1)
     last: dict[str, tuple[str, Said]] = {}     # the later words settle a device's state
