@@ -99,6 +99,9 @@ def _word_state(items: Sequence[Item], j: int, words: StateWords, type_: str) ->
         return None
     if _governs_another(items, j, words):
         return None
+    if entry is not None and not entry.certain and j + 1 < len(items) and items[j + 1].punct is None \
+            and items[j + 1].text not in words.heard_end:
+        return None     # "for a couple of minutes": "of" heard for "off" only at a clause's end
     fam = _family(type_, family)
     return Said(fam, polarity, label, act=entry is None or item.verb is not None) if fam is not None else None
 
@@ -117,6 +120,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     """The state said after the device named at ``k`` in its sentence: before the next
     thing named (a place that says which device does not count) or a stop word."""
     start, end = sentence_bounds(ctx.items, k)
+    if end < len(ctx.items) and ctx.items[end].punct == "?":
+        return None     # "is the light on?": a question
     lo, _ = ctx.clause_bounds(k)
     # "don't leave the toaster on": a negated verb before the device in its clause (not
     # "not the desk lamps": an exclusion)
@@ -267,7 +272,8 @@ def _doubt(ctx: DoubtContext, span: str, type_: str, said: Said) -> Doubt | None
 def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_state_words()
     # a name that may be a verb names the device where no object follows ("the microwave is running")
-    nouned = [(k, i, ctx.named_types(i, verbs_too=True)) for k, i in enumerate(ctx.items) if _names_thing(ctx, k)]
+    nouned = [(k, i, ctx.named_types(i, verbs_too=True)) for k, i in enumerate(ctx.items)
+              if k > 0 and ctx.items[k - 1].det and _names_thing(ctx, k)]
     mentions = sorted([*ctx.mentions(), *nouned], key=lambda m: m[0])
     named = {m for m, _, _ in mentions}
     own = frozenset(ts[0] for _, _, ts in mentions if len(ts) == 1)

@@ -79,6 +79,9 @@ class StateWords(_Closed):
     #: prepositions before a thing named after the device that only say which device it is
     #: ("the lamp on the desk", "the water of the sink"): the search goes on past it
     modifier_preps: list[str]
+    #: what may follow a word that is not ``certain`` for it to be the state ("the lamp of
+    #: thanks"; not "for a couple of minutes"): these words, a mark or the end
+    heard_end: list[str]
     #: words that make the next state a condition, not the goal ("if it is open, close it")
     conditions: list[str]
     #: words just before a device that make its sentence a role ("whoever opens drawers
