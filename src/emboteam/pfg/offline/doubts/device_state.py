@@ -212,6 +212,17 @@ def _later(items: Sequence[Item], j: int, end: int, words: StateWords) -> bool:
     return any(i.text in words.later for i in items[max(0, j - 2):min(end, j + 2)])
 
 
+def _verb_before(ctx: DoubtContext, k: int, type_: str) -> Said | None:
+    """The state a verb right before the device asks ("kill the light", "open the box")."""
+    j = k - 2 if k >= 2 and ctx.items[k - 1].det else k - 1
+    verb = ctx.items[j].verb if j >= 0 else None
+    if verb is None or verb.sense.act not in _ACTS:
+        return None
+    family, polarity = _ACTS[verb.sense.act]
+    fam = _family(type_, family)
+    return Said(fam, polarity, "said", act=True) if fam is not None else None
+
+
 def _present(ctx: DoubtContext, type_: str, family: str) -> bool | None:
     objs = list(ctx.state.of_type(type_))
     if not objs:
@@ -294,6 +305,8 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
             now = _present(ctx, type_, said.family if said else "switch")
             if now is not None and (said is None or said.polarity == now):
                 said = Said(said.family if said else "switch", now, "present")
+        if said is None:
+            said = _verb_before(ctx, k, type_)      # "kill the light": asked before it, as read
         if said is None:
             purpose = _purpose(ctx, words, k, type_)
             said = purpose[1] if purpose else None
