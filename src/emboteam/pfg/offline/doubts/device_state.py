@@ -214,15 +214,11 @@ def _later(items: Sequence[Item], j: int, end: int, words: StateWords) -> bool:
     return any(i.text in words.later for i in items[max(0, j - 2):min(end, j + 2)])
 
 
-def _verb_before(ctx: DoubtContext, k: int, type_: str) -> Said | None:
-    """The state a verb right before the device asks ("kill the light", "open the box")."""
+def _asked_before(ctx: DoubtContext, k: int) -> bool:
+    """Whether a verb of switching or opening stands right before the device ("kill the light")."""
     j = k - 2 if k >= 2 and ctx.items[k - 1].det else k - 1
     verb = ctx.items[j].verb if j >= 0 else None
-    if verb is None or verb.sense.act not in _ACTS:
-        return None
-    family, polarity = _ACTS[verb.sense.act]
-    fam = _family(type_, family)
-    return Said(fam, polarity, "said", act=True) if fam is not None else None
+    return verb is not None and verb.sense.act in _ACTS
 
 
 def _present(ctx: DoubtContext, type_: str, family: str) -> bool | None:
@@ -307,8 +303,9 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
             now = _present(ctx, type_, said.family if said else "switch")
             if now is not None and (said is None or said.polarity == now):
                 said = Said(said.family if said else "switch", now, "present")
-        if said is None:
-            said = _verb_before(ctx, k, type_)      # "kill the light": asked before it, as read
+        if said is None and type_ in last and _asked_before(ctx, k):
+            del last[type_]     # "the light's on ... kill the light": the later request, as read
+            continue
         if said is None:
             purpose = _purpose(ctx, words, k, type_)
             said = purpose[1] if purpose else None
