@@ -144,6 +144,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         if (j in named or _names_thing(ctx, j)) and (verb_seen or not _modifier(ctx, j, k + 1, words)) and (
                 _is_device(ctx, j) or not (_place(ctx, j, k + 1) or (found is not None and found.act))):
             return found    # the next thing's words (past a place, or a thing between acts on "it", it goes on)
+        if item.liquid is not None and j > k + 1 and ctx.items[j - 1].det:
+            return found    # "..., and the water of the sink you open it": the water's words
         if (item.conj is not None or item.sub is not None) and not _acts_on_it(ctx, k, j) and not (
                 found is not None and (found.act or (j + 1 < end and ctx.items[j + 1].text in state_word_index()))):
             return found    # "when the kids shower, and close it after": another clause's act
