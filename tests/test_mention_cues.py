@@ -87,12 +87,12 @@ def test_a_thing_is_wanted_in_one_place_only() -> None:
 
 def test_a_malformed_cue_file_names_file_and_entry(tmp_path: Path) -> None:
     raw = json.loads(MENTION_CUES_FILE.read_text())
-    raw["states"]["glowing"] = "glowing"        # no such predicate
+    raw["keep"][0]["side"] = "glowing"        # no such side (the state words are state_words.json)
     bad = tmp_path / "mention_cues.json"
     bad.write_text(json.dumps(raw))
     with pytest.raises(KnowledgeDataError) as err:
         load_mention_cues.__wrapped__(bad)
-    assert "mention_cues.json" in str(err.value) and "glowing" in str(err.value)
+    assert "mention_cues.json" in str(err.value) and "keep" in str(err.value)
     raw = json.loads(MENTION_CUES_FILE.read_text())
     raw["groups"][0].append("Lampshade")
     bad.write_text(json.dumps(raw))

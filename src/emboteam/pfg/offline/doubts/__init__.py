@@ -23,10 +23,10 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
-| stated | :mod:`.stated` (a state said as it should be, not a complaint; narratives) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
+| device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 
-The words of contents, exclusive, next_place, stated (and of stays) are
+The words of contents, exclusive, next_place (and of stays) are
 data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
 ``mention_cues.json``.
 """
@@ -37,6 +37,7 @@ from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline.doubts import (
     contents,
     device,
+    device_state,
     exclusive,
     instances,
     means,
@@ -49,7 +50,6 @@ from emboteam.pfg.offline.doubts import (
     scope,
     slices,
     state,
-    stated,
     stays,
     unexplained,
 )
@@ -59,9 +59,11 @@ from emboteam.pfg.offline.doubts.priors import Priors, load_priors
 
 def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     """The doubts that may give a whole reading from the words (also when the grammar
-    found nothing): contents, exclusive purposes, next places, stated states, things taken
-    up by a quantified pronoun."""
-    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *stated.doubts(ctx),
+    found nothing): contents, exclusive purposes, next places, a narrative's device states,
+    things taken up by a quantified pronoun."""
+    # a narrative's device states ("when I walk in the TV is on") may make a reading too
+    told = device_state.doubts(ctx) if ctx.narrative else []
+    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *told,
              *resumed.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
@@ -69,14 +71,17 @@ def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
 def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     """Every point of doubt of a reading, rule by rule."""
     priors = priors or load_priors()
-    cued = mention_cues.doubts(ctx)
+    states = device_state.doubts(ctx)
+    stated_by_words = {d.span for d in states}
+    cued = [*states, *(d for d in mention_cues.doubts(ctx) if d.span not in stated_by_words)]
     # a mention whose own words give its goal is settled by that doubt, not by the weaker
     # guesses of an unexplained mention or of a kept thing
     said = {d.span for d in cued}
     found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *others.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said), *reading_doubts(ctx)]
+             *instances.doubts(ctx), *others.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said),
+             *(d for d in reading_doubts(ctx) if d.kind != device_state.KIND)]
     return [d for d in found if len(d.choices) > 1]
 
 

@@ -57,8 +57,11 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         rule = next(c for c in words.cues if ctx.items[cue[0]:cue[1]] and
                     [i.text for i in ctx.items[cue[0]:cue[1]]] == c.words)
         start, end = sentence_bounds(ctx.items, cue[0])
-        if any(i.text in words.restrictive or (i.verb is not None and i.verb.sense.act is Act.SWITCH_OFF)
-               for i in ctx.items[start:cue[0]]):
+        # a restrictive word ("turn off only ...", not a state said after a copula: "the telly
+        # is off, ... the lamp is the only light on") or a verb switching off in the sentence
+        if any((i.text in words.restrictive and not (n > 0 and ctx.items[n - 1].copula))
+               or (i.verb is not None and i.verb.sense.act is Act.SWITCH_OFF)
+               for n, i in enumerate(ctx.items[start:cue[0]], start=start)):
             continue    # "don't turn off the desk lamp, only the floor lamp"
         keep = _kept(ctx, start, end, cue, rule.kept, words)
         if keep is None or not ctx.scene.of_type(keep):

@@ -31,6 +31,7 @@ from emboteam.pfg.offline.doubts.mention_words import (
     side,
 )
 from emboteam.pfg.offline.doubts.rule_words import Words, find
+from emboteam.pfg.offline.doubts.state_words import load_state_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.sentences import clause, type_name
@@ -56,13 +57,21 @@ def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predica
     ("on", "up") is one only with no place or preposition after it ("stays on the shelf",
     "ends up on the dresser")."""
     item = ctx.items[j]
-    if item.text not in data.states and item.state is None:
+    said = _STATES.get(item.text) if item.state is None else None     # the state lexicon's own words
+    if said is None and item.state is None:
         return None
-    if (item.text in data.states or item.text in data.place_preps) and j + 1 < end:
+    if (said is not None or item.text in data.place_preps) and j + 1 < end:
         nxt = ctx.items[j + 1]
-        if nxt.det or nxt.noun is not None or (nxt.prep is not None and item.text in data.states):
+        if nxt.det or nxt.noun is not None or (nxt.prep is not None and said is not None):
             return None
-    return data.states[item.text] if item.text in data.states else asked_predicate(item)
+    return said if said is not None else asked_predicate(item)
+
+
+#: the words of the state lexicon (``state_words.json``) the tagger reads as no state
+#: ("glowing", "unlit", "down"), certain ones of any device ("up", "down" of any lid too), as predicates
+_STATES = {w.words[0]: {("switch", True): Predicate.switched_on, ("switch", False): Predicate.switched_off,
+                        ("open", True): Predicate.open, ("open", False): Predicate.closed}[(w.family, w.polarity)]
+           for w in load_state_words().words if w.certain and (not w.types or w.words[0] in ("up", "down"))}
 
 
 def _described(ctx: DoubtContext, k: int, j: int, data: MentionCues) -> bool:

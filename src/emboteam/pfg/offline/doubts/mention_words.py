@@ -19,7 +19,6 @@ from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.rule_words import Words, sentence_bounds, starts_at
 from emboteam.pfg.offline.knowledge import read
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.goals import Predicate
 
 MENTION_CUES_FILE = Path(__file__).with_name("mention_cues.json")
 #: how far back (in words) an excluder or a place preposition reaches
@@ -39,8 +38,6 @@ class SidedCue(_Closed):
 class MentionCues(_Closed):
     about: str = ""
     keep: list[SidedCue]
-    #: participles and words the tagger reads as no state -> the predicate they ask
-    states: dict[str, Predicate]
     #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
     place_preps: list[str]
     directions: list[Words]
