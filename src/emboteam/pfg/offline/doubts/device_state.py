@@ -134,7 +134,7 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         return None     # a role ("whoever opens drawers"), a complaint ("somebody left the fridge open")
     found: Said | None = None
     corrected = False       # a self-correction since the state found ("off - sorry, I mean leave it on")
-    corrections = set(load_rule_words().correction_object.cues)
+    corrections = set(load_rule_words().correction.cues)
     keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
     kept = False
     for j in range(k + 1, end):
