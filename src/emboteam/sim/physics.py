@@ -55,8 +55,8 @@ def settle(state: WorldState) -> None:
     about 9.5 us a call, 7 us of it this pass, some 7% of the planner's own CPU (cProfile
     shows about three times that). Exact alternatives were slower or level: C-level
     ``map``/``compress`` passes (about twice as slow here) and children looked up per
-    source (an active fridge, burners and a faucet ask for several). Not cached: ``ObjectState.parent`` and ``type`` are public fields that
-    change without notice.
+    source (an active fridge, burners and a faucet ask for several). Not cached:
+    ``ObjectState.parent`` and ``type`` are public fields that change without notice.
     """
     children: dict[str, list[ObjectState]] = defaultdict(list)
     sources: list[ObjectState] = []
