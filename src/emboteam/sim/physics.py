@@ -50,6 +50,13 @@ def settle(state: WorldState) -> None:
     an effect (fridges, heaters, coffee machines, faucets), so the cost is linear in the
     number of objects however many appliances run (it runs after every action, thousands
     of times per plan), and the rest of the work is per source.
+
+    Measured (issue 28, 32 robots x 96 conditions in FloorPlan1, 5,873 calls per plan):
+    about 9.5 us a call, 7 us of it this pass, some 7% of the planner's own CPU (cProfile
+    shows about three times that). Exact alternatives were slower or level: C-level
+    ``map``/``compress`` passes (about twice as slow here) and children looked up per
+    source (an active fridge, burners and a faucet ask for several). Not cached:
+    ``ObjectState.parent`` and ``type`` are public fields that change without notice.
     """
     children: dict[str, list[ObjectState]] = defaultdict(list)
     sources: list[ObjectState] = []
