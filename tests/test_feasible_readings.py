@@ -7,11 +7,8 @@ from __future__ import annotations
 
 import json
 import os
-import pty
-import select
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -32,6 +29,7 @@ from emboteam.world.goals import Condition
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from pty_run import run_on_terminal
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 #: the mug cannot go in the bowl in FloorPlan1 (the planner proves it); the fridge can open
@@ -239,30 +237,8 @@ def test_clarify_without_a_terminal_takes_the_later_request_and_says_so() -> Non
 
 def test_clarify_on_a_terminal_asks_between_the_two_requests() -> None:
     """``run --clarify`` through a pseudo-terminal: the person picks the earlier request."""
-    env = {**os.environ, "PYTHONPATH": str(SRC), "COLUMNS": "200"}
-    master, slave = pty.openpty()
-    proc = subprocess.Popen([sys.executable, "-m", "emboteam", "run", CORRECTED, "--scene", "FloorPlan1",
-                             "--robots", "1,2", "--clarify"], stdin=slave, stdout=slave, stderr=slave, env=env)
-    os.close(slave)
-    out, answered, deadline = b"", False, time.monotonic() + 300
-    while time.monotonic() < deadline:
-        ready, _, _ = select.select([master], [], [], 1.0)
-        if ready:
-            try:
-                chunk = os.read(master, 4096)
-            except OSError:
-                break
-            if not chunk:
-                break
-            out += chunk
-            if not answered and b"Your choice" in out:
-                os.write(master, b"2\n")
-                answered = True
-        elif proc.poll() is not None:
-            break
-    proc.wait(timeout=60)
-    os.close(master)
-    text = " ".join(out.decode(errors="replace").split())
+    text, returncode = run_on_terminal(["run", CORRECTED, "--scene", "FloorPlan1", "--robots", "1,2", "--clarify"],
+                                       b"2\n")
     assert "1. The tomato is in the sink." in text and "2. The tomato is in the fridge." in text
     assert "chosen by the person: The tomato is in the fridge." in text
-    assert proc.returncode == 0
+    assert returncode == 0

@@ -5,11 +5,8 @@ from __future__ import annotations
 
 import json
 import os
-import pty
-import select
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -23,6 +20,7 @@ from emboteam.world.goals import Condition, Goal
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from pty_run import run_on_terminal
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 
@@ -181,36 +179,12 @@ def test_run_json_lists_candidates_with_scores() -> None:
 
 def test_clarify_on_a_terminal_asks_and_uses_the_choice() -> None:
     """Drives ``run --clarify`` through a pseudo-terminal: the person types 2."""
-    env = {**os.environ, "PYTHONPATH": str(SRC), "COLUMNS": "200"}
-    master, slave = pty.openpty()
-    proc = subprocess.Popen([sys.executable, "-m", "emboteam", "run", _CLOSE, "--scene", "FloorPlan306",
-                             "--robots", "1,2", "--clarify"], stdin=slave, stdout=slave, stderr=slave, env=env)
-    os.close(slave)
-    out = b""
-    answered = False
-    deadline = time.monotonic() + 300
-    while time.monotonic() < deadline:
-        ready, _, _ = select.select([master], [], [], 1.0)
-        if ready:
-            try:
-                chunk = os.read(master, 4096)
-            except OSError:
-                break
-            if not chunk:
-                break
-            out += chunk
-            if not answered and b"Your choice" in out:
-                os.write(master, b"2\n")
-                answered = True
-        elif proc.poll() is not None:
-            break
-    proc.wait(timeout=60)
-    os.close(master)
-    text = " ".join(out.decode(errors="replace").split())
+    text, returncode = run_on_terminal(["run", _CLOSE, "--scene", "FloorPlan306", "--robots", "1,2", "--clarify"],
+                                       b"2\n")
     assert "1. The teddy bear is on the desk and the pillow is on the bed." in text
     assert "2. The teddy bear is on the desk." in text
     assert "chosen by the person: The teddy bear is on the desk." in text
-    assert proc.returncode == 0
+    assert returncode == 0
 
 
 @pytest.mark.parametrize(("text", "floor_plan", "kind", "alternative"), [
