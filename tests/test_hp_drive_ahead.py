@@ -9,6 +9,7 @@ from dataclasses import replace
 
 from emboteam.hp.drive_ahead import driven_ahead, retargets, waited
 from emboteam.hp.goalgen import sweep_cell
+from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.stages.context import Context, Draft
@@ -16,7 +17,9 @@ from emboteam.hp.stages.drive_ahead import drive_ahead
 from emboteam.hp.stages.replay import replay_to_goal
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
+from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.actions import Skill
+from emboteam.world.state import WorldState
 
 
 def _waiting_drives(plan: MergedPlan) -> list[str]:
@@ -93,12 +96,18 @@ def test_the_stage_never_makes_a_plan_longer_and_gives_the_same_plan_again() -> 
     assert one.makespan <= 11.5
 
 
-def test_a_drive_is_retargeted_only_when_another_robot_put_its_object_and_it_waited() -> None:
+def _retargets_on_8x8() -> tuple[TaskSpec, WorldState, list[GroundedStep], dict[int, str]]:
+    """FloorPlan201, 8 robots x 8 goals, seed 1, planned with drives left as they are: the
+    task, its start, the grounded sequence the drive-ahead stage got and what it retargets."""
     spec, state = sweep_cell("FloorPlan201", 8, 8, 1)
     planner, seen = _watched(PlannerConfig(route=False, drive_ahead=False))
     planner.plan(spec, state)
     [(before, _, found)] = seen
-    sequence = before.record.sequence
+    return spec, state, before.record.sequence, found
+
+
+def test_a_drive_is_retargeted_only_when_another_robot_put_its_object_and_it_waited() -> None:
+    _, _, sequence, found = _retargets_on_8x8()
     assert retargets(sequence, set()) == {}  # nothing waited: nothing to retarget
     for i, place in found.items():
         put = max(j for j, g in enumerate(sequence[:i]) if g.action.skill is Skill.PutObject
@@ -111,11 +120,7 @@ def test_replaying_from_the_first_moved_drive_grounds_as_the_whole_replay() -> N
     # the stage replays only from its first retargeted drive, the steps before it kept as
     # grounded (a replay of a replay's own steps grounds them as they are): the same
     # grounded sequence as replaying the whole plan from the start
-    spec, state = sweep_cell("FloorPlan201", 8, 8, 1)
-    planner, seen = _watched(PlannerConfig(route=False, drive_ahead=False))
-    planner.plan(spec, state)
-    [(before, _, found)] = seen
-    sequence = before.record.sequence
+    spec, state, sequence, found = _retargets_on_8x8()
     start, steps = planning_state(state), driven_ahead(sequence, found)
     whole, why = replay_to_goal(start, steps, spec.goal())
     assert why is None and len(whole) == len(sequence)
