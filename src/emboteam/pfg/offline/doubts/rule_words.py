@@ -1,7 +1,7 @@
 """The words of the reading-level points of doubt: exclusions over a receptacle's
 contents (:mod:`.contents`), exclusive purposes (:mod:`.exclusive`), the destination a
-thing's own words give it (:mod:`.next_place`), states stated as they should be
-(:mod:`.stated`). Data (``rule_words.json``), checked at load by the schema below: a
+thing's own words give it (:mod:`.next_place`), a narrative's states stated as they should
+be (``stated``: :mod:`.device_state`). Data (``rule_words.json``), checked at load by the schema below: a
 malformed entry is a :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming
 the file and the entry.
 """
@@ -94,10 +94,8 @@ class NextPlace(_Closed):
 
 
 class Stated(_Closed):
+    #: words that make the instruction a narrative (:attr:`.context.DoubtContext.narrative`)
     narrative_cues: list[Words]
-    #: words before a state that make it a complaint ("still on", "left open"): no narrative
-    complaint_words: list[str]
-    reach: int = Field(4, ge=1, le=30)
 
 
 class Stays(_Closed):
