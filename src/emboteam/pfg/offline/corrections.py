@@ -586,8 +586,3 @@ def correct(items: list[Item], alternatives: bool = True) -> Corrected:
         k = len(first.before)
         out = fixed
     return Corrected(out, tuple(alts))
-
-
-def apply_corrections(items: list[Item]) -> list[Item]:
-    """The items with every self-correction applied (unchanged when there is none)."""
-    return correct(items, alternatives=False).items

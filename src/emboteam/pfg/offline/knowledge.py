@@ -19,6 +19,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, model_validator
 
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline.regex_filter import needles
+from emboteam.world.catalogue import load_catalogue
 
 #: where the knowledge files are (package data)
 DATA_DIR = Path(__file__).with_name("data")
@@ -146,6 +147,14 @@ def validate(name: str, raw: Any, schema: type[M]) -> M:
             entry, message = message.split(": ", 1)
             raise KnowledgeDataError(name, entry, message) from None
         raise KnowledgeDataError(name, _entry(raw, loc) or "(top level)", message) from None
+
+
+def known_types(types: list[str]) -> list[str]:
+    """A field validator for the object types a knowledge file names: each one AI2-THOR has."""
+    unknown = [t for t in types if t not in load_catalogue().types]
+    if unknown:
+        raise ValueError(f"unknown object type {unknown[0]!r}")
+    return types
 
 
 def fail(name: str, entry: str, problem: str) -> KnowledgeDataError:

@@ -260,7 +260,7 @@ NEGATIONS = _LEX.negations
 #: copulas and modals: "the fridge should be closed", "the tv must be off"
 COPULAS = _LEX.copulas
 #: modal words that make a statement a wish ("should be closed") rather than a report
-#: of how things are ("is open")
+#: of how things are ("is open"); patterns.json reads them as ``@lexicon.modals``
 MODALS = _LEX.modals
 NUMBERS: dict[str, int] = _LEX.numbers
 #: counts that are estimates: clamp them to what the scene has

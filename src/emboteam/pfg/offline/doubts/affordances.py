@@ -17,9 +17,9 @@ from pathlib import Path
 from pydantic import BaseModel, Field
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.knowledge import read
-from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, Predicate
 
 AFFORDANCES_FILE = Path(__file__).with_name("affordances.json")
@@ -57,10 +57,6 @@ def load_affordances(path: Path = AFFORDANCES_FILE) -> Affordances:
     """The affordances file, checked by its schema at load (a malformed entry is a
     :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
     return read(path, Affordances)
-
-
-def _props(type_: str) -> frozenset[str]:
-    return frozenset(load_catalogue().type(type_).properties)
 
 
 def _flip(ctx: DoubtContext, type_: str, attr: str, yes: Predicate, no: Predicate) -> Predicate | None:

@@ -23,6 +23,7 @@ from collections.abc import Sequence
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.morphology import verb_lemma
@@ -34,10 +35,6 @@ from emboteam.world.state import ObjectState
 KIND = "contents"
 #: how many per-instance alternatives a source of several instances may offer
 MAX_SOURCES = 3
-
-
-def _is(type_: str, prop: str) -> bool:
-    return prop in load_catalogue().type(type_).properties
 
 
 def _emptying(text: str, words: Contents) -> bool:
@@ -61,7 +58,7 @@ def _named(ctx: DoubtContext, j: int) -> tuple[str, ...]:
 def _place_before(ctx: DoubtContext, k: int, words: Contents) -> tuple[int, str] | None:
     """The receptacle named last before ``k``; not a landmark of it ("the counter by the
     sink ... empty it": the counter)."""
-    before = [(m, ts[0]) for m, _, ts in ctx.mentions() if m < k and _is(ts[0], "receptacle")]
+    before = [(m, ts[0]) for m, _, ts in ctx.mentions() if m < k and "receptacle" in _props(ts[0])]
     while len(before) > 1 and before[-1][0] - before[-2][0] <= 3 and \
             any(i.text in words.landmark_preps for i in ctx.items[before[-2][0] + 1:before[-1][0]]):
         before.pop()
@@ -80,7 +77,7 @@ def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, 
     for m in range(k + 1, min(end, k + words.reach)):
         types = _named(ctx, m)
         if types:
-            if not _is(types[0], "receptacle"):
+            if "receptacle" not in _props(types[0]):
                 return None     # "all three vases on the counter": things, not contents
             lead = [i.text for i in ctx.items[max(k + 1, m - 2):m]]
             if emptying or any(w in words.source_preps for w in lead):
@@ -123,8 +120,8 @@ def _staying(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[t
 
 
 def _pickupable(spots: list[tuple[int, tuple[str, ...]]]) -> list[tuple[int, tuple[str, ...]]]:
-    return [(m, tuple(t for t in types if _is(t, "pickupable"))) for m, types in spots
-            if any(_is(t, "pickupable") for t in types)]
+    return [(m, tuple(t for t in types if "pickupable" in _props(t))) for m, types in spots
+            if any("pickupable" in _props(t) for t in types)]
 
 
 def _which(types: tuple[str, ...], present: set[str]) -> list[str]:
@@ -144,10 +141,10 @@ def _own_place(ctx: DoubtContext, at: int, end: int, words: Contents) -> str | N
         if item.punct is not None or item.text in words.own_place_links:
             linked = True
         types = ctx.named_types(item)
-        if types and _is(types[0], "receptacle") and linked and \
+        if types and "receptacle" in _props(types[0]) and linked and \
                 any(i.text in words.destination_preps for i in ctx.items[max(at + 1, j - 3):j]):
             return types[0]
-        if types and _is(types[0], "pickupable"):
+        if types and "pickupable" in _props(types[0]):
             return None
     return None
 
@@ -165,10 +162,10 @@ def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
     for m, _, types in ctx.mentions():
         if not min(k, src_at) < m < end or m == src_at or types[0] == source or m in skip:
             continue
-        if _is(types[0], "receptacle") and \
+        if "receptacle" in _props(types[0]) and \
                 any(i.text in words.destination_preps for i in ctx.items[max(min(k, src_at) + 1, m - 2):m]):
             return types[0]
-        if _is(types[0], "pickupable") and m > max(k, src_at) and not set(types) & excepted:
+        if "pickupable" in _props(types[0]) and m > max(k, src_at) and not set(types) & excepted:
             return None
     start, _ = sentence_bounds(ctx.items, k)
     if any(i.verb is not None and i.verb.sense.act.value in words.trash_acts for i in ctx.items[start:end]):

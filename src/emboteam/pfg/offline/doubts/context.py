@@ -23,6 +23,11 @@ from emboteam.world.state import WorldState
 _THING_KINDS = frozenset({"object", "category", "lights", "lamps"})
 
 
+def type_props(type_: str) -> frozenset[str]:
+    """The catalogue's properties of an AI2-THOR type ("receptacle", "toggleable", ...)."""
+    return load_catalogue().type(type_).properties
+
+
 def ref_types(ref: ObjectRef) -> frozenset[str]:
     """The types a reference names, slices folded into their whole."""
     cat = load_catalogue()

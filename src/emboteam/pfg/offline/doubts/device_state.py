@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words, sentence_bounds, starts_at
 from emboteam.pfg.offline.doubts.state_words import (
     StateWords,
@@ -29,7 +30,6 @@ from emboteam.pfg.offline.doubts.wants import one_object
 from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.sentences import clause
-from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Predicate
 
 KIND = "device_state"
@@ -51,10 +51,6 @@ class Said:
     label: str
     #: said by a verb ("close it"): a later act on the device settles it
     act: bool = False
-
-
-def _props(type_: str) -> frozenset[str]:
-    return frozenset(load_catalogue().type(type_).properties)
 
 
 def _family(type_: str, family: str) -> str | None:

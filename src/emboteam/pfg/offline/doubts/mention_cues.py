@@ -22,6 +22,7 @@ from collections.abc import Sequence
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
 from emboteam.pfg.offline.doubts.mention_words import (
     MentionCues,
@@ -35,7 +36,6 @@ from emboteam.pfg.offline.doubts.state_words import load_state_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
 from emboteam.pfg.offline.tagger import Item
 from emboteam.pfg.sentences import clause, type_name
-from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Condition, Predicate
 
 KIND = "mention_cue"
@@ -46,10 +46,6 @@ _OPPOSITE = {Predicate.switched_on: Predicate.switched_off, Predicate.switched_o
              Predicate.open: Predicate.closed, Predicate.closed: Predicate.open}
 _NEEDS = {Predicate.switched_on: "toggleable", Predicate.switched_off: "toggleable",
           Predicate.open: "openable", Predicate.closed: "openable"}
-
-
-def _props(type_: str) -> frozenset[str]:
-    return frozenset(load_catalogue().type(type_).properties)
 
 
 def _state_at(ctx: DoubtContext, j: int, end: int, data: MentionCues) -> Predicate | None:

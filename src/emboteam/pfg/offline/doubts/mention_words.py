@@ -13,20 +13,16 @@ from functools import cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import Field, field_validator
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.rule_words import Words, sentence_bounds, starts_at
-from emboteam.pfg.offline.knowledge import read
-from emboteam.world.catalogue import load_catalogue
+from emboteam.pfg.offline.knowledge import Strict as _Closed
+from emboteam.pfg.offline.knowledge import known_types, read
 
 MENTION_CUES_FILE = Path(__file__).with_name("mention_cues.json")
 #: how far back (in words) an excluder or a place preposition reaches
 REACH = 4
-
-
-class _Closed(BaseModel):
-    model_config = ConfigDict(extra="forbid")
 
 
 class SidedCue(_Closed):
@@ -62,14 +58,7 @@ class MentionCues(_Closed):
     @field_validator("groups")
     @classmethod
     def _known(cls, v: list[list[str]]) -> list[list[str]]:
-        cat = load_catalogue()
-        for group in v:
-            for t in group:
-                try:
-                    cat.type(t)
-                except Exception as exc:    # the catalogue's own error says which type
-                    raise ValueError(f"unknown object type: {exc}") from None
-        return v
+        return [known_types(group) for group in v]
 
 
 @cache

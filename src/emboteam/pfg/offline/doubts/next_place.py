@@ -12,17 +12,13 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.rule_words import NextPlace, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import placed
 from emboteam.pfg.sentences import clause, type_name
-from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Predicate
 
 KIND = "next_place"
-
-
-def _is(type_: str, prop: str) -> bool:
-    return prop in load_catalogue().type(type_).properties
 
 
 def destinations(ctx: DoubtContext, k: int, thing: str, words: NextPlace) -> tuple[str, ...]:
@@ -47,8 +43,8 @@ def destinations(ctx: DoubtContext, k: int, thing: str, words: NextPlace) -> tup
         if not k < m < end or types[0] == thing or item.noun is None:
             continue
         lead = [cues[j] for j in range(max(k + 1, m - 2), m + 1) if j in cues]
-        if not lead or not _is(types[0], "receptacle"):
-            if _is(types[0], "pickupable"):
+        if not lead or "receptacle" not in _props(types[0]):
+            if "pickupable" in _props(types[0]):
                 if not all(i.det or i.conj or i.punct or i.number is not None for i in ctx.items[last + 1:m]):
                     break     # another thing, with places of its own
                 last = m
@@ -84,7 +80,7 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
     seen: set[str] = set()
     for k, item, types in ctx.mentions():
         thing = types[0]
-        if thing in seen or not _is(thing, "pickupable"):
+        if thing in seen or "pickupable" not in _props(thing):
             continue
         seen.add(thing)
         # the thing itself (not its slices: "slice it, the slices on the plate"), by type

@@ -1,7 +1,7 @@
 """The words of the reading-level points of doubt: exclusions over a receptacle's
 contents (:mod:`.contents`), exclusive purposes (:mod:`.exclusive`), the destination a
-thing's own words give it (:mod:`.next_place`), states stated as they should be
-(:mod:`.stated`). Data (``rule_words.json``), checked at load by the schema below: a
+thing's own words give it (:mod:`.next_place`), a narrative's states stated as they should
+be (``stated``: :mod:`.device_state`). Data (``rule_words.json``), checked at load by the schema below: a
 malformed entry is a :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming
 the file and the entry.
 """
@@ -13,26 +13,16 @@ from functools import cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import Field, field_validator
 
-from emboteam.pfg.offline.knowledge import read
+from emboteam.pfg.offline.knowledge import Strict as _Closed
+from emboteam.pfg.offline.knowledge import known_types, read
 from emboteam.pfg.offline.tagger import Item
-from emboteam.world.catalogue import load_catalogue
 
 RULE_WORDS_FILE = Path(__file__).with_name("rule_words.json")
 
 #: a sequence of words, matched on consecutive tokens ("apart from")
 Words = list[str]
-
-
-class _Closed(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-
-
-def _types_exist(types: Sequence[str]) -> None:
-    cat = load_catalogue()
-    for t in types:
-        cat.type(t)     # raises on a type AI2-THOR lacks
 
 
 class Contents(_Closed):
@@ -88,14 +78,7 @@ class Exclusive(_Closed):
     restrictive: list[str]
     reach: int = Field(6, ge=1, le=30)
 
-    @field_validator("lights", "screens")
-    @classmethod
-    def _known(cls, v: list[str]) -> list[str]:
-        try:
-            _types_exist(v)
-        except Exception as exc:    # the catalogue's own error says which type
-            raise ValueError(f"unknown object type: {exc}") from None
-        return v
+    _known = field_validator("lights", "screens")(known_types)
 
 
 class NextPlace(_Closed):
@@ -111,10 +94,8 @@ class NextPlace(_Closed):
 
 
 class Stated(_Closed):
+    #: words that make the instruction a narrative (:attr:`.context.DoubtContext.narrative`)
     narrative_cues: list[Words]
-    #: words before a state that make it a complaint ("still on", "left open"): no narrative
-    complaint_words: list[str]
-    reach: int = Field(4, ge=1, le=30)
 
 
 class Stays(_Closed):

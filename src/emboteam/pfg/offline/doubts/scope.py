@@ -12,7 +12,7 @@ from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.explained import EXCLUDERS
 
 
-def exclusion_doubts(ctx: DoubtContext) -> list[Doubt]:
+def doubts(ctx: DoubtContext) -> list[Doubt]:
     out = []
     for k, item, types in ctx.mentions():
         before = ctx.items[max(0, k - 3):k]
@@ -24,10 +24,3 @@ def exclusion_doubts(ctx: DoubtContext) -> list[Doubt]:
                 Choice(AS_READ, f"{item.text!r} is asked for"),
                 Choice("drop_excluded", f"{item.text!r} is left out", drop=hit))))
     return out
-
-
-def doubts(ctx: DoubtContext) -> list[Doubt]:
-    return exclusion_doubts(ctx)
-
-
-__all__ = ["doubts"]

@@ -11,29 +11,15 @@ from functools import cache
 from pathlib import Path
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import Field, field_validator
 
-from emboteam.pfg.offline.knowledge import read
-from emboteam.world.catalogue import load_catalogue
+from emboteam.pfg.offline.knowledge import Strict as _Closed
+from emboteam.pfg.offline.knowledge import known_types, read
 
 STATE_WORDS_FILE = Path(__file__).with_name("state_words.json")
 
 Words = list[str]
 Family = Literal["switch", "open"]
-
-
-class _Closed(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-def _known_types(v: list[str]) -> list[str]:
-    cat = load_catalogue()
-    for t in v:
-        try:
-            cat.type(t)
-        except Exception:   # the catalogue's own error type varies; the message is ours
-            raise ValueError(f"unknown object type {t!r}") from None
-    return v
 
 
 class StateWord(_Closed):
@@ -46,10 +32,10 @@ class StateWord(_Closed):
     #: alternative at a higher prior (label ``heard``)
     certain: bool = True
     #: the device types the word is a state of (empty: any device of its family)
-    types: list[str] = []
+    types: list[str] = Field(default_factory=list)
     why: str = Field(min_length=1)
 
-    _check_types = field_validator("types")(_known_types)
+    _check_types = field_validator("types")(known_types)
 
 
 class Purpose(_Closed):
@@ -66,7 +52,7 @@ class Purpose(_Closed):
     complaint: bool = False
     why: str = Field(min_length=1)
 
-    _check_types = field_validator("types")(_known_types)
+    _check_types = field_validator("types")(known_types)
 
 
 class StateWords(_Closed):
@@ -110,7 +96,7 @@ class StateWords(_Closed):
     reach: int = Field(7, ge=1, le=20)
     purposes: list[Purpose]
 
-    _check_calques = field_validator("calque_types")(_known_types)
+    _check_calques = field_validator("calque_types")(known_types)
 
     @field_validator("words")
     @classmethod
