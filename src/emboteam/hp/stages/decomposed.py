@@ -138,7 +138,10 @@ class _Rounds:
             if not result.solved:
                 self._retry_unsolvable(u)
                 continue
-            steps = self._take(u, polish(problem.decode(result.plan)), base, early.options.get(id(u)))
+            options = early.options.get(id(u))
+            if options is None:
+                options = self._options(u, polish(problem.decode(result.plan)), base)
+            steps = self._take(u, options, base)
             if steps is not None:
                 round_plans.append((u, steps))
         if len(round_plans) > 1:
@@ -167,15 +170,13 @@ class _Rounds:
                 options.insert(0, fewer)
         return options
 
-    def _take(self, u: Unit, actions: list[tuple[str, Action]], base: WorldState,
-              options: list[list[tuple[str, Action]]] | None = None) -> list[SeqStep] | None:
-        """Replay the unit's plan (its shorter options first) and accept it, or send it back
-        to the next round; the steps accepted, or None. ``options``: :meth:`_options`,
-        when worked out already (:class:`_Early`)."""
+    def _take(self, u: Unit, options: list[list[tuple[str, Action]]], base: WorldState) -> list[SeqStep] | None:
+        """Replay the unit's plan (``options``: :meth:`_options`, the shorter first) and
+        accept it, or send it back to the next round; the steps accepted, or None."""
         why: str | None = None
         missing: list[Condition] = []
         broken: list[Condition] = []
-        for option in self._options(u, actions, base) if options is None else options:
+        for option in options:
             steps = [SeqStep(r, a, t, u.id) for (r, a), t in zip(option, attribute(option, u, base), strict=True)]
             trial = self.forward.copy()
             grounded, why = replay(trial, steps, self.universe)
@@ -281,7 +282,7 @@ class _Early:
     main thread would otherwise wait for the last search, then eliminate unit by unit.
     The options depend only on the round's start state, the unit and its plan (each unit
     reads ``base``, which nothing writes during the searches), so they are the ones
-    :meth:`_Rounds._take` would work out; one that raises is left to it (it raises there,
+    :meth:`_Rounds._round` would work out; one that raises is left to it (it raises there,
     in the round's order)."""
 
     def __init__(self, rounds: _Rounds, todo: Sequence[tuple[Unit, Problem]], base: WorldState) -> None:
@@ -296,7 +297,7 @@ class _Early:
                 continue
             try:
                 self.options[id(u)] = self.rounds._options(u, polish(p.decode(result.plan)), self.base)
-            except Exception:  # worked out again by _take, which raises it in the round's order
+            except Exception:  # worked out again by _round, which raises it in the round's order
                 continue
 
 
