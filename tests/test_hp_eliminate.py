@@ -123,6 +123,21 @@ def test_two_robots_heat_in_one_run() -> None:
     assert all(after.get(r, 0.0) <= before[r] + 1e-9 for r in before)
 
 
+def test_the_state_given_and_its_robots_are_left_as_they_were() -> None:
+    """The search keeps the states it passes with the robots' records shared among them
+    (a step copies its own robot's record before writing it): none of the caller's
+    records may move, whichever robot acts."""
+    state = fresh()
+    robots = dict(state.robots)
+    before = state.copy()
+    plan = [*heat_egg("robot1"), act("robot2", S.GoToObject, "Microwave_1"),
+            act("robot2", S.CloseObject, "Microwave_1"), act("robot2", S.SwitchOn, "Microwave_1"),
+            act("robot2", S.SwitchOff, "Microwave_1"), act("robot2", S.OpenObject, "Microwave_1")]
+    assert eliminate(state, plan, [C("hot(Egg_1)")]) == heat_egg("robot1")
+    assert state == before
+    assert all(state.robots[r] is robots[r] and robots[r] == before.robots[r] for r in robots)
+
+
 def test_a_window_too_short_to_rejoin_keeps_the_plan() -> None:
     state = fresh()
     plan = heat_egg() + microwave_run("robot1")

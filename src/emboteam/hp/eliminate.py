@@ -249,6 +249,14 @@ class _Marks:
         return prev.skill is Skill.GoToObject or any(x in self.cyclic for x in _touches(prev))
 
 
+def _apply(s: WorldState, robot: str, a: Action) -> None:
+    """:func:`apply_action` on a state whose robot records are shared with the states kept
+    (``copy(share_robots=True)``): the acting robot's record is copied first, the others
+    are not written. A 32-robot state costs a third less to copy so."""
+    s.own_robot(robot)
+    apply_action(s, robot, a)
+
+
 def _run(state: WorldState, plan: Plan, spent: Seconds, offset: int = 0, whole: Plan | None = None
          ) -> _Trace | None:
     """Run ``plan`` from ``state`` (not modified), ``spent`` the seconds so far; None if a
@@ -256,16 +264,16 @@ def _run(state: WorldState, plan: Plan, spent: Seconds, offset: int = 0, whole: 
     to keep depends on the whole plan)."""
     whole = whole if whole is not None else plan
     marks = _Marks.of(whole)
-    s = state.copy()
+    s = state.copy(share_robots=True)
     before: list[WorldState | None] = []
     seconds = [dict(spent)]
     for j, (robot, a) in enumerate(plan):
-        before.append(s.copy() if j == 0 or marks.needed(whole, offset + j) else None)
+        before.append(s.copy(share_robots=True) if j == 0 or marks.needed(whole, offset + j) else None)
         if check_action(s, robot, a) is not None:
             return None
         now = dict(seconds[-1])
         now[robot] = now.get(robot, 0.0) + nominal_seconds(s, robot, a)
-        apply_action(s, robot, a)
+        _apply(s, robot, a)
         seconds.append(now)
     return _Trace(before, s, seconds, marks)
 
@@ -285,7 +293,7 @@ def _without(plan: Plan, i: int, trace: _Trace, window: int | None
     """
     start = trace.before[i]
     assert start is not None
-    s = start.copy()
+    s = start.copy(share_robots=True)
     seconds = dict(trace.spent[i])
     keep = list(range(i))
     skipped = {plan[i][0]}
@@ -305,7 +313,7 @@ def _without(plan: Plan, i: int, trace: _Trace, window: int | None
             horizon = max([horizon, marks.last_drive.get(robot, -1), *(marks.last_touch.get(x, -1) for x in _touches(a))])
             continue
         seconds[robot] = seconds.get(robot, 0.0) + nominal_seconds(s, robot, a)
-        apply_action(s, robot, a)
+        _apply(s, robot, a)
         keep.append(k)
         if (a.skill is Skill.GoToObject and robot in skipped) or any(x in objects for x in _touches(a)):
             then = trace.before[k + 1] if k + 1 < len(plan) else trace.end

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, lru_cache
 
 from emboteam.errors import EmboTeamError
 from emboteam.pddl import vocabulary
@@ -396,9 +396,16 @@ def _call(fn: vocabulary.Evaluator, state: WorldState, args: tuple[str, ...]) ->
 # ---- grounding --------------------------------------------------------------------------
 
 def _literal(atom: Atom) -> Literal:
+    return _literal_of(atom.pred, atom.args, atom.positive)
+
+
+@lru_cache(maxsize=1 << 16)
+def _literal_of(predicate: str, args: tuple[str, ...], positive: bool) -> Literal:
     # built from our own schemas (strings, a tuple of strings, a bool): validating each of
-    # the thousands a plan's grounding makes would only repeat what the types say
-    return Literal.model_construct(predicate=atom.pred, args=atom.args, positive=atom.positive)
+    # the thousands a plan's grounding makes would only repeat what the types say. Shared
+    # per atom (a Literal is frozen): a plan grounds the same few thousand literals tens of
+    # thousands of times, and a lookup by a plain tuple costs a fraction of model_construct
+    return Literal.model_construct(predicate=predicate, args=args, positive=positive)
 
 
 def action_binding(robot: str, action: Action, state: WorldState) -> tuple[Schema, dict[str, str]]:

@@ -37,7 +37,7 @@ import sys
 import tempfile
 import threading
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import cache
@@ -343,14 +343,22 @@ class FastDownward:
             return second
         return first
 
-    def solve_problems(self, problems: Sequence[Problem], workers: int = 2) -> list[SolveResult | PlanningError]:
+    def solve_problems(self, problems: Sequence[Problem], workers: int = 2,
+                       then: Callable[[Problem, SolveResult], None] | None = None
+                       ) -> list[SolveResult | PlanningError]:
         """:meth:`solve_problem` for several problems in parallel (grounding of one overlaps
-        the search of another); each slot holds the result or the typed error."""
+        the search of another); each slot holds the result or the typed error. ``then`` is
+        called with each distinct problem and its result, in the worker that solved it:
+        the caller's own work on a plan overlaps the searches still running (it must not
+        raise, and must give the same answer on whichever thread it runs)."""
         def one(p: Problem) -> SolveResult | PlanningError:
             try:
-                return self.solve_problem(p)
+                result = self.solve_problem(p)
             except PlanningError as exc:
                 return exc
+            if then is not None:
+                then(p, result)
+            return result
         # the same problem twice is solved once: two threads missing the cache together
         # would both run it, and the count of calls (a budget of the planner's) would
         # depend on which thread got there first

@@ -4,7 +4,7 @@ the :class:`Draft` (a validated plan with the record of how it was made)."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 from emboteam.hp.config import PlannerConfig
@@ -68,11 +68,13 @@ class Solver:
     def reset(self) -> None:
         self.asked = set()
 
-    def solve_all(self, problems: Sequence[Problem], workers: int | None = None
+    def solve_all(self, problems: Sequence[Problem], workers: int | None = None,
+                  then: Callable[[Problem, SolveResult], None] | None = None
                   ) -> list[SolveResult | PlanningError]:
-        """Each problem's result or typed error, in order; a time-out is raised."""
+        """Each problem's result or typed error, in order; a time-out is raised. ``then``:
+        see :meth:`FastDownward.solve_problems`."""
         self.asked.update(p.text for p in problems)
-        results = self.fd.solve_problems(problems, self.workers if workers is None else workers)
+        results = self.fd.solve_problems(problems, self.workers if workers is None else workers, then)
         for r in results:
             if isinstance(r, PlannerTimeoutError):
                 raise r

@@ -123,7 +123,8 @@ class _Rounds:
         most contended spot first), interleave what was accepted."""
         round_start = len(self.accepted)
         round_plans: list[tuple[Unit, list[SeqStep]]] = []
-        results = self.ctx.solver.solve_all([p for _, p in todo])
+        early = _Early(self, todo, base)
+        results = self.ctx.solver.solve_all([p for _, p in todo], then=early)
         uses = [spot_seconds(base, p.decode(r.plan)) if isinstance(r, SolveResult) and r.solved else None
                 for (_, p), r in zip(todo, results, strict=True)]
         for (u, problem), result in bottleneck_first(list(zip(todo, results, strict=True)), uses):
@@ -137,7 +138,10 @@ class _Rounds:
             if not result.solved:
                 self._retry_unsolvable(u)
                 continue
-            steps = self._take(u, polish(problem.decode(result.plan)), base)
+            options = early.options.get(id(u))
+            if options is None:
+                options = self._options(u, polish(problem.decode(result.plan)), base)
+            steps = self._take(u, options, base)
             if steps is not None:
                 round_plans.append((u, steps))
         if len(round_plans) > 1:
@@ -166,13 +170,13 @@ class _Rounds:
                 options.insert(0, fewer)
         return options
 
-    def _take(self, u: Unit, actions: list[tuple[str, Action]], base: WorldState) -> list[SeqStep] | None:
-        """Replay the unit's plan (its shorter options first) and accept it, or send it back
-        to the next round; the steps accepted, or None."""
+    def _take(self, u: Unit, options: list[list[tuple[str, Action]]], base: WorldState) -> list[SeqStep] | None:
+        """Replay the unit's plan (``options``: :meth:`_options`, the shorter first) and
+        accept it, or send it back to the next round; the steps accepted, or None."""
         why: str | None = None
         missing: list[Condition] = []
         broken: list[Condition] = []
-        for option in self._options(u, actions, base):
+        for option in options:
             steps = [SeqStep(r, a, t, u.id) for (r, a), t in zip(option, attribute(option, u, base), strict=True)]
             trial = self.forward.copy()
             grounded, why = replay(trial, steps, self.universe)
@@ -270,6 +274,31 @@ def _nothing_to_do(u: Unit, state: WorldState) -> bool:
     return all(state.robots[r].holding is None or not (
         state.robots[r].profile.can(Skill.PutObject) or state.robots[r].profile.can(Skill.DropHandObject))
         for r in u.robots)
+
+
+class _Early:
+    """The options of each unit (:meth:`_Rounds._options`) worked out as soon as its plan
+    is found, in the worker that found it, while the round's other searches run: the
+    main thread would otherwise wait for the last search, then eliminate unit by unit.
+    The options depend only on the round's start state, the unit and its plan (each unit
+    reads ``base``, which nothing writes during the searches), so they are the ones
+    :meth:`_Rounds._round` would work out; one that raises is left to it (it raises there,
+    in the round's order)."""
+
+    def __init__(self, rounds: _Rounds, todo: Sequence[tuple[Unit, Problem]], base: WorldState) -> None:
+        self.rounds, self.todo, self.base = rounds, todo, base
+        self.options: dict[int, list[list[tuple[str, Action]]]] = {}  # by id of the unit
+
+    def __call__(self, problem: Problem, result: SolveResult) -> None:
+        if not result.solved:
+            return
+        for u, p in self.todo:
+            if p.text != problem.text:
+                continue
+            try:
+                self.options[id(u)] = self.rounds._options(u, polish(p.decode(result.plan)), self.base)
+            except Exception:  # worked out again by _round, which raises it in the round's order
+                continue
 
 
 def _protect(u: Unit, forward: WorldState, protected: Protected) -> None:
