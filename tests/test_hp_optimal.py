@@ -173,3 +173,27 @@ def test_the_optimal_schedule_is_the_same_on_a_loaded_machine(request: pytest.Fi
     idle = run()
     request.getfixturevalue("busy_cpu")
     assert run() == idle
+
+
+def test_symmetry_breaking_among_identical_robots_keeps_the_optimum() -> None:
+    """Three robots of one profile at one start are interchangeable: the strong model
+    orders them (the second takes a job only after the first took an earlier one, ...).
+    That may only cut permutations of a schedule, never its makespan: the optimum with
+    and without the order is the same, and the order holds in the answer."""
+    profile = parse_team(["1"])[0]
+    robots = ("robot1", "robot2", "robot3")
+    places = [(2.0, 0.0), (0.0, 2.0), (2.0, 2.0), (-2.0, 1.0), (1.0, -2.0)]
+    jobs = [_job(i, "robot3", p, 4.0 + i) for i, p in enumerate(places)]
+    problem = Problem(jobs, {j.group: robots for j in jobs}, dict.fromkeys(robots, (0.0, 0.0)),
+                      dict.fromkeys(robots, profile))
+    assert optimal.interchangeable(problem) == [list(robots)]
+    with_order = solve(problem, limit=5.0)
+    without = solve(problem, limit=5.0, symmetry=False)
+    assert with_order.optimal and without.optimal
+    assert with_order.makespan == without.makespan
+    # value precedence: robots first appear in the order of the jobs, robot1 first
+    first_use = list(dict.fromkeys(with_order.robots[f"s{i}"] for i in range(len(jobs))))
+    assert first_use == sorted(first_use) and first_use[0] == "robot1"
+    # a robot that differs (another start) is not in the class
+    moved = Problem(jobs, problem.candidates, {**problem.starts, "robot3": (1.0, 1.0)}, problem.profiles)
+    assert optimal.interchangeable(moved) == [["robot1", "robot2"]]

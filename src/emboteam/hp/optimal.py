@@ -33,11 +33,16 @@ limit far above it is only a safety net, raising :class:`ScheduleTimeoutError`. 
 model (``linearization=2``) also counts time in the greatest common divisor of all
 durations and drives (a quarter second on the navigation grid), and posts a drive within
 a job without its robot where every candidate drives as long (issue 28: FloorPlan1 4 x 16,
-goal seeds 3 and 4, proven in 10 deterministic seconds, not before).
+goal seeds 3 and 4, proven in 10 deterministic seconds, not before). Its domains end at
+the hint's makespan, and robots no constraint tells apart (:func:`interchangeable`) take
+groups in a fixed order: both exact, neither changes an optimum. Its portfolio is four
+full-problem searches without large-neighbourhood search (:data:`PORTFOLIO`): the cells
+left unproven were min-max routing problems whose proof is search, not the LP.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -70,6 +75,11 @@ WALL_FACTOR = 12.0
 #: in 4.1 deterministic s where one worker needed 29.6
 PORTFOLIO_WORKERS = 4
 PORTFOLIO_BATCH = 12
+#: the portfolio's searches, without large-neighbourhood search (issue 28, branch proof28:
+#: with LNS and all eight full-problem searches, each of these got about 2 of the 10
+#: deterministic seconds, and FloorPlan1 4 x 24 seed 3 took 18.3 s to prove; these four
+#: alone prove it in 8.0 s, and FloorPlan1 2 x 24 seed 1 in 11.9 s)
+PORTFOLIO = ("default_lp", "max_lp", "no_lp", "quick_restart_no_lp")
 
 
 class ScheduleTimeoutError(PlannerLimitError):
@@ -319,6 +329,19 @@ def arcs(problem: Problem) -> int:
     return sum((n + 1) ** 2 for n in per.values())
 
 
+def interchangeable(problem: Problem) -> list[list[str]]:
+    """Classes (two or more, names sorted) of robots the model cannot tell apart: the same
+    skills, mass capacity, speed and start, candidates for the same groups (so none has a
+    group pinned to it)."""
+    classes: dict[tuple[object, ...], list[str]] = {}
+    for r in sorted(problem.profiles):
+        p = problem.profiles[r]
+        key = (p.skills, p.mass_capacity, p.speed, problem.starts[r],
+               tuple(r in c for c in problem.candidates.values()))
+        classes.setdefault(key, []).append(r)
+    return [c for c in classes.values() if len(c) > 1]
+
+
 def _t(seconds: float) -> int:
     """Hundredths of a second, rounded down: every duration and drive rounded down keeps the
     model a relaxation of the simulation (a lower bound stays one) and the plan's own
@@ -329,8 +352,14 @@ def _t(seconds: float) -> int:
 class _Model:
     """The CP-SAT model of a :class:`Problem` (see the module docstring)."""
 
-    def __init__(self, problem: Problem, hint: MergedPlan | None, tight: bool = False) -> None:
+    def __init__(self, problem: Problem, hint: MergedPlan | None, tight: bool = False, cap: bool = True,
+                 symmetry: bool = True) -> None:
         self.p = problem
+        #: robots no constraint tells apart (:func:`interchangeable`), ordered by
+        #: :meth:`_break_symmetry` in the strong model
+        self.classes = interchangeable(problem) if tight and symmetry else []
+        #: the hint's robot -> the robot of its class that takes its work (see :meth:`_relabel`)
+        self.rename = self._relabel(hint) if hint is not None else {}
         #: :meth:`_within`'s drives posted without a robot where every candidate agrees,
         #: and time counted in :attr:`unit`
         self.tight = tight
@@ -340,6 +369,10 @@ class _Model:
         self.unit = self._quantum() if tight else 1
         m = self.m = cp_model.CpModel()
         horizon = self.horizon = max(self._horizon(), self._u(hint.makespan) + 1 if hint is not None else 0)
+        #: the domains end at the hint's makespan (:meth:`_hinted_end`)
+        self.capped = tight and cap and hint is not None
+        if self.capped and hint is not None:
+            horizon = self.horizon = self._hinted_end(hint)
         self.x: dict[tuple[str, str], cp_model.IntVar] = {}
         self.start: dict[str, cp_model.IntVar] = {}
         self.end: dict[str, cp_model.IntVar] = {}
@@ -380,9 +413,47 @@ class _Model:
         for load in self.load_end.values():
             m.add(self.makespan >= load)
         self._routes()
+        self._break_symmetry()
         m.minimize(self.makespan)
         if hint is not None:
             self._hint(hint)
+
+    def _relabel(self, plan: MergedPlan) -> dict[str, str]:
+        """The hint's robots renamed within each class of interchangeable ones so that the
+        hint keeps :meth:`_break_symmetry`'s order (the first of a class to take a group
+        in :attr:`Problem.candidates`' order is its first robot, and so on)."""
+        del plan  # the jobs carry the plan's robots
+        robot_of = {j.group: j.robot for j in self.p.jobs}
+        rename: dict[str, str] = {}
+        for cls in self.classes:
+            used = list(dict.fromkeys(robot_of[g] for g, c in self.p.candidates.items()
+                                      if cls[0] in c and robot_of[g] in cls))
+            used += [r for r in cls if r not in used]
+            rename.update(zip(used, cls, strict=True))
+        return rename
+
+    def _break_symmetry(self) -> None:
+        """Exact symmetry breaking (value precedence) among interchangeable robots
+        r1, r2, ... of a class: r(l+1) takes a group only if r(l) takes an earlier one.
+        Any schedule, its robots of a class renamed in the order they first take a group,
+        satisfies it and keeps its makespan, so the optimum does not change; the search no
+        longer proves the same bound once per permutation of the team."""
+        for cls in self.classes:
+            groups = [g for g, c in self.p.candidates.items() if cls[0] in c]
+            for prev, r in itertools.pairwise(cls):
+                for i, g in enumerate(groups):
+                    earlier = [self.x[(h, prev)] for h in groups[:i]]
+                    if earlier:
+                        self.m.add_bool_or(earlier).only_enforce_if(self.x[(g, r)])
+                    else:
+                        self.m.add(self.x[(g, r)] == 0)
+
+    def _hinted_end(self, plan: MergedPlan) -> int:
+        """The hint's makespan in ticks, as :meth:`_hint` gives it: no better schedule ends
+        later, so every start and end lies within it (an exact cut of the domains;
+        :func:`solve` drops it when the hint is no solution after all)."""
+        ops = {o.step: o for j in self.p.jobs for o in j.ops}
+        return max(self._u(s.est_start) + self._u(ops[s.id].seconds) for s in plan.steps if s.id in ops)
 
     def _span(self, obj: str, first: str, last: str) -> cp_model.IntervalVar:
         if first == last:
@@ -510,7 +581,7 @@ class _Model:
 
     def _hint(self, plan: MergedPlan) -> None:
         starts_of = {s.id: s.est_start for s in plan.steps}
-        robot_of = {j.group: j.robot for j in self.p.jobs}
+        robot_of = {j.group: self.rename.get(j.robot, j.robot) for j in self.p.jobs}
         for (g, r), lit in self.x.items():
             self.m.add_hint(lit, r == robot_of[g])
         for s in plan.steps:
@@ -522,7 +593,7 @@ class _Model:
             self.m.add_hint(size, end - self._u(starts_of[first]))
         order: dict[str, list[str]] = {r: [] for r in self.p.profiles}
         for j in sorted(self.p.jobs, key=lambda j: starts_of[j.ops[0].step]):
-            order[j.robot].append(j.id)
+            order[self.rename.get(j.robot, j.robot)].append(j.id)
         for (r, a, b), lit in self.arc.items():
             seq = ["", *order[r], ""] if order[r] else ["", ""]
             self.m.add_hint(lit, any(seq[i] == a and seq[i + 1] == b for i in range(len(seq) - 1)))
@@ -531,32 +602,25 @@ class _Model:
 
 
 def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT,
-          linearization: int = 2) -> Reference:
+          linearization: int = 2, symmetry: bool = True) -> Reference:
     """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with
     seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2`` puts the
     circuits and the route lengths into the LP (``_Model._routes``): what proves the
     8-robot, 32-goal cells in 10 s (their bound was 55-90 % of the optimum); with it come
-    the tight model (:class:`_Model`'s ``tight``) and the interleaved portfolio
-    (:data:`PORTFOLIO_WORKERS`). ``linearization=1`` (``fast``'s small stage) keeps one
-    worker and the model its plans were made with. Raises :class:`ScheduleTimeoutError`
-    when the wall-clock safety net (:data:`WALL_FLOOR`, :data:`WALL_FACTOR`) stops it."""
+    the tight model (:class:`_Model`'s ``tight``: the quantum, domains ending at the hint's
+    makespan, ``symmetry`` breaking among interchangeable robots) and the interleaved
+    portfolio (:data:`PORTFOLIO_WORKERS`). ``linearization=1`` (``fast``'s small stage)
+    keeps one worker and the model its plans were made with. Raises
+    :class:`ScheduleTimeoutError` when the wall-clock safety net (:data:`WALL_FLOOR`,
+    :data:`WALL_FACTOR`) stops it."""
     strong = linearization >= 2
-    model = _Model(problem, hint, tight=strong)
-    solver = cp_model.CpSolver()
-    solver.parameters.num_workers = PORTFOLIO_WORKERS if strong else 1
-    if strong:
-        solver.parameters.interleave_search = True
-        solver.parameters.interleave_batch_size = PORTFOLIO_BATCH
-    solver.parameters.random_seed = 0
-    solver.parameters.max_deterministic_time = limit
-    solver.parameters.linearization_level = linearization
-    wall = WALL_FLOOR + WALL_FACTOR * limit
-    solver.parameters.max_time_in_seconds = wall
-    status = solver.solve(model.m)
+    model = _Model(problem, hint, tight=strong, symmetry=symmetry)
+    solver, status = _run(model, strong, limit, linearization)
+    if status in (cp_model.INFEASIBLE, cp_model.UNKNOWN) and model.capped:  # the hint was no schedule: no cap
+        used = solver.deterministic_time
+        model = _Model(problem, hint, tight=strong, cap=False, symmetry=symmetry)
+        solver, status = _run(model, strong, max(limit - used, 0.0), linearization)
     tick = model.unit / SCALE
-    if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE) and solver.wall_time >= 0.99 * wall:
-        raise ScheduleTimeoutError(f"CP-SAT did not finish {limit:g} deterministic s of search within its "
-                                   f"{wall:g} s wall-clock safety net (the machine is overloaded)")
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         name = "infeasible" if status == cp_model.INFEASIBLE else "unknown"
         return Reference(name, 0.0, solver.best_objective_bound * tick, {}, {}, solver.deterministic_time)
@@ -565,6 +629,27 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     starts = {sid: solver.value(v) * tick for sid, v in model.start.items()}
     return Reference("optimal" if status == cp_model.OPTIMAL else "feasible", solver.objective_value * tick,
                      solver.best_objective_bound * tick, assignment, starts, solver.deterministic_time)
+
+
+def _run(model: _Model, strong: bool, limit: float, linearization: int) -> tuple[cp_model.CpSolver, cp_model.CpSolverStatus]:
+    """One CP-SAT solve of ``model`` (see :func:`solve`); the safety net raises."""
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = PORTFOLIO_WORKERS if strong else 1
+    if strong:
+        solver.parameters.interleave_search = True
+        solver.parameters.interleave_batch_size = PORTFOLIO_BATCH
+        solver.parameters.subsolvers.extend(PORTFOLIO)
+        solver.parameters.use_lns = False
+    solver.parameters.random_seed = 0
+    solver.parameters.max_deterministic_time = limit
+    solver.parameters.linearization_level = linearization
+    wall = WALL_FLOOR + WALL_FACTOR * limit
+    solver.parameters.max_time_in_seconds = wall
+    status = solver.solve(model.m)
+    if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE) and solver.wall_time >= 0.99 * wall:
+        raise ScheduleTimeoutError(f"CP-SAT did not finish {limit:g} deterministic s of search within its "
+                                   f"{wall:g} s wall-clock safety net (the machine is overloaded)")
+    return solver, status
 
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
