@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts import affordances, next_place
+from emboteam.pfg.offline.doubts.window import window_goal
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.explained import explanation
 from emboteam.pfg.offline.doubts.rule_words import load_rule_words
@@ -68,6 +69,12 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
     out = []
     for k, words, types in unexplained_spans(ctx, unless):
         thing = types[0]
+        strong = window_goal(ctx, k, thing)
+        if strong is not None:     # its own window says where it goes: only that, or leaving it
+            out.append(Doubt(KIND, words, (Choice(AS_READ, f"{words!r} asks nothing (chatter)"),
+                                           Choice(strong[0], f"{type_name(thing)}: {clause(strong[1])}",
+                                                  add=(strong[1],)))))
+            continue
         proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
         prev, nxt = _neighbour_goals(ctx, k)
         for label, c in (("carry_previous", prev), ("carry_next", nxt)):
