@@ -119,6 +119,18 @@ def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: 
     return _state_before(ctx, k, start, thing) if before else None
 
 
+def said_state(ctx: DoubtContext, k: int, end: int, thing: str) -> Condition | None:
+    """The switch or open state a word after the thing (up to ``end``) asks of it, as a
+    goal ("the candle that's hiding in the cupboard is out and burning on the counter"):
+    one it can take, not under a negation, not a particle before a place ("ends up on")."""
+    data = load_mention_cues()
+    for j in range(k + 1, end):
+        pred = _state_at(ctx, j, end, data)
+        if pred in _NEEDS and _fits(pred, thing) and not any(i.neg for i in ctx.items[max(k + 1, j - 3):j]):
+            return one_object(pred, thing)     # type: ignore[arg-type]
+    return None
+
+
 def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words] | None = None) -> str | None:
     """The receptacle a direction after the thing leads to ("mug -> desk"; with ``cues``,
     a place named after those: "leave the phone on the bed")."""

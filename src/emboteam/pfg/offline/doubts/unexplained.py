@@ -69,11 +69,15 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
     out = []
     for k, words, types in unexplained_spans(ctx, unless):
         thing = types[0]
-        strong = window_goal(ctx, k, thing)
+        # the first of its unexplained mentions whose window says where it goes ("my brother
+        # borrows the bats ... bats are kept on my bedside table")
+        again = (m for m, _, ts in ctx.mentions() if m >= k and ts[0] == thing
+                 and explanation(ctx, m, ts) in (None, *unless))
+        strong = next((w for m in again if (w := window_goal(ctx, m, thing)) is not None), None)
         if strong is not None:     # its own window says where it goes: only that, or leaving it
             out.append(Doubt(KIND, words, (Choice(AS_READ, f"{words!r} asks nothing (chatter)"),
-                                           Choice(strong[0], f"{type_name(thing)}: {clause(strong[1])}",
-                                                  add=(strong[1],)))))
+                                           Choice(strong[0], f"{type_name(thing)}: " + "; ".join(
+                                               clause(c) for c in strong[1]), add=strong[1]))))
             continue
         proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
         prev, nxt = _neighbour_goals(ctx, k)

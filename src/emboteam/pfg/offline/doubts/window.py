@@ -26,6 +26,7 @@ from pathlib import Path
 from pydantic import BaseModel, ConfigDict, Field
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.mention_cues import said_state
 from emboteam.pfg.offline.doubts.mention_words import after_preposition
 from emboteam.pfg.offline.doubts.rule_words import Words, find, load_rule_words
 from emboteam.pfg.offline.doubts.wants import placed
@@ -56,6 +57,12 @@ def load_window_cues(path: Path = WINDOW_CUES_FILE) -> WindowCues:
     """The cue file, checked by its schema (a malformed entry is a
     :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
     return read(path, WindowCues)
+
+
+def being(phrase: str | None) -> bool:
+    """Whether a phrase that names nothing in the scene is a person or an animal ("my
+    brother", "the dog"): chatter in a ramble, not a thing the scene lacks."""
+    return phrase is not None and bool(phrase.split()) and phrase.split()[-1] in load_window_cues().beings
 
 
 def _listed(ctx: DoubtContext, last: int, m: int) -> bool:
@@ -114,18 +121,24 @@ def _receptacle(ctx: DoubtContext, lo: int, hi: int, thing: str, data: WindowCue
     return None
 
 
-def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, Condition] | None:
-    """(label, goal) the window of the mention at ``k`` gives the thing, or None."""
+def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condition, ...]] | None:
+    """(label, goals) the window of the mention at ``k`` gives the thing, or None: its
+    place, and a state its words ask beside it ("out and burning on the counter")."""
     if "pickupable" not in load_catalogue().type(thing).properties:
         return None
     data = load_window_cues()
     lo, hi = window(ctx, k, thing)
+    said = ctx.items[k - 1].number if k > 0 else None      # "both vases are up on the dresser"
     if find(ctx.items, lo, hi, data.keep):
         here = sorted(_present(ctx, thing))
-        return (KEEP, placed(thing, here[0])) if len(here) == 1 else None
+        return (KEEP, (_counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
     dest = _receptacle(ctx, lo, hi, thing, data)
     if dest is None:
         return None
-    said = ctx.items[k - 1].number if k > 0 else None      # "both vases are up on the dresser"
-    goal = placed(thing, dest)
-    return PLACE, goal.model_copy(update={"count": said}) if isinstance(said, int) and said > 1 else goal
+    state = said_state(ctx, k, hi, thing)
+    goal = _counted(placed(thing, dest), said)
+    return PLACE, (goal,) if state is None else (state, goal)
+
+
+def _counted(goal: Condition, said: object) -> Condition:
+    return goal.model_copy(update={"count": said}) if isinstance(said, int) and said > 1 else goal
