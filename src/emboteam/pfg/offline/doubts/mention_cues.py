@@ -18,7 +18,7 @@ alternative's prior is in ``priors.json`` (kind ``mention_cue``, one label per c
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
@@ -153,10 +153,15 @@ def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool) -> Predicate:
     return now
 
 
-def kept(ctx: DoubtContext, thing: str, state: Predicate | None) -> tuple[Condition, ...]:
-    """The thing as it is: its start place (a thing that is picked up) and the state its
-    words name ("the candle stays and gets lit"), else its start switch or open state."""
-    objs = list(ctx.state.of_type(thing))
+def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[str, int] | None = None) -> tuple[
+        Condition, ...]:
+    """The thing as it is: its start place (a thing that is picked up; of several, the one
+    in the receptacle named nearest to it, ``named``: type -> distance, "the toilet paper
+    in the bin is fine") and the state its words name ("the candle stays and gets lit"),
+    else its start switch or open state."""
+    near = named or {}
+    objs = sorted(ctx.state.of_type(thing), key=lambda o: near.get(ctx.state.obj(o.parent).type, 99)
+                  if o.parent is not None else 99)
     if not objs:
         return ()
     o, props = objs[0], _props(thing)
@@ -175,14 +180,19 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     data = load_mention_cues()
     start, end = segment(ctx, k)
     keep = side(ctx, k, start, end, data.keep)
+    # type -> how near it is named (after the thing first: "the toilet paper in the bin")
+    named: dict[str, int] = {}
+    for m in range(start, end):
+        for t in ctx.named_types(ctx.items[m], verbs_too=True)[:1]:
+            named[t] = min(named.get(t, 99), m - k if m > k else 20 + k - m)
     # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
     # the state of the clause before ("lights off, the desk lamp can stay")
     state = _state(ctx, k, start, end, thing, before=keep is None)
     if keep == "after":
-        goals = kept(ctx, thing, state)
+        goals = kept(ctx, thing, state, named)
         return ("keep", goals) if goals else None
     if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
-        goals = kept(ctx, thing, state)
+        goals = kept(ctx, thing, state, named)
         if (there := _destination(ctx, k, end, thing, data.placing)) is not None:
             goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there))
         return ("leave", goals) if goals else None

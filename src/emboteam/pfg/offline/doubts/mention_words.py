@@ -89,6 +89,8 @@ def after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
             return True
         if item.verb is not None or item.state is not None or item.conj is not None:
             return False
+        if item.det and j > start and not (ctx.items[j - 1].prep or ctx.items[j - 1].det):
+            return False     # a new noun phrase: "by dinner time the potato ...", "round here the watch"
     return False
 
 

@@ -29,10 +29,10 @@ from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.mention_cues import said_state
 from emboteam.pfg.offline.doubts.mention_words import after_preposition
 from emboteam.pfg.offline.doubts.rule_words import Words, find, load_rule_words
-from emboteam.pfg.offline.doubts.wants import placed
+from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
 from emboteam.pfg.offline.knowledge import read
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.goals import Condition
+from emboteam.world.goals import Condition, Predicate
 
 WINDOW_CUES_FILE = Path(__file__).with_name("window_cues.json")
 #: the labels of the goals a window gives (priors.json, kind unexplained_mention)
@@ -107,7 +107,8 @@ def _receptacle(ctx: DoubtContext, lo: int, hi: int, thing: str, data: WindowCue
     sources = {e - 1 for _, e in find(ctx.items, lo, hi, data.sources)}
     homes = {s for s, _ in find(ctx.items, lo, hi, data.home)}
     for m in range(lo, hi):
-        types = ctx.named_types(ctx.items[m])
+        # a word that may be a verb names a thing after a determiner ("in the bin")
+        types = ctx.named_types(ctx.items[m], verbs_too=m > 0 and ctx.items[m - 1].det)
         if not types or types[0] == thing or "receptacle" not in cat.type(types[0]).properties \
                 or not cat.can_place(thing, types[0]):
             continue
@@ -128,16 +129,37 @@ def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condi
         return None
     data = load_window_cues()
     lo, hi = window(ctx, k, thing)
-    said = ctx.items[k - 1].number if k > 0 else None      # "both vases are up on the dresser"
+    said = _count(ctx, k, thing)
     if find(ctx.items, lo, hi, data.keep):
         here = sorted(_present(ctx, thing))
         return (KEEP, (_counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
     dest = _receptacle(ctx, lo, hi, thing, data)
     if dest is None:
         return None
-    state = said_state(ctx, k, hi, thing)
-    goal = _counted(placed(thing, dest), said)
+    state = said_state(ctx, k, hi, thing) or _changed(ctx, lo, hi, thing)
+    pieces = load_catalogue().slice_product(thing) if state is not None and state.predicate is Predicate.sliced else None
+    goal = _counted(placed(pieces[0] if pieces else thing, dest), said)     # "the apple cut up on a plate"
     return PLACE, (goal,) if state is None else (state, goal)
+
+
+#: what a verb of the window may ask beside the place ("is heating in the microwave",
+#: "cut up on a plate"); switch and open states come from :func:`.mention_cues.said_state`
+_CHANGES = (Predicate.hot, Predicate.cold, Predicate.sliced, Predicate.cooked, Predicate.clean)
+
+
+def _changed(ctx: DoubtContext, lo: int, hi: int, thing: str) -> Condition | None:
+    pred = next((p for i in ctx.items[lo:hi] if (p := asked_predicate(i)) in _CHANGES), None)
+    return None if pred is None else one_object(pred, thing)
+
+
+def _count(ctx: DoubtContext, k: int, thing: str) -> int | None:
+    """How many the mention names: its number ("both vases are up on the dresser"), or
+    every one the scene has for a plural ("bats are kept on my bedside table")."""
+    said = ctx.items[k - 1].number if k > 0 else None
+    if isinstance(said, int):
+        return said
+    noun = ctx.items[k].noun
+    return len(list(ctx.state.of_type(thing))) if noun is not None and noun.plural else None
 
 
 def _counted(goal: Condition, said: object) -> Condition:
