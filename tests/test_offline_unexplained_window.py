@@ -85,5 +85,5 @@ def test_a_malformed_cue_file_names_file_and_entry(tmp_path: Path) -> None:
     raw["reach"] = 0
     bad = tmp_path / "window_cues.json"
     bad.write_text(json.dumps(raw), encoding="utf-8")
-    with pytest.raises(KnowledgeDataError, match="window_cues.json: reach"):
+    with pytest.raises(KnowledgeDataError, match=r"window_cues\.json: reach"):
         read(bad, WindowCues)

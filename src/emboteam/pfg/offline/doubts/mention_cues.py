@@ -127,7 +127,7 @@ def said_state(ctx: DoubtContext, k: int, end: int, thing: str) -> Condition | N
     for j in range(k + 1, end):
         pred = _state_at(ctx, j, end, data)
         if pred in _NEEDS and _fits(pred, thing) and not any(i.neg for i in ctx.items[max(k + 1, j - 3):j]):
-            return one_object(pred, thing)     # type: ignore[arg-type]
+            return one_object(pred, thing)
     return None
 
 

@@ -15,11 +15,11 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts import affordances, next_place
-from emboteam.pfg.offline.doubts.window import window_goal
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.explained import explanation
 from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
+from emboteam.pfg.offline.doubts.window import window_goal
 from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.goals import Condition, Predicate
 
