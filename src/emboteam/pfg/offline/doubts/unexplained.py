@@ -21,6 +21,7 @@ from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
 from emboteam.pfg.offline.doubts.window import window_goal
 from emboteam.pfg.sentences import clause, type_name
+from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, Predicate
 
 KIND = "unexplained_mention"
@@ -49,20 +50,11 @@ def _neighbour_goals(ctx: DoubtContext, k: int) -> tuple[Condition | None, Condi
 
 
 def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
-    """Goals the words of the mention's own stretch ask of it: a state word or verb, a
-    place after it."""
+    """Goals the words of the mention's own stretch ask of it: a state word or verb (a
+    place is its window's: :mod:`.window`)."""
     start, end = ctx.clause_bounds(k)
-    out: list[Condition] = []
-    for j in range(start, end):
-        item = ctx.items[j]
-        pred = asked_predicate(item)
-        if pred is not None and pred is not Predicate.inside:
-            out.append(one_object(pred, thing))
-        if j > k and item.prep in ("in", "into", "on", "onto", "inside", "to") and j + 1 < end:
-            place = next((types[0] for m, _, types in ctx.mentions() if j < m < min(end, j + 4)), None)
-            if place is not None and place != thing:
-                out.append(placed(thing, place))
-    return out
+    return [one_object(pred, thing) for item in ctx.items[start:end]
+            if (pred := asked_predicate(item)) is not None and pred is not Predicate.inside]
 
 
 def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doubt]:
@@ -88,7 +80,8 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
         if (dest := next_place.next_destination(ctx, k, thing, load_rule_words().next_place)) is not None:
             proposals.append(("next_place", placed(thing, dest)))    # "their home is the shelf"
         choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
-        seen: set[str] = set()
+        # a place where it is already asks nothing ("the remote's all the way over on the desk")
+        seen = {str(c) for _, c in proposals if c.predicate is Predicate.inside and check_condition(c, ctx.state).holds}
         for label, c in proposals:
             if str(c) not in seen:
                 seen.add(str(c))
