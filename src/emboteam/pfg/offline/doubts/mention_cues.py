@@ -8,7 +8,8 @@ stretch of words (its clause, cut at the neighbouring things that are not places
   thing kept as it is, its start place or its start state read from the scene, or the
   state its stretch names ("the floor lamp stays on" -> on);
 - a *state* word or participle ("the floor lamp glowing", "blinds down", "laptop: shut");
-- a *direction* to a receptacle named after it ("mug -> desk", "kettle 2 the stove").
+(a *direction* to a receptacle named after it, "mug -> desk", is the mention's window's:
+:mod:`.window`, through the unexplained-mention doubt).
 
 *Chatter* cues ("we used to have", "last time", "can't find") make the mention chatter
 instead: :func:`chatter` is also one of :mod:`.explained`'s explanations. The cue words
@@ -131,11 +132,11 @@ def said_state(ctx: DoubtContext, k: int, end: int, thing: str) -> Condition | N
     return None
 
 
-def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words] | None = None) -> str | None:
-    """The receptacle a direction after the thing leads to ("mug -> desk"; with ``cues``,
-    a place named after those: "leave the phone on the bed")."""
+def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words]) -> str | None:
+    """The receptacle named after the ``cues`` after the thing ("leave the phone on the
+    bed")."""
     data = load_mention_cues()
-    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues or data.directions):
+    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues):
         place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
         if place is not None and place != thing and "receptacle" in _props(place):
             return place
@@ -198,11 +199,8 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
         return ("leave", goals) if goals else None
     if negated:
         return None      # "not the lamp on": only a keeping cue speaks past a negation
-    dest = _destination(ctx, k, end, thing)
-    goals = tuple(c for c in (one_object(state, thing) if state is not None else None,
-                              placed(thing, dest) if dest is not None else None) if c is not None)
-    label = "_".join(n for n, c in (("state", state), ("place", dest)) if c is not None)
-    return (label, goals) if goals else None
+    # a place it goes is its window's (:mod:`.window`, through the unexplained mention)
+    return None if state is None else ("state", (one_object(state, thing),))
 
 
 def _choice(ctx: DoubtContext, thing: str, label: str, goals: tuple[Condition, ...]) -> Choice | None:

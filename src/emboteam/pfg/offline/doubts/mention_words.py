@@ -40,7 +40,6 @@ class MentionCues(_Closed):
     keep: list[SidedCue]
     #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
     place_preps: list[str]
-    directions: list[Words]
     #: what names the place after "leave X" / "keep X" ("leave the phone on the bed")
     placing: list[Words]
     #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
