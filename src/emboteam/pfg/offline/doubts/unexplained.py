@@ -16,7 +16,7 @@ from __future__ import annotations
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts import affordances, next_place
 from emboteam.pfg.offline.doubts.context import DoubtContext
-from emboteam.pfg.offline.doubts.explained import explanation
+from emboteam.pfg.offline.doubts.explained import NEGATED, explanation
 from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
 from emboteam.pfg.offline.doubts.window import window_goal
@@ -63,9 +63,10 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
         thing = types[0]
         # the first of its unexplained mentions whose window says where it goes ("my brother
         # borrows the bats ... bats are kept on my bedside table")
-        again = (m for m, _, ts in ctx.mentions() if m >= k and ts[0] == thing
-                 and explanation(ctx, m, ts) in (None, *unless))
-        strong = next((w for m in again if (w := window_goal(ctx, m, thing)) is not None), None)
+        named = [(m, explanation(ctx, m, ts, goals=False)) for m, _, ts in ctx.mentions() if ts[0] == thing]
+        again = (m for m, why in named if m >= k and why in (None, *unless))
+        strong = None if any(why == NEGATED for _, why in named) else next(      # "..., oh wait, not the CD"
+            (w for m in again if (w := window_goal(ctx, m, thing)) is not None), None)
         if strong is not None:     # its own window says where it goes: only that, or leaving it
             out.append(Doubt(KIND, words, (Choice(AS_READ, f"{words!r} asks nothing (chatter)"),
                                            Choice(strong[0], f"{type_name(thing)}: " + "; ".join(

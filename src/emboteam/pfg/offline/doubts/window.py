@@ -26,6 +26,7 @@ from pathlib import Path
 from pydantic import BaseModel, ConfigDict, Field
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.explained import CORRECTIONS
 from emboteam.pfg.offline.doubts.mention_cues import said_state
 from emboteam.pfg.offline.doubts.mention_words import after_preposition
 from emboteam.pfg.offline.doubts.rule_words import Words, find, load_rule_words
@@ -129,6 +130,8 @@ def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condi
         return None
     data = load_window_cues()
     lo, hi = window(ctx, k, thing)
+    if any(i.text in CORRECTIONS and i.text != "no" for i in ctx.items[lo:hi]):
+        return None      # "in the drawer - sorry, the box": the correction rules' (corrections.py)
     said = _count(ctx, k, thing)
     if find(ctx.items, lo, hi, data.keep):
         here = sorted(_present(ctx, thing))
