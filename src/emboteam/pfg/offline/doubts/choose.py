@@ -5,7 +5,7 @@ calls once it has read an instruction)."""
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from emboteam.pfg.candidates import Candidate, Doubt
 from emboteam.pfg.offline.corrections import KIND as CORRECTION
@@ -55,9 +55,7 @@ def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldSta
     # the team check for the candidates that may run or be offered (the best and the close ones)
     best = ranked[0].score
     ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))
-    # what the first candidate still leaves unexplained (a goal a doubt gave explains its mention)
-    first = ctx if ranked[0].as_read else replace(ctx, goals=tuple(ranked[0].goals))
-    return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(first)), tuple(doubts))
+    return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(ctx)), tuple(doubts))
 
 
 def _from_words(ctx: DoubtContext, feasible: Callable[[tuple[Condition, ...]], bool],

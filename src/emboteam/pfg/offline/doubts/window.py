@@ -47,6 +47,8 @@ class WindowCues(BaseModel):
     sources: list[Words]
     home: list[Words]
     keep: list[Words]
+    #: words that say the place holds already ("the tomato's already in the fridge"): no goal
+    described: list[Words]
     #: the longest window, in words
     reach: int = Field(14, ge=2, le=40)
     #: people and animals a ramble names ("my brother", "the dog"): chatter, not things
@@ -130,7 +132,7 @@ def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condi
         return None
     data = load_window_cues()
     lo, hi = window(ctx, k, thing)
-    if any(i.text in CORRECTIONS and i.text != "no" for i in ctx.items[lo:hi]):
+    if any(i.text in CORRECTIONS and i.text != "no" for i in ctx.items[lo:hi]) or find(ctx.items, lo, hi, data.described):
         return None      # "in the drawer - sorry, the box": the correction rules' (corrections.py)
     said = _count(ctx, k, thing)
     if find(ctx.items, lo, hi, data.keep):
