@@ -50,6 +50,7 @@ from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
 from emboteam.pfg.offline.doubts.contradiction import settle_placements
 from emboteam.pfg.offline.doubts.priors import Priors
+from emboteam.pfg.offline.doubts.window import being
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
     drop_guessed_water,
@@ -240,8 +241,10 @@ class OfflineFrontend:
                 except OfflineParseError:
                     pass
             # "the pineapple", "two bottles" (only one): what the scene lacks stands, unless
-            # the words' structure reads it ("everything on the dresser except ...")
-            words_only = isinstance(exc, GroundingError) and not isinstance(exc, IncapableError)
+            # the words' structure reads it ("everything on the dresser except ..."); a person
+            # or an animal a ramble names ("my brother") is chatter, not a missing thing
+            words_only = isinstance(exc, GroundingError) and not isinstance(exc, IncapableError) \
+                and not being(exc.phrase)
             found = from_mentions_choices(text, tagged, scene, state, team, self.priors, words_only)
             if found is None:
                 raise

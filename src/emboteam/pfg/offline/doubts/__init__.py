@@ -7,7 +7,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 
 | kind | rule |
 | --- | --- |
-| unexplained_mention | :mod:`.unexplained` (also elided verbs and list items: carried-over goals) |
+| unexplained_mention | :mod:`.unexplained` (its own window's place or keeping, :mod:`.window`; also elided verbs and list items: carried-over goals) |
 | scene_type | :mod:`.scene_type` |
 | state | :mod:`.state` |
 | slices | :mod:`.slices` |
@@ -17,7 +17,6 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | of_compound | :mod:`.of_compound` |
 | means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |
 | instance | :mod:`.instances` (one object, or any of its type) |
-| stays | :mod:`.stays` (a thing kept as it is: its present place or switch state as a goal) |
 | contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
 | resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
@@ -26,7 +25,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
 | device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 
-The words of contents, exclusive, next_place (and of stays) are
+The words of contents, exclusive, next_place are
 data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
 ``mention_cues.json``.
 """
@@ -50,7 +49,6 @@ from emboteam.pfg.offline.doubts import (
     scope,
     slices,
     state,
-    stays,
     unexplained,
 )
 from emboteam.pfg.offline.doubts.context import DoubtContext
@@ -80,7 +78,7 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *others.doubts(ctx), *(d for d in stays.doubts(ctx) if d.span not in said),
+             *instances.doubts(ctx), *others.doubts(ctx),
              *(d for d in reading_doubts(ctx) if d.kind != device_state.KIND)]
     return [d for d in found if len(d.choices) > 1]
 

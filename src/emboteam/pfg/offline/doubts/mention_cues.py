@@ -8,7 +8,8 @@ stretch of words (its clause, cut at the neighbouring things that are not places
   thing kept as it is, its start place or its start state read from the scene, or the
   state its stretch names ("the floor lamp stays on" -> on);
 - a *state* word or participle ("the floor lamp glowing", "blinds down", "laptop: shut");
-- a *direction* to a receptacle named after it ("mug -> desk", "kettle 2 the stove").
+(a *direction* to a receptacle named after it, "mug -> desk", is the mention's window's:
+:mod:`.window`, through the unexplained-mention doubt).
 
 *Chatter* cues ("we used to have", "last time", "can't find") make the mention chatter
 instead: :func:`chatter` is also one of :mod:`.explained`'s explanations. The cue words
@@ -18,7 +19,7 @@ alternative's prior is in ``priors.json`` (kind ``mention_cue``, one label per c
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
@@ -115,11 +116,23 @@ def _state(ctx: DoubtContext, k: int, start: int, end: int, thing: str, before: 
     return _state_before(ctx, k, start, thing) if before else None
 
 
-def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words] | None = None) -> str | None:
-    """The receptacle a direction after the thing leads to ("mug -> desk"; with ``cues``,
-    a place named after those: "leave the phone on the bed")."""
+def said_state(ctx: DoubtContext, k: int, end: int, thing: str) -> Condition | None:
+    """The switch or open state a word after the thing (up to ``end``) asks of it, as a
+    goal ("the candle that's hiding in the cupboard is out and burning on the counter"):
+    one it can take, not under a negation, not a particle before a place ("ends up on")."""
     data = load_mention_cues()
-    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues or data.directions):
+    for j in range(k + 1, end):
+        pred = _state_at(ctx, j, end, data)
+        if pred in _NEEDS and _fits(pred, thing) and not any(i.neg for i in ctx.items[max(k + 1, j - 3):j]):
+            return one_object(pred, thing)
+    return None
+
+
+def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words]) -> str | None:
+    """The receptacle named after the ``cues`` after the thing ("leave the phone on the
+    bed")."""
+    data = load_mention_cues()
+    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues):
         place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
         if place is not None and place != thing and "receptacle" in _props(place):
             return place
@@ -137,10 +150,15 @@ def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool) -> Predicate:
     return now
 
 
-def kept(ctx: DoubtContext, thing: str, state: Predicate | None) -> tuple[Condition, ...]:
-    """The thing as it is: its start place (a thing that is picked up) and the state its
-    words name ("the candle stays and gets lit"), else its start switch or open state."""
-    objs = list(ctx.state.of_type(thing))
+def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[str, int] | None = None) -> tuple[
+        Condition, ...]:
+    """The thing as it is: its start place (a thing that is picked up; of several, the one
+    in the receptacle named nearest to it, ``named``: type -> distance, "the toilet paper
+    in the bin is fine") and the state its words name ("the candle stays and gets lit"),
+    else its start switch or open state."""
+    near = named or {}
+    objs = sorted(ctx.state.of_type(thing), key=lambda o: near.get(ctx.state.obj(o.parent).type, 99)
+                  if o.parent is not None else 99)
     if not objs:
         return ()
     o, props = objs[0], _props(thing)
@@ -159,24 +177,26 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     data = load_mention_cues()
     start, end = segment(ctx, k)
     keep = side(ctx, k, start, end, data.keep)
+    # type -> how near it is named (after the thing first: "the toilet paper in the bin")
+    named: dict[str, int] = {}
+    for m in range(start, end):
+        for t in ctx.named_types(ctx.items[m], verbs_too=True)[:1]:
+            named[t] = min(named.get(t, 99), m - k if m > k else 20 + k - m)
     # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
     # the state of the clause before ("lights off, the desk lamp can stay")
     state = _state(ctx, k, start, end, thing, before=keep is None)
     if keep == "after":
-        goals = kept(ctx, thing, state)
+        goals = kept(ctx, thing, state, named)
         return ("keep", goals) if goals else None
     if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
-        goals = kept(ctx, thing, state)
+        goals = kept(ctx, thing, state, named)
         if (there := _destination(ctx, k, end, thing, data.placing)) is not None:
             goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there))
         return ("leave", goals) if goals else None
     if negated:
         return None      # "not the lamp on": only a keeping cue speaks past a negation
-    dest = _destination(ctx, k, end, thing)
-    goals = tuple(c for c in (one_object(state, thing) if state is not None else None,
-                              placed(thing, dest) if dest is not None else None) if c is not None)
-    label = "_".join(n for n, c in (("state", state), ("place", dest)) if c is not None)
-    return (label, goals) if goals else None
+    # a place it goes is its window's (:mod:`.window`, through the unexplained mention)
+    return None if state is None else ("state", (one_object(state, thing),))
 
 
 def _choice(ctx: DoubtContext, thing: str, label: str, goals: tuple[Condition, ...]) -> Choice | None:

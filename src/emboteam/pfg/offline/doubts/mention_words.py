@@ -36,7 +36,6 @@ class MentionCues(_Closed):
     keep: list[SidedCue]
     #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
     place_preps: list[str]
-    directions: list[Words]
     #: what names the place after "leave X" / "keep X" ("leave the phone on the bed")
     placing: list[Words]
     #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
@@ -78,6 +77,8 @@ def after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:
             return True
         if item.verb is not None or item.state is not None or item.conj is not None:
             return False
+        if item.det and j > start and not (ctx.items[j - 1].prep or ctx.items[j - 1].det):
+            return False     # a new noun phrase: "by dinner time the potato ...", "round here the watch"
     return False
 
 

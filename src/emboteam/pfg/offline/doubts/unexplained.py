@@ -16,10 +16,12 @@ from __future__ import annotations
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts import affordances, next_place
 from emboteam.pfg.offline.doubts.context import DoubtContext
-from emboteam.pfg.offline.doubts.explained import explanation
+from emboteam.pfg.offline.doubts.explained import NEGATED, explanation
 from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
+from emboteam.pfg.offline.doubts.window import window_goal
 from emboteam.pfg.sentences import clause, type_name
+from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, Predicate
 
 KIND = "unexplained_mention"
@@ -48,26 +50,28 @@ def _neighbour_goals(ctx: DoubtContext, k: int) -> tuple[Condition | None, Condi
 
 
 def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
-    """Goals the words of the mention's own stretch ask of it: a state word or verb, a
-    place after it."""
+    """Goals the words of the mention's own stretch ask of it: a state word or verb (a
+    place is its window's: :mod:`.window`)."""
     start, end = ctx.clause_bounds(k)
-    out: list[Condition] = []
-    for j in range(start, end):
-        item = ctx.items[j]
-        pred = asked_predicate(item)
-        if pred is not None and pred is not Predicate.inside:
-            out.append(one_object(pred, thing))
-        if j > k and item.prep in ("in", "into", "on", "onto", "inside", "to") and j + 1 < end:
-            place = next((types[0] for m, _, types in ctx.mentions() if j < m < min(end, j + 4)), None)
-            if place is not None and place != thing:
-                out.append(placed(thing, place))
-    return out
+    return [one_object(pred, thing) for item in ctx.items[start:end]
+            if (pred := asked_predicate(item)) is not None and pred is not Predicate.inside]
 
 
 def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doubt]:
     out = []
     for k, words, types in unexplained_spans(ctx, unless):
         thing = types[0]
+        # the first of its unexplained mentions whose window says where it goes ("my brother
+        # borrows the bats ... bats are kept on my bedside table")
+        named = [(m, explanation(ctx, m, ts, goals=False)) for m, _, ts in ctx.mentions() if ts[0] == thing]
+        again = (m for m, why in named if m >= k and why in (None, *unless))
+        strong = None if any(why == NEGATED for _, why in named) else next(      # "..., oh wait, not the CD"
+            (w for m in again if (w := window_goal(ctx, m, thing)) is not None), None)
+        if strong is not None:     # its own window says where it goes: only that, or leaving it
+            out.append(Doubt(KIND, words, (Choice(AS_READ, f"{words!r} asks nothing (chatter)"),
+                                           Choice(strong[0], f"{type_name(thing)}: " + "; ".join(
+                                               clause(c) for c in strong[1]), add=strong[1]))))
+            continue
         proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
         prev, nxt = _neighbour_goals(ctx, k)
         for label, c in (("carry_previous", prev), ("carry_next", nxt)):
@@ -77,7 +81,8 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
         if (dest := next_place.next_destination(ctx, k, thing, load_rule_words().next_place)) is not None:
             proposals.append(("next_place", placed(thing, dest)))    # "their home is the shelf"
         choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
-        seen: set[str] = set()
+        # a place where it is already asks nothing ("the remote's all the way over on the desk")
+        seen = {str(c) for _, c in proposals if c.predicate is Predicate.inside and check_condition(c, ctx.state).holds}
         for label, c in proposals:
             if str(c) not in seen:
                 seen.add(str(c))
