@@ -25,9 +25,16 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
 from emboteam.bench.importers.smart_llm import import_smart_llm
 from emboteam.errors import EmboTeamError
-from emboteam.llm.client import LLMClient, make_client
+from emboteam.llm.backend import Backend
+from emboteam.llm.cassette import Cassette, RecordingBackend
+from emboteam.llm.client import LLMClient, make_backend, make_client
+from emboteam.llm.errors import LLMReplayMiss
+from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
+from emboteam.llm.spec import parse_llm_spec
 from emboteam.pfg.model_ranker import close_count, rerank_in_scene
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.doubts.priors import load_priors
@@ -42,20 +49,49 @@ MARGINS = (0.5, 1.0, 1.5, 2.0, 2.5)
 WEIGHTS = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0)
 
 
-def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
-    """One record per development task the reader read: priors, and for the close ones
-    the PMI of each scored candidate and whether it meets the ground truth."""
-    from fit_reading_priors import (  # a script beside this one (benchmarks/ is on sys.path)
-        FIRST_HELD_OUT,
-        task_case,
-    )
-    reader = OfflineFrontend()
-    kinds = frozenset(load_priors().prior_only_kinds)
-    out: list[dict[str, Any]] = []
+class CachedScorer:
+    """Scores from the cassette where it holds the request, else from the live backend
+    (and recorded): re-running after the reader changed asks only what is new."""
+
+    def __init__(self, live: Backend, folder: Path) -> None:
+        self.live = RecordingBackend(live, folder)
+        self.cassette = Cassette(folder)
+        self.name = live.name
+
+    def send(self, request: LLMRequest) -> LLMResponse:
+        return self.live.send(request)
+
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        try:
+            return self.cassette.load_score(request)
+        except LLMReplayMiss:
+            return self.live.score(request)
+
+
+def dev_folders(since: int, extra: Sequence[Path]) -> list[Path]:
+    """The development rounds read: ``blind_r*/dev`` below the first held-out round (from
+    ``since`` on) and the ``extra`` development folders; a held-out round is refused."""
+    from fit_reading_priors import FIRST_HELD_OUT  # a script beside this one (benchmarks/ is on sys.path)
+
     rounds = sorted((p for p in DATA.glob("blind_r*/dev")
                      if since <= int(p.parent.name.removeprefix("blind_r")) < FIRST_HELD_OUT),
                     key=lambda p: int(p.parent.name.removeprefix("blind_r")))
-    for folder in rounds:
+    for folder in extra:
+        name = folder.resolve().parent.name if folder.name == "dev" else folder.name
+        if name in HELD_OUT_ROUNDS or folder.name != "dev":
+            raise EmboTeamError(f"{folder} is not a development folder (blind_rNN/dev of a round not held out)")
+    return [*rounds, *extra]
+
+
+def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> list[dict[str, Any]]:
+    """One record per development task the reader read: priors, and for the close ones
+    the PMI of each scored candidate and whether it meets the ground truth."""
+    from fit_reading_priors import task_case  # a script beside this one (benchmarks/ is on sys.path)
+
+    reader = OfflineFrontend()
+    kinds = frozenset(load_priors().prior_only_kinds)
+    out: list[dict[str, Any]] = []
+    for folder in dev_folders(since, extra):
         for task in import_smart_llm(folder).tasks:
             if task.ground_truth is None:
                 continue
@@ -66,7 +102,7 @@ def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
             except EmboTeamError:
                 continue
             cands = reading.candidates
-            row: dict[str, Any] = {"round": folder.parent.name, "instruction": task.instruction,
+            row: dict[str, Any] = {"round": folder.resolve().parent.name, "instruction": task.instruction,
                                    "priors": [round(c.score, 4) for c in cands],
                                    "right": [bool(case.right(c.goals)) for c in cands],
                                    "prior_only": [any(r.kind in kinds for r in c.resolves) for c in cands],
@@ -118,6 +154,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, required=True, help="records and the grid, as JSON")
     ap.add_argument("--model", type=Path, help="GGUF file (default: the Qwen 0.5B model)")
     ap.add_argument("--since", type=int, default=0, help="only development rounds from this number on")
+    ap.add_argument("--extra", type=Path, nargs="*", default=[],
+                    help="more development rounds (blind_rNN/dev folders past the first held-out round)")
     args = ap.parse_args(argv)
     try:
         if args.replay:
@@ -125,8 +163,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         else:
             from emboteam.llm.local_model import fetch_model
 
-            client = make_client(f"llamacpp:{args.model or fetch_model()}", timeout=600, record_dir=CASSETTE)
-        rows = records(client, args.since)
+            live = make_backend(parse_llm_spec(f"llamacpp:{args.model or fetch_model()}"), timeout=600)
+            client = LLMClient(CachedScorer(live, CASSETTE))
+        rows = records(client, args.since, args.extra)
     except EmboTeamError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
