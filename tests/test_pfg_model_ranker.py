@@ -196,3 +196,37 @@ def test_a_scoring_time_out_leaves_the_prior_reading_and_says_so(monkeypatch: py
     monkeypatch.setattr(client, "score", miss)
     with pytest.raises(LLMReplayMiss):
         HybridFrontend(client, reader.parse).read(task.instruction, scene, state, team)
+
+
+def test_ranker_settings_load_and_a_bad_file_is_named(tmp_path: Path) -> None:
+    """The hybrid front end's margin, weight and PMI lead are data: the shipped file loads,
+    and a misspelt entry or a negative weight is a ModelRankerDataError naming the file
+    and the entry (not a traceback from deep inside a run)."""
+    from emboteam.errors import EmboTeamError
+    from emboteam.pfg.model_ranker import ModelRankerDataError, load_ranker_settings
+
+    shipped = load_ranker_settings()
+    assert shipped.margin >= 0 and shipped.weight >= 0 and shipped.fitted
+    bad = tmp_path / "model_ranker.json"
+    bad.write_text('{"fitted": "x", "margin": 1.0, "weight": -1.0}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"model_ranker\.json: entry weight"):
+        load_ranker_settings(bad)
+    bad.write_text('{"fitted": "x", "margin": 1.0, "weight": 1.0, "min_led": 2.0}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"entry min_led"):
+        load_ranker_settings(bad)
+    bad.write_text("{", encoding="utf-8")
+    with pytest.raises(EmboTeamError, match=r"cannot read the model ranker's settings"):
+        load_ranker_settings(bad)
+
+
+def test_min_lead_keeps_the_priors_first_unless_the_model_leads_clearly(tmp_path: Path) -> None:
+    """With a PMI lead required, a close candidate the model prefers by less than the lead
+    does not overturn the prior's first; one it prefers by more does."""
+    client = make_client(cassette(tmp_path, {MICROWAVE.sentence: 1.0, FRIDGE.sentence: 3.0, BOTH.sentence: 0.5}))
+    args: dict[str, Any] = {"client": client, "objects": OBJECTS, "instruction": INSTRUCTION, "margin": 1.0,
+                            "weight": 0.5}
+    held = rerank([MICROWAVE, FRIDGE, BOTH, FAR], **args, min_lead=2.5)   # FRIDGE leads by 2.0
+    assert held.scored and not held.overturned
+    assert held.candidates[0] == MICROWAVE and held.ranked[0].pmi == pytest.approx(1.0)
+    taken = rerank([MICROWAVE, FRIDGE, BOTH, FAR], **args, min_lead=1.5)
+    assert taken.overturned and taken.candidates == (FRIDGE, MICROWAVE, BOTH, FAR)
