@@ -107,6 +107,7 @@ class HybridFrontend:
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
                  llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
                  rank_margin: float | None = None, rank_weight: float | None = None,
+                 rank_min_lead: float | None = None,
                  clarify: ClarifyHook | None = None) -> None:
         self.client = client
         self.parse = parse
@@ -124,7 +125,7 @@ class HybridFrontend:
         settings = load_ranker_settings()
         self.rank_margin = settings.margin if rank_margin is None else rank_margin
         self.rank_weight = settings.weight if rank_weight is None else rank_weight
-        self.rank_min_lead = settings.min_lead
+        self.rank_min_lead = settings.min_lead if rank_min_lead is None else rank_min_lead
         self.last_ranking: Reranking[Candidate] | None = None
         #: settles a clarification the LLM asks for when it writes a spec the parser could not
         self.clarify = clarify
