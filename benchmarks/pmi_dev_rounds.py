@@ -25,9 +25,16 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
 from emboteam.bench.importers.smart_llm import import_smart_llm
 from emboteam.errors import EmboTeamError
-from emboteam.llm.client import LLMClient, make_client
+from emboteam.llm.backend import Backend
+from emboteam.llm.cassette import Cassette, RecordingBackend
+from emboteam.llm.client import LLMClient, make_backend, make_client
+from emboteam.llm.errors import LLMReplayMiss
+from emboteam.llm.messages import LLMRequest, LLMResponse
+from emboteam.llm.scoring import ScoreRequest, ScoreResponse
+from emboteam.llm.spec import parse_llm_spec
 from emboteam.pfg.model_ranker import close_count, rerank_in_scene
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.doubts.priors import load_priors
@@ -40,22 +47,53 @@ CASSETTE = OUT / "cassette"
 WIDEST = 2.5
 MARGINS = (0.5, 1.0, 1.5, 2.0, 2.5)
 WEIGHTS = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0)
+#: the PMI lead over the prior's first the model needs to overturn it (0: any)
+MIN_LEADS = (0.0, 1.0, 2.0, 3.0)
 
 
-def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
-    """One record per development task the reader read: priors, and for the close ones
-    the PMI of each scored candidate and whether it meets the ground truth."""
-    from fit_reading_priors import (  # a script beside this one (benchmarks/ is on sys.path)
-        FIRST_HELD_OUT,
-        task_case,
-    )
-    reader = OfflineFrontend()
-    kinds = frozenset(load_priors().prior_only_kinds)
-    out: list[dict[str, Any]] = []
+class CachedScorer:
+    """Scores from the cassette where it holds the request, else from the live backend
+    (and recorded): re-running after the reader changed asks only what is new."""
+
+    def __init__(self, live: Backend, folder: Path) -> None:
+        self.live = RecordingBackend(live, folder)
+        self.cassette = Cassette(folder)
+        self.name = live.name
+
+    def send(self, request: LLMRequest) -> LLMResponse:
+        return self.live.send(request)
+
+    def score(self, request: ScoreRequest) -> ScoreResponse:
+        try:
+            return self.cassette.load_score(request)
+        except LLMReplayMiss:
+            return self.live.score(request)
+
+
+def dev_folders(since: int, extra: Sequence[Path]) -> list[Path]:
+    """The development rounds read: ``blind_r*/dev`` below the first held-out round (from
+    ``since`` on) and the ``extra`` development folders; a held-out round is refused."""
+    from fit_reading_priors import FIRST_HELD_OUT  # a script beside this one (benchmarks/ is on sys.path)
+
     rounds = sorted((p for p in DATA.glob("blind_r*/dev")
                      if since <= int(p.parent.name.removeprefix("blind_r")) < FIRST_HELD_OUT),
                     key=lambda p: int(p.parent.name.removeprefix("blind_r")))
-    for folder in rounds:
+    for folder in extra:
+        name = folder.resolve().parent.name if folder.name == "dev" else folder.name
+        if name in HELD_OUT_ROUNDS or folder.name != "dev":
+            raise EmboTeamError(f"{folder} is not a development folder (blind_rNN/dev of a round not held out)")
+    return [*rounds, *extra]
+
+
+def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> list[dict[str, Any]]:
+    """One record per development task the reader read: priors, and for the close ones
+    the PMI of each scored candidate and whether it meets the ground truth."""
+    from fit_reading_priors import task_case  # a script beside this one (benchmarks/ is on sys.path)
+
+    reader = OfflineFrontend()
+    kinds = frozenset(load_priors().prior_only_kinds)
+    out: list[dict[str, Any]] = []
+    for folder in dev_folders(since, extra):
         for task in import_smart_llm(folder).tasks:
             if task.ground_truth is None:
                 continue
@@ -66,10 +104,11 @@ def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
             except EmboTeamError:
                 continue
             cands = reading.candidates
-            row: dict[str, Any] = {"round": folder.parent.name, "instruction": task.instruction,
+            row: dict[str, Any] = {"round": folder.resolve().parent.name, "instruction": task.instruction,
                                    "priors": [round(c.score, 4) for c in cands],
                                    "right": [bool(case.right(c.goals)) for c in cands],
                                    "prior_only": [any(r.kind in kinds for r in c.resolves) for c in cands],
+                                   "kinds": [sorted({r.kind for r in c.resolves}) for c in cands],
                                    "pmi": None}
             if close_count([c.score for c in cands], WIDEST) >= 2:
                 start = time.process_time()
@@ -85,9 +124,11 @@ def records(client: LLMClient, since: int = 0) -> list[dict[str, Any]]:
     return out
 
 
-def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float) -> dict[str, Any]:
-    """What re-ranking with this margin and weight does to the recorded tasks."""
-    calls = overturned = overturned_right = top1 = prior_top1 = 0
+def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float, min_lead: float = 0.0) -> dict[str, Any]:
+    """What re-ranking with this margin and weight does to the recorded tasks; with
+    ``min_lead``, the model overturns the prior's first only when its PMI leads the
+    first's by more than that (``model_ranker.rerank``'s ``min_lead``)."""
+    calls = overturned = to_right = to_wrong = top1 = prior_top1 = 0
     for r in rows:
         priors, right = r["priors"], r["right"]
         if not priors:
@@ -103,13 +144,31 @@ def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float) -> dic
         calls += 1
         scored = [(priors[i] + weight * r["pmi"][i], -i) for i in close]
         best = -max(scored)[1]
+        if best != 0 and r["pmi"][best] - r["pmi"][0] <= min_lead:
+            best = 0
         top1 += right[best]
         if best != 0:
             overturned += 1
-            overturned_right += right[best] and not right[0]
+            to_right += right[best] and not right[0]
+            to_wrong += right[0] and not right[best]
     read = sum(1 for r in rows if r["priors"])
-    return {"margin": margin, "weight": weight, "tasks": read, "calls": calls, "top1": top1,
-            "prior_top1": prior_top1, "overturned": overturned, "overturned_to_right": overturned_right}
+    return {"margin": margin, "weight": weight, "min_lead": min_lead, "tasks": read, "calls": calls, "top1": top1,
+            "prior_top1": prior_top1, "overturned": overturned, "overturned_to_right": to_right,
+            "overturned_to_wrong": to_wrong}
+
+
+def grid(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+    return [outcome(rows, m, w, lead) for m in MARGINS for w in WEIGHTS for lead in MIN_LEADS]
+
+
+def print_grid(title: str, cells: Sequence[dict[str, Any]]) -> None:
+    print(f"== {title}")
+    print(f"{'margin':>6} {'weight':>6} {'lead':>5} {'calls':>5} {'top1':>5} {'prior':>5} {'overturned':>10} "
+          f"{'to right':>8} {'to wrong':>8}")
+    for g in cells:
+        print(f"{g['margin']:6.2f} {g['weight']:6.2f} {g['min_lead']:5.1f} {g['calls']:5d} {g['top1']:5d} "
+              f"{g['prior_top1']:5d} {g['overturned']:10d} {g['overturned_to_right']:8d} "
+              f"{g['overturned_to_wrong']:8d}   of {g['tasks']} tasks")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -118,6 +177,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, required=True, help="records and the grid, as JSON")
     ap.add_argument("--model", type=Path, help="GGUF file (default: the Qwen 0.5B model)")
     ap.add_argument("--since", type=int, default=0, help="only development rounds from this number on")
+    ap.add_argument("--extra", type=Path, nargs="*", default=[],
+                    help="more development rounds (blind_rNN/dev folders past the first held-out round)")
+    ap.add_argument("--split", type=int, help="also a grid for the rounds before this number and one from it on")
     args = ap.parse_args(argv)
     try:
         if args.replay:
@@ -125,17 +187,21 @@ def main(argv: Sequence[str] | None = None) -> int:
         else:
             from emboteam.llm.local_model import fetch_model
 
-            client = make_client(f"llamacpp:{args.model or fetch_model()}", timeout=600, record_dir=CASSETTE)
-        rows = records(client, args.since)
+            live = make_backend(parse_llm_spec(f"llamacpp:{args.model or fetch_model()}"), timeout=600)
+            client = LLMClient(CachedScorer(live, CASSETTE))
+        rows = records(client, args.since, args.extra)
     except EmboTeamError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
-    grid = [outcome(rows, m, w) for m in MARGINS for w in WEIGHTS]
-    args.out.write_text(json.dumps({"rows": rows, "grid": grid}, indent=1) + "\n", encoding="utf-8")
-    print(f"{'margin':>6} {'weight':>6} {'calls':>5} {'top1':>5} {'prior':>5} {'overturned':>10} {'to right':>8}")
-    for g in grid:
-        print(f"{g['margin']:6.2f} {g['weight']:6.2f} {g['calls']:5d} {g['top1']:5d} {g['prior_top1']:5d} "
-              f"{g['overturned']:10d} {g['overturned_to_right']:8d}   of {g['tasks']} tasks")
+    out: dict[str, Any] = {"rows": rows, "grid": grid(rows)}
+    if args.split:
+        number = lambda r: int(r["round"].removeprefix("blind_r"))  # noqa: E731
+        out["grid_before_split"] = grid([r for r in rows if number(r) < args.split])
+        out["grid_from_split"] = grid([r for r in rows if number(r) >= args.split])
+        print_grid(f"rounds before r{args.split} (to choose on)", out["grid_before_split"])
+        print_grid(f"rounds from r{args.split} on (to report)", out["grid_from_split"])
+    print_grid("all rounds", out["grid"])
+    args.out.write_text(json.dumps(out, indent=1) + "\n", encoding="utf-8")
     return 0
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -106,11 +107,15 @@ def test_hybrid_episode_calls_the_llm_only_for_a_doubtful_reading() -> None:
     with ScriptedServer("openai", []) as srv:  # any call would be answered with an error
         sure = run_episode(tasks["fp1-fridge-apple-tomato"], RunConfig(frontend="hybrid", llm=srv.spec(), llm_timeout=5))
     assert sure.success and sure.llm_calls == 0 and srv.requests == []
-    # the reading's close candidates are first offered for scoring: this server has no
-    # completions endpoint (404: no log-probabilities), so the reading stands and is reviewed
-    with ScriptedServer("openai", [Reply.error(404, message="no completions"),
-                                   Reply.answer({"ok": True, "subtasks": []}, input_tokens=900,
-                                                output_tokens=9)]) as srv:
+    # where the reading's candidates are close they are first offered for scoring: this
+    # server has no completions endpoint (404: no log-probabilities), so the reading stands
+    # and is reviewed (whether scoring is tried depends on the fitted margin: either way)
+    def route(body: dict[str, Any]) -> Reply:
+        if "messages" in body:
+            return Reply.answer({"ok": True, "subtasks": []}, input_tokens=900, output_tokens=9)
+        return Reply.error(404, message="no completions")
+
+    with ScriptedServer("openai", [route, route]) as srv:
         # an unread span (H1's contract: the parser acts on the rest and notes it) next to a
         # scene noun the reading leaves out is doubt (emboteam.pfg.doubt; an unread span
         # alone is not enough any more: measured, docs/llm.md "The doubt detector")

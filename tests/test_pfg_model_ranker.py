@@ -150,7 +150,9 @@ def test_hybrid_lets_the_model_settle_close_readings() -> None:
 
     root = Path(__file__).resolve().parents[1]
     client = make_client(f"replay:{root / 'benchmarks' / 'pmi_dev' / 'cassette'}")
-    hybrid = HybridFrontend(client, reader.parse)
+    # the right reading's prior is 0.93 below the first: within a margin of 2 (the fitted
+    # margin, pfg/model_ranker.json, is narrower and leaves this task to the prior)
+    hybrid = HybridFrontend(client, reader.parse, rank_margin=2.0)
     reading = hybrid.read(task.instruction, scene, state, team)
     assert satisfies(goal_keys(reading.spec.goal().conditions, scene), truth)
     assert hybrid.last_ranking is not None and hybrid.last_ranking.overturned
@@ -158,10 +160,10 @@ def test_hybrid_lets_the_model_settle_close_readings() -> None:
     assert any(n.span == "(model ranking)" for n in reading.notes)
     assert client.usage.calls == 1 and "pfg.score" in client.usage.by_stage()
 
-    off = HybridFrontend(client, reader.parse, rank_weight=0.0)
+    off = HybridFrontend(client, reader.parse, rank_margin=2.0, rank_weight=0.0)
     assert off.read(task.instruction, scene, state, team).spec == draft.spec
     with ScriptedServer("anthropic") as server:
-        anthropic = HybridFrontend(make_client(server.spec("claude-test"), timeout=5), reader.parse)
+        anthropic = HybridFrontend(make_client(server.spec("claude-test"), timeout=5), reader.parse, rank_margin=2.0)
         assert anthropic.read(task.instruction, scene, state, team).spec == draft.spec
         assert server.requests == []
 
@@ -185,7 +187,7 @@ def test_a_scoring_time_out_leaves_the_prior_reading_and_says_so(monkeypatch: py
         raise LLMTimeout("scoring outlived the 5 s time-out", stage="pfg.score")
 
     monkeypatch.setattr(client, "score", time_out)
-    reading = HybridFrontend(client, reader.parse).read(task.instruction, scene, state, team)
+    reading = HybridFrontend(client, reader.parse, rank_margin=2.0).read(task.instruction, scene, state, team)
     assert reading.spec == draft.spec
     note = next(n for n in reading.notes if n.span == "(model ranking)")
     assert note.kind == "unsure" and "LLMTimeout" in note.reason
@@ -195,4 +197,38 @@ def test_a_scoring_time_out_leaves_the_prior_reading_and_says_so(monkeypatch: py
 
     monkeypatch.setattr(client, "score", miss)
     with pytest.raises(LLMReplayMiss):
-        HybridFrontend(client, reader.parse).read(task.instruction, scene, state, team)
+        HybridFrontend(client, reader.parse, rank_margin=2.0).read(task.instruction, scene, state, team)
+
+
+def test_ranker_settings_load_and_a_bad_file_is_named(tmp_path: Path) -> None:
+    """The hybrid front end's margin, weight and PMI lead are data: the shipped file loads,
+    and a misspelt entry or a negative weight is a ModelRankerDataError naming the file
+    and the entry (not a traceback from deep inside a run)."""
+    from emboteam.errors import EmboTeamError
+    from emboteam.pfg.model_ranker import ModelRankerDataError, load_ranker_settings
+
+    shipped = load_ranker_settings()
+    assert shipped.margin >= 0 and shipped.weight >= 0 and shipped.fitted
+    bad = tmp_path / "model_ranker.json"
+    bad.write_text('{"fitted": "x", "margin": 1.0, "weight": -1.0}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"model_ranker\.json: entry weight"):
+        load_ranker_settings(bad)
+    bad.write_text('{"fitted": "x", "margin": 1.0, "weight": 1.0, "min_led": 2.0}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"entry min_led"):
+        load_ranker_settings(bad)
+    bad.write_text("{", encoding="utf-8")
+    with pytest.raises(EmboTeamError, match=r"cannot read the model ranker's settings"):
+        load_ranker_settings(bad)
+
+
+def test_min_lead_keeps_the_priors_first_unless_the_model_leads_clearly(tmp_path: Path) -> None:
+    """With a PMI lead required, a close candidate the model prefers by less than the lead
+    does not overturn the prior's first; one it prefers by more does."""
+    client = make_client(cassette(tmp_path, {MICROWAVE.sentence: 1.0, FRIDGE.sentence: 3.0, BOTH.sentence: 0.5}))
+    args: dict[str, Any] = {"client": client, "objects": OBJECTS, "instruction": INSTRUCTION, "margin": 1.0,
+                            "weight": 0.5}
+    held = rerank([MICROWAVE, FRIDGE, BOTH, FAR], **args, min_lead=2.5)   # FRIDGE leads by 2.0
+    assert held.scored and not held.overturned
+    assert held.candidates[0] == MICROWAVE and held.ranked[0].pmi == pytest.approx(1.0)
+    taken = rerank([MICROWAVE, FRIDGE, BOTH, FAR], **args, min_lead=1.5)
+    assert taken.overturned and taken.candidates == (FRIDGE, MICROWAVE, BOTH, FAR)

@@ -48,7 +48,7 @@ from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
-from emboteam.pfg.model_ranker import DEFAULT_MARGIN, DEFAULT_WEIGHT, Reranking, rerank_in_scene
+from emboteam.pfg.model_ranker import Reranking, load_ranker_settings, rerank_in_scene
 from emboteam.pfg.offline.doubts.priors import load_priors
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.reading import Reading, ReadingNote
@@ -106,7 +106,8 @@ class HybridFrontend:
 
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
                  llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
-                 rank_margin: float = DEFAULT_MARGIN, rank_weight: float = DEFAULT_WEIGHT,
+                 rank_margin: float | None = None, rank_weight: float | None = None,
+                 rank_min_lead: float | None = None,
                  clarify: ClarifyHook | None = None) -> None:
         self.client = client
         self.parse = parse
@@ -119,9 +120,12 @@ class HybridFrontend:
         #: answer by tokens, not by a time-out, keeps a slow local model's runs reproducible
         #: (a cut-off answer is recorded and fed back; a timed-out call is not recorded)
         self.max_tokens = max_tokens
-        #: the model ranker's margin and weight (0 turns it off); the last ranking, for views
-        self.rank_margin = rank_margin
-        self.rank_weight = rank_weight
+        #: the model ranker's margin, weight (0 turns it off) and PMI lead, by default the
+        #: fitted ones (pfg/model_ranker.json); the last ranking, for views
+        settings = load_ranker_settings()
+        self.rank_margin = settings.margin if rank_margin is None else rank_margin
+        self.rank_weight = settings.weight if rank_weight is None else rank_weight
+        self.rank_min_lead = settings.min_lead if rank_min_lead is None else rank_min_lead
         self.last_ranking: Reranking[Candidate] | None = None
         #: settles a clarification the LLM asks for when it writes a spec the parser could not
         self.clarify = clarify
@@ -162,6 +166,7 @@ class HybridFrontend:
             kinds = frozenset(load_priors().prior_only_kinds)
             ranking = rerank_in_scene(draft.candidates, client=self.client, scene=scene, instruction=instruction,
                                       margin=self.rank_margin, weight=self.rank_weight,
+                                      min_lead=self.rank_min_lead,
                                       prior_only=lambda c: any(r.kind in kinds for r in c.resolves))
         except LLMScoringUnsupported:
             return draft

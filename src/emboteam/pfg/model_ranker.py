@@ -14,24 +14,61 @@ so this module does not depend on the reader's class.
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
 from typing import Generic, Protocol, TypeVar
 
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from emboteam.errors import EmboTeamError
 from emboteam.llm.client import LLMClient
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.world.scene import Scene
 
-#: chosen on the development rounds r30-r41 (benchmarks/pmi_dev_rounds.py --since 30,
-#: 2026-12-06 09:48 UTC, the reader of read25b at 4fccb0f; readings settling a
-#: correction or exclusion never scored): of margins 0.5-2.5 and weights 0-3, margin 2
-#: and weight 1 gave the best top-1 (325 -> 328 of 394 tasks) with the fewest calls
-#: (0.19 per task; the model overturned the prior 32 times, 7 from a wrong reading to a
-#: right one, 4 the other way; benchmarks/pmi_dev/results_since30.json). Refit when the
-#: priors change.
-DEFAULT_MARGIN = 2.0
-DEFAULT_WEIGHT = 1.0
+#: the margin, weight and PMI lead the hybrid front end uses, fitted on the development
+#: rounds by ``benchmarks/pmi_dev_rounds.py`` (the fit, its date and command are in the
+#: file's ``fitted`` entry; docs/llm.md has the grid). Data, checked at load.
+SETTINGS_FILE = Path(__file__).with_name("model_ranker.json")
+
+
+class ModelRankerDataError(EmboTeamError):
+    """The model ranker's settings file is missing or malformed."""
+
+
+class RankerSettings(BaseModel):
+    """How far the model may reorder the prior's candidates."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    #: what was fitted on what, and the command that reproduces the grid
+    fitted: str = Field(min_length=1)
+    #: candidates within this (log-prior) margin of the first are scored
+    margin: float = Field(ge=0, le=10)
+    #: ``prior + weight * pmi`` orders the scored ones; 0 turns the model off
+    weight: float = Field(ge=0, le=10)
+    #: the model overturns the prior's first only when its PMI leads the first's by more
+    min_lead: float = Field(0.0, ge=0, le=20)
+
+
+@cache
+def load_ranker_settings(path: Path = SETTINGS_FILE) -> RankerSettings:
+    """The settings in ``path``; a bad file is a :class:`ModelRankerDataError` naming it
+    and the entry."""
+    try:
+        raw = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise ModelRankerDataError(f"{path}: cannot read the model ranker's settings: {exc}") from None
+    try:
+        return RankerSettings.model_validate(raw)
+    except ValidationError as exc:
+        first = exc.errors()[0]
+        where = ".".join(str(x) for x in first["loc"]) or "(top level)"
+        raise ModelRankerDataError(f"{path}: entry {where}: {first['msg']}") from None
+
 
 #: how many candidates the model scores at most (the prompt is shared; each candidate
 #: costs its sentence twice)
@@ -109,12 +146,13 @@ def close_count(priors: Sequence[float], margin: float) -> int:
 
 
 def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruction: str, margin: float,
-           weight: float, max_scored: int = MAX_SCORED, tail: Sequence[C] = ()) -> Reranking[C]:
+           weight: float, max_scored: int = MAX_SCORED, tail: Sequence[C] = (), min_lead: float = 0.0) -> Reranking[C]:
     """``candidates`` (best first by prior) re-ranked where the prior is unsure.
 
     The leading candidates within ``margin`` of the first (at most ``max_scored``) are
     scored in one :meth:`LLMClient.score` call and ordered by ``prior + weight * pmi``;
-    the others follow in their order. With fewer than two close candidates, or close
+    the others follow in their order; the prior's first stays first unless the new first's
+    PMI leads its PMI by more than ``min_lead``. With fewer than two close candidates, or close
     candidates that all say the same sentence, nothing is asked. Errors of the call (:class:`~emboteam.llm.errors.LLMError`, e.g.
     ``LLMScoringUnsupported``) propagate: the caller decides what stands instead."""
     priors = [float(c.score) for c in candidates]
@@ -129,6 +167,9 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
               for c, p, s in zip(close, priors[:n], response.scores, strict=True)]
     # stable: equal combined scores keep the prior's order
     scored.sort(key=lambda r: -r.combined)
+    first = next(r for r in scored if r.candidate is candidates[0])
+    if scored[0] is not first and (scored[0].pmi or 0.0) - (first.pmi or 0.0) <= min_lead:
+        scored = [first, *(r for r in scored if r is not first)]
     rest = [Ranked(c, p, None, p) for c, p in zip(candidates[n:], priors[n:], strict=True)]
     return Reranking((*scored, *rest, *_unscored(tail)), scored=True,
                      overturned=scored[0].candidate is not candidates[0], response=response)
@@ -139,7 +180,7 @@ def _unscored(candidates: Sequence[C]) -> tuple[Ranked[C], ...]:
 
 
 def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene, instruction: str,
-                    margin: float = DEFAULT_MARGIN, weight: float = DEFAULT_WEIGHT,
+                    margin: float, weight: float, min_lead: float = 0.0,
                     prior_only: Callable[[C], bool] | None = None) -> Reranking[C]:
     """:func:`rerank` with the objects summary of ``scene`` for the instruction and the
     candidates' sentences: the one call a front end makes. Candidates ``prior_only``
@@ -152,12 +193,13 @@ def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene,
                           weight=weight, tail=candidates[1:])
         scored = [c for c in candidates if not prior_only(c)]
         rest = [c for c in candidates if prior_only(c)]
-        return _rerank_scene(scored, rest, client, scene, instruction, margin, weight)
-    return _rerank_scene(list(candidates), [], client, scene, instruction, margin, weight)
+        return _rerank_scene(scored, rest, client, scene, instruction, (margin, weight, min_lead))
+    return _rerank_scene(list(candidates), [], client, scene, instruction, (margin, weight, min_lead))
 
 
 def _rerank_scene(candidates: Sequence[C], tail: Sequence[C], client: LLMClient, scene: Scene, instruction: str,
-                  margin: float, weight: float) -> Reranking[C]:
+                  settings: tuple[float, float, float]) -> Reranking[C]:
+    margin, weight, min_lead = settings
     objects = objects_summary(scene, (instruction, *(c.sentence for c in candidates)))
     return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
-                  weight=weight, tail=tail)
+                  weight=weight, tail=tail, min_lead=min_lead)
