@@ -1,0 +1,134 @@
+"""The idle-robot stage (``PlannerConfig.idle``): jobs of the robot that ends last moved
+to capable robots that end early or never moved, each route walked from the robot's
+start (:mod:`emboteam.hp.routes`), then the plan rebuilt with its drives planned again
+(:func:`emboteam.hp.stages.route.rebuild`), merged, simulated and kept only when its
+simulated makespan is shorter (:mod:`emboteam.hp.stages.rebuilt`).
+
+Why (issue 28): in every sweep cell where ``fast`` was more than 10 % above CP-SAT's
+proven optimum, one capable robot ended far before the makespan, in five of them with no
+work at all (FloorPlan201 4x8 seed 1: robots end at 0, 14.75, 17.5 and 18.5 s; the
+optimum, 16.0 s, gives the idle robot two jobs). The route stage moves a job only to the
+robots whose routes pass nearest to it, and a robot that never left its start passes near
+nothing. Here the receivers are chosen by *when* they end, not where they pass.
+
+Bounded in counts, never seconds: it runs only when some robot ends before
+:data:`EARLY_SHARE` of the makespan, on plans of at most
+:data:`emboteam.hp.stages.route.ROUTE_STEPS` steps, moves at most :data:`MOVES` jobs
+and walks at most :data:`WALKS` times the plan's steps."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Mapping
+
+from emboteam.hp.routes import Routes, timetable
+from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.rebuilt import adopted, shorter
+from emboteam.hp.stages.route import MIN_GAIN, ROUTE_STEPS, draft_layout, rebuild, sequence_of
+
+log = logging.getLogger(__name__)
+
+#: a robot that ends (simulated, or walked during the search) before this share of the
+#: makespan receives jobs; none such, and the stage costs one pass over the plan's steps
+EARLY_SHARE = 0.75
+#: jobs moved at most, one at a time, each from the robot that ends last then
+MOVES = 6
+#: rebuilds (replay, merge, simulation) tried at most
+TRIES = 3
+#: the search's budget: stops walked at most, this many times the plan's steps
+WALKS = 40
+
+
+Change = dict[str, list[str]]
+
+
+def give_idle(ctx: Context, draft: Draft) -> Draft:
+    """The draft with jobs of its last robot given to robots that end early, when the
+    rebuilt plan simulates shorter; else the draft itself. The walk moves one job at a
+    time (:func:`ranked`'s best) while that shortens the routes, up to :data:`MOVES`;
+    then the plan is rebuilt with all those moves, and, when it does not simulate
+    shorter, with one move fewer, for at most :data:`TRIES` rebuilds (the walk does not
+    see everything the simulator does: a box carried away while another robot puts a
+    book in it, FloorPlan201 4x8 seed 1)."""
+    plan = draft.plan
+    if len(plan.steps) > ROUTE_STEPS or not early_robots(draft, EARLY_SHARE):
+        return draft
+    layout = draft_layout(ctx, draft)
+    if layout is None or timetable(layout.walker, layout.nodes, layout.order, layout.waits) is None:
+        return draft
+    routes = Routes(layout.walker, layout.nodes, layout.waits, {r: list(v) for r, v in layout.order.items()})
+    before = routes.cost()[0]
+    undo: list[Change] = []
+    while len(undo) < MOVES:
+        change = next(iter(ranked(routes, WALKS * len(plan.steps))), None)
+        if change is None:
+            break
+        undo.append({r: routes.order[r] for r in change})
+        routes.apply(change)
+    moved, tries, found = len(undo), 0, None
+    if routes.cost()[0] <= before - MIN_GAIN:
+        while undo and tries < TRIES and found is None:  # all the moves, then fewer
+            tries += 1
+            found = shorter(rebuild(ctx, sequence_of(routes, plan, draft.record.sequence)), plan,
+                            "plan with work for idle robots")
+            if found is None:
+                routes.apply(undo.pop())
+        moved = len(undo)
+    log.debug("idle: %d moved in %d rebuilds, %d stops walked", moved, tries, routes.walked)
+    if found is None:
+        return draft
+    return adopted(ctx, draft, found, f"{moved} job(s) given to robots that ended early: "
+                                      f"makespan {plan.makespan:.1f} -> {found.plan.makespan:.1f} s")
+
+
+def early_robots(draft: Draft, share: float) -> list[str]:
+    """The plan's robots whose last step ends (simulated) before ``share`` of its
+    makespan, those without a step included."""
+    ends = dict.fromkeys(draft.plan.robots, 0.0)
+    for s in draft.plan.steps:
+        ends[s.robot] = max(ends.get(s.robot, 0.0), s.est_end)
+    return [r for r in draft.plan.robots if ends[r] < share * draft.plan.makespan]
+
+
+def ranked(routes: Routes, budget: int) -> list[Change]:
+    """The moves of one job from the robot whose walked route ends last to a robot able
+    to do it whose route ends before :data:`EARLY_SHARE` of it (at the job's best place in
+    that route) that shorten the walked routes, best first (ties in a fixed order); the
+    search stops once ``budget`` stops have been walked. Routes compare by their ends,
+    longest first (:func:`_key`): when several robots end at the makespan, a move that
+    shortens one of them is progress, though it lengthens the routes' sum."""
+    now = _key(routes.ends)
+    late = max(sorted(routes.order), key=lambda r: routes.ends[r])
+    receivers = [r for r in sorted(routes.order) if r != late and routes.ends[r] < EARLY_SHARE * now[0]]
+    best: dict[tuple[str, str], tuple[tuple[float, ...], int, Change]] = {}
+    for k, (nid, robot, change) in enumerate(_moves(routes, late, receivers)):
+        if routes.walked >= budget:
+            break
+        if not all(routes.keeps_order(route) for route in change.values()):
+            continue
+        ends = routes.ends_with(change)
+        if ends is None or not _key(ends) < now:
+            continue
+        if (nid, robot) not in best or _key(ends) < best[nid, robot][0]:
+            best[nid, robot] = (_key(ends), k, change)
+    return [c for _, _, c in sorted(best.values(), key=lambda x: (x[0], x[1]))]
+
+
+def _key(ends: Mapping[str, float]) -> tuple[float, ...]:
+    """The robots' ends, longest first (rounded to the simulator's quarter seconds' scale,
+    so that sums of floats compare as equal)."""
+    return tuple(sorted((round(e, 6) for e in ends.values()), reverse=True))
+
+
+def _moves(routes: Routes, late: str, receivers: list[str]) -> list[tuple[str, str, Change]]:
+    """Every move of one job of robot ``late`` to any place in the route of a receiver
+    able to do it: (the job, the receiver, the change)."""
+    out: list[tuple[str, str, Change]] = []
+    for nid in routes.order[late]:
+        rest = [x for x in routes.order[late] if x != nid]
+        for r in receivers:
+            if r not in routes.nodes[nid].robots:
+                continue
+            base = routes.order[r]
+            out.extend((nid, r, {late: rest, r: [*base[:i], nid, *base[i:]]}) for i in range(len(base) + 1))
+    return out
