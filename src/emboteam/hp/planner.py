@@ -42,10 +42,10 @@ from emboteam.hp.stages.context import Context, Draft, Fallback, Solver
 from emboteam.hp.stages.decomposed import plan_decomposed
 from emboteam.hp.stages.drive_ahead import drive_ahead
 from emboteam.hp.stages.fork import improved
+from emboteam.hp.stages.idle import give_idle
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
-from emboteam.hp.stages.idle import give_idle
 from emboteam.hp.stages.route import reorder_after, reroute
 from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers

@@ -95,9 +95,9 @@ def ranked(routes: Routes, budget: int) -> list[Change]:
     to do it whose route ends before :data:`EARLY_SHARE` of it (at the job's best place in
     that route) that shorten the walked routes, best first (ties in a fixed order); the
     search stops once ``budget`` stops have been walked. Routes compare by their ends,
-    longest first (:func:`_key`): when several robots end at the makespan, a move that
+    longest first (:func:`unload_key`): when several robots end at the makespan, a move that
     shortens one of them is progress, though it lengthens the routes' sum."""
-    now = _key(routes.ends)
+    now = unload_key(routes.ends)
     late = max(sorted(routes.order), key=lambda r: routes.ends[r])
     receivers = [r for r in sorted(routes.order) if r != late and routes.ends[r] < EARLY_SHARE * now[0]]
     best: dict[tuple[str, str], tuple[tuple[float, ...], int, Change]] = {}
@@ -107,14 +107,14 @@ def ranked(routes: Routes, budget: int) -> list[Change]:
         if not all(routes.keeps_order(route) for route in change.values()):
             continue
         ends = routes.ends_with(change)
-        if ends is None or not _key(ends) < now:
+        if ends is None or not unload_key(ends) < now:
             continue
-        if (nid, robot) not in best or _key(ends) < best[nid, robot][0]:
-            best[nid, robot] = (_key(ends), k, change)
+        if (nid, robot) not in best or unload_key(ends) < best[nid, robot][0]:
+            best[nid, robot] = (unload_key(ends), k, change)
     return [c for _, _, c in sorted(best.values(), key=lambda x: (x[0], x[1]))]
 
 
-def _key(ends: Mapping[str, float]) -> tuple[float, ...]:
+def unload_key(ends: Mapping[str, float]) -> tuple[float, ...]:
     """The robots' ends, longest first (rounded to the simulator's quarter seconds' scale,
     so that sums of floats compare as equal)."""
     return tuple(sorted((round(e, 6) for e in ends.values()), reverse=True))
