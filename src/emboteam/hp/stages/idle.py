@@ -21,10 +21,12 @@ from __future__ import annotations
 import logging
 from collections.abc import Mapping
 
-from emboteam.hp.routes import Routes, timetable
+from emboteam.hp.plan import MergedPlan
+from emboteam.hp.routes import Node, Routes, timetable
 from emboteam.hp.stages.context import Context, Draft
-from emboteam.hp.stages.rebuilt import adopted, shorter
+from emboteam.hp.stages.rebuilt import Rebuilt, adopted, shorter
 from emboteam.hp.stages.route import MIN_GAIN, ROUTE_STEPS, draft_layout, rebuild, sequence_of
+from emboteam.world.actions import Skill
 
 log = logging.getLogger(__name__)
 
@@ -36,7 +38,7 @@ MOVES = 6
 #: rebuilds (replay, merge, simulation) tried at most
 TRIES = 3
 #: the search's budget: stops walked at most, this many times the plan's steps
-WALKS = 40
+WALKS = 200
 
 
 Change = dict[str, list[str]]
@@ -44,19 +46,34 @@ Change = dict[str, list[str]]
 
 def give_idle(ctx: Context, draft: Draft) -> Draft:
     """The draft with jobs of its last robot given to robots that end early, when the
-    rebuilt plan simulates shorter; else the draft itself. The walk moves one job at a
-    time (:func:`ranked`'s best) while that shortens the routes, up to :data:`MOVES`;
-    then the plan is rebuilt with all those moves, and, when it does not simulate
-    shorter, with one move fewer, for at most :data:`TRIES` rebuilds (the walk does not
-    see everything the simulator does: a box carried away while another robot puts a
-    book in it, FloorPlan201 4x8 seed 1)."""
+    rebuilt plan simulates shorter; else the draft itself. Searched with the merged
+    plan's waits first and, when no rebuild of that search runs shorter, once more with
+    jobs that carry a thing another job acts on kept in the plan's order
+    (:func:`carried`: the walk does not see a robot's hands, FloorPlan201 4x8 seed 1,
+    where a book was put in a box another robot was carrying)."""
     plan = draft.plan
     if len(plan.steps) > ROUTE_STEPS or not early_robots(draft, EARLY_SHARE):
         return draft
     layout = draft_layout(ctx, draft)
-    if layout is None or timetable(layout.walker, layout.nodes, layout.order, layout.waits) is None:
+    if layout is None:
         return draft
-    routes = Routes(layout.walker, layout.nodes, layout.waits, {r: list(v) for r, v in layout.order.items()})
+    for waits in (_joined(layout.waits, carried(plan, layout.nodes)), layout.waits):
+        if timetable(layout.walker, layout.nodes, layout.order, waits) is None:
+            break
+        routes = Routes(layout.walker, layout.nodes, waits, {r: list(v) for r, v in layout.order.items()})
+        found, moved = _searched(ctx, draft, routes)
+        if found is not None:
+            return adopted(ctx, draft, found, f"{moved} job(s) given to robots that ended early: "
+                                              f"makespan {plan.makespan:.1f} -> {found.plan.makespan:.1f} s")
+    return draft
+
+
+def _searched(ctx: Context, draft: Draft, routes: Routes) -> tuple[Rebuilt | None, int]:
+    """The walk moves one job at a time (:func:`ranked`'s best) while that shortens the
+    routes, up to :data:`MOVES`; then the plan is rebuilt with all those moves and, when
+    it does not simulate shorter, with one move fewer, for at most :data:`TRIES`
+    rebuilds. The rebuilt plan that simulates shorter (or None) and the jobs it moved."""
+    plan = draft.plan
     before = routes.cost()[0]
     undo: list[Change] = []
     while len(undo) < MOVES:
@@ -65,7 +82,7 @@ def give_idle(ctx: Context, draft: Draft) -> Draft:
             break
         undo.append({r: routes.order[r] for r in change})
         routes.apply(change)
-    moved, tries, found = len(undo), 0, None
+    tries, found = 0, None
     if routes.cost()[0] <= before - MIN_GAIN:
         while undo and tries < TRIES and found is None:  # all the moves, then fewer
             tries += 1
@@ -73,12 +90,41 @@ def give_idle(ctx: Context, draft: Draft) -> Draft:
                             "plan with work for idle robots")
             if found is None:
                 routes.apply(undo.pop())
-        moved = len(undo)
-    log.debug("idle: %d moved in %d rebuilds, %d stops walked", moved, tries, routes.walked)
-    if found is None:
-        return draft
-    return adopted(ctx, draft, found, f"{moved} job(s) given to robots that ended early: "
-                                      f"makespan {plan.makespan:.1f} -> {found.plan.makespan:.1f} s")
+    log.debug("idle: %d moved in %d rebuilds, %d stops walked", len(undo), tries, routes.walked)
+    return found, len(undo)
+
+
+def carried(plan: MergedPlan, nodes: Mapping[str, Node]) -> dict[str, set[str]]:
+    """Waits that keep, in the plan's order, two jobs of which one picks up a thing the
+    other acts on (a box carried to a table, a book put in it): the merge's waits leave a
+    robot's hands out, and the walk would let such jobs overlap. Step -> the steps it
+    waits for: the later job's first stop at the thing waits for the earlier job's last
+    stop (its hands empty again)."""
+    step = {s.id: s for s in plan.steps}
+    index = {s.id: i for i, s in enumerate(plan.steps)}
+    ordered = sorted((n for n in nodes.values() if n.stops), key=lambda n: index[n.stops[0].step])
+    picks: dict[str, set[str]] = {}
+    at: dict[str, dict[str, str]] = {}  # job -> thing -> its first stop acting on it
+    for n in ordered:
+        picks[n.id] = set()
+        at[n.id] = {}
+        for st in n.stops:
+            act = step[st.step].action
+            if act.skill is Skill.PickupObject:
+                picks[n.id].add(act.target)
+            for x in (act.target, act.receptacle):
+                if x:
+                    at[n.id].setdefault(x, st.step)
+    out: dict[str, set[str]] = {}
+    for i, a in enumerate(ordered):
+        for b in ordered[i + 1:]:
+            for x in sorted((picks[a.id] & at[b.id].keys()) | (picks[b.id] & at[a.id].keys())):
+                out.setdefault(at[b.id][x], set()).add(a.stops[-1].step)
+    return out
+
+
+def _joined(waits: Mapping[str, frozenset[str]], more: Mapping[str, set[str]]) -> dict[str, frozenset[str]]:
+    return {s: frozenset(waits.get(s, frozenset()) | more.get(s, set())) for s in {*waits, *more}}
 
 
 def early_robots(draft: Draft, share: float) -> list[str]:
@@ -91,17 +137,31 @@ def early_robots(draft: Draft, share: float) -> list[str]:
 
 
 def ranked(routes: Routes, budget: int) -> list[Change]:
-    """The moves of one job from the robot whose walked route ends last to a robot able
-    to do it whose route ends before :data:`EARLY_SHARE` of it (at the job's best place in
-    that route) that shorten the walked routes, best first (ties in a fixed order); the
-    search stops once ``budget`` stops have been walked. Routes compare by their ends,
-    longest first (:func:`unload_key`): when several robots end at the makespan, a move that
-    shortens one of them is progress, though it lengthens the routes' sum."""
+    """The moves of one job to a robot able to do it whose walked route ends before
+    :data:`EARLY_SHARE` of the longest (at the job's best place in its route) that
+    shorten the walked routes, best first (ties in a fixed order). The jobs of the robot
+    that ends last are tried first; when none of their moves helps, those of the other
+    robots, latest first (the last robot may be waiting for another's job: a box it puts
+    things in, FloorPlan201 4x8 seed 1). The search stops once ``budget`` stops have been
+    walked. Routes compare by their ends, longest first (:func:`unload_key`): when several
+    robots end at the makespan, a move that shortens one of them is progress, though it
+    lengthens the routes' sum."""
     now = unload_key(routes.ends)
-    late = max(sorted(routes.order), key=lambda r: routes.ends[r])
-    receivers = [r for r in sorted(routes.order) if r != late and routes.ends[r] < EARLY_SHARE * now[0]]
+    receivers = [r for r in sorted(routes.order) if routes.ends[r] < EARLY_SHARE * now[0]]
+    givers = sorted((r for r in routes.order if r not in receivers), key=lambda r: (-routes.ends[r], r))
+    for giver in givers:
+        found = _improving(routes, giver, receivers, now, budget)
+        if found or routes.walked >= budget:
+            return found
+    return []
+
+
+def _improving(routes: Routes, giver: str, receivers: list[str], now: tuple[float, ...], budget: int
+               ) -> list[Change]:
+    """The moves of one job of ``giver`` to a receiver that shorten the walked routes, each
+    job and receiver at its best place, best first."""
     best: dict[tuple[str, str], tuple[tuple[float, ...], int, Change]] = {}
-    for k, (nid, robot, change) in enumerate(_moves(routes, late, receivers)):
+    for k, (nid, robot, change) in enumerate(_moves(routes, giver, receivers)):
         if routes.walked >= budget:
             break
         if not all(routes.keeps_order(route) for route in change.values()):
