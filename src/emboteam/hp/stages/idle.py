@@ -1,6 +1,6 @@
-"""The idle-robot stage (``PlannerConfig.idle``): jobs of the robot that ends last moved
-to capable robots that end early or never moved, each route walked from the robot's
-start (:mod:`emboteam.hp.routes`), then the plan rebuilt with its drives planned again
+"""The idle-robot stage (``PlannerConfig.idle``): jobs of the robot that ends last (or,
+when none of theirs helps, of the others) moved to capable robots that end early or never
+moved, each route walked from the robot's start (:mod:`emboteam.hp.routes`), then the plan rebuilt with its drives planned again
 (:func:`emboteam.hp.stages.route.rebuild`), merged, simulated and kept only when its
 simulated makespan is shorter (:mod:`emboteam.hp.stages.rebuilt`).
 
@@ -33,9 +33,9 @@ log = logging.getLogger(__name__)
 #: a robot that ends (simulated, or walked during the search) before this share of the
 #: makespan receives jobs; none such, and the stage costs one pass over the plan's steps
 EARLY_SHARE = 0.75
-#: jobs moved at most, one at a time, each from the robot that ends last then
+#: jobs moved at most, one at a time
 MOVES = 6
-#: rebuilds (replay, merge, simulation) tried at most
+#: rebuilds (replay, merge, simulation) tried at most per search
 TRIES = 3
 #: the search's budget: stops walked at most, this many times the plan's steps
 WALKS = 200
@@ -46,11 +46,11 @@ Change = dict[str, list[str]]
 
 def give_idle(ctx: Context, draft: Draft) -> Draft:
     """The draft with jobs of its last robot given to robots that end early, when the
-    rebuilt plan simulates shorter; else the draft itself. Searched with the merged
-    plan's waits first and, when no rebuild of that search runs shorter, once more with
-    jobs that carry a thing another job acts on kept in the plan's order
-    (:func:`carried`: the walk does not see a robot's hands, FloorPlan201 4x8 seed 1,
-    where a book was put in a box another robot was carrying)."""
+    rebuilt plan simulates shorter; else the draft itself. Searched first with the jobs
+    that carry a thing another job acts on kept in the plan's order (:func:`carried`: the
+    merge's waits do not see a robot's hands, and a rebuild put a book in a box another
+    robot was carrying, FloorPlan201 4x8 seed 1), then, when no rebuild of that search
+    simulates shorter, with the merge's waits alone."""
     plan = draft.plan
     if len(plan.steps) > ROUTE_STEPS or not early_robots(draft, EARLY_SHARE):
         return draft
