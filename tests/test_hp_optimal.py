@@ -86,10 +86,10 @@ def test_the_four_robot_cells_one_worker_could_not_prove_are_proven(seed: int) -
     in hundredths of a second ended 10 deterministic seconds at 20.75 / 19.70 and 18.0 /
     17.18 (best / bound); in quarter seconds with the interleaved portfolio both are proven
     (20.75 and 17.75, the second shorter than the best one worker found). The plans are
-    made without the route stage, which came later and gives these cells other actions
+    made without the route and idle stages, which came later and give these cells other actions
     (whose optimum is easier to prove): the hard models stay the test's input."""
     _, spec, state = sweep_input("FloorPlan1", 4, 16, seed)
-    plan = HybridPlanner(PlannerConfig(route=False)).plan(spec, state)
+    plan = HybridPlanner(PlannerConfig(route=False, idle=False)).plan(spec, state)
     ref = reference(plan, spec, planning_state(state), limit=10.0)
     assert ref is not None and ref.optimal
     assert ref.bound <= ref.makespan <= plan.makespan + 1e-6

@@ -76,8 +76,8 @@ def test_the_rebalanced_plan_is_valid_deterministic_and_not_longer() -> None:
     # (without action elimination, which makes the first plan 25.2 s and leaves nothing
     # for the re-allocation to gain in this cell)
     spec, state = random_cell(4, 16)
-    off = HybridPlanner(PlannerConfig(rebalance="off", eliminate="off", route=False)).plan(spec, state)
-    on = [HybridPlanner(PlannerConfig(rebalance="cp-sat", eliminate="off", route=False)).plan(spec, state) for _ in range(2)]
+    off = HybridPlanner(PlannerConfig(rebalance="off", eliminate="off", route=False, idle=False)).plan(spec, state)
+    on = [HybridPlanner(PlannerConfig(rebalance="cp-sat", eliminate="off", route=False, idle=False)).plan(spec, state) for _ in range(2)]
     assert on[0].makespan == on[1].makespan and [s.id for s in on[0].steps] == [s.id for s in on[1].steps]
     assert on[0].makespan < 0.9 * off.makespan
     assert any(n.startswith("re-allocated from the measured plans") for n in on[0].notes)

@@ -77,8 +77,8 @@ def test_a_block_move_is_kept_only_when_shorter_valid_and_deterministic() -> Non
     # navigation grid: 35.75 -> 34.25 s. (Seed 0, the cell this test used with Manhattan
     # drives, 25.2 -> 23.2 s, has no such wait on the grid: 17.5 s either way.)
     spec, state = random_cell(4, 16, seed=2)
-    off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False, rebalance="off", route=False)).plan(spec, state)
-    on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False, rebalance="off", route=False)).plan(spec, state)
+    off = HybridPlanner(PlannerConfig(spot_order=False, split_clusters=False, rebalance="off", route=False, idle=False)).plan(spec, state)
+    on = [HybridPlanner(PlannerConfig(spot_order=True, split_clusters=False, rebalance="off", route=False, idle=False)).plan(spec, state)
           for _ in range(2)]
     assert on[0].makespan < off.makespan - 1.0
     assert [(s.robot, s.action) for s in on[0].steps] == [(s.robot, s.action) for s in on[1].steps]

@@ -92,6 +92,11 @@ class PlannerConfig:
     #: planned again; kept when the simulated makespan is shorter (:mod:`emboteam.hp.routes`,
     #: :mod:`emboteam.hp.stages.route`; no planner call). Tried after the container split
     route: bool = True
+    #: jobs of the robot that ends last moved to capable robots that end early or never
+    #: moved (their start as their route), the plan rebuilt with its drives planned again;
+    #: kept when the simulated makespan is shorter (:mod:`emboteam.hp.stages.idle`; no
+    #: planner call). Tried after the route stage
+    idle: bool = True
     #: drives that waited for another robot to bring their object (a box carried to a
     #: table, then a book put in it) go to the place it is brought to instead, so the
     #: robot waits there; kept when the simulated makespan is shorter

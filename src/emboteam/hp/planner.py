@@ -10,7 +10,8 @@ own module with one entry point:
 2. the improvements ``PlannerConfig`` turns on, each ``(Context, Draft) -> Draft``, kept
    only when the simulated makespan is shorter: re-allocation, cluster split, spot order,
    container split (then the spot order again), the jobs on shorter routes with their
-   drives planned again (then the spot order again), the drives that waited for their
+   drives planned again (then the spot order again), jobs of the robot that ends last given
+   to robots that end early (then the spot order again), the drives that waited for their
    object sent ahead to where it is brought (then the spot order again), a switch others
    waited for done by one of them (then the spot order again), CP-SAT over the whole schedule
    (small plans with ``schedule="fast"``, every plan it can model with ``"optimal"``);
@@ -41,6 +42,7 @@ from emboteam.hp.stages.context import Context, Draft, Fallback, Solver
 from emboteam.hp.stages.decomposed import plan_decomposed
 from emboteam.hp.stages.drive_ahead import drive_ahead
 from emboteam.hp.stages.fork import improved
+from emboteam.hp.stages.idle import give_idle
 from emboteam.hp.stages.joint import plan_joint
 from emboteam.hp.stages.reallocate import reallocate
 from emboteam.hp.stages.reorder import reorder
@@ -90,6 +92,8 @@ def improvements(config: PlannerConfig) -> tuple[Stage, ...]:
         stages.append(_then_reorder(split_containers, config.spot_order))
     if config.route:
         stages.append(_then_reorder(reroute, config.spot_order, reorder_after))
+    if config.idle:
+        stages.append(_then_reorder(give_idle, config.spot_order))
     if config.drive_ahead:
         stages.append(_then_reorder(drive_ahead, config.spot_order))
     if config.take_over:

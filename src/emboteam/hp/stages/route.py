@@ -109,7 +109,7 @@ def _once(ctx: Context, draft: Draft) -> Draft:
     misses the goal (two jobs switching one microwave swapped), once more with every
     conflicting pair of jobs kept in its order (:func:`conflicts`)."""
     plan, seq = draft.plan, draft.record.sequence
-    layout = _layout(ctx, draft) if len(plan.steps) <= ROUTE_STEPS else None
+    layout = draft_layout(ctx, draft) if len(plan.steps) <= ROUTE_STEPS else None
     if layout is None:
         return draft
     other = None
@@ -123,13 +123,13 @@ def _once(ctx: Context, draft: Draft) -> Draft:
         improve(routes)
         if routes.cost()[0] > before[0] - MIN_GAIN:
             return draft
-        other = _rebuilt(ctx, _sequence(routes, plan, seq))
+        other = rebuild(ctx, sequence_of(routes, plan, seq))
         if other is not None:
             break
     return _kept(ctx, draft, other, f"{before[0]:.1f} -> {routes.cost()[0]:.1f} s")
 
 
-def _layout(ctx: Context, draft: Draft) -> Layout | None:
+def draft_layout(ctx: Context, draft: Draft) -> Layout | None:
     """The draft's layout, when the stage applies to it (final, independent subtasks; a
     plan made of its sequence)."""
     plan, seq = draft.plan, draft.record.sequence
@@ -144,7 +144,7 @@ def _once_large(ctx: Context, draft: Draft) -> Draft:
     waits without the chains of each cluster's jobs (``layout.free``: what a long cluster
     one robot does can then spread over the idle ones), one rebuild."""
     plan = draft.plan
-    layout = _layout(ctx, draft)
+    layout = draft_layout(ctx, draft)
     if layout is None or timetable(layout.walker, layout.nodes, layout.order, layout.free) is None:
         return draft
     routes = Routes(layout.walker, layout.nodes, layout.free, {r: list(v) for r, v in layout.order.items()})
@@ -154,7 +154,7 @@ def _once_large(ctx: Context, draft: Draft) -> Draft:
     improve_late(routes, LARGE_WALKS * len(plan.steps))
     if routes.cost()[0] > before[0] - MIN_GAIN:
         return draft
-    other = _rebuilt(ctx, _sequence(routes, plan, draft.record.sequence))
+    other = rebuild(ctx, sequence_of(routes, plan, draft.record.sequence))
     return _kept(ctx, draft, other, f"{before[0]:.1f} -> {routes.cost()[0]:.1f} s, the late robots' jobs")
 
 
@@ -292,7 +292,7 @@ def _unchained(problem: optimal.Problem) -> dict[str, set[str]]:
     return out
 
 
-def _sequence(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> list[SeqStep] | None:
+def sequence_of(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> list[SeqStep] | None:
     """The kept steps of the new routes in the order of their starts (each on the robot of
     its route), or None when the routes cannot be timed."""
     found = timetable(routes.walker, routes.nodes, routes.order, routes.waits)
@@ -306,7 +306,7 @@ def _sequence(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> 
             for sid in kept]
 
 
-def _rebuilt(ctx: Context, steps: list[SeqStep] | None) -> Rebuilt | None:
+def rebuild(ctx: Context, steps: list[SeqStep] | None) -> Rebuilt | None:
     """The plan of ``steps`` with its drives planned again by the replay, merged and
     simulated; None when it no longer runs, misses the goal or fails in the simulator."""
     return None if steps is None else replayed(ctx, steps, "rerouted plan", spot_order.reopen)
