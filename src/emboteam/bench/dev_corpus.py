@@ -7,7 +7,8 @@ answer checks and worked examples are measured and chosen against.
 - MACE-THOR (package data).
 
 Held-out sets (``blind_r*/heldout``, ``offline_heldout.jsonl``) and the unseen suite are
-never read here. Each task carries the name of its set, so a caller can keep a task's
+never read here, nor a development round whose ``ABOUT.md`` still says it is not yet measured
+(:data:`UNMEASURED_MARKER`): the lead measures such a round fresh once, then removes the line. Each task carries the name of its set, so a caller can keep a task's
 own set out of what it learns from (``DevTask.set``).
 """
 
@@ -24,7 +25,12 @@ from emboteam.task import BenchTask
 #: blind rounds written to be held out and not yet read: no development script reads them
 #: (their ``heldout`` folders are outside :func:`development_tasks` anyway; the benchmark
 #: scripts that take any folder check this list). docs/unseen_suite.md says what each is for.
-HELD_OUT_ROUNDS = ("blind_r42", "blind_r44", "blind_r46", "blind_r48", "blind_r50", "blind_r52")
+HELD_OUT_ROUNDS = ("blind_r42", "blind_r44", "blind_r46", "blind_r48", "blind_r50", "blind_r52",
+                   "blind_r54")
+
+#: a line of a round's ``ABOUT.md`` saying its ``dev`` tasks await their one fresh measurement;
+#: until the lead removes it, no fitting or failure-listing script may read the round's words
+UNMEASURED_MARKER = "Status: not yet measured"
 
 #: the team a record without one is read with (the offline sets' default)
 DEFAULT_ROBOTS = ("1", "2", "3")
@@ -55,11 +61,23 @@ def _jsonl_tasks(path: Path) -> list[DevTask]:
     return out
 
 
+def is_unmeasured(round_dir: Path) -> bool:
+    """True when the round's ``ABOUT.md`` holds the line :data:`UNMEASURED_MARKER`."""
+    about = round_dir / "ABOUT.md"
+    if not about.is_file():
+        return False
+    return any(line.strip() == UNMEASURED_MARKER
+               for line in about.read_text(encoding="utf-8").splitlines())
+
+
 def development_tasks(data_dir: Path, *, mace_thor: bool = True) -> list[DevTask]:
     """Every development task with a ground-truth goal under ``data_dir`` (``tests/data``),
-    in a fixed order (sets by name, tasks as their files list them)."""
+    in a fixed order (sets by name, tasks as their files list them). Rounds not yet
+    measured (:func:`is_unmeasured`) are skipped."""
     out: list[DevTask] = []
     for round_dir in sorted(data_dir.glob("blind_r*/dev")):
+        if is_unmeasured(round_dir.parent):
+            continue
         name = round_dir.parent.name
         suite = import_smart_llm(round_dir, suite=name)
         out += [DevTask(name, t) for t in suite.tasks if t.goal.conditions]
