@@ -252,6 +252,8 @@ def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene,
 def _rerank_scene(candidates: Sequence[C], tail: Sequence[C], client: LLMClient, scene: Scene, instruction: str,
                   settings: tuple[float, float, float], lead_of: Callable[[C], float] | None) -> Reranking[C]:
     margin, weight, min_lead = settings
-    objects = objects_summary(scene, (instruction, *(c.sentence for c in candidates)))
+    # over every candidate, judged or not: a sentence's PMI then does not depend on which
+    # others the model may judge (and is the one benchmarks/pmi_dev_rounds.py recorded)
+    objects = objects_summary(scene, (instruction, *(c.sentence for c in (*candidates, *tail))))
     return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
                   weight=weight, tail=tail, min_lead=min_lead, lead_of=lead_of)
