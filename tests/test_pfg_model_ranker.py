@@ -349,3 +349,27 @@ def test_hybrid_obeys_the_fitted_kinds_on_recorded_scores() -> None:
     assert not right and client.usage.calls == 1
     right, client = read("blind_r39", "Heat the mug in the microwave")
     assert right and client.usage.calls == 1
+
+
+def test_the_shipped_kinds_follow_the_stated_rule_on_the_committed_records() -> None:
+    """pfg/model_ranker.json's judged kinds are what the rule of benchmarks/pmi_dev_rounds.py
+    gives on the committed records of the fit rounds (r30-r45), and with them the shipped
+    margin, weight and lead never overturn a right reading on those rounds: a hand edit
+    of the file that breaks either shows here."""
+    import json
+    import sys
+
+    from emboteam.pfg.model_ranker import load_ranker_settings
+
+    root = Path(__file__).resolve().parents[1]
+    sys.path.insert(0, str(root / "benchmarks"))  # benchmarks/ is no package
+    from pmi_dev_rounds import kind_table, kinds_by_rule, outcome
+
+    rows = json.loads((root / "benchmarks" / "pmi_dev" / "results_r30_r51.json").read_text())["rows"]
+    fit = [r for r in rows if int(r["round"].removeprefix("blind_r")) < 46]
+    shipped = load_ranker_settings()
+    judged = frozenset(k for k, v in shipped.kinds.items() if v.judge)
+    assert judged == kinds_by_rule(kind_table(fit))
+    cell = outcome(fit, shipped.margin, shipped.weight, shipped.min_lead, judged)
+    assert cell["overturned_to_right"] > 0 and cell["overturned_to_wrong"] == 0
+    assert cell["top1"] > cell["prior_top1"]
