@@ -15,7 +15,8 @@ Per kind of doubt (the kinds two readings settle differently, ``model_ranker.dif
 it also counts, where the model's pick and the prior's first disagree, which was right;
 with ``--split`` the kinds that meet the stated rule (:func:`kinds_by_rule`) on the rounds
 before the split give the grid's second permission axis (``every`` kind or the ``fitted``
-ones), reported on the rounds from the split on.
+ones), reported on the rounds from the split on; the output's ``kinds_entries`` is the
+``kinds`` block of ``pfg/model_ranker.json``.
 
     EMBOTEAM_LLAMACPP_THREADS=1 nice .venv/bin/python benchmarks/pmi_dev_rounds.py --out /tmp/pmi-dev.json
     .venv/bin/python benchmarks/pmi_dev_rounds.py --replay --out /tmp/pmi-dev.json   # from the cassette
@@ -215,6 +216,18 @@ def kinds_by_rule(table: dict[str, dict[str, int]], min_right: int = MIN_MODEL_R
     return frozenset(k for k, c in table.items() if c["model"] >= min_right and c["model"] > c["prior"])
 
 
+def kinds_entries(before: dict[str, dict[str, int]], after: dict[str, dict[str, int]],
+                  judged: frozenset[str]) -> dict[str, dict[str, Any]]:
+    """``model_ranker.json``'s ``kinds``: each kind seen, whether the rule lets the model
+    judge it, and the counts it was chosen on (and the reported ones, not fitted on)."""
+    def counts(c: dict[str, int] | None) -> str:
+        return (f"model {c['model']}, prior {c['prior']}, both {c['both']}, neither {c['neither']}"
+                if c else "no disagreement")
+
+    return {k: {"judge": k in judged, "fit": f"before the split: {counts(before.get(k))}; from the split on "
+                f"(reported, not fitted): {counts(after.get(k))}"} for k in sorted({*before, *after})}
+
+
 def grid(rows: Sequence[dict[str, Any]], fitted: frozenset[str] | None = None) -> list[dict[str, Any]]:
     axis: list[frozenset[str] | None] = [None] if fitted is None else [None, fitted]
     return [outcome(rows, m, w, lead, k) for k in axis for m in MARGINS for w in WEIGHTS for lead in MIN_LEADS]
@@ -268,6 +281,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         out["kinds_before_split"], out["kinds_from_split"] = kind_table(before), kind_table(after)
         fitted = kinds_by_rule(out["kinds_before_split"])
         out["kinds_fitted"] = sorted(fitted)
+        # to paste into pfg/model_ranker.json with the grid cell chosen below
+        out["kinds_entries"] = kinds_entries(out["kinds_before_split"], out["kinds_from_split"], fitted)
         out["grid_before_split"] = grid(before, fitted)
         out["grid_from_split"] = grid(after, fitted)
         print_kinds(f"rounds before r{args.split} (to choose on)", out["kinds_before_split"])
