@@ -11,6 +11,13 @@ scored tasks, how often the model overturns the prior's first and how often that
 right, and calls per task. Nothing is tuned here; the grid is the data for choosing
 ``model_ranker``'s margin and weight.
 
+Per kind of doubt (the kinds two readings settle differently, ``model_ranker.differing_kinds``)
+it also counts, where the model's pick and the prior's first disagree, which was right;
+with ``--split`` the kinds that meet the stated rule (:func:`kinds_by_rule`) on the rounds
+before the split give the grid's second permission axis (``every`` kind or the ``fitted``
+ones), reported on the rounds from the split on; the output's ``kinds_entries`` is the
+``kinds`` block of ``pfg/model_ranker.json``.
+
     EMBOTEAM_LLAMACPP_THREADS=1 nice .venv/bin/python benchmarks/pmi_dev_rounds.py --out /tmp/pmi-dev.json
     .venv/bin/python benchmarks/pmi_dev_rounds.py --replay --out /tmp/pmi-dev.json   # from the cassette
 """
@@ -35,9 +42,8 @@ from emboteam.llm.errors import LLMReplayMiss
 from emboteam.llm.messages import LLMRequest, LLMResponse
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.llm.spec import parse_llm_spec
-from emboteam.pfg.model_ranker import close_count, rerank_in_scene
+from emboteam.pfg.model_ranker import close_count, differing_kinds, rerank_in_scene
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.doubts.priors import load_priors
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
@@ -49,6 +55,10 @@ MARGINS = (0.5, 1.0, 1.5, 2.0, 2.5)
 WEIGHTS = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0)
 #: the PMI lead over the prior's first the model needs to overturn it (0: any)
 MIN_LEADS = (0.0, 1.0, 2.0, 3.0)
+#: the rule for letting the model judge a kind of doubt: on the fit rounds, at the widest
+#: margin and weight 1, where its pick and the prior's first disagree and exactly one is
+#: right, the model was right more often than the prior and at least this often
+MIN_MODEL_RIGHT = 2
 
 
 class CachedScorer:
@@ -91,7 +101,6 @@ def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> li
     from fit_reading_priors import task_case  # a script beside this one (benchmarks/ is on sys.path)
 
     reader = OfflineFrontend()
-    kinds = frozenset(load_priors().prior_only_kinds)
     out: list[dict[str, Any]] = []
     for folder in dev_folders(since, extra):
         for task in import_smart_llm(folder).tasks:
@@ -107,8 +116,9 @@ def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> li
             row: dict[str, Any] = {"round": folder.resolve().parent.name, "instruction": task.instruction,
                                    "priors": [round(c.score, 4) for c in cands],
                                    "right": [bool(case.right(c.goals)) for c in cands],
-                                   "prior_only": [any(r.kind in kinds for r in c.resolves) for c in cands],
                                    "kinds": [sorted({r.kind for r in c.resolves}) for c in cands],
+                                   "resolves": [sorted([r.kind, r.span, r.label] for r in c.resolves)
+                                                for c in cands],
                                    "pmi": None}
             if close_count([c.score for c in cands], WIDEST) >= 2:
                 start = time.process_time()
@@ -124,51 +134,120 @@ def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> li
     return out
 
 
-def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float, min_lead: float = 0.0) -> dict[str, Any]:
+def _diff(row: dict[str, Any], i: int) -> frozenset[str]:
+    res = row["resolves"]
+    return differing_kinds(map(tuple, res[0]), map(tuple, res[i]))
+
+
+def _judged(row: dict[str, Any], margin: float, kinds: frozenset[str] | None) -> list[int]:
+    """The candidates the ranker scores: the first and the close ones the model may judge
+    against it (``kinds`` None: every kind), at most 5, all with recorded scores."""
+    priors, pmi = row["priors"], row["pmi"]
+    if pmi is None:
+        return [0]
+    others = [i for i in range(1, len(priors)) if priors[0] - priors[i] <= margin
+              and (kinds is None or (_diff(row, i) and _diff(row, i) <= kinds))]
+    close = [0, *others[:4]]
+    return close if all(pmi[i] is not None for i in close) else [0]
+
+
+def pick(row: dict[str, Any], close: Sequence[int], weight: float, min_lead: float) -> int:
+    """The ranker's first (``model_ranker.rerank``): by ``prior + weight * pmi``, the first
+    that is the prior's first or leads its PMI by more than ``min_lead``."""
+    priors, pmi = row["priors"], row["pmi"]
+    order = sorted(close, key=lambda i: (-(priors[i] + weight * pmi[i]), i))
+    return next(i for i in order if i == 0 or pmi[i] - pmi[0] > min_lead)
+
+
+def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float, min_lead: float = 0.0,
+            kinds: frozenset[str] | None = None) -> dict[str, Any]:
     """What re-ranking with this margin and weight does to the recorded tasks; with
     ``min_lead``, the model overturns the prior's first only when its PMI leads the
-    first's by more than that (``model_ranker.rerank``'s ``min_lead``)."""
+    first's by more than that; with ``kinds``, it judges only candidates that differ from
+    the first in those kinds of doubt (``model_ranker.rerank_in_scene``'s ``lead_needed``)."""
     calls = overturned = to_right = to_wrong = top1 = prior_top1 = 0
     for r in rows:
-        priors, right = r["priors"], r["right"]
-        if not priors:
+        right = r["right"]
+        if not r["priors"]:
             continue
         prior_top1 += right[0]
-        only = r.get("prior_only") or [False] * len(priors)
-        # as the hybrid front end does: readings settling a prior-only doubt are never
-        # scored, and none is when the first is one
-        close = [i for i in range(len(priors)) if priors[0] - priors[i] <= margin and not only[i]][:5]
-        if only[0] or len(close) < 2 or r["pmi"] is None or any(r["pmi"][i] is None for i in close):
+        close = _judged(r, margin, kinds)
+        if len(close) < 2 or len({r["sentences"][i] for i in close}) < 2:
             top1 += right[0]
             continue
         calls += 1
-        scored = [(priors[i] + weight * r["pmi"][i], -i) for i in close]
-        best = -max(scored)[1]
-        if best != 0 and r["pmi"][best] - r["pmi"][0] <= min_lead:
-            best = 0
+        best = pick(r, close, weight, min_lead)
         top1 += right[best]
         if best != 0:
             overturned += 1
             to_right += right[best] and not right[0]
             to_wrong += right[0] and not right[best]
     read = sum(1 for r in rows if r["priors"])
-    return {"margin": margin, "weight": weight, "min_lead": min_lead, "tasks": read, "calls": calls, "top1": top1,
-            "prior_top1": prior_top1, "overturned": overturned, "overturned_to_right": to_right,
-            "overturned_to_wrong": to_wrong}
+    return {"margin": margin, "weight": weight, "min_lead": min_lead,
+            "kinds": "every" if kinds is None else "+".join(sorted(kinds)) or "none", "tasks": read,
+            "calls": calls, "top1": top1, "prior_top1": prior_top1, "overturned": overturned,
+            "overturned_to_right": to_right, "overturned_to_wrong": to_wrong}
 
 
-def grid(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
-    return [outcome(rows, m, w, lead) for m in MARGINS for w in WEIGHTS for lead in MIN_LEADS]
+def kind_table(rows: Sequence[dict[str, Any]], margin: float = WIDEST, weight: float = 1.0) -> dict[str, dict[str, int]]:
+    """Per kind of doubt, where the model's pick (every kind judged, no lead) differs from
+    the prior's first: how often the model was right and the prior wrong (``model``), the
+    other way (``prior``), both right or neither. A disagreement counts for every kind
+    in which the two readings differ."""
+    table: dict[str, dict[str, int]] = {}
+    for r in rows:
+        close = _judged(r, margin, None)
+        if len(close) < 2:
+            continue
+        best = pick(r, close, weight, 0.0)
+        if best == 0:
+            continue
+        a, b = r["right"][best], r["right"][0]
+        who = "model" if a and not b else "prior" if b and not a else "both" if a else "neither"
+        for kind in _diff(r, best) or {"(none)"}:
+            counts = table.setdefault(kind, {"model": 0, "prior": 0, "both": 0, "neither": 0})
+            counts[who] += 1
+    return dict(sorted(table.items()))
+
+
+def kinds_by_rule(table: dict[str, dict[str, int]], min_right: int = MIN_MODEL_RIGHT) -> frozenset[str]:
+    """The kinds the model may judge: right (where the prior was wrong) at least
+    ``min_right`` times and more often than the prior was right where it was wrong."""
+    return frozenset(k for k, c in table.items() if c["model"] >= min_right and c["model"] > c["prior"])
+
+
+def kinds_entries(before: dict[str, dict[str, int]], after: dict[str, dict[str, int]],
+                  judged: frozenset[str]) -> dict[str, dict[str, Any]]:
+    """``model_ranker.json``'s ``kinds``: each kind seen, whether the rule lets the model
+    judge it, and the counts it was chosen on (and the reported ones, not fitted on)."""
+    def counts(c: dict[str, int] | None) -> str:
+        return (f"model {c['model']}, prior {c['prior']}, both {c['both']}, neither {c['neither']}"
+                if c else "no disagreement")
+
+    return {k: {"judge": k in judged, "fit": f"before the split: {counts(before.get(k))}; from the split on "
+                f"(reported, not fitted): {counts(after.get(k))}"} for k in sorted({*before, *after})}
+
+
+def grid(rows: Sequence[dict[str, Any]], fitted: frozenset[str] | None = None) -> list[dict[str, Any]]:
+    axis: list[frozenset[str] | None] = [None] if fitted is None else [None, fitted]
+    return [outcome(rows, m, w, lead, k) for k in axis for m in MARGINS for w in WEIGHTS for lead in MIN_LEADS]
+
+
+def print_kinds(title: str, table: dict[str, dict[str, int]]) -> None:
+    print(f"== {title}: where the model's pick and the prior's first disagree (margin {WIDEST}, weight 1)")
+    print(f"{'kind':22s} {'model':>5} {'prior':>5} {'both':>5} {'neither':>7}")
+    for kind, c in table.items():
+        print(f"{kind:22s} {c['model']:5d} {c['prior']:5d} {c['both']:5d} {c['neither']:7d}")
 
 
 def print_grid(title: str, cells: Sequence[dict[str, Any]]) -> None:
     print(f"== {title}")
     print(f"{'margin':>6} {'weight':>6} {'lead':>5} {'calls':>5} {'top1':>5} {'prior':>5} {'overturned':>10} "
-          f"{'to right':>8} {'to wrong':>8}")
+          f"{'to right':>8} {'to wrong':>8}  kinds")
     for g in cells:
         print(f"{g['margin']:6.2f} {g['weight']:6.2f} {g['min_lead']:5.1f} {g['calls']:5d} {g['top1']:5d} "
               f"{g['prior_top1']:5d} {g['overturned']:10d} {g['overturned_to_right']:8d} "
-              f"{g['overturned_to_wrong']:8d}   of {g['tasks']} tasks")
+              f"{g['overturned_to_wrong']:8d}  {g['kinds']}   of {g['tasks']} tasks")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -193,13 +272,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     except EmboTeamError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
-    out: dict[str, Any] = {"rows": rows, "grid": grid(rows)}
+    out: dict[str, Any] = {"rows": rows}
+    fitted = None
     if args.split:
         number = lambda r: int(r["round"].removeprefix("blind_r"))  # noqa: E731
-        out["grid_before_split"] = grid([r for r in rows if number(r) < args.split])
-        out["grid_from_split"] = grid([r for r in rows if number(r) >= args.split])
+        before = [r for r in rows if number(r) < args.split]
+        after = [r for r in rows if number(r) >= args.split]
+        out["kinds_before_split"], out["kinds_from_split"] = kind_table(before), kind_table(after)
+        fitted = kinds_by_rule(out["kinds_before_split"])
+        out["kinds_fitted"] = sorted(fitted)
+        # to paste into pfg/model_ranker.json with the grid cell chosen below
+        out["kinds_entries"] = kinds_entries(out["kinds_before_split"], out["kinds_from_split"], fitted)
+        out["grid_before_split"] = grid(before, fitted)
+        out["grid_from_split"] = grid(after, fitted)
+        print_kinds(f"rounds before r{args.split} (to choose on)", out["kinds_before_split"])
+        print_kinds(f"rounds from r{args.split} on (to report)", out["kinds_from_split"])
+        print(f"kinds the model may judge by the rule (model right >= {MIN_MODEL_RIGHT} and > prior right, "
+              f"before r{args.split}): {', '.join(sorted(fitted)) or 'none'}")
         print_grid(f"rounds before r{args.split} (to choose on)", out["grid_before_split"])
         print_grid(f"rounds from r{args.split} on (to report)", out["grid_from_split"])
+    out["grid"] = grid(rows, fitted)
     print_grid("all rounds", out["grid"])
     args.out.write_text(json.dumps(out, indent=1) + "\n", encoding="utf-8")
     return 0

@@ -16,7 +16,7 @@ from emboteam.llm import make_client
 from emboteam.llm.cassette import Cassette
 from emboteam.llm.errors import LLMScoringUnsupported
 from emboteam.llm.scoring import CandidateScore, ScoreRequest, ScoreResponse
-from emboteam.pfg.model_ranker import close_count, objects_summary, rerank
+from emboteam.pfg.model_ranker import close_count, objects_summary, rerank, rerank_in_scene
 from emboteam.world.scene import load_scene
 from llm_servers import ScriptedServer
 
@@ -232,3 +232,144 @@ def test_min_lead_keeps_the_priors_first_unless_the_model_leads_clearly(tmp_path
     assert held.candidates[0] == MICROWAVE and held.ranked[0].pmi == pytest.approx(1.0)
     taken = rerank([MICROWAVE, FRIDGE, BOTH, FAR], **args, min_lead=1.5)
     assert taken.overturned and taken.candidates == (FRIDGE, MICROWAVE, BOTH, FAR)
+
+
+# ---- which kinds of doubt the model may judge (pfg/model_ranker.json "kinds") -----------
+
+@dataclass(frozen=True)
+class Settled:
+    """A reading with the kinds of doubt it settles other than as read."""
+
+    sentence: str
+    score: float
+    kinds: frozenset[str] = frozenset()
+
+
+def _settings(**kinds: dict[str, Any]) -> Any:
+    from emboteam.pfg.model_ranker import RankerSettings
+
+    return RankerSettings.model_validate({"fitted": "test", "margin": 1.0, "weight": 1.0, "min_lead": 1.0,
+                                          "kinds": {k: {"fit": "test", **v} for k, v in kinds.items()}})
+
+
+def test_a_kind_the_model_may_not_judge_is_left_to_the_prior_without_a_call(tmp_path: Path) -> None:
+    """A close reading that differs from the prior's first only in a kind of doubt the
+    model lost on (here a correction) is not scored: with no other close reading the
+    model is not asked at all, and the prior's first stands even though the recorded
+    PMI would have overturned it; a kind it may judge is scored and can overturn."""
+    settings = _settings(correction={"judge": False}, means={"judge": True})
+
+    def lead_needed(first: Settled, other: Settled) -> float | None:
+        return settings.lead_for(first.kinds ^ other.kinds)
+
+    first = Settled(MICROWAVE.sentence, -0.2)
+    corrected = Settled(FRIDGE.sentence, -0.5, frozenset({"correction"}))
+    scene = load_scene("FloorPlan1")
+    Cassette(tmp_path / "empty").open_for_recording("test:handmade")
+    silent = make_client(f"replay:{tmp_path / 'empty'}")  # any call would be a replay miss
+    held = rerank_in_scene([first, corrected], client=silent, scene=scene, instruction=INSTRUCTION,
+                           margin=1.0, weight=1.0, lead_needed=lead_needed)
+    assert not held.scored and held.candidates == (first, corrected) and silent.usage.calls == 0
+
+    # the same two readings, the other one now differing by a means the model may judge
+    meant = Settled(FRIDGE.sentence, -0.5, frozenset({"means"}))
+    client = make_client(cassette(tmp_path / "scores", {MICROWAVE.sentence: 1.0, FRIDGE.sentence: 3.0}))
+    taken = rerank_in_scene([first, meant, corrected], client=client, scene=scene, instruction=INSTRUCTION,
+                            margin=1.0, weight=1.0, lead_needed=lead_needed)
+    assert taken.overturned and taken.candidates == (meant, first, corrected)
+    assert taken.ranked[-1].pmi is None and client.usage.calls == 1  # the correction: never scored
+
+
+def test_a_per_kind_lead_and_a_reading_differing_in_two_kinds() -> None:
+    """A kind's own ``min_lead`` replaces the file's; a reading differing in two kinds
+    needs both allowed and the larger lead; a kind not listed, or no differing kind,
+    leaves the call to the prior."""
+    settings = _settings(means={"judge": True, "min_lead": 4.0}, next_place={"judge": True},
+                         exclusion={"judge": False})
+    assert settings.lead_for({"next_place"}) == 1.0         # the file's min_lead
+    assert settings.lead_for({"means"}) == 4.0
+    assert settings.lead_for({"means", "next_place"}) == 4.0
+    assert settings.lead_for({"means", "exclusion"}) is None
+    assert settings.lead_for({"a_kind_not_listed"}) is None
+    assert settings.lead_for(()) is None
+    assert _settings().lead_for({"anything"}) == 1.0         # no kinds listed: every kind
+
+
+def test_per_kind_settings_are_checked_at_load(tmp_path: Path) -> None:
+    """A misspelt or mistyped per-kind entry is a ModelRankerDataError naming the file and
+    the entry, and every kind the shipped file names is a kind of doubt the reader has
+    priors for (a renamed kind would silently stop being judged)."""
+    from emboteam.pfg.model_ranker import ModelRankerDataError, load_ranker_settings
+    from emboteam.pfg.offline.doubts.priors import load_priors
+
+    head = '{"fitted": "x", "margin": 1.0, "weight": 1.0, "kinds": '
+    bad = tmp_path / "model_ranker.json"
+    bad.write_text(head + '{"means": {"jugde": true, "fit": "x"}}}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"model_ranker\.json: entry kinds\.means\.judge"):
+        load_ranker_settings(bad)
+    bad.write_text(head + '{"means": {"judge": "often", "fit": "x"}}}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"entry kinds\.means\.judge"):
+        load_ranker_settings(bad)
+    bad.write_text(head + '{"means": {"judge": true, "min_lead": -1, "fit": "x"}}}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"entry kinds\.means\.min_lead"):
+        load_ranker_settings(bad)
+    shipped = load_ranker_settings()
+    assert shipped.kinds and shipped.kinds_rule
+    assert set(shipped.kinds) <= set(load_priors().priors)
+    assert not shipped.kinds["correction"].judge and not shipped.kinds["exclusion"].judge
+
+
+def test_hybrid_obeys_the_fitted_kinds_on_recorded_scores() -> None:
+    """Two development tasks with the recorded Qwen 0.5B scores (benchmarks/pmi_dev): on a
+    self-correction the model prefers the rejected desk (PMI lead 5.5), but corrections are
+    not a kind it may judge, so it is not asked and the right reading stands (with every
+    kind allowed it would have overturned it); on a means ("in the microwave") it may
+    judge, and it overturns the wrong reading as read to the right one."""
+    from emboteam.pfg.hybrid import HybridFrontend
+    from emboteam.pfg.offline import OfflineFrontend
+    from emboteam.pfg.offline.evaluate import goal_keys
+
+    root = Path(__file__).resolve().parents[1]
+    satisfies, reader = _satisfies(), OfflineFrontend()
+
+    def read(round_: str, start: str, every_kind: bool = False) -> tuple[bool, Any]:
+        task = _dev_task(round_, start)
+        scene, state, team = load_scene(task.floor_plan), task.initial_state(), task.team()
+        client = make_client(f"replay:{root / 'benchmarks' / 'pmi_dev' / 'cassette'}")
+        hybrid = HybridFrontend(client, reader.parse, rank_margin=2.5)   # the recorded margin
+        if every_kind:
+            hybrid.rank_kinds = hybrid.rank_kinds.model_copy(update={"kinds": {}, "min_lead": 0.0})
+        reading = hybrid.read(task.instruction, scene, state, team)
+        truth = goal_keys(task.ground_truth.conditions, scene)
+        return satisfies(goal_keys(reading.spec.goal().conditions, scene), truth), client
+
+    right, client = read("blind_r31", "The teddy bear goes on the desk, no wait")
+    assert right and client.usage.calls == 0
+    right, client = read("blind_r31", "The teddy bear goes on the desk, no wait", every_kind=True)
+    assert not right and client.usage.calls == 1
+    right, client = read("blind_r39", "Heat the mug in the microwave")
+    assert right and client.usage.calls == 1
+
+
+def test_the_shipped_kinds_follow_the_stated_rule_on_the_committed_records() -> None:
+    """pfg/model_ranker.json's judged kinds are what the rule of benchmarks/pmi_dev_rounds.py
+    gives on the committed records of the fit rounds (r30-r45), and with them the shipped
+    margin, weight and lead never overturn a right reading on those rounds: a hand edit
+    of the file that breaks either shows here."""
+    import json
+    import sys
+
+    from emboteam.pfg.model_ranker import load_ranker_settings
+
+    root = Path(__file__).resolve().parents[1]
+    sys.path.insert(0, str(root / "benchmarks"))  # benchmarks/ is no package
+    from pmi_dev_rounds import kind_table, kinds_by_rule, outcome
+
+    rows = json.loads((root / "benchmarks" / "pmi_dev" / "results_r30_r51.json").read_text())["rows"]
+    fit = [r for r in rows if int(r["round"].removeprefix("blind_r")) < 46]
+    shipped = load_ranker_settings()
+    judged = frozenset(k for k, v in shipped.kinds.items() if v.judge)
+    assert judged == kinds_by_rule(kind_table(fit))
+    cell = outcome(fit, shipped.margin, shipped.weight, shipped.min_lead, judged)
+    assert cell["overturned_to_right"] > 0 and cell["overturned_to_wrong"] == 0
+    assert cell["top1"] > cell["prior_top1"]

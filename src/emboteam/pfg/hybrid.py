@@ -48,8 +48,7 @@ from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
-from emboteam.pfg.model_ranker import Reranking, load_ranker_settings, rerank_in_scene
-from emboteam.pfg.offline.doubts.priors import load_priors
+from emboteam.pfg.model_ranker import Reranking, differing_kinds, load_ranker_settings, rerank_in_scene
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.schema import taskspec_from_answer, taskspec_to_answer
@@ -126,6 +125,9 @@ class HybridFrontend:
         self.rank_margin = settings.margin if rank_margin is None else rank_margin
         self.rank_weight = settings.weight if rank_weight is None else rank_weight
         self.rank_min_lead = settings.min_lead if rank_min_lead is None else rank_min_lead
+        #: which kinds of doubt the model may judge and the lead each needs
+        #: (RankerSettings.lead_for; a ``rank_min_lead`` given stands for the file's)
+        self.rank_kinds = settings.model_copy(update={"min_lead": self.rank_min_lead})
         self.last_ranking: Reranking[Candidate] | None = None
         #: settles a clarification the LLM asks for when it writes a spec the parser could not
         self.clarify = clarify
@@ -163,11 +165,9 @@ class HybridFrontend:
         if len(draft.candidates) < 2 or self.rank_weight <= 0:
             return draft
         try:
-            kinds = frozenset(load_priors().prior_only_kinds)
             ranking = rerank_in_scene(draft.candidates, client=self.client, scene=scene, instruction=instruction,
                                       margin=self.rank_margin, weight=self.rank_weight,
-                                      min_lead=self.rank_min_lead,
-                                      prior_only=lambda c: any(r.kind in kinds for r in c.resolves))
+                                      min_lead=self.rank_min_lead, lead_needed=self.lead_needed)
         except LLMScoringUnsupported:
             return draft
         except SCORING_OUTAGES as exc:
@@ -186,6 +186,11 @@ class HybridFrontend:
         chosen = ReadingNote(span="(model ranking)", kind="assumed",
                              reason=f"the local model preferred a close reading: {best.sentence}")
         return replace(draft, spec=best.spec, candidates=ranking.candidates, notes=(*draft.notes, chosen))
+
+    def lead_needed(self, first: Candidate, other: Candidate) -> float | None:
+        """The PMI lead ``other`` needs to overturn ``first``, by the kinds of doubt the two
+        settle differently (pfg/model_ranker.json ``kinds``); None: the prior decides."""
+        return self.rank_kinds.lead_for(differing_kinds(_resolutions(first), _resolutions(other)))
 
     # ---- the review call ---------------------------------------------------------------
     def request(self, draft: Reading, instruction: str, scene: Scene, state: WorldState,
@@ -259,3 +264,5 @@ class HybridFrontend:
         return Reading(spec=spec, notes=(*draft.notes, corrected))
 
 
+def _resolutions(candidate: Candidate) -> list[tuple[str, str, str]]:
+    return [(r.kind, r.span, r.label) for r in candidate.resolves]

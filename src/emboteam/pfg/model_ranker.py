@@ -9,14 +9,17 @@ is sure of costs no call, and a model score can reorder only the close ones; the
 keep their order after them.
 
 The candidates are anything with a ``sentence`` and a ``score`` (:class:`RankedCandidate`),
-so this module does not depend on the reader's class.
+so this module does not depend on the reader's class. Which close candidates the model may
+judge against the prior's first depends on the *kinds of doubt* they settle differently
+(:meth:`RankerSettings.lead_for`): the 0.5B model is right more often than the prior on
+some kinds and wrong more often on others (docs/llm.md, the per-kind table).
 """
 
 from __future__ import annotations
 
 import json
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -39,6 +42,20 @@ class ModelRankerDataError(EmboTeamError):
     """The model ranker's settings file is missing or malformed."""
 
 
+class KindPermission(BaseModel):
+    """Whether the model may judge readings that differ from the prior's first in one kind
+    of doubt, and what the fit on the development rounds said."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    #: the model may overturn the prior's first over a doubt of this kind
+    judge: bool
+    #: the PMI lead needed over the first for this kind (None: the file's ``min_lead``)
+    min_lead: float | None = Field(None, ge=0, le=20)
+    #: the fit's counts for this kind (model right / prior right / both / neither)
+    fit: str = Field(min_length=1)
+
+
 class RankerSettings(BaseModel):
     """How far the model may reorder the prior's candidates."""
 
@@ -52,6 +69,34 @@ class RankerSettings(BaseModel):
     weight: float = Field(ge=0, le=10)
     #: the model overturns the prior's first only when its PMI leads the first's by more
     min_lead: float = Field(0.0, ge=0, le=20)
+    #: the rule that chose ``kinds`` from the fit (stated, so a refit applies it again)
+    kinds_rule: str = Field("", max_length=2000)
+    #: per kind of doubt (``Resolution.kind``): may the model judge it; a kind not listed
+    #: may not be judged (a new kind has no evidence yet). Empty: every kind may be.
+    kinds: dict[str, KindPermission] = Field(default_factory=dict)
+
+    def lead_for(self, kinds: Iterable[str]) -> float | None:
+        """The PMI lead a close candidate needs to overturn the prior's first when the two
+        settle doubts of ``kinds`` differently; None when the model may not judge them
+        (a kind not allowed, or no differing doubt at all)."""
+        kinds = frozenset(kinds)
+        if not kinds:
+            return None
+        if not self.kinds:
+            return self.min_lead
+        leads = []
+        for kind in kinds:
+            permission = self.kinds.get(kind)
+            if permission is None or not permission.judge:
+                return None
+            leads.append(self.min_lead if permission.min_lead is None else permission.min_lead)
+        return max(leads)
+
+
+def differing_kinds(first: Iterable[tuple[str, str, str]], other: Iterable[tuple[str, str, str]]) -> frozenset[str]:
+    """The kinds of doubt two candidates settle differently, from their resolutions as
+    ``(kind, span, label)``: the kind of the close call between them."""
+    return frozenset(r[0] for r in set(first) ^ set(other))
 
 
 @cache
@@ -146,13 +191,15 @@ def close_count(priors: Sequence[float], margin: float) -> int:
 
 
 def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruction: str, margin: float,
-           weight: float, max_scored: int = MAX_SCORED, tail: Sequence[C] = (), min_lead: float = 0.0) -> Reranking[C]:
+           weight: float, max_scored: int = MAX_SCORED, tail: Sequence[C] = (), min_lead: float = 0.0,
+           lead_of: Callable[[C], float] | None = None) -> Reranking[C]:
     """``candidates`` (best first by prior) re-ranked where the prior is unsure.
 
     The leading candidates within ``margin`` of the first (at most ``max_scored``) are
     scored in one :meth:`LLMClient.score` call and ordered by ``prior + weight * pmi``;
-    the others follow in their order; the prior's first stays first unless the new first's
-    PMI leads its PMI by more than ``min_lead``. With fewer than two close candidates, or close
+    the others follow in their order. The first by that order that either is the prior's
+    first or leads its PMI by more than ``min_lead`` (``lead_of(candidate)`` when given)
+    comes first; the rest keep the combined order. With fewer than two close candidates, or close
     candidates that all say the same sentence, nothing is asked. Errors of the call (:class:`~emboteam.llm.errors.LLMError`, e.g.
     ``LLMScoringUnsupported``) propagate: the caller decides what stands instead."""
     priors = [float(c.score) for c in candidates]
@@ -168,8 +215,9 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
     # stable: equal combined scores keep the prior's order
     scored.sort(key=lambda r: -r.combined)
     first = next(r for r in scored if r.candidate is candidates[0])
-    if scored[0] is not first and (scored[0].pmi or 0.0) - (first.pmi or 0.0) <= min_lead:
-        scored = [first, *(r for r in scored if r is not first)]
+    needed = lead_of or (lambda _: min_lead)
+    winner = next(r for r in scored if r is first or (r.pmi or 0.0) - (first.pmi or 0.0) > needed(r.candidate))
+    scored = [winner, *(r for r in scored if r is not winner)]
     rest = [Ranked(c, p, None, p) for c, p in zip(candidates[n:], priors[n:], strict=True)]
     return Reranking((*scored, *rest, *_unscored(tail)), scored=True,
                      overturned=scored[0].candidate is not candidates[0], response=response)
@@ -181,25 +229,31 @@ def _unscored(candidates: Sequence[C]) -> tuple[Ranked[C], ...]:
 
 def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene, instruction: str,
                     margin: float, weight: float, min_lead: float = 0.0,
-                    prior_only: Callable[[C], bool] | None = None) -> Reranking[C]:
+                    lead_needed: Callable[[C, C], float | None] | None = None) -> Reranking[C]:
     """:func:`rerank` with the objects summary of ``scene`` for the instruction and the
-    candidates' sentences: the one call a front end makes. Candidates ``prior_only``
-    marks (readings that settle a doubt the model is known to judge no better than
-    chance) are not scored: they keep their place by the prior, and when the first is
-    one, nothing is asked."""
-    if prior_only is not None:
-        if candidates and prior_only(candidates[0]):
-            return rerank(candidates[:1], client=client, objects="", instruction=instruction, margin=margin,
-                          weight=weight, tail=candidates[1:])
-        scored = [c for c in candidates if not prior_only(c)]
-        rest = [c for c in candidates if prior_only(c)]
-        return _rerank_scene(scored, rest, client, scene, instruction, (margin, weight, min_lead))
-    return _rerank_scene(list(candidates), [], client, scene, instruction, (margin, weight, min_lead))
+    candidates' sentences: the one call a front end makes. ``lead_needed(first, other)``
+    says what PMI lead ``other`` needs to overturn the prior's ``first``, or None when the
+    model may not judge the doubt between them (a kind on which it was no better than the
+    prior): those candidates are not scored and keep their place by the prior after the
+    scored ones; when none may be judged, nothing is asked."""
+    if lead_needed is None or not candidates:
+        return _rerank_scene(list(candidates), [], client, scene, instruction, (margin, weight, min_lead), None)
+    first = candidates[0]
+    leads = {id(c): lead_needed(first, c) for c in candidates[1:]}
+    judged = [first, *(c for c in candidates[1:] if leads[id(c)] is not None)]
+    rest = [c for c in candidates[1:] if leads[id(c)] is None]
+
+    def lead_of(c: C) -> float:
+        return leads.get(id(c)) or 0.0
+
+    return _rerank_scene(judged, rest, client, scene, instruction, (margin, weight, min_lead), lead_of)
 
 
 def _rerank_scene(candidates: Sequence[C], tail: Sequence[C], client: LLMClient, scene: Scene, instruction: str,
-                  settings: tuple[float, float, float]) -> Reranking[C]:
+                  settings: tuple[float, float, float], lead_of: Callable[[C], float] | None) -> Reranking[C]:
     margin, weight, min_lead = settings
-    objects = objects_summary(scene, (instruction, *(c.sentence for c in candidates)))
+    # over every candidate, judged or not: a sentence's PMI then does not depend on which
+    # others the model may judge (and is the one benchmarks/pmi_dev_rounds.py recorded)
+    objects = objects_summary(scene, (instruction, *(c.sentence for c in (*candidates, *tail))))
     return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
-                  weight=weight, tail=tail, min_lead=min_lead)
+                  weight=weight, tail=tail, min_lead=min_lead, lead_of=lead_of)

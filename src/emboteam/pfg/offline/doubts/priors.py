@@ -36,9 +36,6 @@ class Priors(BaseModel):
     #: log-score per instruction word a reading accounts for beyond the reading as read
     #: (doubts/coverage.py); 0 ranks by the priors alone
     coverage_weight: float = Field(0.0, ge=0, le=10)
-    #: kinds of doubt the local model judges no better than chance (issue 25's 0/6 on
-    #: corrections, exclusions, negations): a reading settling one is never scored
-    prior_only_kinds: list[str] = Field(default_factory=lambda: ["correction", "exclusion"])
 
     def prior(self, kind: str, label: str) -> float:
         table = self.priors.get(kind, {})
