@@ -24,6 +24,8 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
 | device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
+| placed_instead | :mod:`.placed_instead` (a carried thing read as held or switched: placed where the words near it point) |
+| switch | :mod:`.switches` (a switch goal the other way; a named device, or its knob, switched: priors only) |
 
 The words of contents, exclusive, next_place are
 data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
@@ -44,11 +46,13 @@ from emboteam.pfg.offline.doubts import (
     next_place,
     of_compound,
     others,
+    placed_instead,
     resumed,
     scene_type,
     scope,
     slices,
     state,
+    switches,
     unexplained,
 )
 from emboteam.pfg.offline.doubts.context import DoubtContext
@@ -78,7 +82,7 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *others.doubts(ctx),
+             *instances.doubts(ctx), *others.doubts(ctx), *switches.doubts(ctx), *placed_instead.doubts(ctx),
              *(d for d in reading_doubts(ctx) if d.kind != device_state.KIND)]
     return [d for d in found if len(d.choices) > 1]
 

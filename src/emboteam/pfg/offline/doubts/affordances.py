@@ -69,14 +69,16 @@ def _flip(ctx: DoubtContext, type_: str, attr: str, yes: Predicate, no: Predicat
     return None
 
 
-def _places_near(ctx: DoubtContext, k: int, thing: str, place: _Place) -> list[str]:
+def places_near(ctx: DoubtContext, k: int, thing: str, place: _Place | None = None) -> list[str]:
     """Receptacles named as destinations (after a placing preposition) within ``reach``
     words of position ``k``, nearest first (after it before before it at the same
-    distance)."""
+    distance); ``place``: the file's ``place`` entry unless given."""
+    where = place or load_affordances().place
+
     def destination(m: int) -> bool:
-        return any(i.prep in place.preps or i.text in place.preps for i in ctx.items[max(0, m - 3):m])
+        return any(i.prep in where.preps or i.text in where.preps for i in ctx.items[max(0, m - 3):m])
     near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, types in ctx.mentions()
-            if m != k and abs(m - k) <= place.reach and types[0] != thing and "receptacle" in _props(types[0])
+            if m != k and abs(m - k) <= where.reach and types[0] != thing and "receptacle" in _props(types[0])
             and destination(m)]
     return list(dict.fromkeys(t for _, t in sorted(near)))
 
@@ -94,7 +96,7 @@ def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Conditio
     out: list[tuple[str, Condition]] = []
     if data.place.property in props:
         out += [(data.place.label, placed(thing, p))
-                for p in _places_near(ctx, k, thing, data.place)[:data.place.most]
+                for p in places_near(ctx, k, thing, data.place)[:data.place.most]
                 if not _already(ctx, thing, p)]
     if data.switch.property in props and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
                                                      Predicate.switched_off)) is not None:

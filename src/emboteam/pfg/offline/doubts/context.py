@@ -76,9 +76,27 @@ class DoubtContext:
     def _mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
         from emboteam.pfg.offline.doubts.sound_alike import heard
 
-        read = [(k, i, types) for k, i in enumerate(self.items) if (types := self.named_types(i))]
+        read = [(k, i, types) for k, i in enumerate(self.items)
+                if (types := self.named_types(i, verbs_too=self.noun_slot(k)))]
         misheard = [(k, self.items[k], types) for k, types in heard(self.items, self.scene_types)]
         return sorted(read + misheard, key=lambda m: m[0])
+
+    def noun_slot(self, k: int) -> bool:
+        """Whether the word at ``k`` stands where only a noun can: after a determiner, a
+        number or a quantifier, over at most one untagged word ("the spare roll", "two
+        rolls", "my watch"), so a word that is also a verb names a thing there: a thing one
+        picks up (a fixed device's word stays the verb it was read as: "the telly's light
+        enough", "do the switches")."""
+        noun = self.items[k].noun
+        if noun is None or noun.concept.kind != "object" or not noun.concept.types or \
+                "pickupable" not in type_props(noun.concept.types[0]):
+            return False
+        for back, item in enumerate(reversed(self.items[max(0, k - 2):k])):
+            if item.det or item.number is not None or item.quant is not None:
+                return True
+            if back or item.is_content() or item.prep is not None or item.punct is not None or item.pron is not None:
+                return False
+        return False
 
     def mentions(self) -> list[tuple[int, Item, tuple[str, ...]]]:
         """(position, word, scene types) of every word that names a thing of the scene,
