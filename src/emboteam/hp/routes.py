@@ -253,14 +253,24 @@ class Routes:
             self.partners[b].add(a)
         #: the waits as :func:`timetable` reads them, for the routes' stops (which every
         #: change only moves: a change's routes hold the same nodes)
+        self._last: tuple[tuple[tuple[str, ...], ...], tuple[dict[str, float], dict[str, float], int] | None] | None \
+            = None
         self.prepared = Prepared.of([st.step for route in self.order.values() for nid in route
                                    for st in self.nodes[nid].stops], self.waits)
         self.apply(dict(self.order))
 
     def timetable(self, order: Mapping[str, Sequence[str]] | None = None
                   ) -> tuple[dict[str, float], dict[str, float], int] | None:
-        """:func:`timetable` of these routes (or of ``order``: the same nodes, moved)."""
-        return timetable(self.walker, self.nodes, self.order if order is None else order, self.waits, self.prepared)
+        """:func:`timetable` of these routes (or of ``order``: the same nodes, moved). The
+        last one is kept: a change is timed when it is priced, again when it is applied,
+        and the search times the routes it made once more (copies handed out: callers
+        keep and change the dictionaries)."""
+        order = self.order if order is None else order
+        key = tuple((r, *route) for r, route in order.items())
+        if self._last is None or self._last[0] != key:
+            self._last = (key, timetable(self.walker, self.nodes, order, self.waits, self.prepared))
+        found = self._last[1]
+        return None if found is None else (dict(found[0]), dict(found[1]), found[2])
 
     def _alone(self, change: Mapping[str, list[str]]) -> bool:
         """No node of the changed routes waits for, or is waited for by, a node on another
