@@ -18,7 +18,7 @@ from __future__ import annotations
 import bisect
 from collections.abc import Mapping
 
-from emboteam.hp.routes import Routes, nearest_robots, timetable
+from emboteam.hp.routes import Routes, nearest_robots
 
 #: robots whose jobs are tried, those that end last (each of them may hold the makespan
 #: after the next move)
@@ -94,7 +94,7 @@ def improve_late(routes: Routes, budget: int) -> Routes:
     """Move jobs off the robots that end last while that ends the routes earlier, until
     no such job can go anywhere better or ``budget`` stops have been walked."""
     while routes.walked < budget:
-        found = timetable(routes.walker, routes.nodes, routes.order, routes.waits)
+        found = routes.timetable()
         if found is None:
             break
         routes.walked += found[2]

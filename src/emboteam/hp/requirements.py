@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from emboteam.pddl.errors import ImpossibleGoalError, MissingSkillError
 from emboteam.pddl.goal_compiler import GoalPart, compile_condition
@@ -293,7 +294,7 @@ def estimate(state: WorldState, robot: str, needs: Sequence[Need]) -> float:
     """Seconds ``robot`` would be busy with ``needs``: driving along their visits from
     where it stands, plus their manipulation."""
     r = state.robots[robot]
-    pos = r.position
+    pos = (r.position[0], r.position[1])  # hashable whatever the caller built (see _drive_seconds)
     total = 0.0
     for need in needs:
         for oid in need.visits:
@@ -302,7 +303,15 @@ def estimate(state: WorldState, robot: str, needs: Sequence[Need]) -> float:
                 continue
             o = state.objects[anchor]
             dest = (o.position[0], o.position[2])
-            total += navigation_seconds(pos, dest, r.profile.speed, state.floor_plan)
+            total += _drive_seconds(pos, dest, r.profile.speed, state.floor_plan)
             pos = dest
         total += need.work
     return total
+
+
+@lru_cache(maxsize=1 << 16)
+def _drive_seconds(a: tuple[float, float], b: tuple[float, float], speed: float, floor_plan: str) -> float:
+    """:func:`navigation_seconds`, memoised: the allocator estimates every cluster for
+    every robot (96 x 32 in the largest sweep cell), the same few hundred drives again and
+    again, and the navigation's own caches sit behind several calls."""
+    return navigation_seconds(a, b, speed, floor_plan)

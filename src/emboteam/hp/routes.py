@@ -99,69 +99,130 @@ class Walker:
             n += len(node.stops)
         return here, clock, n
 
+#: a stop as a robot walks it: where the robot stands after it, and the seconds
+#: :meth:`Walker.stop` gives it (the drive there included)
+Leg = tuple[Point, float]
+
+
 @dataclass
 class _Clock:
-    """One robot in :func:`timetable`: its stops, the next one, where it stands and when
+    """One robot in :func:`timetable`: its stops and their legs, the next one, and when
     it is free."""
 
-    stops: list[Stop]
-    here: Point
+    stops: Sequence[Stop]
+    legs: Sequence[Leg]
     free: float = 0.0
     next: int = 0
 
 
+def legs_of(walker: Walker, robot: str, stops: Sequence[Stop]) -> list[Leg]:
+    """The legs of ``robot`` walking ``stops`` from its start: a robot's legs depend on
+    its own route alone (where it stands comes from its own stops), never on the others'."""
+    here = walker.starts[robot]
+    out: list[Leg] = []
+    for st in stops:
+        here, dt = walker.stop(robot, here, st)
+        out.append((here, dt))
+    return out
+
+
+@dataclass(frozen=True)
+class Prepared:
+    """What :func:`timetable` reads that a search over one plan's routes shares across
+    the thousands of orders it times: how many stops each stop waits for, the stops
+    waiting for each one (both from the waits alone), and each route walked so far
+    (robot and its node ids -> its stops and legs: a change moves two routes, and the
+    other robots' legs are the ones walked before)."""
+
+    counts: dict[str, int]
+    waiters: dict[str, tuple[str, ...]]
+    walked: dict[tuple[str, tuple[str, ...]], tuple[list[Stop], list[Leg]]] = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, stops: Sequence[str], waits: Mapping[str, frozenset[str]]) -> Prepared:
+        waiters: dict[str, list[str]] = {}
+        for s in stops:
+            for p in waits.get(s, ()):
+                waiters.setdefault(p, []).append(s)
+        return cls({s: len(waits.get(s, ())) for s in stops}, {p: tuple(v) for p, v in waiters.items()})
+
+    def route(self, walker: Walker, nodes: Mapping[str, Node], robot: str, route: Sequence[str]
+              ) -> tuple[list[Stop], list[Leg]]:
+        key = (robot, tuple(route))
+        found = self.walked.get(key)
+        if found is None:
+            stops = [st for nid in route for st in nodes[nid].stops]
+            found = self.walked[key] = (stops, legs_of(walker, robot, stops))
+        return found
+
+
 def timetable(walker: Walker, nodes: Mapping[str, Node], order: Mapping[str, Sequence[str]],
-              waits: Mapping[str, frozenset[str]]) -> tuple[dict[str, float], dict[str, float], int] | None:
+              waits: Mapping[str, frozenset[str]], prepared: Prepared | None = None
+              ) -> tuple[dict[str, float], dict[str, float], int] | None:
     """Walk every route at once, stop by stop, as the simulator runs a plan: the robot
     that arrives first at a stop it may start goes next (ties: by name); a stop starts
     when its robot has driven there, the stops it waits for (``waits``: step id -> step
     ids, on any robot) have ended and nobody else is at its spot. Each stop's start (step
     id -> seconds), each robot's end, the stops walked; None when the routes wait on each
-    other in a circle.
+    other in a circle. ``prepared``: :meth:`Prepared.of` the routes' stops and ``waits``
+    (made here when not given; a search passes its own, the same for every order of the
+    same stops).
 
     Event-driven (a heap of the robots whose next stop may start, keyed by arrival and
     name; a robot whose next stop waits joins it when the last stop it waits for ends):
     the same choices as scanning every robot at each stop, in O(stops log robots), which
     the search over a 32-robot, 230-step plan needs (it prices thousands of changes)."""
-    clocks = {r: _Clock([st for nid in order[r] for st in nodes[nid].stops], walker.starts[r]) for r in order}
-    missing = {st.step: len(waits.get(st.step, ())) for c in clocks.values() for st in c.stops}
+    if prepared is None:
+        stops = {r: [st for nid in order[r] for st in nodes[nid].stops] for r in order}
+        prepared = Prepared.of([st.step for r in order for st in stops[r]], waits)
+        clocks = {r: _Clock(stops[r], legs_of(walker, r, stops[r])) for r in order}
+    else:
+        clocks = {r: _Clock(*prepared.route(walker, nodes, r, order[r])) for r in order}
     robot_of = {st.step: r for r, c in clocks.items() for st in c.stops}
-    waiters: dict[str, list[str]] = {}
-    for s in missing:
-        for p in waits.get(s, ()):
-            waiters.setdefault(p, []).append(s)
+    missing = dict(prepared.counts)
+    waiters = prepared.waiters
     ready: list[tuple[float, str, Point]] = []
     for r, c in sorted(clocks.items()):
-        _queue(walker, ready, r, c, missing)
+        _queue(ready, r, c, missing)
     ends: dict[str, float] = {}
     spots: dict[str, float] = {}
     starts: dict[str, float] = {}
+    no_wait: frozenset[str] = frozenset()
     while ready:
-        arrival, r, here = heapq.heappop(ready)
+        arrival, r, _ = heapq.heappop(ready)
         c = clocks[r]
         st = c.stops[c.next]
-        start = max([arrival, spots.get(st.spot or "", 0.0), *(ends[p] for p in waits.get(st.step, ()))])
-        starts[st.step], ends[st.step] = start, start + st.seconds
+        # the latest of the arrival, the spot's release and the waits' ends (the first
+        # of equal values, as max() takes it)
+        start = arrival
+        if st.spot is not None and spots.get(st.spot, 0.0) > start:
+            start = spots[st.spot]
+        for p in waits.get(st.step, no_wait):
+            if ends[p] > start:
+                start = ends[p]
+        end = start + st.seconds
+        starts[st.step], ends[st.step] = start, end
         if st.spot is not None:
-            spots[st.spot] = start + st.seconds
-        c.here, c.free, c.next = here, start + st.seconds, c.next + 1
-        _queue(walker, ready, r, c, missing)
+            spots[st.spot] = end
+        c.free, c.next = end, c.next + 1
+        _queue(ready, r, c, missing)
         for s in waiters.get(st.step, ()):
             missing[s] -= 1
-            if missing[s] == 0 and clocks[robot_of[s]].stops[clocks[robot_of[s]].next].step == s:
-                _queue(walker, ready, robot_of[s], clocks[robot_of[s]], missing)
+            if missing[s] == 0:
+                other = clocks[robot_of[s]]
+                if other.stops[other.next].step == s:
+                    _queue(ready, robot_of[s], other, missing)
     if len(starts) < len(missing):
         return None
     return starts, {r: c.free for r, c in clocks.items()}, len(starts)
 
 
-def _queue(walker: Walker, ready: list[tuple[float, str, Point]], robot: str, c: _Clock,
-           missing: Mapping[str, int]) -> None:
+def _queue(ready: list[tuple[float, str, Point]], robot: str, c: _Clock, missing: Mapping[str, int]) -> None:
     """Put the robot on the heap when its next stop waits for nothing unfinished: keyed
     by when it arrives there (driving first) and its name, with where it will stand."""
     if c.next < len(c.stops) and missing[c.stops[c.next].step] == 0:
         st = c.stops[c.next]
-        here, dt = walker.stop(robot, c.here, st)
+        here, dt = c.legs[c.next]
         heapq.heappush(ready, (c.free + dt - st.seconds, robot, here))
 
 
@@ -190,7 +251,26 @@ class Routes:
         for a, b in self.before:
             self.partners[a].add(b)
             self.partners[b].add(a)
+        #: the waits as :func:`timetable` reads them, for the routes' stops (which every
+        #: change only moves: a change's routes hold the same nodes)
+        self._last: tuple[tuple[tuple[str, ...], ...], tuple[dict[str, float], dict[str, float], int] | None] | None \
+            = None
+        self.prepared = Prepared.of([st.step for route in self.order.values() for nid in route
+                                   for st in self.nodes[nid].stops], self.waits)
         self.apply(dict(self.order))
+
+    def timetable(self, order: Mapping[str, Sequence[str]] | None = None
+                  ) -> tuple[dict[str, float], dict[str, float], int] | None:
+        """:func:`timetable` of these routes (or of ``order``: the same nodes, moved). The
+        last one is kept: a change is timed when it is priced, again when it is applied,
+        and the search times the routes it made once more (copies handed out: callers
+        keep and change the dictionaries)."""
+        order = self.order if order is None else order
+        key = tuple((r, *route) for r, route in order.items())
+        if self._last is None or self._last[0] != key:
+            self._last = (key, timetable(self.walker, self.nodes, order, self.waits, self.prepared))
+        found = self._last[1]
+        return None if found is None else (dict(found[0]), dict(found[1]), found[2])
 
     def _alone(self, change: Mapping[str, list[str]]) -> bool:
         """No node of the changed routes waits for, or is waited for by, a node on another
@@ -223,7 +303,7 @@ class Routes:
     def ends_with(self, change: Mapping[str, list[str]]) -> dict[str, float] | None:
         """Each robot's end with ``change`` made (None: the routes would wait in a circle)."""
         if not self._alone(change):
-            found = timetable(self.walker, self.nodes, {**self.order, **change}, self.waits)
+            found = self.timetable({**self.order, **change})
             if found is None:
                 return None
             self.walked += found[2]
@@ -244,7 +324,7 @@ class Routes:
             self.order[r] = route
             self._refresh(r)
         if self.before:
-            found = timetable(self.walker, self.nodes, self.order, self.waits)
+            found = self.timetable()
             assert found is not None, "a change was applied that waits in a circle"
             self.ends = found[1]
 

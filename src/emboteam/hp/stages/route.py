@@ -295,7 +295,7 @@ def _unchained(problem: optimal.Problem) -> dict[str, set[str]]:
 def sequence_of(routes: Routes, plan: MergedPlan, seq: Sequence[GroundedStep]) -> list[SeqStep] | None:
     """The kept steps of the new routes in the order of their starts (each on the robot of
     its route), or None when the routes cannot be timed."""
-    found = timetable(routes.walker, routes.nodes, routes.order, routes.waits)
+    found = routes.timetable()
     if found is None:
         return None
     times = found[0]
