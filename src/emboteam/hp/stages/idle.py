@@ -11,6 +11,10 @@ optimum, 16.0 s, gives the idle robot two jobs). The route stage moves a job onl
 robots whose routes pass nearest to it, and a robot that never left its start passes near
 nothing. Here the receivers are chosen by *when* they end, not where they pass.
 
+When no single move shortens the walked routes, two at once (:mod:`emboteam.hp.stages.
+idle_chain`: an ejection chain through a robot that only passes work along; FloorPlan1
+8 x 16 seeds 0 and 1).
+
 Bounded in counts, never seconds: it runs only when some robot ends before
 :data:`EARLY_SHARE` of the makespan, on plans of at most
 :data:`emboteam.hp.stages.route.ROUTE_STEPS` steps, moves at most :data:`MOVES` jobs
@@ -70,7 +74,8 @@ def give_idle(ctx: Context, draft: Draft) -> Draft:
 
 
 def _searched(ctx: Context, draft: Draft, routes: Routes) -> tuple[Rebuilt | None, int]:
-    """The walk moves one job at a time (:func:`ranked`'s best) while that shortens the
+    """The walk moves one job at a time (:func:`ranked`'s best, else the best ejection
+    chain of two, :func:`emboteam.hp.stages.idle_chain.chained`) while that shortens the
     routes, up to :data:`MOVES`; then the plan is rebuilt with all those moves and, when
     it does not simulate shorter, with one move fewer, for at most :data:`TRIES`
     rebuilds. The rebuilt plan that simulates shorter (or None) and the jobs it moved."""
