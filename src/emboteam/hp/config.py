@@ -93,7 +93,9 @@ class PlannerConfig:
     #: :mod:`emboteam.hp.stages.route`; no planner call). Tried after the container split
     route: bool = True
     #: jobs of the robot that ends last moved to capable robots that end early or never
-    #: moved (their start as their route), the plan rebuilt with its drives planned again;
+    #: moved (their start as their route), one at a time or, when no single move helps, two
+    #: at once (:mod:`emboteam.hp.stages.idle_chain`: a job of the last robot to any able
+    #: robot, one of that robot's on to an early one), the plan rebuilt with its drives planned again;
     #: kept when the simulated makespan is shorter (:mod:`emboteam.hp.stages.idle`; no
     #: planner call). Tried after the route stage
     idle: bool = True

@@ -11,6 +11,10 @@ optimum, 16.0 s, gives the idle robot two jobs). The route stage moves a job onl
 robots whose routes pass nearest to it, and a robot that never left its start passes near
 nothing. Here the receivers are chosen by *when* they end, not where they pass.
 
+When no single move shortens the walked routes, two at once (:mod:`emboteam.hp.stages.
+idle_chain`: an ejection chain through a robot that only passes work along; FloorPlan1
+8 x 16 seeds 0 and 1).
+
 Bounded in counts, never seconds: it runs only when some robot ends before
 :data:`EARLY_SHARE` of the makespan, on plans of at most
 :data:`emboteam.hp.stages.route.ROUTE_STEPS` steps, moves at most :data:`MOVES` jobs
@@ -24,6 +28,7 @@ from collections.abc import Mapping
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.routes import Node, Routes, timetable
 from emboteam.hp.stages.context import Context, Draft
+from emboteam.hp.stages.idle_chain import CHAIN_WALKS, chained
 from emboteam.hp.stages.rebuilt import Rebuilt, adopted, shorter
 from emboteam.hp.stages.route import MIN_GAIN, ROUTE_STEPS, draft_layout, rebuild, sequence_of
 from emboteam.world.actions import Skill
@@ -69,7 +74,8 @@ def give_idle(ctx: Context, draft: Draft) -> Draft:
 
 
 def _searched(ctx: Context, draft: Draft, routes: Routes) -> tuple[Rebuilt | None, int]:
-    """The walk moves one job at a time (:func:`ranked`'s best) while that shortens the
+    """The walk moves one job at a time (:func:`ranked`'s best, else the best ejection
+    chain of two, :func:`emboteam.hp.stages.idle_chain.chained`) while that shortens the
     routes, up to :data:`MOVES`; then the plan is rebuilt with all those moves and, when
     it does not simulate shorter, with one move fewer, for at most :data:`TRIES`
     rebuilds. The rebuilt plan that simulates shorter (or None) and the jobs it moved."""
@@ -78,6 +84,8 @@ def _searched(ctx: Context, draft: Draft, routes: Routes) -> tuple[Rebuilt | Non
     undo: list[Change] = []
     while len(undo) < MOVES:
         change = next(iter(ranked(routes, WALKS * len(plan.steps))), None)
+        if change is None:
+            change = chained(routes, _receivers(routes), routes.walked + CHAIN_WALKS * len(plan.steps), unload_key)
         if change is None:
             break
         undo.append({r: routes.order[r] for r in change})
@@ -147,13 +155,19 @@ def ranked(routes: Routes, budget: int) -> list[Change]:
     robots end at the makespan, a move that shortens one of them is progress, though it
     lengthens the routes' sum."""
     now = unload_key(routes.ends)
-    receivers = [r for r in sorted(routes.order) if routes.ends[r] < EARLY_SHARE * now[0]]
+    receivers = _receivers(routes)
     givers = sorted((r for r in routes.order if r not in receivers), key=lambda r: (-routes.ends[r], r))
     for giver in givers:
         found = _improving(routes, giver, receivers, now, budget)
         if found or routes.walked >= budget:
             return found
     return []
+
+
+def _receivers(routes: Routes) -> list[str]:
+    """The robots whose walked routes end before :data:`EARLY_SHARE` of the longest."""
+    longest = max(routes.ends.values(), default=0.0)
+    return [r for r in sorted(routes.order) if routes.ends[r] < EARLY_SHARE * longest]
 
 
 def _improving(routes: Routes, giver: str, receivers: list[str], now: tuple[float, ...], budget: int
