@@ -18,6 +18,7 @@ from pydantic import BaseModel, Field
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.context import type_props as _props
+from emboteam.pfg.offline.doubts.destination import led
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.knowledge import read
 from emboteam.world.goals import Condition, Predicate
@@ -41,8 +42,6 @@ class _Place(BaseModel):
     label: str
     reach: int = Field(7, ge=1, le=30)
     most: int = Field(2, ge=1, le=5)
-    #: a place counts as a destination only after one of these (within two words)
-    preps: list[str] = Field(default_factory=list)
 
 
 class Affordances(BaseModel):
@@ -70,14 +69,12 @@ def _flip(ctx: DoubtContext, type_: str, attr: str, yes: Predicate, no: Predicat
 
 
 def _places_near(ctx: DoubtContext, k: int, thing: str, place: _Place) -> list[str]:
-    """Receptacles named as destinations (after a placing preposition) within ``reach``
+    """Receptacles named as destinations (:func:`.destination.led`) within ``reach``
     words of position ``k``, nearest first (after it before before it at the same
     distance)."""
-    def destination(m: int) -> bool:
-        return any(i.prep in place.preps or i.text in place.preps for i in ctx.items[max(0, m - 3):m])
     near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, types in ctx.mentions()
             if m != k and abs(m - k) <= place.reach and types[0] != thing and "receptacle" in _props(types[0])
-            and destination(m)]
+            and led(ctx, m) is not None]
     return list(dict.fromkeys(t for _, t in sorted(near)))
 
 

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.context import type_props as _props
+from emboteam.pfg.offline.doubts.destination import led
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.morphology import verb_lemma
@@ -142,7 +143,7 @@ def _own_place(ctx: DoubtContext, at: int, end: int, words: Contents) -> str | N
             linked = True
         types = ctx.named_types(item)
         if types and "receptacle" in _props(types[0]) and linked and \
-                any(i.text in words.destination_preps for i in ctx.items[max(at + 1, j - 3):j]):
+                led(ctx, j, at + 1) is not None:
             return types[0]
         if types and "pickupable" in _props(types[0]):
             return None
@@ -163,7 +164,7 @@ def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
         if not min(k, src_at) < m < end or m == src_at or types[0] == source or m in skip:
             continue
         if "receptacle" in _props(types[0]) and \
-                any(i.text in words.destination_preps for i in ctx.items[max(min(k, src_at) + 1, m - 2):m]):
+                led(ctx, m, min(k, src_at) + 1) is not None:
             return types[0]
         if "pickupable" in _props(types[0]) and m > max(k, src_at) and not set(types) & excepted:
             return None

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.destination import led
 from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import placed
 from emboteam.pfg.sentences import clause
@@ -38,10 +39,8 @@ def _things(ctx: DoubtContext, start: int, k: int) -> tuple[str, int] | None:
 
 
 def _destination(ctx: DoubtContext, k: int, end: int) -> str | None:
-    preps = load_rule_words().contents.destination_preps
     for m, _, types in ctx.mentions():
-        if k < m < end and load_catalogue().type(types[0]).has("receptacle") and \
-                any(i.text in preps for i in ctx.items[max(k, m - 3):m]):
+        if k < m < end and load_catalogue().type(types[0]).has("receptacle") and led(ctx, m, k) is not None:
             return types[0]
     return None
 

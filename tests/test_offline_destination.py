@@ -1,4 +1,5 @@
-"""A thing named with no goal is read in its own window (doubts/window.py): a receptacle
+"""Where a thing goes, by the one destination finder (doubts/destination.py): a thing named
+with no goal is read in its own window: a receptacle
 there that it can go in, a home cue, a keep cue give its goal in the first reading, marked
 unsure; a person a ramble names is chatter, not a missing thing. Sentences written for
 this test (not round tasks)."""
@@ -11,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.doubts.window import WINDOW_CUES_FILE, WindowCues
+from emboteam.pfg.offline.doubts.destination import DESTINATION_CUES_FILE, DestinationCues
 from emboteam.pfg.offline.errors import GroundingError
 from emboteam.pfg.offline.knowledge import KnowledgeDataError, read
 from emboteam.pfg.reading import Reading
@@ -81,9 +82,18 @@ def test_a_person_as_the_only_object_still_names_nothing(frontend: OfflineFronte
 
 
 def test_a_malformed_cue_file_names_file_and_entry(tmp_path: Path) -> None:
-    raw = json.loads(WINDOW_CUES_FILE.read_text(encoding="utf-8"))
+    raw = json.loads(DESTINATION_CUES_FILE.read_text(encoding="utf-8"))
     raw["reach"] = 0
-    bad = tmp_path / "window_cues.json"
+    bad = tmp_path / "destination_cues.json"
     bad.write_text(json.dumps(raw), encoding="utf-8")
-    with pytest.raises(KnowledgeDataError, match=r"window_cues\.json: reach"):
-        read(bad, WindowCues)
+    with pytest.raises(KnowledgeDataError, match=r"destination_cues\.json: reach"):
+        read(bad, DestinationCues)
+
+
+def test_an_unknown_cue_field_names_file_and_entry(tmp_path: Path) -> None:
+    raw = json.loads(DESTINATION_CUES_FILE.read_text(encoding="utf-8"))
+    raw["toward"] = [["into"]]
+    bad = tmp_path / "destination_cues.json"
+    bad.write_text(json.dumps(raw), encoding="utf-8")
+    with pytest.raises(KnowledgeDataError, match=r"destination_cues\.json: toward"):
+        read(bad, DestinationCues)
