@@ -82,6 +82,13 @@ def led(ctx: DoubtContext, m: int, lo: int = 0) -> str | None:
     return cues[-1]
 
 
+def linked(ctx: DoubtContext, at: int, m: int) -> bool:
+    """Whether a mark or a pronoun stands between a thing and a later place (the place is
+    then the thing's own: "except the knife, which goes in a drawer")."""
+    links = load_rule_words().contents.own_place_links
+    return any(i.punct is not None or i.text in links for i in ctx.items[at + 1:m])
+
+
 def _listed(ctx: DoubtContext, last: int, m: int) -> bool:
     """Whether only determiners, conjunctions, commas and numbers stand between two
     mentions (a list: "the card and the keys")."""
@@ -125,8 +132,9 @@ def destination(ctx: DoubtContext, k: int, thing: str, hi: int | None = None) ->
     data, cat, here = load_destination_cues(), load_catalogue(), present(ctx, thing)
     lo, end = window(ctx, k, thing)
     end = end if hi is None else min(end, hi)
-    if find(ctx.items, max(0, k - 4), k, load_rule_words().contents.excluders):
-        return ()     # "apart from the alarm clock": what is excluded goes nowhere
+    # an excepted thing goes only where its own words send it, past a mark or a pronoun
+    # ("except the knife, which goes in a drawer"; not "everything but the mug goes in the sink")
+    excepted = bool(find(ctx.items, max(0, k - 4), k, load_rule_words().contents.excluders))
     homes = {s for s, _ in find(ctx.items, lo, end, data.home)}
     since, found = lo, list[tuple[bool, int, tuple[str, ...]]]()
     for m in range(lo, end):
@@ -141,7 +149,7 @@ def destination(ctx: DoubtContext, k: int, thing: str, hi: int | None = None) ->
             continue
         if any(i.neg for i in ctx.items[since:m]):
             since = m + 1     # "pens don't live on the bed, their home is the box"
-        elif fits and types[0] not in here:
+        elif fits and types[0] not in here and not (excepted and not linked(ctx, k, m)):
             found.append((cue not in data.directional, len(found), types))
     return min(found)[2] if found else ()
 
