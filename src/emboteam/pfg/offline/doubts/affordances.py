@@ -21,6 +21,7 @@ from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.destination import led
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.knowledge import read
+from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, Predicate
 
 AFFORDANCES_FILE = Path(__file__).with_name("affordances.json")
@@ -78,21 +79,15 @@ def _places_near(ctx: DoubtContext, k: int, thing: str, place: _Place) -> list[s
     return list(dict.fromkeys(t for _, t in sorted(near)))
 
 
-def _already(ctx: DoubtContext, thing: str, place: str) -> bool:
-    """Whether every object of the type is in the place already (a goal that asks nothing)."""
-    objs = list(ctx.state.of_type(thing))
-    return bool(objs) and all(any(ctx.state.obj(a).type == place for a in ctx.state.ancestors(o.id)) for o in objs)
-
-
 def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Condition]]:
     """(label, goal) the scene allows for the thing named at ``k``."""
     data = load_affordances()
     props = _props(thing)
     out: list[tuple[str, Condition]] = []
     if data.place.property in props:
-        out += [(data.place.label, placed(thing, p))
-                for p in _places_near(ctx, k, thing, data.place)[:data.place.most]
-                if not _already(ctx, thing, p)]
+        # a place where it is already asks nothing ("the remote's all the way over on the desk")
+        goals = [g for p in _places_near(ctx, k, thing, data.place) if not check_condition(g := placed(thing, p), ctx.state).holds]
+        out += [(data.place.label, g) for g in goals[:data.place.most]]
     if data.switch.property in props and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
                                                      Predicate.switched_off)) is not None:
         out.append((data.switch.label, one_object(p, thing)))
