@@ -12,9 +12,11 @@ from pathlib import Path
 import pytest
 
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.doubts.destination import DESTINATION_CUES_FILE, DestinationCues
+from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.destination import DESTINATION_CUES_FILE, DestinationCues, destination
 from emboteam.pfg.offline.errors import GroundingError
 from emboteam.pfg.offline.knowledge import KnowledgeDataError, read
+from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.reading import Reading
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
@@ -97,3 +99,35 @@ def test_an_unknown_cue_field_names_file_and_entry(tmp_path: Path) -> None:
     bad.write_text(json.dumps(raw), encoding="utf-8")
     with pytest.raises(KnowledgeDataError, match=r"destination_cues\.json: toward"):
         read(bad, DestinationCues)
+
+
+# the one destination finder, on sentences written for it (dest25)
+def _ctx(text: str, floor_plan: str) -> DoubtContext:
+    scene = load_scene(floor_plan)
+    return DoubtContext(items=tag(text), goals=(), scene=scene,
+                        state=WorldState.from_scene(scene, parse_team("1,2,3")))
+
+
+def _at(ctx: DoubtContext, word: str) -> int:
+    return next(k for k, item, _ in ctx.mentions() if item.text == word)
+
+
+@pytest.mark.parametrize(("text", "floor_plan", "word", "thing", "wanted"), [
+    # a directional cue leads past a source word; a place led by a cue is inside the window
+    ("the soap bar comes out onto the shelf", "FloorPlan401", "soap bar", "SoapBar", "Shelf"),
+    ("Pencils don't belong on the bed, their home is the drawer.", "FloorPlan301", "pencils", "Pencil", "Drawer"),
+    # a cue does not lead across a sentence mark ("on. the drawer" is no destination)
+    ("the keychain goes in. the drawer is open.", "FloorPlan201", "keychain", "KeyChain", None),
+    # an excepted thing goes only where its own words send it, past a mark or a pronoun
+    ("everything but the pencil goes in the drawer", "FloorPlan301", "pencil", "Pencil", None),
+    ("everything but the pencil, which goes in the drawer", "FloorPlan301", "pencil", "Pencil", "Drawer"),
+])
+def test_the_destination_a_things_words_give(text: str, floor_plan: str, word: str, thing: str,
+                                            wanted: str | None) -> None:
+    ctx = _ctx(text, floor_plan)
+    assert next(iter(destination(ctx, _at(ctx, word), thing)), None) == wanted
+
+
+def test_a_home_named_after_a_long_complaint_is_read(frontend: OfflineFrontend) -> None:
+    reading = _read(frontend, "The remote keeps turning up everywhere; its home is the coffee table.", "FloorPlan201")
+    assert "inside(RemoteControl, CoffeeTable)" in _goals(reading)
