@@ -49,8 +49,8 @@ from emboteam.pfg.offline.decompose import assemble
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
 from emboteam.pfg.offline.doubts.contradiction import settle_placements
+from emboteam.pfg.offline.doubts.mention_words import being
 from emboteam.pfg.offline.doubts.priors import Priors
-from emboteam.pfg.offline.doubts.window import being
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
     drop_guessed_water,

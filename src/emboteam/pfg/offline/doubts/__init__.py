@@ -21,15 +21,15 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
-| next_place | :mod:`.next_place` (the first destination named after a thing in its sentence) |
-| mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state, a direction) |
+| next_place | :mod:`.destination` (where a thing's own words send it; the one destination finder, ``destination_cues.json``) |
+| mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state) |
 | device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 | placed_instead | :mod:`.placed_instead` (a carried thing read as held or switched: placed where the words near it point) |
 | switch | :mod:`.switches` (a switch goal the other way; a named device, or its knob, switched: priors only) |
 
-The words of contents, exclusive, next_place are
-data: ``rule_words.json`` (:mod:`.rule_words`); the cues of mention_cue are
-``mention_cues.json``.
+The words of contents and exclusive are data: ``rule_words.json`` (:mod:`.rule_words`);
+the cues of mention_cue are ``mention_cues.json``; every destination cue is
+``destination_cues.json``.
 """
 
 from __future__ import annotations
@@ -37,13 +37,13 @@ from __future__ import annotations
 from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline.doubts import (
     contents,
+    destination,
     device,
     device_state,
     exclusive,
     instances,
     means,
     mention_cues,
-    next_place,
     of_compound,
     others,
     placed_instead,
@@ -65,7 +65,7 @@ def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     things taken up by a quantified pronoun."""
     # a narrative's device states ("when I walk in the TV is on") may make a reading too
     told = device_state.doubts(ctx) if ctx.narrative else []
-    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *next_place.doubts(ctx), *told,
+    found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *destination.doubts(ctx), *told,
              *resumed.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 

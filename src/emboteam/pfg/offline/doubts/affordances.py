@@ -18,8 +18,10 @@ from pydantic import BaseModel, Field
 
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.context import type_props as _props
+from emboteam.pfg.offline.doubts.destination import led
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.knowledge import read
+from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, Predicate
 
 AFFORDANCES_FILE = Path(__file__).with_name("affordances.json")
@@ -41,8 +43,6 @@ class _Place(BaseModel):
     label: str
     reach: int = Field(7, ge=1, le=30)
     most: int = Field(2, ge=1, le=5)
-    #: a place counts as a destination only after one of these (within two words)
-    preps: list[str] = Field(default_factory=list)
 
 
 class Affordances(BaseModel):
@@ -70,23 +70,14 @@ def _flip(ctx: DoubtContext, type_: str, attr: str, yes: Predicate, no: Predicat
 
 
 def places_near(ctx: DoubtContext, k: int, thing: str, place: _Place | None = None) -> list[str]:
-    """Receptacles named as destinations (after a placing preposition) within ``reach``
+    """Receptacles named as destinations (:func:`.destination.led`) within ``reach``
     words of position ``k``, nearest first (after it before before it at the same
     distance); ``place``: the file's ``place`` entry unless given."""
     where = place or load_affordances().place
-
-    def destination(m: int) -> bool:
-        return any(i.prep in where.preps or i.text in where.preps for i in ctx.items[max(0, m - 3):m])
     near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, types in ctx.mentions()
             if m != k and abs(m - k) <= where.reach and types[0] != thing and "receptacle" in _props(types[0])
-            and destination(m)]
+            and led(ctx, m) is not None]
     return list(dict.fromkeys(t for _, t in sorted(near)))
-
-
-def _already(ctx: DoubtContext, thing: str, place: str) -> bool:
-    """Whether every object of the type is in the place already (a goal that asks nothing)."""
-    objs = list(ctx.state.of_type(thing))
-    return bool(objs) and all(any(ctx.state.obj(a).type == place for a in ctx.state.ancestors(o.id)) for o in objs)
 
 
 def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Condition]]:
@@ -95,9 +86,9 @@ def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Conditio
     props = _props(thing)
     out: list[tuple[str, Condition]] = []
     if data.place.property in props:
-        out += [(data.place.label, placed(thing, p))
-                for p in places_near(ctx, k, thing, data.place)[:data.place.most]
-                if not _already(ctx, thing, p)]
+        # a place where it is already asks nothing ("the remote's all the way over on the desk")
+        goals = [g for p in places_near(ctx, k, thing, data.place) if not check_condition(g := placed(thing, p), ctx.state).holds]
+        out += [(data.place.label, g) for g in goals[:data.place.most]]
     if data.switch.property in props and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
                                                      Predicate.switched_off)) is not None:
         out.append((data.switch.label, one_object(p, thing)))

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.context import type_props as _props
+from emboteam.pfg.offline.doubts.destination import destination, led, linked
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.morphology import verb_lemma
@@ -130,31 +131,6 @@ def _which(types: tuple[str, ...], present: set[str]) -> list[str]:
     return [t for t in types if t in present] or [types[0]]
 
 
-def _own_place(ctx: DoubtContext, at: int, end: int, words: Contents) -> str | None:
-    """Where an excepted thing's own words send it ("the knife excepted - that one lives
-    in a drawer", "except the phone, it comes down to the counter"): a receptacle after a
-    placing preposition, with a mark or a pronoun between (else the place is the set's:
-    "everything except the mug goes in the sink")."""
-    linked = False
-    for j in range(at + 1, end):
-        item = ctx.items[j]
-        if item.punct is not None or item.text in words.own_place_links:
-            linked = True
-        types = ctx.named_types(item)
-        if types and "receptacle" in _props(types[0]) and linked and \
-                any(i.text in words.destination_preps for i in ctx.items[max(at + 1, j - 3):j]):
-            return types[0]
-        if types and "pickupable" in _props(types[0]):
-            return None
-    return None
-
-
-def _linked(ctx: DoubtContext, at: int, m: int, words: Contents) -> bool:
-    """Whether a mark or a pronoun stands between an excepted thing and a later place (the
-    place is then the thing's own: "except the knife, which goes in a drawer")."""
-    return any(i.punct is not None or i.text in words.own_place_links for i in ctx.items[at + 1:m])
-
-
 def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
                  skip: set[int], excepted: set[str], words: Contents) -> str | None:
     """The receptacle a placing preposition leads to after the trigger, with only excepted
@@ -163,7 +139,7 @@ def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
         if not min(k, src_at) < m < end or m == src_at or types[0] == source or m in skip:
             continue
         if "receptacle" in _props(types[0]) and \
-                any(i.text in words.destination_preps for i in ctx.items[max(min(k, src_at) + 1, m - 2):m]):
+                led(ctx, m, min(k, src_at) + 1) is not None:
             return types[0]
         if "pickupable" in _props(types[0]) and m > max(k, src_at) and not set(types) & excepted:
             return None
@@ -291,7 +267,7 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     excepting = _excepted(ctx, start, exc_end, words)
     spots = excepting + _staying(ctx, start, exc_end, words)
     named = {t for _, types in spots for t in types}
-    own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and _linked(ctx, spots[0][0], m, words)}
+    own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and linked(ctx, spots[0][0], m)}
     dest = _destination(ctx, k, src_at, end, source, own, named, words)
     if dest is None:
         return None
@@ -299,7 +275,7 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     choices: list[Choice] = []
     for holders in _source_sets(ctx, src_at, source, {t for _, types in excepting for t in types}):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
-        excepted = {t: _own_place(ctx, m, exc_end, words) for m, types in spots for t in _which(types, present)}
+        excepted = {t: next(iter(destination(ctx, m, t, exc_end)), None) for m, types in spots for t in _which(types, present)}
         c = _choice(ctx, holders, source, dest, excepted, elsewhere)
         if c is not None and not c.drop and set(c.add) <= set(ctx.goals):
             if not choices:

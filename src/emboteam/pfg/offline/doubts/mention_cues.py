@@ -8,8 +8,7 @@ stretch of words (its clause, cut at the neighbouring things that are not places
   thing kept as it is, its start place or its start state read from the scene, or the
   state its stretch names ("the floor lamp stays on" -> on);
 - a *state* word or participle ("the floor lamp glowing", "blinds down", "laptop: shut");
-(a *direction* to a receptacle named after it, "mug -> desk", is the mention's window's:
-:mod:`.window`, through the unexplained-mention doubt).
+(a place it goes, "mug -> desk", "leave the phone on the bed", is :mod:`.destination`'s).
 
 *Chatter* cues ("we used to have", "last time", "can't find") make the mention chatter
 instead: :func:`chatter` is also one of :mod:`.explained`'s explanations. The cue words
@@ -24,6 +23,7 @@ from collections.abc import Mapping, Sequence
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.context import type_props as _props
+from emboteam.pfg.offline.doubts.destination import destination
 from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
 from emboteam.pfg.offline.doubts.mention_words import (
     MentionCues,
@@ -32,7 +32,6 @@ from emboteam.pfg.offline.doubts.mention_words import (
     segment,
     side,
 )
-from emboteam.pfg.offline.doubts.rule_words import Words, find
 from emboteam.pfg.offline.doubts.state_words import load_state_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
 from emboteam.pfg.offline.tagger import Item
@@ -128,17 +127,6 @@ def said_state(ctx: DoubtContext, k: int, end: int, thing: str) -> Condition | N
     return None
 
 
-def _destination(ctx: DoubtContext, k: int, end: int, thing: str, cues: Sequence[Words]) -> str | None:
-    """The receptacle named after the ``cues`` after the thing ("leave the phone on the
-    bed")."""
-    data = load_mention_cues()
-    for _, e in find(ctx.items, k + 1, min(end, k + 1 + data.direction_reach), cues):
-        place = next((ts[0] for m, _, ts in ctx.mentions() if e <= m < min(end, e + 3)), None)
-        if place is not None and place != thing and "receptacle" in _props(place):
-            return place
-    return None
-
-
 def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool) -> Predicate:
     """The switch state a thing kept as it is ends in: its start state, unless the
     reading switches the rest of its group to that state ("lights off (desk lamp can
@@ -190,8 +178,8 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
         return ("keep", goals) if goals else None
     if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
         goals = kept(ctx, thing, state, named)
-        if (there := _destination(ctx, k, end, thing, data.placing)) is not None:
-            goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there))
+        if there := destination(ctx, k, thing, end):
+            goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there[0]))
         return ("leave", goals) if goals else None
     if negated:
         return None      # "not the lamp on": only a keeping cue speaks past a negation

@@ -36,10 +36,6 @@ class MentionCues(_Closed):
     keep: list[SidedCue]
     #: words that are a state only with no place after them ("stays on" / "stays on the shelf")
     place_preps: list[str]
-    #: what names the place after "leave X" / "keep X" ("leave the phone on the bed")
-    placing: list[Words]
-    #: how far after the thing a direction may stand ("mug -> desk", "tissues + candle moved 2 the tank")
-    direction_reach: int = Field(4, ge=1, le=12)
     #: words that say a state as it is (with the tagger's copulas): "its broken anyway"
     copulas: list[str]
     #: words between a copula and a state that make it wanted: "should be", "is always on"
@@ -52,6 +48,8 @@ class MentionCues(_Closed):
     #: how far from the thing a keeping cue may stand ("the keys stay on the little table")
     cue_reach: int = Field(6, ge=1, le=20)
     chatter_reach: int = Field(4, ge=1, le=12)
+    #: people and animals a ramble names ("my brother", "the dog"): chatter, not things
+    beings: list[str]
 
 
     @field_validator("groups")
@@ -65,6 +63,12 @@ def load_mention_cues(path: Path = MENTION_CUES_FILE) -> MentionCues:
     """The cue file, checked by its schema (a malformed entry is a
     :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming file and entry)."""
     return read(path, MentionCues)
+
+
+def being(phrase: str | None) -> bool:
+    """Whether a phrase that names nothing in the scene is a person or an animal ("my
+    brother", "the dog"): chatter in a ramble, not a thing the scene lacks."""
+    return phrase is not None and bool(phrase.split()) and phrase.split()[-1] in load_mention_cues().beings
 
 
 def after_preposition(ctx: DoubtContext, k: int, start: int) -> bool:

@@ -4,8 +4,8 @@ cupboard", "the pillows - both of them go on the armchair").
 
 The pronoun ("all of them", "both of them", "them all") stands for the plural noun named
 last before it, counted by the number before that noun (checked against the scene: no
-more than it has) or, without one, every instance; the destination is the receptacle a
-placing preposition leads to after the pronoun, in its sentence. The alternative places
+more than it has) or, without one, every instance; the destination is where the words
+after the pronoun send those things, in its sentence (:mod:`.destination`). The alternative places
 those things there and replaces the reading's placements there of things its sentence
 does not name (a pronoun read as an earlier thing). The words are data
 (``rule_words.json``, ``resumed``).
@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.destination import destination
 from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import placed
 from emboteam.pfg.sentences import clause
@@ -37,25 +38,16 @@ def _things(ctx: DoubtContext, start: int, k: int) -> tuple[str, int] | None:
     return types[0], min(said or have, have)
 
 
-def _destination(ctx: DoubtContext, k: int, end: int) -> str | None:
-    preps = load_rule_words().contents.destination_preps
-    for m, _, types in ctx.mentions():
-        if k < m < end and load_catalogue().type(types[0]).has("receptacle") and \
-                any(i.text in preps for i in ctx.items[max(k, m - 3):m]):
-            return types[0]
-    return None
-
-
 def doubts(ctx: DoubtContext) -> list[Doubt]:
     out = []
     for k, after in find(ctx.items, 0, len(ctx.items), load_rule_words().resumed.pronouns):
         start, end = sentence_bounds(ctx.items, k)
         prev = sentence_bounds(ctx.items, start - 2)[0] if start > 1 else start
         found = _things(ctx, prev, k)
-        dest = _destination(ctx, after - 1, end)
-        if found is None or dest is None:
+        places = destination(ctx, after - 1, found[0], end) if found is not None else ()
+        if found is None or not places:
             continue
-        type_, n = found
+        (type_, n), dest = found, places[0]
         goal = placed(type_, dest)
         goal = goal.model_copy(update={"count": n}) if n > 1 else goal
         named = {t for m, _, ts in ctx.mentions() if start <= m < end for t in ts}

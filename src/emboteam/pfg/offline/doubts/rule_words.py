@@ -1,6 +1,5 @@
 """The words of the reading-level points of doubt: exclusions over a receptacle's
-contents (:mod:`.contents`), exclusive purposes (:mod:`.exclusive`), the destination a
-thing's own words give it (:mod:`.next_place`), a narrative's states stated as they should
+contents (:mod:`.contents`), exclusive purposes (:mod:`.exclusive`), a narrative's states stated as they should
 be (``stated``: :mod:`.device_state`). Data (``rule_words.json``), checked at load by the schema below: a
 malformed entry is a :class:`~emboteam.pfg.offline.knowledge.KnowledgeDataError` naming
 the file and the entry.
@@ -29,7 +28,6 @@ class Contents(_Closed):
     quantifiers: list[str]
     emptying_verbs: list[str]
     source_preps: list[str]
-    destination_preps: list[str]
     pronoun_places: list[str]
     excluders: list[Words]
     #: excluders that follow their thing ("the knife excepted")
@@ -81,18 +79,6 @@ class Exclusive(_Closed):
     _known = field_validator("lights", "screens")(known_types)
 
 
-class NextPlace(_Closed):
-    destination_cues: list[Words]
-    #: words right before a place that make it where the thing is now ("lying on the counter")
-    locatives: list[str]
-    #: cues that lead to a destination with no verb before them ("mug -> coffee table");
-    #: any other needs a verb or a copula between the thing and its place ("the CD in the
-    #: drawer" is where the CD is)
-    directional: list[str]
-    replaces: list[str]
-    reach: int = Field(10, ge=1, le=30)
-
-
 class Stated(_Closed):
     #: words that make the instruction a narrative (:attr:`.context.DoubtContext.narrative`)
     narrative_cues: list[Words]
@@ -105,7 +91,7 @@ class Stays(_Closed):
 
 class Correction(_Closed):
     #: words that say a self-correction was made (the rules that keep away from its places:
-    #: ``next_place``; the correction itself is read by ``pfg/offline/corrections.py``)
+    #: ``next_place``, :mod:`.destination`; the correction itself is read by ``pfg/offline/corrections.py``)
     cues: list[str]
 
 
@@ -122,7 +108,6 @@ class RuleWords(_Closed):
     others: Others
     resumed: Resumed
     exclusive: Exclusive
-    next_place: NextPlace
     stated: Stated
     stays: Stays
     correction: Correction

@@ -14,17 +14,21 @@ named near it).
 from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
-from emboteam.pfg.offline.doubts import affordances, next_place
+from emboteam.pfg.offline.doubts import affordances
 from emboteam.pfg.offline.doubts.context import DoubtContext
-from emboteam.pfg.offline.doubts.explained import NEGATED, explanation
-from emboteam.pfg.offline.doubts.rule_words import load_rule_words
+from emboteam.pfg.offline.doubts.destination import destination, load_destination_cues, present, window
+from emboteam.pfg.offline.doubts.explained import CORRECTIONS, NEGATED, explanation
+from emboteam.pfg.offline.doubts.mention_cues import said_state
+from emboteam.pfg.offline.doubts.rule_words import find
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
-from emboteam.pfg.offline.doubts.window import window_goal
 from emboteam.pfg.sentences import clause, type_name
+from emboteam.world.catalogue import load_catalogue
 from emboteam.world.checker import check_condition
 from emboteam.world.goals import Condition, Predicate
 
 KIND = "unexplained_mention"
+#: the labels of the goals a window gives (priors.json, kind unexplained_mention)
+PLACE, KEEP = "window_place", "window_keep"
 
 
 def unexplained_spans(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[tuple[int, str, tuple[str, ...]]]:
@@ -51,10 +55,58 @@ def _neighbour_goals(ctx: DoubtContext, k: int) -> tuple[Condition | None, Condi
 
 def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
     """Goals the words of the mention's own stretch ask of it: a state word or verb (a
-    place is its window's: :mod:`.window`)."""
+    place is its window's: :func:`window_goal`)."""
     start, end = ctx.clause_bounds(k)
     return [one_object(pred, thing) for item in ctx.items[start:end]
             if (pred := asked_predicate(item)) is not None and pred is not Predicate.inside]
+
+
+def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condition, ...]] | None:
+    """(label, goals) the window of the mention at ``k`` gives the thing, or None: its
+    place (kept, or where it goes), and a state its words ask beside it ("out and
+    burning on the counter")."""
+    if "pickupable" not in load_catalogue().type(thing).properties:
+        return None
+    data = load_destination_cues()
+    lo, hi = window(ctx, k, thing)
+    if any(i.text in CORRECTIONS and i.text != "no" for i in ctx.items[lo:hi]) or find(ctx.items, lo, hi, data.described):
+        return None      # "in the drawer - sorry, the box": the correction rules' (corrections.py)
+    said = _count(ctx, k, thing)
+    if find(ctx.items, lo, min(hi, k + 1 + data.keep_reach), data.keep):
+        here = sorted(present(ctx, thing))
+        return (KEEP, (_counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
+    dest = destination(ctx, k, thing, hi)
+    if not dest:
+        return None
+    state = said_state(ctx, k, hi, thing) or _changed(ctx, lo, hi, thing)
+    pieces = load_catalogue().slice_product(thing) if state is not None and state.predicate is Predicate.sliced else None
+    goal = _counted(placed(pieces[0] if pieces else thing, dest[0]), said)     # "the apple cut up on a plate"
+    return PLACE, (goal,) if state is None else (state, goal)
+
+
+#: what a verb of the window may ask beside the place ("is heating in the microwave",
+#: "cut up on a plate"); switch and open states come from :func:`.mention_cues.said_state`
+_CHANGES = (Predicate.hot, Predicate.cold, Predicate.sliced, Predicate.cooked, Predicate.clean)
+
+
+def _changed(ctx: DoubtContext, lo: int, hi: int, thing: str) -> Condition | None:
+    pred = next((p for i in ctx.items[lo:hi] if (p := asked_predicate(i)) in _CHANGES), None)
+    return None if pred is None else one_object(pred, thing)
+
+
+def _count(ctx: DoubtContext, k: int, thing: str) -> int | None:
+    """How many the mention names: its number ("both vases are up on the dresser"), or
+    every one the scene has for a plural ("bats are kept on my bedside table")."""
+    said = ctx.items[k - 1].number if k > 0 else None
+    if isinstance(said, int):
+        return said
+    noun = ctx.items[k].noun
+    return len(list(ctx.state.of_type(thing))) if noun is not None and noun.plural else None
+
+
+def _counted(goal: Condition, said: object) -> Condition:
+    return goal.model_copy(update={"count": said}) if isinstance(said, int) and said > 1 else goal
+
 
 
 def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doubt]:
@@ -78,8 +130,6 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
             if c is not None:
                 proposals.append((label, with_subject(c, thing)))
         proposals += affordances.proposals(ctx, k, thing)
-        if (dest := next_place.next_destination(ctx, k, thing, load_rule_words().next_place)) is not None:
-            proposals.append(("next_place", placed(thing, dest)))    # "their home is the shelf"
         choices = [Choice(AS_READ, f"{words!r} asks nothing (chatter)")]
         # a place where it is already asks nothing ("the remote's all the way over on the desk")
         seen = {str(c) for _, c in proposals if c.predicate is Predicate.inside and check_condition(c, ctx.state).holds}

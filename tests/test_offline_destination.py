@@ -1,4 +1,5 @@
-"""A thing named with no goal is read in its own window (doubts/window.py): a receptacle
+"""Where a thing goes, by the one destination finder (doubts/destination.py): a thing named
+with no goal is read in its own window: a receptacle
 there that it can go in, a home cue, a keep cue give its goal in the first reading, marked
 unsure; a person a ramble names is chatter, not a missing thing. Sentences written for
 this test (not round tasks)."""
@@ -11,9 +12,11 @@ from pathlib import Path
 import pytest
 
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.doubts.window import WINDOW_CUES_FILE, WindowCues
+from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.destination import DESTINATION_CUES_FILE, DestinationCues, destination
 from emboteam.pfg.offline.errors import GroundingError
 from emboteam.pfg.offline.knowledge import KnowledgeDataError, read
+from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.reading import Reading
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
@@ -81,9 +84,50 @@ def test_a_person_as_the_only_object_still_names_nothing(frontend: OfflineFronte
 
 
 def test_a_malformed_cue_file_names_file_and_entry(tmp_path: Path) -> None:
-    raw = json.loads(WINDOW_CUES_FILE.read_text(encoding="utf-8"))
+    raw = json.loads(DESTINATION_CUES_FILE.read_text(encoding="utf-8"))
     raw["reach"] = 0
-    bad = tmp_path / "window_cues.json"
+    bad = tmp_path / "destination_cues.json"
     bad.write_text(json.dumps(raw), encoding="utf-8")
-    with pytest.raises(KnowledgeDataError, match=r"window_cues\.json: reach"):
-        read(bad, WindowCues)
+    with pytest.raises(KnowledgeDataError, match=r"destination_cues\.json: reach"):
+        read(bad, DestinationCues)
+
+
+def test_an_unknown_cue_field_names_file_and_entry(tmp_path: Path) -> None:
+    raw = json.loads(DESTINATION_CUES_FILE.read_text(encoding="utf-8"))
+    raw["toward"] = [["into"]]
+    bad = tmp_path / "destination_cues.json"
+    bad.write_text(json.dumps(raw), encoding="utf-8")
+    with pytest.raises(KnowledgeDataError, match=r"destination_cues\.json: toward"):
+        read(bad, DestinationCues)
+
+
+# the one destination finder, on sentences written for it (dest25)
+def _ctx(text: str, floor_plan: str) -> DoubtContext:
+    scene = load_scene(floor_plan)
+    return DoubtContext(items=tag(text), goals=(), scene=scene,
+                        state=WorldState.from_scene(scene, parse_team("1,2,3")))
+
+
+def _at(ctx: DoubtContext, word: str) -> int:
+    return next(k for k, item, _ in ctx.mentions() if item.text == word)
+
+
+@pytest.mark.parametrize(("text", "floor_plan", "word", "thing", "wanted"), [
+    # a directional cue leads past a source word; a place led by a cue is inside the window
+    ("the soap bar comes out onto the shelf", "FloorPlan401", "soap bar", "SoapBar", "Shelf"),
+    ("Pencils don't belong on the bed, their home is the drawer.", "FloorPlan301", "pencils", "Pencil", "Drawer"),
+    # a cue does not lead across a sentence mark ("on. the drawer" is no destination)
+    ("the keychain goes in. the drawer is open.", "FloorPlan201", "keychain", "KeyChain", None),
+    # an excepted thing goes only where its own words send it, past a mark or a pronoun
+    ("everything but the pencil goes in the drawer", "FloorPlan301", "pencil", "Pencil", None),
+    ("everything but the pencil, which goes in the drawer", "FloorPlan301", "pencil", "Pencil", "Drawer"),
+])
+def test_the_destination_a_things_words_give(text: str, floor_plan: str, word: str, thing: str,
+                                            wanted: str | None) -> None:
+    ctx = _ctx(text, floor_plan)
+    assert next(iter(destination(ctx, _at(ctx, word), thing)), None) == wanted
+
+
+def test_a_home_named_after_a_long_complaint_is_read(frontend: OfflineFrontend) -> None:
+    reading = _read(frontend, "The remote keeps turning up everywhere; its home is the coffee table.", "FloorPlan201")
+    assert "inside(RemoteControl, CoffeeTable)" in _goals(reading)
