@@ -11,6 +11,7 @@ proven optimum (or / best bound), and the makespan / resource-aware bound.
     .venv/bin/python benchmarks/plan_optimal.py --seeds 0,1,2,3,4 --out /tmp/optimal.json
     .venv/bin/python benchmarks/plan_optimal.py --no-sweep          # MACE-THOR only
     .venv/bin/python benchmarks/plan_optimal.py --no-suite --schedule optimal --robots 2,4,8 --conditions 8,16,24
+    .venv/bin/python benchmarks/plan_optimal.py --no-suite --cells FloorPlan1:2x24:3,FloorPlan201:4x24:4
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_inputs
+from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_input, sweep_inputs
 
 from emboteam.errors import EmboTeamError
 from emboteam.hp.optimal import REFERENCE_LIMIT, ScheduleTimeoutError, reference
@@ -87,6 +88,18 @@ def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfi
     return rows
 
 
+def cell_inputs(cells: str) -> Iterator[tuple[str, TaskSpec, WorldState]]:
+    """The sweep cells named ``scene:ROBOTSxGOALS:seed`` (comma-separated), in that order:
+    to rerun only the cells a change is about."""
+    for name in cells.split(","):
+        try:
+            scene, size, seed = name.split(":")
+            robots, goals = size.split("x")
+            yield sweep_input(scene, int(robots), int(goals), int(seed))
+        except ValueError:
+            raise SystemExit(f"plan_optimal.py: bad cell {name!r} (want scene:ROBOTSxGOALS:seed)") from None
+
+
 def summary(rows: Sequence[Row], what: str) -> list[str]:
     modelled = [r for r in rows if r.ratio is not None]
     proven = [r for r in rows if r.status == "optimal"]
@@ -122,6 +135,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--seeds", default="0", help="goal seeds of the quick sweep")
     ap.add_argument("--robots", default=",".join(map(str, QUICK_ROBOTS)), help="team sizes of the sweep")
     ap.add_argument("--conditions", default=",".join(map(str, QUICK_CONDITIONS)), help="goals per sweep cell")
+    ap.add_argument("--cells", help="only these sweep cells, scene:ROBOTSxGOALS:seed, comma-separated "
+                    "(e.g. FloorPlan1:2x24:3); --seeds, --robots and --conditions are then ignored")
     ap.add_argument("--no-suite", action="store_true")
     ap.add_argument("--no-sweep", action="store_true")
     ap.add_argument("--schedule", choices=("fast", "optimal", "heuristic"), default="fast",
@@ -138,7 +153,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit)
     seeds = [int(s) for s in args.seeds.split(",")]
     cells: dict[int, list[Row]] = {}
-    if not args.no_sweep:
+    if args.cells and not args.no_sweep:
+        cells[-1] = run(cell_inputs(args.cells), config, args.limit)
+    elif not args.no_sweep:
         for seed in seeds:
             cells[seed] = run(sweep_inputs([int(x) for x in args.robots.split(",")],
                                            [int(x) for x in args.conditions.split(",")], [seed]), config, args.limit)
@@ -147,9 +164,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     if suite:
         lines += summary(suite, "MACE-THOR")
     for seed, rows in cells.items():
-        lines += summary(rows, f"quick sweep, seed {seed}")
+        lines += summary(rows, "the cells given" if seed < 0 else f"quick sweep, seed {seed}")
     print("\n".join(lines))
-    for name, rows in [("MACE-THOR", suite), *((f"quick sweep, seed {s}", r) for s, r in cells.items())]:
+    for name, rows in [("MACE-THOR", suite), *((f"cells {args.cells}" if s < 0 else f"quick sweep, seed {s}", r)
+                                                    for s, r in cells.items())]:
         if rows:
             print(f"\n### {name}\n\n{table(rows)}")
     if args.out:
