@@ -11,6 +11,7 @@ proven optimum (or / best bound), and the makespan / resource-aware bound.
     .venv/bin/python benchmarks/plan_optimal.py --seeds 0,1,2,3,4 --out /tmp/optimal.json
     .venv/bin/python benchmarks/plan_optimal.py --no-sweep          # MACE-THOR only
     .venv/bin/python benchmarks/plan_optimal.py --no-suite --schedule optimal --robots 2,4,8 --conditions 8,16,24
+    .venv/bin/python benchmarks/plan_optimal.py --no-suite --cells FloorPlan1:2x24:3,FloorPlan201:4x24:4
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_inputs
+from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_input, sweep_inputs
 
 from emboteam.errors import EmboTeamError
 from emboteam.hp.optimal import REFERENCE_LIMIT, ScheduleTimeoutError, reference
@@ -59,7 +60,8 @@ class Row:
         return self.makespan / ref if ref > 0 else None
 
 
-def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfig, limit: float) -> list[Row]:
+def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfig, limit: float,
+        bound_limit: float = 0.0) -> list[Row]:
     rows: list[Row] = []
     for label, spec, state in inputs:
         t0 = time.perf_counter()
@@ -73,7 +75,8 @@ def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfi
                   plan.resource_bound)
         t1 = time.perf_counter()
         try:
-            ref = reference(plan, spec, planning_state(state), limit) if limit > 0 else None
+            ref = (reference(plan, spec, planning_state(state), limit, bound_limit=bound_limit)
+                   if limit > 0 else None)
         except ScheduleTimeoutError as exc:  # the wall-clock safety net: no answer
             ref, row.error = None, str(exc)[:120]
         row.solve_seconds = time.perf_counter() - t1
@@ -85,6 +88,18 @@ def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfi
               f"ratio {'-' if r is None else f'{r:.3f}'}, {row.solve_seconds:.1f} s ({row.solve_deterministic:.1f} "
               "deterministic)", file=sys.stderr)
     return rows
+
+
+def cell_inputs(cells: str) -> Iterator[tuple[str, TaskSpec, WorldState]]:
+    """The sweep cells named ``scene:ROBOTSxGOALS:seed`` (comma-separated), in that order:
+    to rerun only the cells a change is about."""
+    for name in cells.split(","):
+        try:
+            scene, size, seed = name.split(":")
+            robots, goals = size.split("x")
+            yield sweep_input(scene, int(robots), int(goals), int(seed))
+        except ValueError:
+            raise SystemExit(f"plan_optimal.py: bad cell {name!r} (want scene:ROBOTSxGOALS:seed)") from None
 
 
 def summary(rows: Sequence[Row], what: str) -> list[str]:
@@ -122,12 +137,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--seeds", default="0", help="goal seeds of the quick sweep")
     ap.add_argument("--robots", default=",".join(map(str, QUICK_ROBOTS)), help="team sizes of the sweep")
     ap.add_argument("--conditions", default=",".join(map(str, QUICK_CONDITIONS)), help="goals per sweep cell")
+    ap.add_argument("--cells", help="only these sweep cells, scene:ROBOTSxGOALS:seed, comma-separated "
+                    "(e.g. FloorPlan1:2x24:3); --seeds, --robots and --conditions are then ignored")
     ap.add_argument("--no-suite", action="store_true")
     ap.add_argument("--no-sweep", action="store_true")
     ap.add_argument("--schedule", choices=("fast", "optimal", "heuristic"), default="fast",
                     help="heuristic: fast without its CP-SAT stage (what the heuristics alone make)")
     ap.add_argument("--limit", type=float, default=REFERENCE_LIMIT,
                     help="CP-SAT deterministic seconds per input (0: no CP-SAT, the plans and the resource-aware ratio only)")
+    ap.add_argument("--bound-limit", type=float, default=0.0,
+                    help="where CP-SAT ends unproven, this many more deterministic seconds on the route relaxation "
+                    "(emboteam.hp.optimal_bound) for a higher bound; 0: none")
     ap.add_argument("--out", type=Path, help="write the rows here (JSON)")
     args = ap.parse_args(argv)
     if args.schedule == "heuristic":
@@ -135,21 +155,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     config = PlannerConfig(schedule="optimal" if args.schedule == "optimal" else "fast")
     load0 = os.getloadavg()[0]
     started = time.strftime("%Y-%m-%d %H:%M")
-    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit)
+    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit, args.bound_limit)
     seeds = [int(s) for s in args.seeds.split(",")]
     cells: dict[int, list[Row]] = {}
-    if not args.no_sweep:
+    if args.cells and not args.no_sweep:
+        cells[-1] = run(cell_inputs(args.cells), config, args.limit, args.bound_limit)
+    elif not args.no_sweep:
         for seed in seeds:
             cells[seed] = run(sweep_inputs([int(x) for x in args.robots.split(",")],
-                                           [int(x) for x in args.conditions.split(",")], [seed]), config, args.limit)
+                                           [int(x) for x in args.conditions.split(",")], [seed]), config, args.limit,
+                               args.bound_limit)
     lines = [f"{started}, load {load0:.1f} before, {os.cpu_count()} cores; schedule {args.schedule}, CP-SAT limit "
-             f"{args.limit:g} deterministic s"]
+             f"{args.limit:g} deterministic s, route bound {args.bound_limit:g} s"]
     if suite:
         lines += summary(suite, "MACE-THOR")
     for seed, rows in cells.items():
-        lines += summary(rows, f"quick sweep, seed {seed}")
+        lines += summary(rows, "the cells given" if seed < 0 else f"quick sweep, seed {seed}")
     print("\n".join(lines))
-    for name, rows in [("MACE-THOR", suite), *((f"quick sweep, seed {s}", r) for s, r in cells.items())]:
+    for name, rows in [("MACE-THOR", suite), *((f"cells {args.cells}" if s < 0 else f"quick sweep, seed {s}", r)
+                                                    for s, r in cells.items())]:
         if rows:
             print(f"\n### {name}\n\n{table(rows)}")
     if args.out:

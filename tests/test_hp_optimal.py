@@ -11,6 +11,7 @@ import pytest
 from emboteam.bench.suites import load_suite
 from emboteam.hp import optimal
 from emboteam.hp.optimal import Job, Op, Problem, ScheduleTimeoutError, problem_of, reference, solve, travel
+from emboteam.hp.optimal_bound import route_bound
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
@@ -197,3 +198,41 @@ def test_symmetry_breaking_among_identical_robots_keeps_the_optimum() -> None:
     # a robot that differs (another start) is not in the class
     moved = Problem(jobs, problem.candidates, {**problem.starts, "robot3": (1.0, 1.0)}, problem.profiles)
     assert optimal.interchangeable(moved) == [["robot1", "robot2"]]
+
+
+def _route_bound(problem: Problem) -> float:
+    """:func:`emboteam.hp.optimal_bound.route_bound` on ``problem``'s strong model, seconds."""
+    model = optimal._Model(problem, None, tight=True)
+    routes = route_bound(problem, model.routing(), optimal._solver(True, 5.0, 2))
+    assert routes.proven
+    return routes.ticks * model.unit / optimal.SCALE
+
+
+def test_the_route_bound_keeps_the_waits_order_and_never_passes_the_optimum() -> None:
+    """One robot, a near job that waits for a far one: the route relaxation must drive to
+    the far one first (the order of the plan's waits on one robot), which is the optimum;
+    the nearest-first route, shorter, would be a bound the waits make wrong to improve on."""
+    profile = parse_team(["1"])[0]
+    near, far = (1.0, 0.0), (4.0, 0.0)
+    jobs = [_job(0, "robot1", near, 2.0), _job(1, "robot1", far, 3.0)]
+    problem = Problem(jobs, {j.group: ("robot1",) for j in jobs}, {"robot1": (0.0, 0.0)}, {"robot1": profile},
+                      precedences=[("s1", "s0")])
+    best = solve(problem, limit=5.0)
+    assert best.optimal
+    far_first = travel(profile, (0.0, 0.0), far) + 3.0 + travel(profile, far, near) + 2.0
+    near_first = travel(profile, (0.0, 0.0), near) + 2.0 + travel(profile, near, far) + 3.0
+    assert near_first < far_first
+    assert abs(best.makespan - far_first) < 0.05
+    assert abs(_route_bound(problem) - best.makespan) < 0.05
+
+
+@pytest.mark.parametrize("make", [lambda: random_cell(2, 6), lambda: random_cell(3, 10), _salad],
+                         ids=["FloorPlan1 2x6", "FloorPlan1 3x10", "fp6-salad-prep"])
+def test_the_route_bound_is_never_above_the_proven_optimum(make: Callable[[], tuple[TaskSpec, WorldState]]) -> None:
+    spec, state = make()
+    plan = HybridPlanner(PlannerConfig(schedule="fast")).plan(spec, state)
+    problem = problem_of(plan, spec, planning_state(state))
+    assert problem is not None
+    ref = solve(problem, plan, limit=10.0)
+    assert ref.optimal
+    assert 0 < _route_bound(problem) <= ref.makespan + 1e-6

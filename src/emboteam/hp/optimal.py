@@ -49,6 +49,7 @@ from dataclasses import dataclass, field
 
 from ortools.sat.python import cp_model
 
+from emboteam.hp.optimal_bound import RouteBound, Routing, route_bound
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pddl.errors import PlannerLimitError
 from emboteam.pfg.taskspec import TaskSpec
@@ -579,6 +580,12 @@ class _Model:
             if terms:
                 self.m.add(self.makespan >= sum(terms))
 
+    def routing(self) -> Routing:
+        """The routing part of the model, for :func:`emboteam.hp.optimal_bound.route_bound`."""
+        inner = {(r, j.id): self._inner(profile, j) for r, profile in self.p.profiles.items()
+                 for j in self.p.jobs if r in self.p.candidates[j.group]}
+        return Routing({key: self.drive.get(key, 0) for key in self.arc}, inner, dict(self.size), self.horizon)
+
     def _hint(self, plan: MergedPlan) -> None:
         starts_of = {s.id: s.est_start for s in plan.steps}
         robot_of = {j.group: self.rename.get(j.robot, j.robot) for j in self.p.jobs}
@@ -602,7 +609,7 @@ class _Model:
 
 
 def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT,
-          linearization: int = 2, symmetry: bool = True) -> Reference:
+          linearization: int = 2, symmetry: bool = True, bound_limit: float = 0.0) -> Reference:
     """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with
     seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2`` puts the
     circuits and the route lengths into the LP (``_Model._routes``): what proves the
@@ -612,7 +619,10 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     portfolio (:data:`PORTFOLIO_WORKERS`). ``linearization=1`` (``fast``'s small stage)
     keeps one worker and the model its plans were made with. Raises
     :class:`ScheduleTimeoutError` when the wall-clock safety net (:data:`WALL_FLOOR`,
-    :data:`WALL_FACTOR`) stops it."""
+    :data:`WALL_FACTOR`) stops it. ``bound_limit`` > 0 (strong model only): where the
+    search ends unproven, that many more deterministic seconds on the route relaxation
+    (:mod:`emboteam.hp.optimal_bound`), whose bound, if higher, is the answer's (and a
+    proof when it reaches the best schedule)."""
     strong = linearization >= 2
     model = _Model(problem, hint, tight=strong, symmetry=symmetry)
     solver, status = _run(model, strong, limit, linearization)
@@ -627,12 +637,35 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     chosen = {g: next(r for r in robots if solver.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
     assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
     starts = {sid: solver.value(v) * tick for sid, v in model.start.items()}
-    return Reference("optimal" if status == cp_model.OPTIMAL else "feasible", solver.objective_value * tick,
-                     solver.best_objective_bound * tick, assignment, starts, solver.deterministic_time)
+    best, bound, used = round(solver.objective_value), round(solver.best_objective_bound), solver.deterministic_time
+    if status == cp_model.FEASIBLE and strong and bound_limit > 0:
+        routes = _route_bound(model, bound_limit, {(g, r): r == chosen[g] for g, r in model.x})
+        bound, used = max(bound, routes.ticks), used + routes.deterministic
+    proven = status == cp_model.OPTIMAL or bound >= best
+    return Reference("optimal" if proven else "feasible", best * tick, min(bound, best) * tick, assignment, starts,
+                     used)
+
+
+def _route_bound(model: _Model, limit: float, hint: Mapping[tuple[str, str], bool]) -> RouteBound:
+    """:func:`emboteam.hp.optimal_bound.route_bound` on ``model``'s routes, with the strong
+    search's deterministic portfolio and safety net."""
+    solver = _solver(True, limit, 2)
+    routes = route_bound(model.p, model.routing(), solver, hint)
+    _check(solver, limit, None)
+    return routes
 
 
 def _run(model: _Model, strong: bool, limit: float, linearization: int) -> tuple[cp_model.CpSolver, cp_model.CpSolverStatus]:
     """One CP-SAT solve of ``model`` (see :func:`solve`); the safety net raises."""
+    solver = _solver(strong, limit, linearization)
+    status = solver.solve(model.m)
+    _check(solver, limit, status)
+    return solver, status
+
+
+def _solver(strong: bool, limit: float, linearization: int) -> cp_model.CpSolver:
+    """A CP-SAT solver with seed 0, ``limit`` deterministic seconds, the wall-clock safety
+    net, and the strong search's portfolio (:data:`PORTFOLIO`) or one worker."""
     solver = cp_model.CpSolver()
     solver.parameters.num_workers = PORTFOLIO_WORKERS if strong else 1
     if strong:
@@ -643,21 +676,25 @@ def _run(model: _Model, strong: bool, limit: float, linearization: int) -> tuple
     solver.parameters.random_seed = 0
     solver.parameters.max_deterministic_time = limit
     solver.parameters.linearization_level = linearization
+    solver.parameters.max_time_in_seconds = WALL_FLOOR + WALL_FACTOR * limit
+    return solver
+
+
+def _check(solver: cp_model.CpSolver, limit: float, status: cp_model.CpSolverStatus | None) -> None:
+    """Raise :class:`ScheduleTimeoutError` when the solve stopped on its wall-clock safety
+    net (``status`` None: any unfinished status)."""
     wall = WALL_FLOOR + WALL_FACTOR * limit
-    solver.parameters.max_time_in_seconds = wall
-    status = solver.solve(model.m)
     if status not in (cp_model.OPTIMAL, cp_model.INFEASIBLE) and solver.wall_time >= 0.99 * wall:
         raise ScheduleTimeoutError(f"CP-SAT did not finish {limit:g} deterministic s of search within its "
                                    f"{wall:g} s wall-clock safety net (the machine is overloaded)")
-    return solver, status
 
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
-              max_arcs: int = MAX_ARCS, linearization: int = 2) -> Reference | None:
+              max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0) -> Reference | None:
     """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
     the plan cannot be modelled (its replay fails) or the model is larger than
     ``max_arcs`` (:func:`arcs`)."""
     problem = problem_of(plan, spec, start)
     if problem is None or not problem.jobs or arcs(problem) > max_arcs:
         return None
-    return solve(problem, plan, limit, linearization=linearization)
+    return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit)
