@@ -13,9 +13,7 @@ import pytest
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.doubts.state_words import STATE_WORDS_FILE, StateWords
 from emboteam.pfg.offline.knowledge import KnowledgeDataError, read
-from emboteam.world.robots import parse_team
-from emboteam.world.scene import load_scene
-from emboteam.world.state import WorldState
+from offline_reading import read_offline
 
 
 @pytest.fixture(scope="module")
@@ -25,9 +23,7 @@ def frontend() -> OfflineFrontend:
 
 def _read(frontend: OfflineFrontend, text: str, floor_plan: str) -> tuple[set[str], list[set[str]]]:
     """The first reading's goals and every candidate's."""
-    scene = load_scene(floor_plan)
-    team = parse_team("1,2,3")
-    reading = frontend.parse(text, scene, WorldState.from_scene(scene, team), team)
+    reading = read_offline(frontend, text, floor_plan)
     return {str(c) for c in reading.spec.goal().conditions}, [{str(c) for c in k.goals} for k in reading.candidates]
 
 

@@ -21,6 +21,7 @@ from emboteam.pfg.reading import Reading
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from offline_reading import read_offline
 
 
 @pytest.fixture(scope="module")
@@ -29,9 +30,7 @@ def frontend() -> OfflineFrontend:
 
 
 def _read(frontend: OfflineFrontend, text: str, floor_plan: str) -> Reading:
-    scene = load_scene(floor_plan)
-    team = parse_team("1,2,3")
-    return frontend.parse(text, scene, WorldState.from_scene(scene, team), team)
+    return read_offline(frontend, text, floor_plan)
 
 
 def _goals(reading: Reading) -> set[str]:

@@ -20,6 +20,7 @@ from emboteam.world.goals import Condition, Goal
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 from emboteam.world.state import WorldState
+from offline_reading import read_offline
 from pty_run import run_on_terminal
 
 SRC = Path(__file__).resolve().parents[1] / "src"
@@ -31,9 +32,7 @@ def frontend() -> OfflineFrontend:
 
 
 def _read(frontend: OfflineFrontend, text: str, floor_plan: str = "FloorPlan1"):
-    scene = load_scene(floor_plan)
-    team = parse_team("1,2")
-    return frontend.parse(text, scene, WorldState.from_scene(scene, team), team)
+    return read_offline(frontend, text, floor_plan, team="1,2")
 
 
 def test_first_candidate_is_the_reading_and_every_candidate_is_complete(frontend: OfflineFrontend) -> None:
