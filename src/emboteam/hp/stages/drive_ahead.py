@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from emboteam.hp.drive_ahead import driven_ahead, retargets, waited
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
+from emboteam.hp.spot_order import off_chain
 from emboteam.hp.stages.context import Context, Draft
 from emboteam.hp.stages.rebuilt import Rebuilt, adopted, replayed, shorter
 
@@ -21,8 +22,8 @@ def ahead(ctx: Context, plan: MergedPlan, sequence: Sequence[GroundedStep]) -> R
     if not ctx.independent or len(sequence) != len(plan.steps):
         return None
     targets = retargets(sequence, waited(plan))
-    if not targets:
-        return None
+    if not targets or off_chain(plan, targets):
+        return None  # none waited, or none of the waits held up the end: not shorter
     first = min(targets)  # the steps before the first retargeted drive stay as they are
     what = f"driving ahead {len(targets)} drives"
     return shorter(replayed(ctx, driven_ahead(sequence, targets)[first:], what, head=sequence[:first]), plan, what)

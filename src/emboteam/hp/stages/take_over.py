@@ -11,6 +11,7 @@ import logging
 
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
+from emboteam.hp.spot_order import off_chain
 from emboteam.hp.stages.context import Context, Draft
 from emboteam.hp.stages.rebuilt import Rebuilt, adopted, shorter, simulated
 from emboteam.hp.stages.replay import replay_reusing
@@ -61,6 +62,8 @@ def take_over(ctx: Context, draft: Draft) -> Draft:
         skip.add(str(plan.steps[c.index].action))
         for robot in c.robots[:ROBOTS_PER_STEP]:
             tries += 1
+            if off_chain(plan, [c.index]):
+                continue  # the toggle does not hold up the end: counted, not rebuilt
             found = _tried(ctx, plan, sequence, c.index, robot)
             if found is not None:
                 step = plan.steps[c.index]
