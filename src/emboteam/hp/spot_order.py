@@ -177,12 +177,13 @@ def critical_steps(plan: MergedPlan) -> set[int] | None:
 
 def off_chain(plan: MergedPlan, changed: Iterable[int]) -> bool:
     """No step of ``changed`` (indices in ``plan``) is on a chain that ends last
-    (:func:`critical_steps`): changing only those steps cannot end those chains earlier,
-    so a rebuild cannot be shorter and need not be simulated (issue 28: the 32 x 96
-    cell's drive-ahead and take-over rebuilds, each a replay, a merge and a simulation,
-    that kept nothing). The condition is on the plan as simulated; a rebuild that moves
-    other robots' drives may still change the traffic along a chain, which this does not
-    see (on the benchmarks' plans, no rebuild it skips was kept: ``plan_dump``)."""
+    (:func:`critical_steps`): changing only those steps leaves those chains as they are,
+    so the drive-ahead and take-over stages skip such a rebuild (issue 28: on the 32 x 96
+    cell each is a replay, a merge and a simulation that kept nothing). A necessary
+    condition on the plan as simulated, not a proof: a rebuild also moves drives, and the
+    traffic along a chain may change (on the benchmarks' plans no skipped rebuild would
+    have been kept: ``plan_dump``). The spot order does not use it: its moves reorder the
+    other robots' steps at the spot, and moves off the chains were kept there."""
     critical = critical_steps(plan)
     return critical is not None and not critical.intersection(changed)
 

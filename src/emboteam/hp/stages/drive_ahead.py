@@ -1,8 +1,10 @@
 """The drive-ahead stage: drives that waited for another robot to bring their object go
 to the place it is brought to instead (:mod:`emboteam.hp.drive_ahead`), the plan replayed
 (the replay drives the rest of the way where the object is out of reach), merged and
-simulated, and kept when its makespan is shorter. No planner call. Only for specs whose
-subtasks are final and independent, as the other stages that rebuild a plan."""
+simulated, and kept when its makespan is shorter; not rebuilt when none of the drives
+is on a chain that ends last (:func:`emboteam.hp.spot_order.off_chain`). No planner call.
+Only for specs whose subtasks are final and independent, as the other stages that rebuild
+a plan."""
 
 from __future__ import annotations
 

@@ -1,8 +1,9 @@
 """The take-over stage: a switch or a door other robots waited for is done by one of them
 (:mod:`emboteam.hp.take_over`), the plan replayed (the replay drives the robot within reach
 where it must), merged and simulated, and kept when its makespan is shorter; then the next
-one, from the plan kept. No planner call; at most :data:`TRIES` rebuilds (a count, never
-seconds). Only for specs whose subtasks are final and independent, as the other stages
+one, from the plan kept. No planner call; at most :data:`TRIES` tries (a count, never
+seconds), a try whose step is on no chain that ends last counted but not rebuilt
+(:func:`emboteam.hp.spot_order.off_chain`). Only for specs whose subtasks are final and independent, as the other stages
 that rebuild a plan."""
 
 from __future__ import annotations
