@@ -67,6 +67,23 @@ def _same_fields(self: BaseModel, other: object) -> bool:
     return BaseModel.__eq__(self, other)
 
 
+def _remember_hash(cls: type[BaseModel]) -> None:
+    """Pydantic's hash of a frozen model (of its fields' values), worked out once per object
+    and kept in its ``_hash`` slot: the ranker hashes the same conditions again and again
+    (sets of goals), and the fields of a frozen model never change. A copy
+    (``model_copy``) gets an empty slot, so its hash is worked out anew."""
+    of_fields = cls.__hash__
+
+    def __hash__(self: BaseModel) -> int:
+        try:
+            return self._hash    # type: ignore[attr-defined, no-any-return]
+        except AttributeError:
+            value = of_fields(self)
+            object.__setattr__(self, "_hash", value)
+            return value
+    cls.__hash__ = __hash__    # type: ignore[method-assign, assignment]
+
+
 class ObjectRef(BaseModel):
     """Either one object (``id``) or any object of some types (``types``)."""
 
@@ -76,6 +93,7 @@ class ObjectRef(BaseModel):
     types: tuple[str, ...] = ()
 
     __eq__ = _same_fields
+    __slots__ = ("_hash",)
 
     @model_validator(mode="after")
     def _one_of(self) -> ObjectRef:
@@ -100,6 +118,9 @@ class ObjectRef(BaseModel):
         return self.id if self.id is not None else "|".join(self.types)
 
 
+_remember_hash(ObjectRef)
+
+
 class Condition(BaseModel):
     """One goal condition: ``predicate(subject[, receptacle])`` for ``count`` objects."""
 
@@ -112,6 +133,7 @@ class Condition(BaseModel):
     liquid: str | None = Field(None, description="for filled: water, coffee or wine")
 
     __eq__ = _same_fields
+    __slots__ = ("_hash",)
 
     @model_validator(mode="after")
     def _shape(self) -> Condition:
@@ -168,6 +190,9 @@ class Condition(BaseModel):
             return cls(predicate=pred, subject=ObjectRef.parse(subject_text), count=count)
         except ValueError as exc:  # pydantic's validation errors
             raise GoalSyntaxError(f"{text!r}: {exc}") from None
+
+
+_remember_hash(Condition)
 
 
 class Goal(BaseModel):
