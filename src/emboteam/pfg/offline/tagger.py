@@ -117,8 +117,10 @@ def _noun_at(words: list[str], i: int) -> tuple[int, NounReading] | None:
 def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
            sizes: tuple[int, ...] = (4, 3, 2)) -> tuple[int, str] | None:
     for n in sizes:
+        if len(words) - i < n:
+            continue
         phrase = " ".join(words[i:i + n])
-        if len(words) - i >= n and phrase in phrases:
+        if phrase in phrases:
             return n, phrase
     return None
 
