@@ -73,13 +73,16 @@ def _remember_hash(cls: type[BaseModel]) -> None:
     (sets of goals), and the fields of a frozen model never change. A copy
     (``model_copy``) gets an empty slot, so its hash is worked out anew."""
     of_fields = cls.__hash__
+    # the slot read directly: an empty slot read as an attribute would go through
+    # pydantic's slow ``__getattr__`` before failing
+    kept = cls._hash    # type: ignore[attr-defined]
 
     def __hash__(self: BaseModel) -> int:
         try:
-            return self._hash    # type: ignore[attr-defined, no-any-return]
+            return kept.__get__(self)    # type: ignore[no-any-return]
         except AttributeError:
             value = of_fields(self)
-            object.__setattr__(self, "_hash", value)
+            kept.__set__(self, value)
             return value
     cls.__hash__ = __hash__    # type: ignore[method-assign, assignment]
 
