@@ -12,7 +12,7 @@ from functools import cache
 from importlib import resources
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict
+from pydantic import BaseModel, ConfigDict, PrivateAttr
 
 from emboteam.errors import UnknownObjectError
 
@@ -101,6 +101,13 @@ class Catalogue(BaseModel):
     receptacle_whitelist: dict[str, frozenset[str]]
     #: sliceable type -> (piece type, number of pieces)
     slice_products: dict[str, tuple[str, int]]
+    #: piece type -> the first whole that is cut into it (:meth:`source_type`, asked for
+    #: every type of every condition the reader checks: a look-up, not a scan)
+    _sources: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    def model_post_init(self, __context: object) -> None:
+        for whole, (piece, _) in self.slice_products.items():
+            self._sources.setdefault(piece, whole)
 
     def type(self, name: str) -> ObjectType:
         try:
@@ -126,10 +133,7 @@ class Catalogue(BaseModel):
 
     def source_type(self, piece_type: str) -> str | None:
         """The whole a piece type comes from (``AppleSliced`` -> ``Apple``)."""
-        for whole, (piece, _) in self.slice_products.items():
-            if piece == piece_type:
-                return whole
-        return None
+        return self._sources.get(piece_type)
 
 
 @cache

@@ -93,7 +93,9 @@ class Scene(BaseModel):
         return [o for o in self.objects if o.type in types]
 
     def types(self) -> set[str]:
-        return {o.type for o in self.objects}
+        # from the counted types (fewer than the objects), inserted one by one in the same
+        # order as from the objects (set(dict) would presize the set: another order)
+        return {t for t in self.type_counts()}
 
     def type_counts(self) -> Mapping[str, int]:
         """How many objects of each type (counted once: the scene is frozen; read-only)."""
