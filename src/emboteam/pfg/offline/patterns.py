@@ -168,12 +168,17 @@ class Compiled:
         self.steps = tuple((check, t.OP, bool(t.END)) for (check, _), t in zip(compiled, tokens, strict=True))
         #: the words the first item must be one of (None: any), to refuse most positions at once
         self.first = compiled[0][1] if tokens[0].OP is None and not tokens[0].END else None
+        #: the test of an alternative of one plain token (a quarter of them), else None:
+        #: matched without the general walk
+        self.one = compiled[0][0] if len(tokens) == 1 and tokens[0].OP is None and not tokens[0].END else None
 
     def end(self, items: list[Item], j: int) -> int | None:
         """The index after the match at ``items[j]``, or None. ``?``, ``*`` and ``+`` take
         every item they can and never give one back (a possessive quantifier): the grammar's
         word tests look ahead that way."""
         n = len(items)
+        if self.one is not None:
+            return j + 1 if j < n and self.one(items[j]) else None
         for check, op, at_end in self.steps:
             if op is None and not at_end:
                 if j >= n or not check(items[j]):
