@@ -12,7 +12,7 @@ from functools import cache
 from importlib import resources
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, PrivateAttr
+from pydantic import BaseModel, ConfigDict
 
 from emboteam.errors import UnknownObjectError
 
@@ -102,12 +102,9 @@ class Catalogue(BaseModel):
     #: sliceable type -> (piece type, number of pieces)
     slice_products: dict[str, tuple[str, int]]
     #: piece type -> the first whole that is cut into it (:meth:`source_type`, asked for
-    #: every type of every condition the reader checks: a look-up, not a scan)
-    _sources: dict[str, str] = PrivateAttr(default_factory=dict)
-
-    def model_post_init(self, __context: object) -> None:
-        for whole, (piece, _) in self.slice_products.items():
-            self._sources.setdefault(piece, whole)
+    #: every type of every condition the reader checks: a look-up, not a scan); a slot, as
+    #: a pydantic private attribute is read through its slow ``__getattr__``
+    __slots__ = ("_sources",)
 
     def type(self, name: str) -> ObjectType:
         try:
@@ -133,7 +130,14 @@ class Catalogue(BaseModel):
 
     def source_type(self, piece_type: str) -> str | None:
         """The whole a piece type comes from (``AppleSliced`` -> ``Apple``)."""
-        return self._sources.get(piece_type)
+        try:
+            sources: dict[str, str] = self._sources    # type: ignore[attr-defined]
+        except AttributeError:      # the first time (or a copy)
+            sources = {}
+            for whole, (piece, _) in self.slice_products.items():
+                sources.setdefault(piece, whole)
+            object.__setattr__(self, "_sources", sources)
+        return sources.get(piece_type)
 
 
 @cache
