@@ -256,3 +256,15 @@ def test_validation_reports_every_problem_at_once() -> None:
     with pytest.raises(GoalValidationError) as err:
         validate_goal(Goal.parse("sliced(Mug) & inside(Pillow, Fridge)"), load_scene("FloorPlan1"))
     assert "Mug" in str(err.value) and "Pillow" in str(err.value)
+
+
+def test_condition_hash_and_equality_follow_fields_after_a_copy() -> None:
+    # a condition keeps its hash once worked out: a copy with another field must not share it
+    a = Condition.parse("inside(Apple, Fridge)")
+    seen = {a}
+    moved = a.model_copy(update={"receptacle": ObjectRef(types=("Sink",))})
+    again = Condition.parse("inside(Apple, Fridge)")
+    assert again in seen and again == a and hash(again) == hash(a)
+    assert moved not in seen and moved != a
+    assert moved == Condition.parse("inside(Apple, Sink)") and hash(moved) == hash(Condition.parse("inside(Apple, Sink)"))
+    assert a != "inside(Apple, Fridge)"

@@ -67,19 +67,16 @@ def edit_spec(spec: TaskSpec, goals: tuple[Condition, ...],
     conditions still wanted, a replaced condition takes its place, the rest become new
     subtasks. None when nothing is left. ``base``: ``spec.goal().conditions`` when the
     caller has them (the walk asks for many candidates of one spec)."""
-    if set(goals) == set(base if base is not None else spec.goal().conditions):
+    wanted = set(goals)    # a set to ask of (conditions hash once): the order is ``goals``'
+    if wanted == set(base if base is not None else spec.goal().conditions):
         return spec
-    wanted = list(goals)
-    kept: list[Subtask] = []
-    for s in spec.subtasks:
-        still = tuple(c for c in s.goal if c in wanted or not s.final)
-        if still:
-            kept.append(s.model_copy(update={"goal": still}))
+    stays = [(s, still) for s in spec.subtasks if (still := tuple(c for c in s.goal if c in wanted or not s.final))]
+    ids = {s.id for s, _ in stays}
+    kept = [s.model_copy(update={"goal": still, "depends_on": tuple(d for d in s.depends_on if d in ids)})
+            for s, still in stays]
     present = {c for s in kept if s.final for c in s.goal}    # a step's condition is no end state
-    ids = {s.id for s in kept}
-    kept = [s.model_copy(update={"depends_on": tuple(d for d in s.depends_on if d in ids)}) for s in kept]
     n = len(spec.subtasks)
-    for c in wanted:
+    for c in goals:
         if c not in present:
             n += 1
             kept.append(Subtask(id=f"s{n}", description=sentence([c]).rstrip("."), goal=(c,)))
@@ -128,12 +125,12 @@ def rank(spec: TaskSpec, doubts: Sequence[Doubt], priors: Priors,
         expansions += 1
         chosen = [f.doubt.choices[f.order[p]] for f, p in zip(factors, pos, strict=True)]
         goals = apply_choices(base, chosen)
-        if goals is not None and goals not in refused and frozenset(goals) not in found:
+        if goals is not None and goals not in refused and (key := frozenset(goals)) not in found:
             candidate = _candidate(spec, base, factors, chosen, goals, -neg, feasible)
             if candidate is None:
                 refused.add(goals)
             else:
-                found[frozenset(goals)] = candidate
+                found[key] = candidate
         for i, f in enumerate(factors):
             if pos[i] + 1 < len(f.order):
                 nxt = (*pos[:i], pos[i] + 1, *pos[i + 1:])

@@ -101,6 +101,10 @@ class Catalogue(BaseModel):
     receptacle_whitelist: dict[str, frozenset[str]]
     #: sliceable type -> (piece type, number of pieces)
     slice_products: dict[str, tuple[str, int]]
+    #: piece type -> the first whole that is cut into it (:meth:`source_type`, asked for
+    #: every type of every condition the reader checks: a look-up, not a scan); a slot, as
+    #: a pydantic private attribute is read through its slow ``__getattr__``
+    __slots__ = ("_sources",)
 
     def type(self, name: str) -> ObjectType:
         try:
@@ -126,10 +130,14 @@ class Catalogue(BaseModel):
 
     def source_type(self, piece_type: str) -> str | None:
         """The whole a piece type comes from (``AppleSliced`` -> ``Apple``)."""
-        for whole, (piece, _) in self.slice_products.items():
-            if piece == piece_type:
-                return whole
-        return None
+        try:
+            sources: dict[str, str] = self._sources    # type: ignore[attr-defined]
+        except AttributeError:      # the first time (or a copy)
+            sources = {}
+            for whole, (piece, _) in self.slice_products.items():
+                sources.setdefault(piece, whole)
+            object.__setattr__(self, "_sources", sources)
+        return sources.get(piece_type)
 
 
 @cache

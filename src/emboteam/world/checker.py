@@ -183,11 +183,11 @@ def _type_can(t: str, prop: str) -> bool:
 
 def _instances(ref: ObjectRef, scene: Scene) -> int:
     """How many objects could stand for a type reference, counting possible slices."""
-    cat = load_catalogue()
+    products = load_catalogue().slice_products    # (the dict itself: asked per scene type)
     n = 0
     # by type, not by object (asked for every condition the reader checks)
     for t, count in scene.type_counts().items():
-        product = cat.slice_product(t)
+        product = products.get(t)
         if t in ref.types:
             n += count * (product[1] if product is not None and product[0] in ref.types else 1)
         elif product is not None and product[0] in ref.types:

@@ -93,13 +93,20 @@ class Scene(BaseModel):
         return [o for o in self.objects if o.type in types]
 
     def types(self) -> set[str]:
-        return {o.type for o in self.objects}
+        # from the counted types (fewer than the objects), inserted one by one in the same
+        # order as from the objects (set(dict) would presize the set: another order)
+        return {t for t in self.type_counts()}
 
     def type_counts(self) -> Mapping[str, int]:
         """How many objects of each type (counted once: the scene is frozen; read-only)."""
-        if not self._type_counts:
-            self._type_counts = dict(Counter(o.type for o in self.objects))
-        return self._type_counts
+        # pydantic's store of private attributes read directly: ``self._type_counts`` goes
+        # through its slow ``__getattr__``, and this is asked per condition the reader checks
+        private = self.__pydantic_private__
+        assert private is not None    # (a model with private attributes always has the store)
+        counts: dict[str, int] = private["_type_counts"]
+        if not counts:
+            counts = private["_type_counts"] = dict(Counter(o.type for o in self.objects))
+        return counts
 
     def robot_start(self, index: int) -> tuple[float, float]:
         """Start pose (x, z) of the ``index``-th robot of a team: a cell of the floor

@@ -382,9 +382,11 @@ def _run_on_request(sentence: list[Item], j: int, current: Clause) -> _Cut | Non
     """"bring me the book from the desk put it on the bed": a run-on request; "the remote
     is on the tv stand can you put it on the sofa": a run-on statement, then the request."""
     items = current.items
-    if (_RUN_ON_IT.at(sentence, j) or (_RUN_ON_VERB.at(sentence, j) and items and items[0].verb is not None
-                                       and items[0].noun is None)) \
-            and items and items[-1].noun is not None \
+    if not items:       # (asked at every word: the cheap tests first)
+        return None
+    if items[-1].noun is not None \
+            and (_RUN_ON_IT.at(sentence, j) or (_RUN_ON_VERB.at(sentence, j) and items[0].verb is not None
+                                                and items[0].noun is None)) \
             and any(x.verb is not None and x.noun is None for x in items):
         return _Cut(AND)
     if _ASK_SOMEONE.at(sentence, j) and _content(items) and any(x.copula or x.verb is not None for x in items):

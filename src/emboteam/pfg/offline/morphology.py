@@ -40,9 +40,11 @@ def singular(word: str, known: Collection[str]) -> tuple[str, bool]:
     return word, False
 
 
+@cache
 def verb_lemma(word: str) -> tuple[str, str] | None:
     """``(lemma, form)`` of an inflected verb of the lexicon, form in base/ing/ed/s;
-    ``None`` when the word is no verb we know."""
+    ``None`` when the word is no verb we know. Remembered per word (the lexicon is fixed
+    at import, and the reader asks of every word several times per instruction)."""
     verbs = lx.VERBS
     if word in lx.IRREGULAR_VERBS:
         lemma = lx.IRREGULAR_VERBS[word]

@@ -168,12 +168,17 @@ class Compiled:
         self.steps = tuple((check, t.OP, bool(t.END)) for (check, _), t in zip(compiled, tokens, strict=True))
         #: the words the first item must be one of (None: any), to refuse most positions at once
         self.first = compiled[0][1] if tokens[0].OP is None and not tokens[0].END else None
+        #: the test of an alternative of one plain token (a quarter of them), else None:
+        #: matched without the general walk
+        self.one = compiled[0][0] if len(tokens) == 1 and tokens[0].OP is None and not tokens[0].END else None
 
     def end(self, items: list[Item], j: int) -> int | None:
         """The index after the match at ``items[j]``, or None. ``?``, ``*`` and ``+`` take
         every item they can and never give one back (a possessive quantifier): the grammar's
         word tests look ahead that way."""
         n = len(items)
+        if self.one is not None:
+            return j + 1 if j < n and self.one(items[j]) else None
         for check, op, at_end in self.steps:
             if op is None and not at_end:
                 if j >= n or not check(items[j]):
@@ -206,6 +211,11 @@ class Rule:
         self.offsets = range(pattern.within[0], pattern.within[1] + 1)
         self.here = pattern.within == (0, 0)
         self.not_after = _words(pattern.not_after, tables) if pattern.not_after is not None else None
+        # the alternatives that may match at a word, in their order, by the word (any other
+        # word: ``self.any_word``): most positions are refused by one dict look-up
+        self.any_word = tuple(a for a in self.alternatives if a.first is None)
+        firsts = {w for a in self.alternatives if a.first is not None for w in a.first}
+        self.by_word = {w: tuple(a for a in self.alternatives if a.first is None or w in a.first) for w in firsts}
 
     def end(self, items: list[Item], j: int = 0) -> int | None:
         """The index after the first alternative that matches at ``items[j]`` (or in the
@@ -218,11 +228,10 @@ class Rule:
         if self.not_after is not None and j > 0 and (items[j - 1].text in self.not_after[0]) is self.not_after[1]:
             return None
         word = items[j].text if j < len(items) else None
-        for alternative in self.alternatives:
-            if alternative.first is None or word in alternative.first:
-                end = alternative.end(items, j)
-                if end is not None:
-                    return end
+        for alternative in self.by_word.get(word, self.any_word) if word is not None else self.any_word:
+            end = alternative.end(items, j)
+            if end is not None:
+                return end
         return None
 
     def at(self, items: list[Item], j: int = 0) -> bool:

@@ -149,10 +149,13 @@ def _with_words(text: str, words: list[str]) -> str:
     return "".join(parts)
 
 
+@cache
 def _is_noun(word: str) -> bool:
+    # remembered per word (the lexicon is fixed at import): asked of every run of words
     return singular(word.lower(), lx.nouns())[0] in lx.nouns()
 
 
+@cache
 def _nounish(word: str) -> bool:
     """A noun, or a word of a noun phrase ("door" of "shower door")."""
     return _is_noun(word) or (word.lower() in lx.noun_words() and not _closed(word))
@@ -232,8 +235,17 @@ def _sounds_like(joined: str, scene_types: frozenset[str]) -> str | None:
     types = _closest(said, scene_types)
     if types is None:
         return None
-    names = [p for p, c in lx.nouns().items() if c.types and c.types[0] == types[0]]
-    return min(names, key=lambda p: (edit_distance(sound(p), said, 4), p)) if names else None
+    names = _named_sounds(types[0])
+    return min(names, key=lambda ps: (edit_distance(ps[1], said, 4), ps[0]))[0] if names else None
+
+
+@cache
+def _named_sounds(type_: str) -> tuple[tuple[str, str], ...]:
+    """(phrase, sound) of each noun phrase of the lexicon whose first type is ``type_``: the
+    same for every instruction (the lexicon is fixed at import), so worked out once."""
+    from emboteam.pfg.offline.doubts.sound_alike import sound
+
+    return tuple((p, sound(p)) for p, c in lx.nouns().items() if c.types and c.types[0] == type_)
 
 
 def _split_words(words: list[str], scene_types: frozenset[str], guess: bool) -> list[str]:

@@ -91,10 +91,11 @@ _MAX_SPAN = 5
 def _noun_at(words: list[str], i: int) -> tuple[int, NounReading] | None:
     """The longest noun phrase of the lexicon starting at ``words[i]``."""
     table = lx.nouns()
-    for n in range(min(_MAX_SPAN, len(words) - i), 0, -1):
+    longest = min(_MAX_SPAN, len(words) - i)
+    # no span runs over punctuation: the longest ends before the first mark
+    longest = next((k for k in range(longest) if words[i + k] in PUNCT), longest)
+    for n in range(longest, 0, -1):
         span = words[i:i + n]
-        if any(w in PUNCT for w in span):
-            continue
         phrase = " ".join(span)
         if phrase in lx.PLURAL_NOUNS:
             return n, NounReading(lx.PLURAL_NOUNS[phrase], phrase, True)
@@ -117,8 +118,10 @@ def _noun_at(words: list[str], i: int) -> tuple[int, NounReading] | None:
 def _multi(words: list[str], i: int, phrases: dict[str, str] | tuple[str, ...],
            sizes: tuple[int, ...] = (4, 3, 2)) -> tuple[int, str] | None:
     for n in sizes:
+        if len(words) - i < n:
+            continue
         phrase = " ".join(words[i:i + n])
-        if len(words) - i >= n and phrase in phrases:
+        if phrase in phrases:
             return n, phrase
     return None
 

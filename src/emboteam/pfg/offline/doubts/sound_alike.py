@@ -54,14 +54,23 @@ def _limit(n: int) -> int:
 
 
 @cache
+def _phrase_sounds() -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """(sound, types) of every noun phrase of the lexicon, in its order: the same for every
+    scene, so worked out once rather than once per scene (it was most of a scene's first
+    instruction's time)."""
+    return tuple((sound(phrase), tuple(dict.fromkeys((*concept.types, *concept.fallback))))
+                 for phrase, concept in nouns().items())
+
+
+@cache
 def _sounds(scene_types: frozenset[str]) -> dict[str, tuple[tuple[str, tuple[str, ...]], ...]]:
     """(sound, scene types) of every noun phrase naming a type of the scene, by the sound's
     first letter (a misheard name keeps its first sound: the index keeps the reader
     within its time budget)."""
     out: dict[str, list[tuple[str, tuple[str, ...]]]] = {}
-    for phrase, concept in nouns().items():
-        types = tuple(t for t in dict.fromkeys((*concept.types, *concept.fallback)) if t in scene_types)
-        if types and len(said := sound(phrase)) >= 3:
+    for said, all_types in _phrase_sounds():
+        types = tuple(t for t in all_types if t in scene_types)
+        if types and len(said) >= 3:
             out.setdefault(said[0], []).append((said, types))
     return {k: tuple(v) for k, v in out.items()}
 
