@@ -7,6 +7,8 @@ import re
 from collections.abc import Sequence
 from dataclasses import replace
 
+from pydantic import ValidationError
+
 from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline import lexicon
 from emboteam.pfg.offline.adjuncts import drop_time_adjuncts
@@ -216,6 +218,16 @@ class OfflineFrontend:
               team: Sequence[RobotProfile]) -> Reading:
         """The TaskSpec, a note per span that was skipped (also logged at INFO) and the
         conditions chosen with doubt."""
+        try:
+            return self._parse(instruction, scene, state, team)
+        except ValidationError as exc:
+            # a condition the reader put together that no goal can hold (a count of zero):
+            # the reader's own error, typed, never a crash of the caller's run
+            raise OfflineParseError(f"the instruction reads as a goal that cannot hold: "
+                                    f"{exc.errors()[0].get('msg', exc)}") from exc
+
+    def _parse(self, instruction: str, scene: Scene, state: WorldState,
+               team: Sequence[RobotProfile]) -> Reading:
         text = instruction.strip()
         if not text:
             raise OfflineParseError("empty instruction")
