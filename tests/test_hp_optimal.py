@@ -236,3 +236,26 @@ def test_the_route_bound_is_never_above_the_proven_optimum(make: Callable[[], tu
     ref = solve(problem, plan, limit=10.0)
     assert ref.optimal
     assert 0 < _route_bound(problem) <= ref.makespan + 1e-6
+
+
+def test_nothing_goes_into_a_box_while_another_robot_carries_it() -> None:
+    """FloorPlan201, 4 robots, 8 goals, goal seed 1 (a quick-sweep cell): one robot carries
+    Box_1 to a side table, others put the pencil, the book and the statue into it. In the
+    simulator nothing goes into an object another robot holds, and a put into the box
+    happens where the box stands then: each put the plan makes after the box's put-down
+    must come after it in the reference's schedule too (the model once proved 16.0 with
+    the pencil and the book put into the box while it was carried)."""
+    _, spec, state = sweep_input("FloorPlan201", 4, 8, 1)
+    plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+    ref = reference(plan, spec, planning_state(state), limit=10.0)
+    assert ref is not None and ref.optimal
+    assert ref.makespan <= plan.makespan + 1e-6
+    seconds = {s.id: s.est_end - s.est_start for s in plan.steps}
+    pickup = next(s for s in plan.steps if s.action.skill is Skill.PickupObject and s.action.target == "Box_1")
+    putdown = next(s for s in plan.steps if s.action.skill is Skill.PutObject and s.action.target == "Box_1")
+    carried_to = ref.starts[putdown.id] + seconds[putdown.id]
+    into = [s for s in plan.steps if s.action.receptacle == "Box_1"]
+    assert len(into) == 3
+    for s in into:  # all three after the put-down in the plan: so in the schedule too
+        assert plan.steps.index(s) > plan.steps.index(putdown)
+        assert ref.starts[s.id] >= carried_to - 1e-6, (s.id, ref.starts[s.id], ref.starts[pickup.id], carried_to)
