@@ -49,6 +49,7 @@ from dataclasses import dataclass, field
 
 from ortools.sat.python import cp_model
 
+from emboteam.hp.optimal_carry import CarryLog
 from emboteam.hp.optimal_bound import RouteBound, Routing, route_bound
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pddl.errors import PlannerLimitError
@@ -186,6 +187,7 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     drive: dict[str, Point] = {}
     objects: dict[str, list[tuple[str, str]]] = {}
     held: dict[str, tuple[str, str]] = {}  # robot -> (object, its pickup op)
+    log = CarryLog()
     for s in plan.steps:
         if check_action(state, s.robot, s.action) is not None:
             return None
@@ -197,7 +199,9 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
         job.subtasks.add(s.subtask)
         if s.action.skill is Skill.GoToObject:
             drive[s.robot] = _point(state, s.action.target)
+            log.drive(state, s.robot, s.action.target)
         else:
+            log.op(state, s.robot, s.id, s.action)
             job.skills.add(s.action.skill)
             if s.action.skill is Skill.PickupObject:
                 job.lift = max(job.lift, state.objects[s.action.target].mass)
@@ -219,6 +223,13 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     candidates = _groups(jobs, plan, profiles, fixed=fixed)
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
     waits, drives = _precedences(plan, jobs)
+    carries: dict[str, list[tuple[str, str | None]]] = {
+        o: [(a, b) for a, b in spans if a != b] for o, spans in objects.items()}
+    for obj, pickup in held.values():  # still held when the plan ends
+        carries.setdefault(obj, []).append((pickup, None))
+    before, arrive = log.orders(carries, {j.ops[0].step for j in jobs})
+    waits = sorted(set(waits) | (before - arrive))
+    drives = sorted(set(drives) | arrive)
     return Problem(jobs, candidates, starts, profiles, waits, drives,
                    {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan)
 
