@@ -49,8 +49,8 @@ from dataclasses import dataclass, field
 
 from ortools.sat.python import cp_model
 
-from emboteam.hp.optimal_carry import CarryLog
 from emboteam.hp.optimal_bound import RouteBound, Routing, route_bound
+from emboteam.hp.optimal_carry import CarryLog
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pddl.errors import PlannerLimitError
 from emboteam.pfg.taskspec import TaskSpec
