@@ -12,6 +12,7 @@ from emboteam.bench.suites import load_suite
 from emboteam.hp import optimal
 from emboteam.hp.optimal import Job, Op, Problem, ScheduleTimeoutError, problem_of, reference, solve, travel
 from emboteam.hp.optimal_bound import route_bound
+from emboteam.hp.optimal_carry import CarryLog
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
@@ -226,8 +227,9 @@ def test_the_route_bound_keeps_the_waits_order_and_never_passes_the_optimum() ->
     assert abs(_route_bound(problem) - best.makespan) < 0.05
 
 
-@pytest.mark.parametrize("make", [lambda: random_cell(2, 6), lambda: random_cell(3, 10), _salad],
-                         ids=["FloorPlan1 2x6", "FloorPlan1 3x10", "fp6-salad-prep"])
+@pytest.mark.parametrize("make", [lambda: random_cell(2, 6), lambda: random_cell(3, 10), _salad,
+                                  lambda: sweep_input("FloorPlan201", 4, 8, 1)[1:]],
+                         ids=["FloorPlan1 2x6", "FloorPlan1 3x10", "fp6-salad-prep", "FloorPlan201 4x8 (a carried box)"])
 def test_the_route_bound_is_never_above_the_proven_optimum(make: Callable[[], tuple[TaskSpec, WorldState]]) -> None:
     spec, state = make()
     plan = HybridPlanner(PlannerConfig(schedule="fast")).plan(spec, state)
@@ -259,3 +261,21 @@ def test_nothing_goes_into_a_box_while_another_robot_carries_it() -> None:
     for s in into:  # all three after the put-down in the plan: so in the schedule too
         assert plan.steps.index(s) > plan.steps.index(putdown)
         assert ref.starts[s.id] >= carried_to - 1e-6, (s.id, ref.starts[s.id], ref.starts[pickup.id], carried_to)
+
+
+def test_an_operation_on_a_box_stays_between_the_carries_the_plan_put_it_between() -> None:
+    """A put into the box before its first carry stays before that pickup; one between two
+    carries after the first put-down (a drive wait: its robot drives to where the box now
+    stands) and before the second pickup; the carrier's own operations get no order from
+    the carry they lie in, and a pickup of the box waits for the put-down before it."""
+    log = CarryLog()
+    plan = ["put_a", "pick1", "drop1", "put_b", "pick2", "drop2"]
+    for k, step in enumerate(plan):
+        log.order[step] = k
+        log.anchors[step] = {"Box"}
+        log.drive_anchors[step] = {"Box"} if step == "put_b" else set()
+    precedences, waits = log.orders({"Box": [("pick1", "drop1"), ("pick2", "drop2")]}, first_ops=set())
+    # the carries' own ends in order too (each end is outside the other carry)
+    assert precedences == {("put_a", "pick1"), ("put_b", "pick2"), ("pick1", "pick2"), ("drop1", "pick2"),
+                           ("drop1", "drop2")}
+    assert waits == {("drop1", "put_b")}
