@@ -153,6 +153,18 @@ class Problem:
     objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
     #: the scene, for :func:`travel`
     floor_plan: str = ""
+    #: operations on a carried receptacle kept between the carries the plan put them
+    #: between (:mod:`emboteam.hp.optimal_carry`): (before, after) as :attr:`precedences`,
+    #: and as :attr:`drive_waits` where the later one drives to the box. Apart from the
+    #: plan's own waits because they hold only at the model's fixed places: the route
+    #: stage, which plans the drives again, does not take them
+    carry_orders: list[tuple[str, str]] = field(default_factory=list)
+    carry_waits: list[tuple[str, str]] = field(default_factory=list)
+
+    def orders(self) -> list[tuple[str, str]]:
+        """Every (producer, consumer) the model orders: the plan's waits and drive waits,
+        and the carries' orders."""
+        return [*self.precedences, *self.drive_waits, *self.carry_orders, *self.carry_waits]
 
 
 @dataclass(frozen=True)
@@ -228,10 +240,9 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     for obj, pickup in held.values():  # still held when the plan ends
         carries.setdefault(obj, []).append((pickup, None))
     before, arrive = log.orders(carries, {j.ops[0].step for j in jobs})
-    waits = sorted(set(waits) | (before - arrive))
-    drives = sorted(set(drives) | arrive)
     return Problem(jobs, candidates, starts, profiles, waits, drives,
-                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan)
+                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan,
+                   sorted(before - arrive - set(waits)), sorted(arrive - set(drives)))
 
 
 def _point(state: WorldState, thing: str) -> Point:
@@ -397,7 +408,7 @@ class _Model:
         spots: dict[str, list[cp_model.IntervalVar]] = {}
         #: op -> the ops its drive waits for (see :attr:`Problem.drive_waits`)
         self.drive_after: dict[str, list[str]] = {}
-        for a, b in problem.drive_waits:
+        for a, b in [*problem.drive_waits, *problem.carry_waits]:
             self.drive_after.setdefault(b, []).append(a)
         for g, robots in problem.candidates.items():
             for r in robots:
@@ -416,7 +427,7 @@ class _Model:
                 m.add_no_overlap(ivs)
         for obj, spans in problem.objects.items():
             m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
-        for a, b in [*problem.precedences, *problem.drive_waits]:
+        for a, b in problem.orders():
             m.add(self.start[b] >= self.end[a])
         self._circuits()
         self._loads()
