@@ -190,9 +190,12 @@ class Reference:
         return (self.makespan - self.bound) / self.makespan if self.makespan > 0 else 0.0
 
 
-def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem | None:
+def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState, carries: bool = True) -> Problem | None:
     """The jobs of ``plan`` (replayed on ``start`` in its step order for the places and
-    the hands); None when the replay fails."""
+    the hands); None when the replay fails. ``carries=False`` leaves out the orders that
+    keep an operation on a carried receptacle between its carries (:mod:`emboteam.hp.optimal_carry`):
+    no longer an exact model, but a heuristic's (the CP-SAT stage replans the drives and
+    simulates what it gets, so a put may cross a carry at the box's other place)."""
     state = start.copy()
     jobs: list[Job] = []
     open_: dict[str, Job] = {}
@@ -235,11 +238,11 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     candidates = _groups(jobs, plan, profiles, fixed=fixed)
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
     waits, drives = _precedences(plan, jobs)
-    carries: dict[str, list[tuple[str, str | None]]] = {
+    carried: dict[str, list[tuple[str, str | None]]] = {
         o: [(a, b) for a, b in spans if a != b] for o, spans in objects.items()}
     for obj, pickup in held.values():  # still held when the plan ends
-        carries.setdefault(obj, []).append((pickup, None))
-    before, arrive = log.orders(carries, {j.ops[0].step for j in jobs})
+        carried.setdefault(obj, []).append((pickup, None))
+    before, arrive = log.orders(carried, {j.ops[0].step for j in jobs}) if carries else (set(), set())
     return Problem(jobs, candidates, starts, profiles, waits, drives,
                    {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan,
                    sorted(before - arrive - set(waits)), sorted(arrive - set(drives)))
@@ -712,11 +715,13 @@ def _check(solver: cp_model.CpSolver, limit: float, status: cp_model.CpSolverSta
 
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
-              max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0) -> Reference | None:
+              max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0,
+              carries: bool = True) -> Reference | None:
     """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
     the plan cannot be modelled (its replay fails) or the model is larger than
-    ``max_arcs`` (:func:`arcs`)."""
-    problem = problem_of(plan, spec, start)
+    ``max_arcs`` (:func:`arcs`). ``carries``: as :func:`problem_of` (False only for a
+    heuristic that simulates what it gets)."""
+    problem = problem_of(plan, spec, start, carries)
     if problem is None or not problem.jobs or arcs(problem) > max_arcs:
         return None
     return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit)
