@@ -50,6 +50,7 @@ from dataclasses import dataclass, field
 from ortools.sat.python import cp_model
 
 from emboteam.hp.optimal_bound import RouteBound, Routing, route_bound
+from emboteam.hp.optimal_carry import CarryLog
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pddl.errors import PlannerLimitError
 from emboteam.pfg.taskspec import TaskSpec
@@ -152,6 +153,18 @@ class Problem:
     objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
     #: the scene, for :func:`travel`
     floor_plan: str = ""
+    #: operations on a carried receptacle kept between the carries the plan put them
+    #: between (:mod:`emboteam.hp.optimal_carry`): (before, after) as :attr:`precedences`,
+    #: and as :attr:`drive_waits` where the later one drives to the box. Apart from the
+    #: plan's own waits because they hold only at the model's fixed places: the route
+    #: stage, which plans the drives again, does not take them
+    carry_orders: list[tuple[str, str]] = field(default_factory=list)
+    carry_waits: list[tuple[str, str]] = field(default_factory=list)
+
+    def orders(self) -> list[tuple[str, str]]:
+        """Every (producer, consumer) the model orders: the plan's waits and drive waits,
+        and the carries' orders."""
+        return [*self.precedences, *self.drive_waits, *self.carry_orders, *self.carry_waits]
 
 
 @dataclass(frozen=True)
@@ -177,15 +190,19 @@ class Reference:
         return (self.makespan - self.bound) / self.makespan if self.makespan > 0 else 0.0
 
 
-def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem | None:
+def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState, carries: bool = True) -> Problem | None:
     """The jobs of ``plan`` (replayed on ``start`` in its step order for the places and
-    the hands); None when the replay fails."""
+    the hands); None when the replay fails. ``carries=False`` leaves out the orders that
+    keep an operation on a carried receptacle between its carries (:mod:`emboteam.hp.optimal_carry`):
+    no longer an exact model, but a heuristic's (the CP-SAT stage replans the drives and
+    simulates what it gets, so a put may cross a carry at the box's other place)."""
     state = start.copy()
     jobs: list[Job] = []
     open_: dict[str, Job] = {}
     drive: dict[str, Point] = {}
     objects: dict[str, list[tuple[str, str]]] = {}
     held: dict[str, tuple[str, str]] = {}  # robot -> (object, its pickup op)
+    log = CarryLog()
     for s in plan.steps:
         if check_action(state, s.robot, s.action) is not None:
             return None
@@ -197,7 +214,9 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
         job.subtasks.add(s.subtask)
         if s.action.skill is Skill.GoToObject:
             drive[s.robot] = _point(state, s.action.target)
+            log.drive(state, s.robot, s.action.target)
         else:
+            log.op(state, s.robot, s.id, s.action)
             job.skills.add(s.action.skill)
             if s.action.skill is Skill.PickupObject:
                 job.lift = max(job.lift, state.objects[s.action.target].mass)
@@ -219,8 +238,14 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState) -> Problem |
     candidates = _groups(jobs, plan, profiles, fixed=fixed)
     starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
     waits, drives = _precedences(plan, jobs)
+    carried: dict[str, list[tuple[str, str | None]]] = {
+        o: [(a, b) for a, b in spans if a != b] for o, spans in objects.items()}
+    for obj, pickup in held.values():  # still held when the plan ends
+        carried.setdefault(obj, []).append((pickup, None))
+    before, arrive = log.orders(carried, {j.ops[0].step for j in jobs}) if carries else (set(), set())
     return Problem(jobs, candidates, starts, profiles, waits, drives,
-                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan)
+                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan,
+                   sorted(before - arrive - set(waits)), sorted(arrive - set(drives)))
 
 
 def _point(state: WorldState, thing: str) -> Point:
@@ -386,7 +411,7 @@ class _Model:
         spots: dict[str, list[cp_model.IntervalVar]] = {}
         #: op -> the ops its drive waits for (see :attr:`Problem.drive_waits`)
         self.drive_after: dict[str, list[str]] = {}
-        for a, b in problem.drive_waits:
+        for a, b in [*problem.drive_waits, *problem.carry_waits]:
             self.drive_after.setdefault(b, []).append(a)
         for g, robots in problem.candidates.items():
             for r in robots:
@@ -405,7 +430,7 @@ class _Model:
                 m.add_no_overlap(ivs)
         for obj, spans in problem.objects.items():
             m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
-        for a, b in [*problem.precedences, *problem.drive_waits]:
+        for a, b in problem.orders():
             m.add(self.start[b] >= self.end[a])
         self._circuits()
         self._loads()
@@ -690,11 +715,13 @@ def _check(solver: cp_model.CpSolver, limit: float, status: cp_model.CpSolverSta
 
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
-              max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0) -> Reference | None:
+              max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0,
+              carries: bool = True) -> Reference | None:
     """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
     the plan cannot be modelled (its replay fails) or the model is larger than
-    ``max_arcs`` (:func:`arcs`)."""
-    problem = problem_of(plan, spec, start)
+    ``max_arcs`` (:func:`arcs`). ``carries``: as :func:`problem_of` (False only for a
+    heuristic that simulates what it gets)."""
+    problem = problem_of(plan, spec, start, carries)
     if problem is None or not problem.jobs or arcs(problem) > max_arcs:
         return None
     return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit)

@@ -95,7 +95,7 @@ def _orders(m: cp_model.CpModel, problem: Problem, routing: Routing, x: Mapping[
     for producers of positive length (with zero seconds both could happen at one instant)."""
     job_of = {o.step: j for j in problem.jobs for o in j.ops}
     seen: set[tuple[str, str]] = set()
-    for a, b in [*problem.precedences, *problem.drive_waits]:
+    for a, b in problem.orders():
         ja, jb = job_of[a], job_of[b]
         if ja.id == jb.id or routing.sizes[a] <= 0 or (ja.id, jb.id) in seen:
             continue
