@@ -8,15 +8,7 @@ from emboteam.hp.goalgen import random_conditions
 from emboteam.hp.merge import SeqStep
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
-from emboteam.hp.spot_order import (
-    candidates,
-    critical_steps,
-    critical_waits,
-    moved,
-    off_chain,
-    reopen,
-    waiting_blocks,
-)
+from emboteam.hp.spot_order import candidates, critical_waits, moved, reopen, waiting_blocks
 from emboteam.hp.validate import simulate
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.actions import Action, Skill
@@ -61,25 +53,6 @@ def test_a_waiting_block_moves_before_the_steps_that_made_it_wait_keeping_each_r
     # nothing to move before: B's block is first at the spot
     first = plan.model_copy(update={"steps": (*plan.steps[4:], *plan.steps[:4])})
     assert all(moved(first, b) is None for b in waiting_blocks(first))
-
-
-def test_a_change_off_the_chains_that_end_last_is_not_rebuilt() -> None:
-    plan = _queued()
-    # B's close ends last; its put waited for A's switch at the microwave; A's steps back to 0
-    assert critical_steps(plan) == {0, 1, 2, 3, 5, 6}
-    assert off_chain(plan, [4])  # B's drive: ending it earlier cannot end the plan earlier
-    assert not off_chain(plan, [5]) and not off_chain(plan, [2, 4])
-    # B's put waits for A's switch and, as long, for its own drive: both chains count
-    both = list(plan.steps)
-    both[4] = both[4].model_copy(update={"est_end": 10.0})
-    assert critical_steps(plan.model_copy(update={"steps": tuple(both)})) == {0, 1, 2, 3, 4, 5, 6}
-    # a wait nothing in the plan explains (the traffic?): every change may matter
-    late = list(plan.steps)
-    late[5] = late[5].model_copy(update={"est_start": 10.5, "est_end": 11.5})
-    late[6] = late[6].model_copy(update={"est_start": 11.5, "est_end": 12.5})
-    unexplained = plan.model_copy(update={"steps": tuple(late)})
-    assert critical_steps(unexplained) is None
-    assert not off_chain(unexplained, [4])
 
 
 def test_reopen_opens_the_shut_receptacle_around_a_steps_object() -> None:

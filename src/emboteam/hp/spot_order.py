@@ -20,8 +20,6 @@ simulator's word, not by this module's.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-
 from pydantic import BaseModel, ConfigDict
 
 from emboteam.hp.merge import SeqStep
@@ -127,65 +125,6 @@ def critical_waits(plan: MergedPlan) -> list[int]:
                    and abs(o.est_end - s.est_start) < 1e-6]
         cur = why[0] if why else prev
     return out
-
-
-#: two times closer than this are one instant (the plan's times are rounded to 1 ms)
-TIGHT = 1e-3
-
-
-def _tight(plan: MergedPlan, i: int, own: int | None, index: dict[str, int]) -> list[int] | None:
-    """The steps step ``i``'s start waited for: its robot's previous step when it started
-    as soon as that ended, the steps it names and other robots' steps at its spot that
-    ended when it started; None when it waited for nothing of these (the traffic?)."""
-    steps = plan.steps
-    s = steps[i]
-    out = [own] if own is not None and s.est_start <= steps[own].est_end + TIGHT else []
-    out += [index[a] for a in s.after if a in index and abs(steps[index[a]].est_end - s.est_start) <= TIGHT]
-    if s.resources:
-        out += [j for j, o in enumerate(steps) if o.robot != s.robot and o.resources == s.resources
-                and abs(o.est_end - s.est_start) <= TIGHT]
-    if not out and s.est_start > (steps[own].est_end if own is not None else 0.0) + TIGHT:
-        return None
-    return out
-
-
-def critical_steps(plan: MergedPlan) -> set[int] | None:
-    """Every step on a chain that ends last: the steps that end with the makespan, and
-    back from each step, every step its start waited for (:func:`_tight`); None when a
-    step on them waited for something the plan does not show (every change may matter)."""
-    steps = plan.steps
-    index = {s.id: i for i, s in enumerate(steps)}
-    own: list[int | None] = []
-    last: dict[str, int] = {}
-    for i, s in enumerate(steps):
-        own.append(last.get(s.robot))
-        last[s.robot] = i
-    end = max((s.est_end for s in steps), default=0.0)
-    seen: set[int] = set()
-    todo = [i for i, s in enumerate(steps) if s.est_end >= end - TIGHT]
-    while todo:
-        i = todo.pop()
-        if i in seen:
-            continue
-        seen.add(i)
-        waited = _tight(plan, i, own[i], index)
-        if waited is None:
-            return None
-        todo += waited
-    return seen
-
-
-def off_chain(plan: MergedPlan, changed: Iterable[int]) -> bool:
-    """No step of ``changed`` (indices in ``plan``) is on a chain that ends last
-    (:func:`critical_steps`): changing only those steps leaves those chains as they are,
-    so the drive-ahead and take-over stages skip such a rebuild (issue 28: on the 32 x 96
-    cell each is a replay, a merge and a simulation that kept nothing). A necessary
-    condition on the plan as simulated, not a proof: a rebuild also moves drives, and the
-    traffic along a chain may change (on the benchmarks' plans no skipped rebuild would
-    have been kept: ``plan_dump``). The spot order does not use it: its moves reorder the
-    other robots' steps at the spot, and moves off the chains were kept there."""
-    critical = critical_steps(plan)
-    return critical is not None and not critical.intersection(changed)
 
 
 def candidates(plan: MergedPlan, tries: int = TRIES) -> list[tuple[Block, list[int]]]:

@@ -1,10 +1,8 @@
 """The drive-ahead stage: drives that waited for another robot to bring their object go
 to the place it is brought to instead (:mod:`emboteam.hp.drive_ahead`), the plan replayed
 (the replay drives the rest of the way where the object is out of reach), merged and
-simulated, and kept when its makespan is shorter; not rebuilt when none of the drives
-is on a chain that ends last (:func:`emboteam.hp.spot_order.off_chain`). No planner call.
-Only for specs whose subtasks are final and independent, as the other stages that rebuild
-a plan."""
+simulated, and kept when its makespan is shorter. No planner call. Only for specs whose
+subtasks are final and independent, as the other stages that rebuild a plan."""
 
 from __future__ import annotations
 
@@ -13,7 +11,6 @@ from collections.abc import Sequence
 from emboteam.hp.drive_ahead import driven_ahead, retargets, waited
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
-from emboteam.hp.spot_order import off_chain
 from emboteam.hp.stages.context import Context, Draft
 from emboteam.hp.stages.rebuilt import Rebuilt, adopted, replayed, shorter
 
@@ -24,8 +21,8 @@ def ahead(ctx: Context, plan: MergedPlan, sequence: Sequence[GroundedStep]) -> R
     if not ctx.independent or len(sequence) != len(plan.steps):
         return None
     targets = retargets(sequence, waited(plan))
-    if not targets or off_chain(plan, targets):
-        return None  # none waited, or none of the waits held up the end: not shorter
+    if not targets:
+        return None
     first = min(targets)  # the steps before the first retargeted drive stay as they are
     what = f"driving ahead {len(targets)} drives"
     return shorter(replayed(ctx, driven_ahead(sequence, targets)[first:], what, head=sequence[:first]), plan, what)

@@ -1,9 +1,8 @@
 """The take-over stage: a switch or a door other robots waited for is done by one of them
 (:mod:`emboteam.hp.take_over`), the plan replayed (the replay drives the robot within reach
 where it must), merged and simulated, and kept when its makespan is shorter; then the next
-one, from the plan kept. No planner call; at most :data:`TRIES` tries (a count, never
-seconds), a try whose step is on no chain that ends last counted but not rebuilt
-(:func:`emboteam.hp.spot_order.off_chain`). Only for specs whose subtasks are final and independent, as the other stages
+one, from the plan kept. No planner call; at most :data:`TRIES` rebuilds (a count, never
+seconds). Only for specs whose subtasks are final and independent, as the other stages
 that rebuild a plan."""
 
 from __future__ import annotations
@@ -12,7 +11,6 @@ import logging
 
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
-from emboteam.hp.spot_order import off_chain
 from emboteam.hp.stages.context import Context, Draft
 from emboteam.hp.stages.rebuilt import Rebuilt, adopted, shorter, simulated
 from emboteam.hp.stages.replay import replay_reusing
@@ -63,8 +61,6 @@ def take_over(ctx: Context, draft: Draft) -> Draft:
         skip.add(str(plan.steps[c.index].action))
         for robot in c.robots[:ROBOTS_PER_STEP]:
             tries += 1
-            if off_chain(plan, [c.index]):
-                continue  # the toggle does not hold up the end: counted, not rebuilt
             found = _tried(ctx, plan, sequence, c.index, robot)
             if found is not None:
                 step = plan.steps[c.index]
