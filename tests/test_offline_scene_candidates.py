@@ -42,9 +42,17 @@ def test_a_burner_named_with_no_switch_offers_its_knob_on(frontend: OfflineFront
 
 
 def test_a_switch_read_the_wrong_way_round_is_a_candidate_not_the_reading(frontend: OfflineFrontend) -> None:
+    # the floor lamp is on at the start: read as "on", its other way (off) asks for a change
+    reading = _read(frontend, "floor lamp on, keychain in the box", "FloorPlan205")
+    assert {str(c) for c in reading.spec.goal().conditions} == {"switched_on(FloorLamp)", "inside(KeyChain, Box)"}
+    assert {"switched_off(FloorLamp)", "inside(KeyChain, Box)"} in _goal_sets(reading)
+
+
+def test_a_switch_is_not_flipped_to_the_state_it_is_in(frontend: OfflineFrontend) -> None:
+    """"Still on" says what is: the lamp on is no request, so no candidate asks for it."""
     reading = _read(frontend, "why is the floor lamp still on? put the keychain in the box", "FloorPlan205")
     assert {str(c) for c in reading.spec.goal().conditions} == {"switched_off(FloorLamp)", "inside(KeyChain, Box)"}
-    assert {"switched_on(FloorLamp)", "inside(KeyChain, Box)"} in _goal_sets(reading)
+    assert not any("switched_on(FloorLamp)" in goals for goals in _goal_sets(reading))
 
 
 def test_the_switch_doubt_has_its_priors_and_they_keep_the_reading_first() -> None:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from emboteam.pfg.candidates import Candidate, Doubt
+from emboteam.pfg.candidates import Candidate, Choice, Doubt
 from emboteam.pfg.offline.corrections import KIND as CORRECTION
 from emboteam.pfg.offline.discourse import Mention
 from emboteam.pfg.offline.doubts import find_doubts, reading_doubts
@@ -48,14 +48,31 @@ def choices(spec: TaskSpec, items: Sequence[Item], scene: Scene, state: WorldSta
     ctx = DoubtContext(items=items, goals=tuple(spec.goal().conditions), scene=scene, state=state,
                        history=history, steps=tuple(c for s in spec.subtasks if not s.final for c in s.goal))
     priors = priors or load_priors()
-    doubts = [*find_doubts(ctx, priors), *surface_doubts(ctx.goals, surface),
-              *surface_doubts(ctx.goals, corrections, CORRECTION), *extra]
+    corrected = [*surface_doubts(ctx.goals, corrections, CORRECTION), *extra]
+    doubts = [*_not_corrections(find_doubts(ctx, priors), corrected), *surface_doubts(ctx.goals, surface),
+              *corrected]
     check = FeasibilityCheck(scene, state, team, ctx.goals)    # the reader's own: checked already
     ranked = rank(spec, doubts, priors, check, Coverage(ctx))
     # the team check for the candidates that may run or be offered (the best and the close ones)
     best = ranked[0].score
     ranked = tuple(c for c in ranked if c.as_read or best - c.score > priors.close_margin or check.team_can(c.goals))
     return Choices(ranked, tuple(words for _, words, _ in unexplained_spans(ctx)), tuple(doubts))
+
+
+def _edit(choice: Choice) -> tuple[frozenset[Condition], frozenset[Condition]]:
+    return frozenset(choice.drop), frozenset(choice.add)
+
+
+def _not_corrections(found: Sequence[Doubt], corrected: Sequence[Doubt]) -> list[Doubt]:
+    """``found`` without the alternatives a self-correction already offers: the side a
+    person took back is the correction's to offer, under its kind (whose prior, and whether
+    the local model may judge it, are the correction's), not a destination guess's."""
+    taken = {_edit(c) for d in corrected for c in d.choices[1:]}
+    if not taken:
+        return list(found)
+    kept = [Doubt(d.kind, d.span, (d.choices[0], *(c for c in d.choices[1:] if _edit(c) not in taken)))
+            for d in found]
+    return [d for d in kept if len(d.choices) > 1]
 
 
 def _from_words(ctx: DoubtContext, feasible: Callable[[tuple[Condition, ...]], bool],

@@ -6,7 +6,9 @@ the light on", "📺 ON"): the reading then switches the device the other way, o
 switches a device it names as a place or landmark. Two alternatives, both from the scene
 and not from the words (the words' own cues are :mod:`.device_state`'s):
 
-- ``flip``: a switch goal read the other way (on for off, off for on);
+- ``flip``: a switch goal read the other way (on for off, off for on), when that asks for
+  a change (the devices it names are not all in that state now: "if the lamp is still on,
+  switch it off" never asks for the lamp on);
 - ``mentioned``: a device the words name with no switch goal (itself, or the knob that
   switches it: a burner's) put in the switch state it is not in now (:mod:`.affordances`).
 
@@ -21,7 +23,7 @@ from emboteam.pfg.offline.doubts.affordances import load_affordances
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types, type_props
 from emboteam.pfg.offline.doubts.wants import one_object
 from emboteam.pfg.sentences import clause, type_name
-from emboteam.world.goals import Predicate
+from emboteam.world.goals import Condition, Predicate
 
 KIND = "switch"
 
@@ -34,9 +36,17 @@ def _flips(ctx: DoubtContext) -> list[Doubt]:
         if (other := _OTHER.get(c.predicate)) is None:
             continue
         alt = c.model_copy(update={"predicate": other})
+        if _holds_now(ctx, alt):
+            continue
         out.append(Doubt(KIND, str(c), (Choice(AS_READ, clause(c)),
                                         Choice("flip", clause(alt), drop=(c,), add=(alt,)))))
     return out
+
+
+def _holds_now(ctx: DoubtContext, c: Condition) -> bool:
+    on = c.predicate is Predicate.switched_on
+    now = [o.is_on for t in ref_types(c.subject) for o in ctx.state.of_type(t)]
+    return bool(now) and all(x == on for x in now)
 
 
 def _switched_by(ctx: DoubtContext, type_: str) -> str | None:
