@@ -47,3 +47,11 @@ def test_keeps_and_counts_are_not_rewritten(text: str) -> None:
 ])
 def test_clock_times_are_when_not_how_many(text: str, floor_plan: str, expected: set[str]) -> None:
     assert goal(text, floor_plan) == expected
+
+
+def test_a_spoken_list_of_dittos_keeps_every_item() -> None:
+    """Said without commas, each "too" ends its item; the act after it is still read."""
+    assert goal("the remote control into the box and the watch dito and the credit card dito "
+                "and then the television on", "FloorPlan207") == {
+        "inside(RemoteControl, Box)", "inside(Watch, Box)", "inside(CreditCard, Box)",
+        "switched_on(Television)"}
