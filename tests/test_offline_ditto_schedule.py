@@ -55,3 +55,9 @@ def test_a_spoken_list_of_dittos_keeps_every_item() -> None:
                 "and then the television on", "FloorPlan207") == {
         "inside(RemoteControl, Box)", "inside(Watch, Box)", "inside(CreditCard, Box)",
         "switched_on(Television)"}
+
+
+def test_emphasis_of_a_rule_is_no_exclusion() -> None:
+    """"no exceptions" stresses the rule; the rule and "the same rule" still hold."""
+    assert goal("House rule: pens sleep in the box, no exceptions, and pencils follow the same "
+                "rule.", "FloorPlan316") == {"inside(Pen, Box)", "inside(Pencil, Box)"}
