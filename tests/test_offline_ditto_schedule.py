@@ -61,3 +61,17 @@ def test_emphasis_of_a_rule_is_no_exclusion() -> None:
     """"no exceptions" stresses the rule; the rule and "the same rule" still hold."""
     assert goal("House rule: pens sleep in the box, no exceptions, and pencils follow the same "
                 "rule.", "FloorPlan316") == {"inside(Pen, Box)", "inside(Pencil, Box)"}
+
+
+@pytest.mark.parametrize(("text", "floor_plan", "expected"), [
+    ("Put half of the two cloths in the hamper.", "FloorPlan307", {"inside(Cloth, LaundryHamper)"}),
+    ("Of the three vases, two thirds should end up in the sink.", "FloorPlan5",
+     {"inside(2 of Vase, SinkBasin)"}),
+    ("\u00bd of the 2 rolls onto the toilet", "FloorPlan401", {"inside(ToiletPaper, Toilet)"}),
+])
+def test_a_fraction_of_a_said_number_is_a_count(text: str, floor_plan: str, expected: set[str]) -> None:
+    assert goal(text, floor_plan) == expected
+
+
+def test_a_fraction_that_is_no_whole_count_is_left_as_said() -> None:
+    assert normalize("half of three apples") == "half of three apples"
