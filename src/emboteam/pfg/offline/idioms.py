@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from functools import cache
 
-from pydantic import model_validator
+from pydantic import BaseModel, ConfigDict, model_validator
 
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, apply_rewrites, compile_rewrites, load
 
@@ -113,16 +113,22 @@ _FRACTION_OF = re.compile(rf"\b(?:just |only )?({_FRACTION}) of {_OF_THE}([a-z]+
 _OF_N_FRACTION = re.compile(rf"\bof {_OF_THE}([a-z]+|\d+) ([a-z]+(?: [a-z]+)?) ?, ?({_FRACTION})(?=\s|$)")
 
 
+class _NumberWords(BaseModel):
+    """The number words of ``data/lexicon.json`` (read here without the lexicon module,
+    which imports the text stage this module belongs to)."""
+
+    model_config = ConfigDict(extra="ignore", frozen=True)
+    numbers: dict[str, int]
+
+
 @cache
 def _numbers() -> tuple[dict[str, int], dict[int, str]]:
-    """The lexicon's number words both ways (the first word of a number: "two", not "both");
-    imported here, not at the top, because the lexicon imports the text stage this module is in."""
-    from emboteam.pfg.offline.lexicon import NUMBERS
-
+    """The number words both ways (the first word of a number: "two", not "both")."""
+    numbers = load("lexicon.json", _NumberWords).numbers
     words: dict[int, str] = {}
-    for w, n in NUMBERS.items():
+    for w, n in numbers.items():
         words.setdefault(n, w)
-    return NUMBERS, words
+    return numbers, words
 
 
 def _fractions(text: str) -> str:
