@@ -58,7 +58,7 @@ def classify(folder: Path, episodes: dict[str, bool]) -> list[dict[str, Any]]:
                                "truth": [str(c) for c in task.ground_truth.conditions]}
         try:
             reading = reader.parse(task.instruction, scene, case.state, case.team)
-        except EmboTeamError as exc:
+        except (EmboTeamError, ValueError) as exc:   # a ValueError (e.g. a bad Condition) is a reader bug: list it, do not stop
             rows.append({**row, "class": "error", "why": f"{type(exc).__name__}: {exc}"})
             continue
         cands = reading.candidates

@@ -94,7 +94,7 @@ def read(frontend: OfflineFrontend, item: Item) -> dict[str, Any]:
         else:
             state = initial_state(scene.floor_plan, team)
         reading = frontend.parse(text, scene, state, team)
-    except EmboTeamError as exc:
+    except (EmboTeamError, ValueError) as exc:   # a ValueError is a reader bug: recorded, not fatal
         return {"instruction": text, "error": f"{type(exc).__name__}: {exc}"}
     return {"instruction": text,
             "goal": [str(c) for c in reading.spec.goal().conditions],

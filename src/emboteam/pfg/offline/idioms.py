@@ -10,8 +10,9 @@ orders, where a statistical tagger would need training data we do not have.
 from __future__ import annotations
 
 import re
+from functools import cache
 
-from pydantic import model_validator
+from pydantic import BaseModel, ConfigDict, model_validator
 
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, apply_rewrites, compile_rewrites, load
 
@@ -26,6 +27,20 @@ class _Described(Strict):
     participle_place: str
     kept_in: tuple[str, str]
     used_for: tuple[str, str]
+
+
+class _Fractions(Strict):
+    """Fraction words and their value (numerator, denominator)."""
+
+    why: str = ""
+    words: dict[str, tuple[int, int]]
+
+    @model_validator(mode="after")
+    def _proper(self) -> _Fractions:
+        for word, (num, den) in self.words.items():
+            if not 0 < num < den:
+                raise ValueError(f"fractions -> {word!r}: {num}/{den} is not a proper fraction")
+        return self
 
 
 class IdiomsFile(Strict):
@@ -48,6 +63,7 @@ class IdiomsFile(Strict):
     #: regular expressions the patterns of ``described`` name as ``{name}``
     pieces: dict[str, str]
     described: _Described
+    fractions: _Fractions
 
     def expand(self, pattern: str) -> str:
         """The pattern with its pieces filled in; ``{kept}`` and ``{used}`` are the keys of
@@ -87,6 +103,57 @@ _RELATIVE_PLACE, _PARTICIPLE_PLACE = (re.compile(_DATA.expand(p)) for p in (
     _DATA.described.relative_place, _DATA.described.participle_place))
 _KEPT_IN = tuple(re.compile(_DATA.expand(p)) for p in _DATA.described.kept_in)
 _USED_FOR = tuple(re.compile(_DATA.expand(p)) for p in _DATA.described.used_for)
+
+
+_FRACTION = _alternatives({re.escape(w): "" for w in _DATA.fractions.words})
+_ANY_FRACTION = re.compile(rf"(?:{_FRACTION})")
+_OF_THE = r"(?:the |my |those |these |all |all the )?"
+#: "half of the four vases", "of the four vases, half"
+_FRACTION_OF = re.compile(rf"\b(?:just |only )?({_FRACTION}) of {_OF_THE}([a-z]+|\d+)\b")
+_OF_N_FRACTION = re.compile(rf"\bof {_OF_THE}([a-z]+|\d+) ([a-z]+(?: [a-z]+)?) ?, ?({_FRACTION})(?=\s|$)")
+
+
+class _NumberWords(BaseModel):
+    """The number words of ``data/lexicon.json`` (read here without the lexicon module,
+    which imports the text stage this module belongs to)."""
+
+    model_config = ConfigDict(extra="ignore", frozen=True)
+    numbers: dict[str, int]
+
+
+@cache
+def _numbers() -> tuple[dict[str, int], dict[int, str]]:
+    """The number words both ways (the first word of a number: "two", not "both")."""
+    numbers = load("lexicon.json", _NumberWords).numbers
+    words: dict[int, str] = {}
+    for w, n in numbers.items():
+        words.setdefault(n, w)
+    return numbers, words
+
+
+def _fractions(text: str) -> str:
+    """A fraction of a said number is that count ("half of the four vases" -> "two vases");
+    left as said when the number is no number or the part no whole count."""
+    if not _ANY_FRACTION.search(text):
+        return text
+    numbers, words = _numbers()
+
+    def part(fraction: str, number: str) -> str | None:
+        total = int(number) if number.isdigit() else numbers.get(number)
+        num, den = _DATA.fractions.words[fraction]
+        if total is None or (total * num) % den:
+            return None
+        n = total * num // den
+        return words.get(n, str(n))
+
+    def fraction_of(m: re.Match[str]) -> str:
+        return part(m.group(1), m.group(2)) or m.group()
+
+    def of_n_fraction(m: re.Match[str]) -> str:
+        n = part(m.group(3), m.group(1))
+        return f"{n} {m.group(2)}" if n else m.group()
+
+    return _OF_N_FRACTION.sub(of_n_fraction, _FRACTION_OF.sub(fraction_of, text))
 
 
 def _where_things_are(text: str) -> str:
@@ -143,5 +210,5 @@ def spoken(text: str) -> str:
 
 def rephrase(text: str) -> str:
     """Where things are, things described by their use or contents, then :data:`PHRASINGS`."""
-    text = _described_by_contents(_described_by_use(_where_things_are(text)))
+    text = _described_by_contents(_described_by_use(_where_things_are(_fractions(text))))
     return apply_rewrites(PHRASINGS, text)
