@@ -1,6 +1,6 @@
-"""Clock times in a schedule ("9:00 apple into the fridge") are not counts: before, the
-digits after the colon were read as a count, and "00" asked for zero things, which no
-condition can hold (a crash outside the reader's typed errors)."""
+"""Clock times in a schedule ("9:00 apple into the fridge") are not counts (the idioms read
+them as when): before, the digits after the colon were read as a count, and "00" asked for
+zero things, which no condition can hold (a crash outside the reader's typed errors)."""
 
 from __future__ import annotations
 

@@ -206,16 +206,7 @@ def tag(text: str) -> list[Item]:
         item, n = _robot_at(words, i) or _unit_at(words, i, noun) or (_word(words[i], fixed.get(i), noun), 1)
         items.append(item)
         i += n
-    return _place_not_switch(_clock_times(items))
-
-
-def _clock_times(items: list[Item]) -> list[Item]:
-    """"7:00 mug into the coffee maker", "at 7:15 one slice": the digits of a clock time
-    count nothing (a count read from "00" is zero, from "15" fifteen slices)."""
-    for k in range(1, len(items) - 1):
-        if items[k].text == ":" and items[k - 1].text.isdigit() and items[k + 1].text.isdigit():
-            items[k - 1].number = items[k + 1].number = None
-    return items
+    return _place_not_switch(items)
 
 
 def _robot_at(words: list[str], i: int) -> tuple[Item, int] | None:
