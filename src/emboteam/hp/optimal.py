@@ -45,12 +45,16 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from ortools.sat.python import cp_model
 
 from emboteam.hp.optimal_bound import RouteBound, Routing, route_bound
 from emboteam.hp.optimal_carry import CarryLog
+from emboteam.hp.optimal_problem import Job as Job
+from emboteam.hp.optimal_problem import Op as Op
+from emboteam.hp.optimal_problem import Point as Point
+from emboteam.hp.optimal_problem import Problem as Problem
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.pddl.errors import PlannerLimitError
 from emboteam.pfg.taskspec import TaskSpec
@@ -89,7 +93,6 @@ class ScheduleTimeoutError(PlannerLimitError):
     would depend on the machine's load, so there is none (issue 28: the same input gives
     the same plan on any machine)."""
 
-Point = tuple[float, float]
 
 
 def travel(profile: RobotProfile, a: Point, b: Point, floor_plan: str = "") -> float:
@@ -101,70 +104,6 @@ def travel(profile: RobotProfile, a: Point, b: Point, floor_plan: str = "") -> f
     if a == b:
         return 0.0
     return navigation_seconds(a, b, profile.speed, floor_plan or None)
-
-
-@dataclass
-class Op:
-    """One manipulation step of a job: where it happens, the spot it holds, its seconds."""
-
-    step: str
-    place: Point
-    spot: str
-    seconds: float
-    #: a drive precedes it within the job (else the robot is already there)
-    drive: bool
-    #: where a drive to it goes: the point of the thing it acts on, as the plan's drive
-    #: went there (its holder's position if held); where the robot stands, with no drive
-    goal: Point = (0.0, 0.0)
-
-
-@dataclass
-class Job:
-    """A block of one robot's steps between two moments its hands are empty (ids in
-    order), its operations; ``group``: the jobs that move together (those serving the
-    same subtask with the same robot), and the robots that may take them."""
-
-    id: str
-    robot: str
-    group: str
-    steps: list[str] = field(default_factory=list)
-    ops: list[Op] = field(default_factory=list)
-    subtasks: set[str] = field(default_factory=set)
-    skills: set[Skill] = field(default_factory=set)
-    lift: float = 0.0
-
-
-@dataclass
-class Problem:
-    """The scheduling problem a plan poses (its jobs, who may take each group, the robots'
-    starts and profiles, the precedences between operations)."""
-
-    jobs: list[Job]
-    candidates: dict[str, tuple[str, ...]]
-    starts: dict[str, Point]
-    profiles: dict[str, RobotProfile]
-    #: (producer op step id, consumer op step id)
-    precedences: list[tuple[str, str]] = field(default_factory=list)
-    #: (producer op, consumer op) where the consumer's *drive* waits for the producer (the
-    #: object it drives to arrives there then): the drive starts after the producer ends
-    drive_waits: list[tuple[str, str]] = field(default_factory=list)
-    #: object -> (first op, last op) spans during which one robot has it: from its pickup
-    #: to its release (one op when it is only acted on); one robot at a time per object
-    objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
-    #: the scene, for :func:`travel`
-    floor_plan: str = ""
-    #: operations on a carried receptacle kept between the carries the plan put them
-    #: between (:mod:`emboteam.hp.optimal_carry`): (before, after) as :attr:`precedences`,
-    #: and as :attr:`drive_waits` where the later one drives to the box. Apart from the
-    #: plan's own waits because they hold only at the model's fixed places: the route
-    #: stage, which plans the drives again, does not take them
-    carry_orders: list[tuple[str, str]] = field(default_factory=list)
-    carry_waits: list[tuple[str, str]] = field(default_factory=list)
-
-    def orders(self) -> list[tuple[str, str]]:
-        """Every (producer, consumer) the model orders: the plan's waits and drive waits,
-        and the carries' orders."""
-        return [*self.precedences, *self.drive_waits, *self.carry_orders, *self.carry_waits]
 
 
 @dataclass(frozen=True)

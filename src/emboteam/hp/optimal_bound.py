@@ -17,12 +17,10 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from ortools.sat.python import cp_model
 
-if TYPE_CHECKING:  # optimal.py imports this module
-    from emboteam.hp.optimal import Problem
+from emboteam.hp.optimal_problem import Problem
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ into the box while another robot carried it: no real schedule.
 
 The orders are plain precedences (a drive wait when the operation's robot drives to the
 box, or to something in it: the box's new place exists only after its put-down), kept in
-:attr:`emboteam.hp.optimal.Problem.carry_orders` and ``carry_waits``: the model and its
+:attr:`emboteam.hp.optimal_problem.Problem.carry_orders` and ``carry_waits``: the model and its
 route relaxation (:mod:`emboteam.hp.optimal_bound`, which stays a relaxation: every
 schedule of the model meets them) take them; the route stage, which plans the drives
 again (so a put into the box may move to the other side of a carry, at the box's other
