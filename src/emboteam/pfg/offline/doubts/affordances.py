@@ -16,7 +16,7 @@ from pathlib import Path
 
 from pydantic import BaseModel, Field
 
-from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.context import DoubtContext, fitting_first
 from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.destination import led
 from emboteam.pfg.offline.doubts.wants import one_object, placed
@@ -74,9 +74,9 @@ def places_near(ctx: DoubtContext, k: int, thing: str, place: _Place | None = No
     words of position ``k``, nearest first (after it before before it at the same
     distance); ``place``: the file's ``place`` entry unless given."""
     where = place or load_affordances().place
-    near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, types in ctx.mentions()
-            if m != k and abs(m - k) <= where.reach and types[0] != thing and "receptacle" in _props(types[0])
-            and led(ctx, m) is not None]
+    near = [(abs(m - k) + (0.5 if m < k else 0), types[0]) for m, _, named in ctx.mentions()
+            if m != k and abs(m - k) <= where.reach and (types := fitting_first(thing, named))[0] != thing
+            and "receptacle" in _props(types[0]) and led(ctx, m) is not None]
     return list(dict.fromkeys(t for _, t in sorted(near)))
 
 

@@ -71,10 +71,14 @@ def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, 
     an emptying verb) within reach; "in there", "up there", "empty it": the receptacle
     named last before."""
     emptying = _emptying(ctx.items[k].text, words)
-    for j in range(k + 1, min(end, k + 3)):
+    for j in range(k + 1, min(end, k + 3 + 3 * _remainder(ctx, k, words))):     # "the rest of what's on it"
         if ctx.items[j].text in words.pronoun_places and \
                 (emptying or ctx.items[j - 1].text in words.source_preps):
-            return _place_before(ctx, k, words)
+            # what is left of the place an emptying verb named before ("clear that sofa:
+            # ..., and the rest of what's on it")
+            emptied = [found for e in _triggers(ctx, words) if e < k and _emptying(ctx.items[e].text, words)
+                       and (found := _source(ctx, e, end, words)) is not None] if _remainder(ctx, k, words) else []
+            return emptied[-1] if emptied else _place_before(ctx, k, words)
     for m in range(k + 1, min(end, k + words.reach)):
         types = _named(ctx, m)
         if types:
@@ -84,6 +88,11 @@ def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, 
             if emptying or any(w in words.source_preps for w in lead):
                 return m, types[0]
     return None
+
+
+def _remainder(ctx: DoubtContext, k: int, words: Contents) -> bool:
+    """Whether the trigger names what is left ("the rest", "everything else")."""
+    return any(i.text in words.remainder for i in ctx.items[k:k + 2])
 
 
 def _span_end(ctx: DoubtContext, j: int, end: int, words: Contents) -> int:
@@ -268,12 +277,19 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     spots = excepting + _staying(ctx, start, exc_end, words)
     named = {t for _, types in spots for t in types}
     own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and linked(ctx, spots[0][0], m)}
-    dest = _destination(ctx, k, src_at, end, source, own, named, words)
+    rest = _remainder(ctx, k, words)
+    dest = _destination(ctx, k, max(k, src_at) if rest else src_at, end, source, own, named, words)
     if dest is None:
         return None
-    elsewhere = _placed_elsewhere(ctx, start, exc_end, {source, dest})
+    # what is left: every thing the reading places elsewhere is out ("paper onto the
+    # coffee table, and the rest of what's on it onto the armchair")
+    elsewhere = [c for c in ctx.goals if c.predicate is Predicate.inside and c.receptacle is not None
+                 and not ref_types(c.receptacle) & {source, dest}] if rest \
+        else _placed_elsewhere(ctx, start, exc_end, {source, dest})
     choices: list[Choice] = []
-    for holders in _source_sets(ctx, src_at, source, {t for _, types in excepting for t in types}):
+    # the instance holding the things excepted, or those placed elsewhere when the rest is meant
+    marks = {t for _, types in excepting for t in types} | {t for c in elsewhere if rest for t in ref_types(c.subject)}
+    for holders in _source_sets(ctx, src_at, source, marks):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
         excepted = {t: next(iter(destination(ctx, m, t, exc_end)), None) for m, types in spots for t in _which(types, present)}
         c = _choice(ctx, holders, source, dest, excepted, elsewhere)

@@ -35,6 +35,15 @@ def ref_types(ref: ObjectRef) -> frozenset[str]:
     return frozenset(cat.source_type(t) or t for t in names)
 
 
+def fitting_first(thing: str, types: tuple[str, ...]) -> tuple[str, ...]:
+    """A place word's types with those the thing can go in first: a category names the
+    member that takes it ("the roll onto the holder": the toilet paper hanger, not the
+    towel holder the category lists first)."""
+    cat = load_catalogue()
+    fits = tuple(t for t in types if t != thing and "receptacle" in type_props(t) and cat.can_place(thing, t))
+    return (*fits, *(t for t in types if t not in fits))
+
+
 def condition_types(c: Condition) -> frozenset[str]:
     """Every type a condition names (its object and its place)."""
     out = ref_types(c.subject)
@@ -79,20 +88,40 @@ class DoubtContext:
         read = [(k, i, types) for k, i in enumerate(self.items)
                 if (types := self.named_types(i, verbs_too=self.noun_slot(k)))]
         misheard = [(k, self.items[k], types) for k, types in heard(self.items, self.scene_types)]
-        return sorted(read + misheard, key=lambda m: m[0])
+        return sorted(read + misheard + self._pieces(read), key=lambda m: m[0])
+
+    def _pieces(self, read: list[tuple[int, Item, tuple[str, ...]]]) -> list[tuple[int, Item, tuple[str, ...]]]:
+        """A piece word after a determiner or a number ("one slice in the toaster", "its
+        slices"): the slices of the things the instruction names that cut up into slices,
+        the nearest named before it first (an egg's piece is no slice)."""
+        from emboteam.pfg.offline.doubts.rule_words import load_rule_words
+
+        pieces, cat = set(load_rule_words().nouns.pieces), load_catalogue()
+        wholes = [(m, p[0]) for m, _, ts in read if not ts[0].startswith("Egg") and (p := cat.slice_product(ts[0]))]
+        out = []
+        for k, item in enumerate(self.items):
+            if item.text in pieces and k > 0 and (self.items[k - 1].det or self.items[k - 1].number is not None):
+                near = sorted(wholes, key=lambda w: (w[0] > k, abs(w[0] - k)))
+                if near:
+                    out.append((k, item, tuple(dict.fromkeys(t for _, t in near))))
+        return out
 
     def noun_slot(self, k: int) -> bool:
         """Whether the word at ``k`` stands where only a noun can: after a determiner, a
         number or a quantifier, over at most one untagged word ("the spare roll", "two
-        rolls", "my watch"), so a word that is also a verb names a thing there: a thing one
-        picks up (a fixed device's word stays the verb it was read as: "the telly's light
-        enough", "do the switches")."""
+        rolls", "my watch"), or right after an attributive adjective ("spare roll",
+        ``rule_words.json``, ``nouns``), so a word that is also a verb names a thing there: a thing
+        one picks up (a fixed device's word stays the verb it was read as: "the telly's
+        light enough", "do the switches")."""
         noun = self.items[k].noun
         if noun is None or noun.concept.kind != "object" or not noun.concept.types or \
                 "pickupable" not in type_props(noun.concept.types[0]):
             return False
+        from emboteam.pfg.offline.doubts.rule_words import load_rule_words
+
         for back, item in enumerate(reversed(self.items[max(0, k - 2):k])):
-            if item.det or item.number is not None or item.quant is not None:
+            if item.det or item.number is not None or item.quant is not None or \
+                    (not back and item.text in load_rule_words().nouns.attributes):
                 return True
             if back or item.is_content() or item.prep is not None or item.punct is not None or item.pron is not None:
                 return False
@@ -137,7 +166,8 @@ class DoubtContext:
 
     @cached_property
     def _goal_types(self) -> frozenset[str]:
-        return frozenset(t for c in (*self.goals, *self.steps) for t in condition_types(c))
+        # a slice's goal counts for its whole, and for the slices themselves ("one slice ...")
+        return frozenset(t for c in (*self.goals, *self.steps) for t in (*condition_types(c), *c.subject.types))
 
     def goal_types(self) -> frozenset[str]:
         return self._goal_types

@@ -8,8 +8,12 @@ its sentence, and on over the next sentence when that one names no other thing. 
 destination is a receptacle of the window the catalogue lets it go in
 (:meth:`Catalogue.can_place`), led by a *towards* cue (:func:`led`), not where the thing
 lies now (that is where it is, not where it goes); a *directional* cue ("into") before
-another; a negation rules out the first place after it, unless a *home* cue follows the
-place ("isn't in the drawer where it belongs").
+another; a negation rules out the first place after it, led or not ("no longer on the
+side table - they're in the box"), unless a *home* cue follows the place ("isn't in the
+drawer where it belongs"). A place word of several types names the one the thing fits
+("the roll onto the holder": the toilet paper hanger). A thing listed after a colon or a
+dash whose window says nothing goes to the place the rule before the mark names
+(:func:`head_place`: "pocket things live in the box: the phone, the keys and the card").
 
 Its callers: an unexplained mention's window (:func:`.unexplained.window_goal`, strong
 evidence), the ``next_place`` doubt (:func:`doubts`: a thing the reader placed
@@ -26,10 +30,10 @@ from pathlib import Path
 from pydantic import BaseModel, ConfigDict, Field
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
-from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.context import DoubtContext, fitting_first
 from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.mention_words import after_preposition
-from emboteam.pfg.offline.doubts.rule_words import Words, find, load_rule_words
+from emboteam.pfg.offline.doubts.rule_words import Words, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import placed
 from emboteam.pfg.offline.knowledge import read
 from emboteam.pfg.sentences import clause, type_name
@@ -75,8 +79,9 @@ def led(ctx: DoubtContext, m: int, lo: int = 0) -> str | None:
     the cue is a directional one ("out onto the counter")."""
     data = load_destination_cues()
     start = max(lo, m - data.lead)
+    # not "on. le frigo", nor "on the counter tomato -> slices" (the cue's place is named before)
     cues = [ctx.items[b].text for b, e in find(ctx.items, start, m, data.towards)
-            if e <= m and all(i.punct is None for i in ctx.items[e:m])]     # not "on. le frigo
+            if e <= m and all(i.punct is None and not ctx.named_types(i) for i in ctx.items[e:m])]
     if not cues or (cues[-1] not in data.directional and any(i.text in data.sources for i in ctx.items[start:m])):
         return None
     return cues[-1]
@@ -139,19 +144,44 @@ def destination(ctx: DoubtContext, k: int, thing: str, hi: int | None = None) ->
     since, found = lo, list[tuple[bool, int, tuple[str, ...]]]()
     for m in range(lo, end):
         # a word that may be a verb names a thing after a determiner ("in the bin")
-        types = ctx.named_types(ctx.items[m], verbs_too=m > 0 and ctx.items[m - 1].det)
+        types = fitting_first(thing, ctx.named_types(ctx.items[m], verbs_too=m > 0 and ctx.items[m - 1].det))
         if not types or types[0] == thing or "receptacle" not in cat.type(types[0]).properties:
             continue
         fits = cat.can_place(thing, types[0])
         if fits and any(j in homes for j in range(m + 1, min(end, m + 3))):
             return types
-        if (cue := led(ctx, m, lo)) is None:
-            continue
+        cue = led(ctx, m, lo)
         if any(i.neg for i in ctx.items[since:m]):
-            since = m + 1     # "pens don't live on the bed, their home is the box"
-        elif fits and types[0] not in here and not (excepted and not linked(ctx, k, m)):
+            since = m + 1     # "pens don't live on the bed, their home is the box", "no longer on the table"
+        elif cue is not None and fits and types[0] not in here and not (excepted and not linked(ctx, k, m)):
             found.append((cue not in data.directional, len(found), types))
     return min(found)[2] if found else ()
+
+
+def head_place(ctx: DoubtContext, k: int, thing: str) -> tuple[str, ...]:
+    """The place a rule names before a list the thing at ``k`` stands in ("things that fit
+    in a pocket live in the box by the door: that's the phone, the keys and the card",
+    "sports stuff lives on the bed - the bat and the ball"): the list runs back from the
+    thing over list words and other things to a colon or a dash, and the place is the last
+    one before the mark, in its sentence, a towards cue leads to and the thing fits."""
+    j, fillers = k - 1, 0
+    while j >= 0 and ctx.items[j].punct not in (":", ","):
+        item = ctx.items[j]
+        if not (item.det or item.conj or item.number is not None or ctx.named_types(item)):
+            fillers += 1         # "that's"
+            if fillers > 2:
+                return ()
+        j -= 1
+    start = sentence_bounds(ctx.items, k)[0]
+    if j <= start:
+        return ()
+    cat, here = load_catalogue(), present(ctx, thing)
+    for m in range(j - 1, start - 1, -1):
+        types = fitting_first(thing, ctx.named_types(ctx.items[m]))
+        if types and types[0] != thing and cat.can_place(thing, types[0]) and types[0] not in here \
+                and led(ctx, m) is not None and not any(i.neg for i in ctx.items[start:m]):
+            return types
+    return ()
 
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
@@ -167,11 +197,13 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
         thing = types[0]
         if thing in seen or "pickupable" not in _props(thing):
             continue
-        seen.add(thing)
         # the thing itself (not its slices: "slice it, the slices on the plate"), by type
         mine = tuple(c for c in ctx.goals if c.predicate.value in replaces and c.subject.types == (thing,))
         dest = destination(ctx, k, thing) if mine else ()
-        if not dest or any(c.receptacle is not None and set(dest) & set(c.receptacle.types) for c in mine):
+        if not dest:
+            continue      # a later mention may say where it goes ("phones, cards ... So the phone ... up on a shelf")
+        seen.add(thing)
+        if any(c.receptacle is not None and set(dest) & set(c.receptacle.types) for c in mine):
             continue     # no place said, or the reader's is one the words may name ("holder")
         alt = placed(thing, dest[0])
         counted = max((c.count for c in mine if c.predicate is Predicate.inside), default=1)

@@ -31,6 +31,11 @@ CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scr
 #: the counter: ...", "the floor is covered in stuff")
 CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
                          "clutter", "cluttered", "cluttering", "clean", "empty"})
+#: words of result that start a main clause, not a condition ("So the phone and the card
+#: go up on a shelf")
+RESULTS = frozenset({"so", "therefore", "thus", "hence"})
+#: words after "no" that make it no self-correction ("no longer lying about", "no more")
+NOT_CORRECTING = frozenset({"longer", "more", "matter", "one", "need", "way", "doubt", "problem"})
 #: the explanation of a mention the person negated or excluded
 NEGATED = "negated or excluded"
 #: the explanation of a mention a chatter cue frames ("we used to have ...": :mod:`.mention_cues`)
@@ -65,9 +70,11 @@ def _explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool)
         return "the place of a chore"
     if any(i.neg or i.text in EXCLUDERS for i in before):
         return NEGATED
-    if any(i.text in CONDITIONS or i.sub is not None for i in ctx.items[start:k]):
+    if any((i.text in CONDITIONS or i.sub is not None) and i.text not in RESULTS for i in ctx.items[start:k]):
         return "a condition"
-    if any(i.text in CORRECTIONS for i in ctx.items[k + 1:k + 1 + 2 * _REACH]):
+    after = ctx.items[k + 1:k + 2 + 2 * _REACH]
+    if any(i.text in CORRECTIONS and not (i.text == "no" and j + 1 < len(after) and after[j + 1].text in NOT_CORRECTING)
+           for j, i in enumerate(after[:-1])):
         return "called off by a self-correction"
     if any(m.role in ("place", "dest") and set(types) & m.ref.types for m in ctx.history):
         return "a place or landmark"

@@ -40,6 +40,9 @@ class Contents(_Closed):
     stay_verbs: list[str]
     trash_acts: list[str]
     trash_place: str
+    #: quantifiers of what is left ("the rest", "everything else"): the things the
+    #: reading places anywhere else are no part of the set
+    remainder: list[str] = Field(default_factory=list)
     reach: int = Field(8, ge=1, le=30)
     note: str = ""
 
@@ -101,9 +104,20 @@ class Contradiction(_Closed):
     cues: list[str]
 
 
+class Nouns(_Closed):
+    """Words that make a mention of a thing where the tagger saw none (:mod:`.context`)."""
+    #: words for the pieces of a thing cut up ("one slice in the toaster"): after a
+    #: determiner or a number they name the slices of a thing the instruction names
+    pieces: list[str]
+    #: adjectives that only stand before a noun ("spare roll", "fresh roll"): a word that
+    #: is also a verb names a thing right after one
+    attributes: list[str]
+
+
 class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
+    nouns: Nouns
     contents: Contents
     others: Others
     resumed: Resumed

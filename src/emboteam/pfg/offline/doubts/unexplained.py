@@ -16,7 +16,13 @@ from __future__ import annotations
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts import affordances
 from emboteam.pfg.offline.doubts.context import DoubtContext
-from emboteam.pfg.offline.doubts.destination import destination, load_destination_cues, present, window
+from emboteam.pfg.offline.doubts.destination import (
+    destination,
+    head_place,
+    load_destination_cues,
+    present,
+    window,
+)
 from emboteam.pfg.offline.doubts.explained import CORRECTIONS, NEGATED, explanation
 from emboteam.pfg.offline.doubts.mention_cues import said_state
 from emboteam.pfg.offline.doubts.rule_words import find
@@ -75,7 +81,7 @@ def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condi
     if find(ctx.items, lo, min(hi, k + 1 + data.keep_reach), data.keep):
         here = sorted(present(ctx, thing))
         return (KEEP, (_counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
-    dest = destination(ctx, k, thing, hi)
+    dest = destination(ctx, k, thing, hi) or head_place(ctx, k, thing)
     if not dest:
         return None
     state = said_state(ctx, k, hi, thing) or _changed(ctx, lo, hi, thing)
