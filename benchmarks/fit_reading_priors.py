@@ -7,7 +7,7 @@ rounds. Never the held-out halves, the held-out round or ``tests/data/unseen_tas
 For every task the reader's own reading and its points of doubt are computed once; a
 doubt's alternative is *right* when it brings the goal closer to the ground truth (more
 of its conditions right, fewer wrong, under the equivalences of
-:mod:`emboteam.pfg.offline.evaluate`) and no other alternative of the doubt does better;
+:mod:`emboteam.bench.offline_accuracy`) and no other alternative of the doubt does better;
 ``as_read`` is right when none improves. A prior is (right + 0.5) / (offered + 1).
 An alternative whose prior would put it above the reading as read (so that it changes
 the reader's first candidate) is kept only if no round's top-1 gets worse; else it is
@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from emboteam.bench.importers.smart_llm import import_smart_llm
+from emboteam.bench.offline_accuracy import goal_keys, initial_state, load_records
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.candidates import AS_READ, Candidate, Doubt
 from emboteam.pfg.offline import OfflineFrontend
@@ -39,7 +40,6 @@ from emboteam.pfg.offline.doubts.check import feasible
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.coverage import Coverage
 from emboteam.pfg.offline.doubts.priors import PRIORS_FILE, Priors, load_priors
-from emboteam.pfg.offline.evaluate import goal_keys, initial_state, load_records
 from emboteam.pfg.offline.tagger import tag
 from emboteam.pfg.ranker import apply_choices, rank
 from emboteam.pfg.taskspec import TaskSpec

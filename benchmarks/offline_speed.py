@@ -28,9 +28,9 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from emboteam.bench.offline_accuracy import initial_state, load_records
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.evaluate import initial_state, load_records
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 

@@ -27,10 +27,10 @@ from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
 from emboteam.bench.importers.lenient import read_record
 from emboteam.bench.importers.smart_llm import _floor_number, task_files
 from emboteam.bench.mace_thor import load_mace_thor
+from emboteam.bench.offline_accuracy import initial_state as record_state
+from emboteam.bench.offline_accuracy import load_records
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.evaluate import initial_state as record_state
-from emboteam.pfg.offline.evaluate import load_records
 from emboteam.task import initial_state
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene, normalize_floor_plan

@@ -20,9 +20,9 @@ from typing import Any
 import pytest
 
 import shared_data
+from emboteam.bench.offline_accuracy import Outcome, evaluate, goal_keys, initial_state, load_records
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.evaluate import Outcome, evaluate, goal_keys, initial_state, load_records
 from emboteam.pfg.oracle import OracleFrontend, OracleGoalError
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.checker import validate_goal

@@ -13,9 +13,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from emboteam.bench.offline_accuracy import initial_state
 from emboteam.errors import EmboTeamError
 from emboteam.pfg.offline import GroundingError, OfflineFrontend, OfflineParseError
-from emboteam.pfg.offline.evaluate import initial_state
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import parse_team

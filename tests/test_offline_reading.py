@@ -11,9 +11,9 @@ from typing import Any
 
 import pytest
 
+from emboteam.bench.offline_accuracy import evaluate, initial_state, load_records
 from emboteam.pfg.offline import GroundingError, OfflineFrontend, OfflineParseError
 from emboteam.pfg.offline.consistency import ContradictoryInstruction
-from emboteam.pfg.offline.evaluate import evaluate, initial_state, load_records
 from emboteam.pfg.reading import Reading
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
@@ -217,9 +217,9 @@ def test_mace_thor_goals_read_exactly_do_not_regress() -> None:
     """The degrade rules must not cost the benchmark: at least 32 of MACE-THOR's 42 goals
     are read exactly (30 before round 3; "the remote, my watch and my keys keep going
     missing" is a statement naming objects, not a clause to reread without them)."""
+    from emboteam.bench.offline_accuracy import goal_keys
     from emboteam.bench.suites import load_suite
     from emboteam.errors import EmboTeamError
-    from emboteam.pfg.offline.evaluate import goal_keys
 
     exact = 0
     for task in load_suite("mace-thor").tasks:

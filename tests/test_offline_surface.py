@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import pytest
 
+from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.evaluate import initial_state
 from emboteam.pfg.offline.knowledge import KnowledgeDataError, validate
 from emboteam.pfg.offline.surface import SurfaceFile, read_surface
 from emboteam.pfg.reading import Reading

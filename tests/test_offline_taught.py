@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import pytest
 
+from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.evaluate import initial_state
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
 

@@ -136,9 +136,9 @@ def test_hybrid_lets_the_model_settle_close_readings() -> None:
     the recorded Qwen 0.5B scores (benchmarks/pmi_dev) the hybrid front end takes the right
     one, in one scoring call and no review; with the model's weight at 0, or a backend
     without log-probabilities, the reading as read stands."""
+    from emboteam.bench.offline_accuracy import goal_keys
     from emboteam.pfg.hybrid import HybridFrontend
     from emboteam.pfg.offline import OfflineFrontend
-    from emboteam.pfg.offline.evaluate import goal_keys
 
     task = _dev_task("blind_r6", "Heat the egg: crack it into the pan")
     scene, state, team = load_scene(task.floor_plan), task.initial_state(), task.team()
@@ -325,9 +325,9 @@ def test_hybrid_obeys_the_fitted_kinds_on_recorded_scores() -> None:
     not a kind it may judge, so it is not asked and the right reading stands (with every
     kind allowed it would have overturned it); on a means ("in the microwave") it may
     judge, and it overturns the wrong reading as read to the right one."""
+    from emboteam.bench.offline_accuracy import goal_keys
     from emboteam.pfg.hybrid import HybridFrontend
     from emboteam.pfg.offline import OfflineFrontend
-    from emboteam.pfg.offline.evaluate import goal_keys
 
     root = Path(__file__).resolve().parents[1]
     satisfies, reader = _satisfies(), OfflineFrontend()

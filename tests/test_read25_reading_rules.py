@@ -10,11 +10,11 @@ from pathlib import Path
 
 import pytest
 
+from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.doubts import destination
 from emboteam.pfg.offline.doubts.context import DoubtContext
 from emboteam.pfg.offline.doubts.rule_words import RULE_WORDS_FILE, RuleWords
-from emboteam.pfg.offline.evaluate import initial_state
 from emboteam.pfg.offline.knowledge import KnowledgeDataError
 from emboteam.pfg.offline.knowledge import read as read_data
 from emboteam.pfg.offline.tagger import tag

@@ -8,6 +8,6 @@ docs/offline_parser.md.
 """
 
 from emboteam.pfg.offline.errors import GroundingError, OfflineParseError
-from emboteam.pfg.offline.frontend import OfflineFrontend, ParseResult
+from emboteam.pfg.offline.frontend import OfflineFrontend
 
-__all__ = ["GroundingError", "OfflineFrontend", "OfflineParseError", "ParseResult"]
+__all__ = ["GroundingError", "OfflineFrontend", "OfflineParseError"]

@@ -10,7 +10,7 @@ from typing import Literal
 from pydantic import model_validator
 
 from emboteam.pfg.offline import lexicon as lx
-from emboteam.pfg.offline.knowledge import Strict, fail, load
+from emboteam.pfg.offline.knowledge import KnowledgeDataError, Strict, load
 from emboteam.world.catalogue import load_catalogue
 from emboteam.world.goals import Predicate
 
@@ -125,10 +125,10 @@ def _check_types() -> None:
     for entry, types in named:
         unknown = [t for t in types if t not in catalogue]
         if unknown:
-            raise fail(_FILE, entry, f"no object type {unknown[0]!r} in the catalogue")
+            raise KnowledgeDataError(_FILE, entry, f"no object type {unknown[0]!r} in the catalogue")
     for phrase, recipe in lx.RECIPES.items():
         if recipe not in DISHES and recipe != "toast":
-            raise fail("lexicon.json", f"recipes -> {phrase!r}", f"no dish {recipe!r} in {_FILE}")
+            raise KnowledgeDataError("lexicon.json", f"recipes -> {phrase!r}", f"no dish {recipe!r} in {_FILE}")
 
 
 _check_types()

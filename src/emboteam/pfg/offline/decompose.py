@@ -162,17 +162,7 @@ def _depends(nodes: list[Node], start: int, target: int) -> bool:
 def _reaches(nodes: list[Node], start: int, target: int) -> bool:
     """Does node ``start`` depend on ``target`` through a chain of at least two steps
     (``start`` after something that is after ``target``)?"""
-    stack = [a for a in nodes[start].after if a != target]
-    seen: set[int] = set()
-    while stack:
-        k = stack.pop()
-        if k in seen:
-            continue
-        seen.add(k)
-        if target in nodes[k].after:
-            return True
-        stack.extend(nodes[k].after)
-    return False
+    return any(a != target and _depends(nodes, a, target) for a in nodes[start].after)
 
 
 def robot_name(mention: tuple[str, int] | None, team: Sequence[RobotProfile]) -> str | None:
@@ -182,16 +172,12 @@ def robot_name(mention: tuple[str, int] | None, team: Sequence[RobotProfile]) ->
         return None
     kind, value = mention
     names = [r.name for r in team]
-    if kind == "number":
-        if f"robot{value}" in names:
-            return f"robot{value}"
-        if 1 <= value <= len(team):
-            return names[value - 1]
-    elif kind == "ordinal":
-        if value == -1 and team:
-            return names[-1]
-        if 1 <= value <= len(team):
-            return names[value - 1]
+    if kind == "number" and f"robot{value}" in names:
+        return f"robot{value}"
+    if kind == "ordinal" and value == -1 and team:
+        return names[-1]
+    if kind in ("number", "ordinal") and 1 <= value <= len(team):
+        return names[value - 1]
     label = f"robot {value}" if kind == "number" else f"robot number {value} in order"
     raise UnknownRobotError(f"the instruction names {label}, but the team is "
                             f"{', '.join(names) or 'empty'}")
@@ -201,6 +187,24 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
              team: Sequence[RobotProfile]) -> TaskSpec:
     """Drafts per clause -> a TaskSpec with dependencies and final flags."""
     order = steps(clauses)
+    nodes, clause_nodes = _nodes(order, clauses, drafts, team)
+    _order(nodes, order, clause_nodes)
+    kept = _merge_duplicates(nodes)
+    final = _final(nodes, kept)
+    ids = {i: f"s{k + 1}" for k, i in enumerate(kept)}
+    subtasks = []
+    for i in kept:
+        node = nodes[i]
+        deps = tuple(sorted((ids[a] for a in node.after if a in ids), key=lambda s: int(s[1:])))
+        subtasks.append(Subtask(id=ids[i], description=node.draft.description, robot=node.robot,
+                                goal=tuple(node.draft.conditions), depends_on=deps,
+                                final=final[i]))
+    return TaskSpec(instruction=instruction, subtasks=tuple(subtasks))
+
+
+def _nodes(order: list[list[int]], clauses: Sequence[Clause], drafts: dict[int, list[Draft]],
+           team: Sequence[RobotProfile]) -> tuple[list[Node], dict[int, list[int]]]:
+    """A node per draft, in step order, and the nodes of each clause."""
     nodes: list[Node] = []
     clause_nodes: dict[int, list[int]] = {}
     for group in order:
@@ -210,6 +214,11 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
             for k, d in enumerate(drafts.get(ci, [])):
                 nodes.append(Node(d, ci, robot, {base + a for a in d.after}))
                 clause_nodes.setdefault(ci, []).append(base + k)
+    return nodes, clause_nodes
+
+
+def _order(nodes: list[Node], order: list[list[int]], clause_nodes: dict[int, list[int]]) -> None:
+    """What waits for what: a box shut after what goes in, a step after the one before."""
     # within a clause, a receptacle is shut after what goes into it ("the remote and the
     # card shut away inside the box": placed by one frame, the box shut by another)
     for members in clause_nodes.values():
@@ -233,6 +242,10 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
                     nodes[b].after.add(a)
         if members:
             previous = members
+
+
+def _merge_duplicates(nodes: list[Node]) -> list[int]:
+    """The nodes kept once duplicates are merged (their waits moved to the kept ones)."""
     # duplicates ("make a salad" then "chop the lettuce"): keep the first, unless the
     # second comes after something that comes after the first ("take the mug, fill it
     # and bring it": held, filled, held again) - merging them would make a cycle
@@ -260,7 +273,11 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
         for a in {canon(a) for a in nodes[i].after}:
             if a != keep and not _depends(nodes, a, keep):
                 nodes[keep].after.add(a)
-    # final flags: a condition undone by a later subtask is intermediate
+    return kept
+
+
+def _final(nodes: list[Node], kept: list[int]) -> dict[int, bool]:
+    """Is each kept node's goal final? A condition undone by a later subtask is intermediate."""
     final = {i: True for i in kept}
     for pos, i in enumerate(kept):
         # objects of one clause are different objects ("the toilet paper goes on the
@@ -273,13 +290,5 @@ def assemble(instruction: str, clauses: Sequence[Clause], drafts: dict[int, list
                 final[i] = False
         if nodes[i].draft.intermediate:
             final[i] = False
-    ids = {i: f"s{k + 1}" for k, i in enumerate(kept)}
-    subtasks = []
-    for i in kept:
-        node = nodes[i]
-        deps = tuple(sorted((ids[a] for a in node.after if a in ids), key=lambda s: int(s[1:])))
-        subtasks.append(Subtask(id=ids[i], description=node.draft.description, robot=node.robot,
-                                goal=tuple(node.draft.conditions), depends_on=deps,
-                                final=final[i]))
-    return TaskSpec(instruction=instruction, subtasks=tuple(subtasks))
+    return final
 

@@ -84,11 +84,6 @@ _MAX_CHARS = 2000
 log = logging.getLogger(__name__)
 
 
-#: the offline parser's parse is a :class:`~emboteam.pfg.reading.Reading` (kept under
-#: its old name for callers that import it)
-ParseResult = Reading
-
-
 _W = word_tables("frontend")
 _PRONOUN_SUBJECT, _SUBJECT_PRONOUN, _REJECTED = (pattern_tables("frontend").pattern(name) for name in (
     "pronoun_subject", "subject_pronoun", "rejected"))

@@ -157,11 +157,6 @@ def known_types(types: list[str]) -> list[str]:
     return types
 
 
-def fail(name: str, entry: str, problem: str) -> KnowledgeDataError:
-    """A problem found after the schema (a type the catalogue lacks): the same error."""
-    return KnowledgeDataError(name, entry, problem)
-
-
 class WordsFile(Strict):
     """``data/words.json``: the word lists each module of the parser compares tokens with,
     by module and table (a set of words, an ordered list, or phrases of several words)."""

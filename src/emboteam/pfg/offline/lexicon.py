@@ -25,7 +25,7 @@ from typing import Any, Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from emboteam.pfg.offline.knowledge import Rewrite, Strict, fail, load
+from emboteam.pfg.offline.knowledge import KnowledgeDataError, Rewrite, Strict, load
 from emboteam.pfg.offline.text import split_camel
 from emboteam.world.catalogue import load_catalogue
 
@@ -315,7 +315,7 @@ def nouns() -> dict[str, Concept]:
         for phrase, concept in entries.items():
             unknown = [t for t in (*concept.types, *concept.fallback) if t not in cat.types]
             if unknown:
-                raise fail(_FILE, f"{table} -> {phrase!r}", f"no object type {unknown[0]!r} in the catalogue")
+                raise KnowledgeDataError(_FILE, f"{table} -> {phrase!r}", f"no object type {unknown[0]!r} in the catalogue")
     source = {piece for piece, _ in cat.slice_products.values()}
     for name in cat.types:
         if name in source:

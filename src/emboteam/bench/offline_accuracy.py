@@ -16,7 +16,7 @@ docs/offline_parser.md):
 - ``sliced(X)`` next to a condition that needs X cut (``cooked(Bread)``,
   ``inside(AppleSliced, Bowl)``) adds nothing: both goals hold in the same states.
 
-Run: ``python -m emboteam.pfg.offline.evaluate tests/data/offline_dev.jsonl [-v]``
+Run: ``python -m emboteam.bench.offline_accuracy tests/data/offline_dev.jsonl [-v]``
 """
 
 from __future__ import annotations
