@@ -101,6 +101,16 @@ class Contradiction(_Closed):
     cues: list[str]
 
 
+class Undo(_Closed):
+    #: words that ask to undo a move ("undo", "put it back", "the way it was")
+    cues: list[Words]
+    #: words before the place a thing was moved from or lived in ("from", "it lived on")
+    sources: list[Words]
+    #: how many words a source word may stand before its place
+    lead: int = Field(3, ge=1, le=6)
+    note: str = ""
+
+
 class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
@@ -112,6 +122,7 @@ class RuleWords(_Closed):
     stays: Stays
     correction: Correction
     contradiction: Contradiction
+    undo: Undo
 
 
 @cache
