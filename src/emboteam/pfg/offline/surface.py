@@ -29,9 +29,10 @@ from pydantic import Field
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.foreign import translate, warm_foreign
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
 from emboteam.pfg.offline.morphology import edit_distance, singular, verb_lemma
-from emboteam.pfg.offline.text import split_camel
+from emboteam.pfg.offline.text import fold_accents, split_camel
 from emboteam.world.goals import Condition
 
 KIND = "surface"
@@ -414,6 +415,7 @@ def warm_surface() -> None:
     _any_rule(False)
     _joined_names()
     _closed_words()
+    warm_foreign()
 
 
 def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
@@ -421,9 +423,14 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
     types = frozenset(scene_types)
     data = _data()[0]
     kinds: list[str] = []
+    text = fold_accents(text)
     transcript = _transcript(text)
     said = split_camel(_rewrite(text, types, True, kinds))
     words = _words(said)
+    english = translate(words)     # household words of other languages (foreign.py)
+    if english != words:
+        kinds.append("foreign")
+        said, words = _with_words(said, english), _words(_with_words(said, english))
     fixed = _split_words(_and_sounds(words, data.and_sounds), types, guess=False)
     if fixed != words:
         kinds.append("spoken")

@@ -10,6 +10,7 @@ names, and the parser must stay dependency-free and fast.
 from __future__ import annotations
 
 import re
+import unicodedata
 from dataclasses import dataclass
 
 from emboteam.pfg.offline.idioms import rephrase, spoken
@@ -71,8 +72,23 @@ def _arrows(text: str) -> str:
 _BROKEN_OFF = re.compile(r"\b([A-Za-z]+)-\s+(?:well|actually|er|erm|um|hmm),?\s+(?:just\s+)?")
 
 
+#: letters with no decomposition into a letter and its accent
+_LIGATURES = str.maketrans({"ß": "ss", "æ": "ae", "œ": "oe", "ø": "o", "Æ": "Ae", "Œ": "Oe", "Ø": "O"})
+
+
+def fold_accents(text: str) -> str:
+    """Accented letters as their plain letters ("móvil" -> "movil", "Mülleimer" ->
+    "Mulleimer"): the reader's words are ASCII, and an accent must not cut a word in two.
+    Only combining marks go (canonical decomposition): "½" and symbols stay as typed."""
+    if text.isascii():
+        return text
+    parts = unicodedata.normalize("NFD", text.translate(_LIGATURES))
+    return unicodedata.normalize("NFC", "".join(c for c in parts if not unicodedata.combining(c)))
+
+
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
+    text = fold_accents(text)
     text = _BROKEN_OFF.sub(r"\1 , i mean , ", _arrows(text))
     text = apply_rewrites(_REPLACE, text)
     text = apply_rewrites(_CONTRACTIONS, split_camel(text).lower())

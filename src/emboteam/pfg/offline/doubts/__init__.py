@@ -13,6 +13,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | slices | :mod:`.slices` |
 | device | :mod:`.device` |
 | exclusion | :mod:`.scope` |
+| undo | :mod:`.scope` (an undo: a moved thing back to where it came from or lived, ``rule_words.json``) |
 | correction | :mod:`..corrections` (a self-correction's slot read another way: the other readings) |
 | of_compound | :mod:`.of_compound` |
 | means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |

@@ -114,6 +114,16 @@ class Nouns(_Closed):
     attributes: list[str]
 
 
+class Undo(_Closed):
+    #: words that ask to undo a move ("undo", "put it back", "the way it was")
+    cues: list[Words]
+    #: words before the place a thing was moved from or lived in ("from", "it lived on")
+    sources: list[Words]
+    #: how many words a source word may stand before its place
+    lead: int = Field(3, ge=1, le=6)
+    note: str = ""
+
+
 class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
@@ -126,6 +136,7 @@ class RuleWords(_Closed):
     stays: Stays
     correction: Correction
     contradiction: Contradiction
+    undo: Undo
 
 
 @cache

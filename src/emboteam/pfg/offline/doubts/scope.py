@@ -1,18 +1,36 @@
-"""Point of doubt: the scope of a negation or an exclusion.
+"""Points of doubt of scope: what a negation, an exclusion or an undo reaches.
 
-A goal on a thing named right after "not", "except", "without", "leave" ... may be the
-thing the person excluded: drop it. (Self-corrections are :mod:`..corrections`: one
-mechanism reads their slot and offers the other readings.)
+``exclusion``: a goal on a thing named right after "not", "except", "without", "leave" ...
+may be the thing the person excluded: drop it. (Self-corrections are
+:mod:`..corrections`: one mechanism reads their slot and offers the other readings.)
+
+``undo``: "whoever moved my lettuce ... put it back", "the pillow went from the sofa to the
+armchair - put it all back the way it was": where an undo is asked, a thing the reader
+placed where it was moved *to* may go back to where it was moved *from* or lived (the
+place after a source word in its own words: "from", "it lived on", "it was on"). The
+words are data (``rule_words.json``, ``undo``); the reading as read stays a candidate.
 """
 
 from __future__ import annotations
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
-from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types, type_props
+from emboteam.pfg.offline.doubts.destination import window
 from emboteam.pfg.offline.doubts.explained import EXCLUDERS
+from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words
+from emboteam.pfg.offline.doubts.wants import placed
+from emboteam.pfg.sentences import clause
+from emboteam.world.catalogue import load_catalogue
+from emboteam.world.goals import Condition, Predicate
+
+UNDO = "undo"
 
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
+    return [*_exclusions(ctx), *_undone(ctx)]
+
+
+def _exclusions(ctx: DoubtContext) -> list[Doubt]:
     out = []
     for k, item, types in ctx.mentions():
         before = ctx.items[max(0, k - 3):k]
@@ -23,4 +41,36 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
             out.append(Doubt("exclusion", item.text, (
                 Choice(AS_READ, f"{item.text!r} is asked for"),
                 Choice("drop_excluded", f"{item.text!r} is left out", drop=hit))))
+    return out
+
+
+def _source(ctx: DoubtContext, k: int, thing: str, now: tuple[str, ...]) -> str | None:
+    """The place the thing named at ``k`` came from or lived in, by its own words (a
+    source word, then the place within ``lead`` words), when it is not where it goes now."""
+    words, cat = load_rule_words().undo, load_catalogue()
+    lo, hi = window(ctx, k, thing)
+    for _, e in find(ctx.items, lo, hi, words.sources):
+        for m in range(e, min(hi, e + words.lead)):
+            types = ctx.named_types(ctx.items[m], verbs_too=ctx.items[m - 1].det)
+            if types and types[0] != thing and "receptacle" in type_props(types[0]):
+                ok = cat.can_place(thing, types[0]) and types[0] not in now
+                return types[0] if ok else None
+    return None
+
+
+def _undone(ctx: DoubtContext) -> list[Doubt]:
+    """``undo``: each placed thing's way back (module docs)."""
+    if not find(ctx.items, 0, len(ctx.items), load_rule_words().undo.cues):
+        return []
+    out = []
+    for c in ctx.goals:
+        types = ref_types(c.subject)
+        if c.predicate is not Predicate.inside or c.receptacle is None or len(types) != 1:
+            continue
+        thing = next(iter(types))
+        if (k := ctx.position_of(c)) is None or (home := _source(ctx, k, thing, c.receptacle.types)) is None:
+            continue
+        back: Condition = placed(thing, home)
+        out.append(Doubt(UNDO, str(c), (Choice(AS_READ, clause(c)),
+                                         Choice("back_to_source", clause(back), drop=(c,), add=(back,)))))
     return out
