@@ -6,8 +6,8 @@ kind ``checklist``), and an undo that sends a moved thing back where it came fro
 
 from __future__ import annotations
 
+from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.evaluate import initial_state
 from emboteam.pfg.offline.foreign import translate
 from emboteam.pfg.offline.surface import read_surface
 from emboteam.pfg.offline.text import fold_accents, normalize
