@@ -42,8 +42,16 @@ from emboteam.llm.errors import LLMReplayMiss
 from emboteam.llm.messages import LLMRequest, LLMResponse
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
 from emboteam.llm.spec import parse_llm_spec
-from emboteam.pfg.model_ranker import close_count, differing_kinds, rerank_in_scene
+from emboteam.pfg.model_ranker import (
+    clause_lead,
+    close_count,
+    differing_clauses,
+    differing_kinds,
+    objects_summary,
+    rerank_in_scene,
+)
 from emboteam.pfg.offline import OfflineFrontend
+from emboteam.pfg.sentences import clause_sentences
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "tests" / "data"
@@ -59,6 +67,14 @@ MIN_LEADS = (0.0, 1.0, 2.0, 3.0)
 #: margin and weight 1, where its pick and the prior's first disagree and exactly one is
 #: right, the model was right more often than the prior and at least this often
 MIN_MODEL_RIGHT = 2
+#: how the model's lead over the prior's first is formed: the whole sentences' PMIs
+#: (``sentence``), the PMIs of the clauses they do not share with a candidate that only
+#: leaves clauses out not judged (``clauses``, ``model_ranker.clause_lead``), or judged with
+#: a missing clause counting 0 (``clauses_drops``: what whole-sentence PMI roughly does), or
+#: only where each says a clause the other does not (``swaps``); or the whole sentences'
+#: PMIs where the other says a clause the first does not (``sentence_nodrop``: a reading
+#: that only leaves clauses out is not judged)
+CALIBRATIONS = ("sentence", "clauses", "clauses_drops", "swaps", "sentence_nodrop")
 
 
 class CachedScorer:
@@ -95,9 +111,11 @@ def dev_folders(since: int, extra: Sequence[Path]) -> list[Path]:
     return [*rounds, *extra]
 
 
-def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> list[dict[str, Any]]:
+def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = (), clauses: bool = False) -> list[dict[str, Any]]:
     """One record per development task the reader read: priors, and for the close ones
-    the PMI of each scored candidate and whether it meets the ground truth."""
+    the PMI of each scored candidate and whether it meets the ground truth; with
+    ``clauses``, also each candidate's clauses and the PMI of every clause in which a close
+    candidate differs from the first (one more call per close task)."""
     from fit_reading_priors import task_case  # a script beside this one (benchmarks/ is on sys.path)
 
     reader = OfflineFrontend()
@@ -128,9 +146,52 @@ def records(client: LLMClient, since: int = 0, extra: Sequence[Path] = ()) -> li
                 by_sentence = {r.candidate.sentence: r.pmi for r in ranking.ranked if r.pmi is not None}
                 row["pmi"] = [by_sentence.get(c.sentence) for c in cands]
                 row["sentences"] = [c.sentence for c in cands]
+                if clauses:
+                    row.update(clause_scores(client, scene, task.instruction, cands))
                 print(f"{row['round']} {len(by_sentence)} scored, right {row['right'][:len(by_sentence)]} "
                       f"{row['cpu']:.2f}s cpu", file=sys.stderr, flush=True)
             out.append(row)
+    return out
+
+
+def clause_scores(client: LLMClient, scene: Any, instruction: str, cands: Sequence[Any]) -> dict[str, Any]:
+    """Each candidate's clauses and the PMI of the clauses the close ones (within the
+    widest margin) do not share with the first, in the prompt the ranker uses (objects
+    summary over every candidate), so the live ranker asks a subset of these."""
+    own = [list(clause_sentences(c.goals)) for c in cands]
+    close = close_count([c.score for c in cands], WIDEST)
+    texts, _ = differing_clauses(own[0], own[1:close], drops=True)
+    pmi: dict[str, float] = {}
+    if texts:
+        objects = objects_summary(scene, (instruction, *(c.sentence for c in cands)))
+        response = client.score(ScoreRequest(objects=objects, instruction=instruction, candidates=texts))
+        pmi = dict(zip(texts, response.pmi, strict=True))
+    return {"clauses": own, "clause_pmi": pmi}
+
+
+def leads(row: dict[str, Any], calibration: str = "sentence") -> list[float | None]:
+    """Each candidate's lead over the prior's first by the model (0 for the first; None:
+    not scored, or not judged by this calibration)."""
+    pmi = row["pmi"]
+    if pmi is None:
+        return [0.0] + [None] * (len(row["priors"]) - 1)
+    if calibration == "sentence":
+        return [None if p is None or pmi[0] is None else p - pmi[0] for p in pmi]
+    own, scores = row.get("clauses"), row.get("clause_pmi") or {}
+    if own is None:
+        raise EmboTeamError(f"{calibration}: the records have no clause scores (record them with --calibration)")
+    if calibration == "sentence_nodrop":
+        return [None if p is None or pmi[0] is None or (i and set(own[i]) <= set(own[0])) else p - pmi[0]
+                for i, p in enumerate(pmi)]
+    out: list[float | None] = [0.0]
+    for other in own[1:]:
+        if calibration == "swaps" and set(own[0]) <= set(other):
+            out.append(None)        # only adds clauses: not a swap
+            continue
+        try:
+            out.append(clause_lead(own[0], other, scores, drops=calibration == "clauses_drops"))
+        except KeyError:        # a clause past the request's limit: not scored
+            out.append(None)
     return out
 
 
@@ -139,28 +200,34 @@ def _diff(row: dict[str, Any], i: int) -> frozenset[str]:
     return differing_kinds(map(tuple, res[0]), map(tuple, res[i]))
 
 
-def _judged(row: dict[str, Any], margin: float, kinds: frozenset[str] | None) -> list[int]:
+def _judged(row: dict[str, Any], margin: float, kinds: frozenset[str] | None, calibration: str = "sentence") -> list[int]:
     """The candidates the ranker scores: the first and the close ones the model may judge
-    against it (``kinds`` None: every kind), at most 5, all with recorded scores."""
+    against it (``kinds`` None: every kind), at most 5, all with recorded scores; with a
+    clause calibration, of those the ones it judges (``model_ranker.rerank_by_clauses``)."""
     priors, pmi = row["priors"], row["pmi"]
     if pmi is None:
         return [0]
     others = [i for i in range(1, len(priors)) if priors[0] - priors[i] <= margin
               and (kinds is None or (_diff(row, i) and _diff(row, i) <= kinds))]
     close = [0, *others[:4]]
+    if calibration != "sentence":
+        lead = leads(row, calibration)
+        return [i for i in close if lead[i] is not None]
     return close if all(pmi[i] is not None for i in close) else [0]
 
 
-def pick(row: dict[str, Any], close: Sequence[int], weight: float, min_lead: float) -> int:
-    """The ranker's first (``model_ranker.rerank``): by ``prior + weight * pmi``, the first
-    that is the prior's first or leads its PMI by more than ``min_lead``."""
-    priors, pmi = row["priors"], row["pmi"]
-    order = sorted(close, key=lambda i: (-(priors[i] + weight * pmi[i]), i))
-    return next(i for i in order if i == 0 or pmi[i] - pmi[0] > min_lead)
+def pick(row: dict[str, Any], close: Sequence[int], weight: float, min_lead: float,
+         calibration: str = "sentence") -> int:
+    """The ranker's first (``model_ranker.rerank``): by ``prior + weight * lead``, the first
+    that is the prior's first or leads it by more than ``min_lead`` (for ``sentence``,
+    ordering by the lead is ordering by the PMI: they differ by the first's PMI)."""
+    priors, lead = row["priors"], leads(row, calibration)
+    order = sorted(close, key=lambda i: (-(priors[i] + weight * lead[i]), i))
+    return next(i for i in order if i == 0 or lead[i] > min_lead)
 
 
 def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float, min_lead: float = 0.0,
-            kinds: frozenset[str] | None = None) -> dict[str, Any]:
+            kinds: frozenset[str] | None = None, calibration: str = "sentence") -> dict[str, Any]:
     """What re-ranking with this margin and weight does to the recorded tasks; with
     ``min_lead``, the model overturns the prior's first only when its PMI leads the
     first's by more than that; with ``kinds``, it judges only candidates that differ from
@@ -171,35 +238,36 @@ def outcome(rows: Sequence[dict[str, Any]], margin: float, weight: float, min_le
         if not r["priors"]:
             continue
         prior_top1 += right[0]
-        close = _judged(r, margin, kinds)
+        close = _judged(r, margin, kinds, calibration)
         if len(close) < 2 or len({r["sentences"][i] for i in close}) < 2:
             top1 += right[0]
             continue
         calls += 1
-        best = pick(r, close, weight, min_lead)
+        best = pick(r, close, weight, min_lead, calibration)
         top1 += right[best]
         if best != 0:
             overturned += 1
             to_right += right[best] and not right[0]
             to_wrong += right[0] and not right[best]
     read = sum(1 for r in rows if r["priors"])
-    return {"margin": margin, "weight": weight, "min_lead": min_lead,
+    return {"margin": margin, "weight": weight, "min_lead": min_lead, "calibration": calibration,
             "kinds": "every" if kinds is None else "+".join(sorted(kinds)) or "none", "tasks": read,
             "calls": calls, "top1": top1, "prior_top1": prior_top1, "overturned": overturned,
             "overturned_to_right": to_right, "overturned_to_wrong": to_wrong}
 
 
-def kind_table(rows: Sequence[dict[str, Any]], margin: float = WIDEST, weight: float = 1.0) -> dict[str, dict[str, int]]:
+def kind_table(rows: Sequence[dict[str, Any]], margin: float = WIDEST, weight: float = 1.0,
+               calibration: str = "sentence") -> dict[str, dict[str, int]]:
     """Per kind of doubt, where the model's pick (every kind judged, no lead) differs from
     the prior's first: how often the model was right and the prior wrong (``model``), the
     other way (``prior``), both right or neither. A disagreement counts for every kind
     in which the two readings differ."""
     table: dict[str, dict[str, int]] = {}
     for r in rows:
-        close = _judged(r, margin, None)
+        close = _judged(r, margin, None, calibration)
         if len(close) < 2:
             continue
-        best = pick(r, close, weight, 0.0)
+        best = pick(r, close, weight, 0.0, calibration)
         if best == 0:
             continue
         a, b = r["right"][best], r["right"][0]
@@ -228,9 +296,11 @@ def kinds_entries(before: dict[str, dict[str, int]], after: dict[str, dict[str, 
                 f"(reported, not fitted): {counts(after.get(k))}"} for k in sorted({*before, *after})}
 
 
-def grid(rows: Sequence[dict[str, Any]], fitted: frozenset[str] | None = None) -> list[dict[str, Any]]:
+def grid(rows: Sequence[dict[str, Any]], fitted: frozenset[str] | None = None,
+         calibration: str = "sentence") -> list[dict[str, Any]]:
     axis: list[frozenset[str] | None] = [None] if fitted is None else [None, fitted]
-    return [outcome(rows, m, w, lead, k) for k in axis for m in MARGINS for w in WEIGHTS for lead in MIN_LEADS]
+    return [outcome(rows, m, w, lead, k, calibration)
+            for k in axis for m in MARGINS for w in WEIGHTS for lead in MIN_LEADS]
 
 
 def print_kinds(title: str, table: dict[str, dict[str, int]]) -> None:
@@ -259,6 +329,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--extra", type=Path, nargs="*", default=[],
                     help="more development rounds (blind_rNN/dev folders past the first held-out round)")
     ap.add_argument("--split", type=int, help="also a grid for the rounds before this number and one from it on")
+    ap.add_argument("--calibration", choices=CALIBRATIONS, default="sentence",
+                    help="the model's lead over the first (a clause one also records the clauses' scores)")
     args = ap.parse_args(argv)
     try:
         if args.replay:
@@ -268,30 +340,32 @@ def main(argv: Sequence[str] | None = None) -> int:
 
             live = make_backend(parse_llm_spec(f"llamacpp:{args.model or fetch_model()}"), timeout=600)
             client = LLMClient(CachedScorer(live, CASSETTE))
-        rows = records(client, args.since, args.extra)
+        rows = records(client, args.since, args.extra, clauses=args.calibration != "sentence")
     except EmboTeamError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
-    out: dict[str, Any] = {"rows": rows}
+    cal = args.calibration
+    out: dict[str, Any] = {"calibration": cal, "rows": rows}
     fitted = None
     if args.split:
         number = lambda r: int(r["round"].removeprefix("blind_r"))  # noqa: E731
         before = [r for r in rows if number(r) < args.split]
         after = [r for r in rows if number(r) >= args.split]
-        out["kinds_before_split"], out["kinds_from_split"] = kind_table(before), kind_table(after)
+        out["kinds_before_split"], out["kinds_from_split"] = (kind_table(before, calibration=cal),
+                                                              kind_table(after, calibration=cal))
         fitted = kinds_by_rule(out["kinds_before_split"])
         out["kinds_fitted"] = sorted(fitted)
         # to paste into pfg/model_ranker.json with the grid cell chosen below
         out["kinds_entries"] = kinds_entries(out["kinds_before_split"], out["kinds_from_split"], fitted)
-        out["grid_before_split"] = grid(before, fitted)
-        out["grid_from_split"] = grid(after, fitted)
+        out["grid_before_split"] = grid(before, fitted, cal)
+        out["grid_from_split"] = grid(after, fitted, cal)
         print_kinds(f"rounds before r{args.split} (to choose on)", out["kinds_before_split"])
         print_kinds(f"rounds from r{args.split} on (to report)", out["kinds_from_split"])
         print(f"kinds the model may judge by the rule (model right >= {MIN_MODEL_RIGHT} and > prior right, "
               f"before r{args.split}): {', '.join(sorted(fitted)) or 'none'}")
         print_grid(f"rounds before r{args.split} (to choose on)", out["grid_before_split"])
         print_grid(f"rounds from r{args.split} on (to report)", out["grid_from_split"])
-    out["grid"] = grid(rows, fitted)
+    out["grid"] = grid(rows, fitted, cal)
     print_grid("all rounds", out["grid"])
     args.out.write_text(json.dumps(out, indent=1) + "\n", encoding="utf-8")
     return 0

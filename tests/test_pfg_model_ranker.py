@@ -373,3 +373,117 @@ def test_the_shipped_kinds_follow_the_stated_rule_on_the_committed_records() -> 
     cell = outcome(fit, shipped.margin, shipped.weight, shipped.min_lead, judged)
     assert cell["overturned_to_right"] > 0 and cell["overturned_to_wrong"] == 0
     assert cell["top1"] > cell["prior_top1"]
+
+
+# ---- the clauses calibration: leaving a clause out is no gain --------------------------
+
+@dataclass(frozen=True)
+class Clausal:
+    """A reading with its end state as one sentence per condition."""
+
+    sentence: str
+    score: float
+    clauses: tuple[str, ...]
+
+
+IN_FRIDGE, IN_MICROWAVE = "The tomato is in the fridge.", "The tomato is in the microwave."
+LIGHT_OFF, DOOR_OPEN = "The light switch is off.", "The fridge is open."
+AS_READ = Clausal("The tomato is in the microwave and the light switch is off.", -0.2, (IN_MICROWAVE, LIGHT_OFF))
+SWAPPED = Clausal("The tomato is in the fridge and the light switch is off.", -0.6, (IN_FRIDGE, LIGHT_OFF))
+DROPPED = Clausal("The tomato is in the microwave.", -0.4, (IN_MICROWAVE,))
+ADDED = Clausal("The tomato is in the microwave, the light switch is off and the fridge is open.", -0.9,
+                (IN_MICROWAVE, LIGHT_OFF, DOOR_OPEN))
+
+
+def test_clause_lead_cancels_shared_clauses_and_gives_no_gain_for_a_missing_one() -> None:
+    """Only the clauses two readings do not share count, each side by its mean PMI; a
+    reading that only leaves a clause out is not judged (its lead would be minus that
+    clause's PMI, a gain whenever the instruction does not strongly predict the clause),
+    unless drops are asked for; one that adds a clause leads by that clause's PMI."""
+    from emboteam.pfg.model_ranker import clause_lead, differing_clauses
+
+    pmi = {IN_MICROWAVE: 1.0, IN_FRIDGE: 4.0, LIGHT_OFF: -3.0, DOOR_OPEN: 0.5}
+    assert clause_lead(AS_READ.clauses, SWAPPED.clauses, pmi) == pytest.approx(3.0)
+    assert clause_lead(AS_READ.clauses, DROPPED.clauses, pmi) is None
+    assert clause_lead(AS_READ.clauses, DROPPED.clauses, pmi, drops=True) == pytest.approx(3.0)
+    assert clause_lead(AS_READ.clauses, ADDED.clauses, pmi) == pytest.approx(0.5)
+    assert clause_lead(AS_READ.clauses, AS_READ.clauses[::-1], pmi) is None      # the same end state
+    others = [SWAPPED.clauses, DROPPED.clauses, ADDED.clauses]
+    assert differing_clauses(AS_READ.clauses, others) == ((IN_FRIDGE, IN_MICROWAVE, DOOR_OPEN), (0, 2))
+    assert differing_clauses(AS_READ.clauses, others, drops=True)[1] == (0, 1, 2)
+    assert differing_clauses(AS_READ.clauses, others, limit=2) == ((IN_FRIDGE, IN_MICROWAVE), (0,))
+
+
+def _clause_cassette(folder: Path, pmi: dict[str, float], objects: str) -> str:
+    request = ScoreRequest(objects=objects, instruction=INSTRUCTION, candidates=tuple(pmi))
+    scores = tuple(CandidateScore(sentence=s, conditional=-10.0 + v, unconditional=-10.0, tokens=8)
+                   for s, v in pmi.items())
+    store = Cassette(folder)
+    store.open_for_recording("test:handmade")
+    store.save_score(request, ScoreResponse(scores=scores, input_tokens=100, evaluated_tokens=40, model="m"))
+    return f"replay:{folder}"
+
+
+def test_rerank_by_clauses_asks_only_the_differing_clauses_and_never_rewards_a_drop(tmp_path: Path) -> None:
+    """The one request holds the clauses the judged readings do not share with the first
+    (the cassette holds only that request: any other would be a replay miss); the reading
+    that leaves the light out is not scored although its missing clause's PMI is -3 (a
+    whole-sentence PMI would have favoured it); the swap overturns when it leads by more
+    than the lead, not otherwise; when every close reading only drops clauses, nothing is
+    asked."""
+    from emboteam.pfg.model_ranker import rerank_by_clauses
+
+    def clauses_of(c: Clausal) -> tuple[str, ...]:
+        return c.clauses
+
+    client = make_client(_clause_cassette(tmp_path / "a", {IN_FRIDGE: 4.0, IN_MICROWAVE: 1.0, DOOR_OPEN: 0.5},
+                                          OBJECTS))
+    args: dict[str, Any] = {"client": client, "objects": OBJECTS, "instruction": INSTRUCTION, "margin": 1.0,
+                            "weight": 1.0, "clauses_of": clauses_of}
+    taken = rerank_by_clauses([AS_READ, DROPPED, SWAPPED, ADDED], **args, min_lead=2.0)
+    assert taken.overturned and taken.candidates == (SWAPPED, AS_READ, ADDED, DROPPED)
+    assert [r.pmi for r in taken.ranked] == pytest.approx([3.0, 0.0, 0.5, None])
+    assert taken.ranked[0].combined == pytest.approx(-0.6 + 3.0)
+    held = rerank_by_clauses([AS_READ, DROPPED, SWAPPED, ADDED], **args, min_lead=3.5)
+    assert held.scored and not held.overturned and held.candidates[0] == AS_READ
+    assert client.usage.calls == 2
+
+    Cassette(tmp_path / "empty").open_for_recording("test:handmade")
+    silent = make_client(f"replay:{tmp_path / 'empty'}")
+    quiet = rerank_by_clauses([AS_READ, DROPPED], **{**args, "client": silent})
+    assert not quiet.scored and quiet.candidates == (AS_READ, DROPPED) and silent.usage.calls == 0
+
+
+def test_the_calibration_is_data_checked_at_load(tmp_path: Path) -> None:
+    """``calibration`` is one of the two forms; anything else names the file and entry."""
+    from emboteam.pfg.model_ranker import ModelRankerDataError, load_ranker_settings
+
+    bad = tmp_path / "model_ranker.json"
+    bad.write_text('{"fitted": "x", "margin": 1.0, "weight": 1.0, "calibration": "clause"}', encoding="utf-8")
+    with pytest.raises(ModelRankerDataError, match=r"model_ranker\.json: entry calibration"):
+        load_ranker_settings(bad)
+    assert load_ranker_settings().calibration in ("sentence", "clauses")
+
+
+def test_the_benchmark_forms_each_calibrations_lead_from_the_records() -> None:
+    """benchmarks/pmi_dev_rounds.py's leads: the whole sentences' PMI difference; the clause
+    lead (a drop not judged, or judged with a missing clause counting 0); swaps only; and
+    the sentences' PMI with drops not judged. A clause past the request's limit (no
+    recorded score) is not judged."""
+    import sys
+
+    root = Path(__file__).resolve().parents[1]
+    sys.path.insert(0, str(root / "benchmarks"))  # benchmarks/ is no package
+    from pmi_dev_rounds import leads
+
+    row: dict[str, Any] = {
+        "priors": [-0.2, -0.4, -0.6, -0.9, -1.0], "pmi": [5.0, 9.0, 6.0, 4.0, None],
+        "clauses": [list(AS_READ.clauses), list(DROPPED.clauses), list(SWAPPED.clauses), list(ADDED.clauses),
+                    [IN_FRIDGE]],
+        "clause_pmi": {IN_MICROWAVE: 1.0, IN_FRIDGE: 4.0, LIGHT_OFF: -3.0, DOOR_OPEN: 0.5}}
+    assert leads(row) == [0.0, 4.0, 1.0, -1.0, None]
+    assert leads(row, "clauses") == pytest.approx([0.0, None, 3.0, 0.5, 5.0])
+    assert leads(row, "clauses_drops") == pytest.approx([0.0, 3.0, 3.0, 0.5, 5.0])
+    assert leads(row, "swaps") == pytest.approx([0.0, None, 3.0, None, 5.0])
+    assert leads(row, "sentence_nodrop") == [0.0, None, 1.0, -1.0, None]
+    assert leads({**row, "clause_pmi": {}}, "clauses")[1:] == [None, None, None, None]

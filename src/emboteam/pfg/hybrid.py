@@ -48,10 +48,17 @@ from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
-from emboteam.pfg.model_ranker import Reranking, differing_kinds, load_ranker_settings, rerank_in_scene
+from emboteam.pfg.model_ranker import (
+    Calibration,
+    Reranking,
+    differing_kinds,
+    load_ranker_settings,
+    rerank_in_scene,
+)
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
 from emboteam.pfg.reading import Reading, ReadingNote
 from emboteam.pfg.schema import taskspec_from_answer, taskspec_to_answer
+from emboteam.pfg.sentences import clause_sentences
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
@@ -106,7 +113,7 @@ class HybridFrontend:
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
                  llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
                  rank_margin: float | None = None, rank_weight: float | None = None,
-                 rank_min_lead: float | None = None,
+                 rank_min_lead: float | None = None, rank_calibration: Calibration | None = None,
                  clarify: ClarifyHook | None = None) -> None:
         self.client = client
         self.parse = parse
@@ -128,6 +135,8 @@ class HybridFrontend:
         #: which kinds of doubt the model may judge and the lead each needs
         #: (RankerSettings.lead_for; a ``rank_min_lead`` given stands for the file's)
         self.rank_kinds = settings.model_copy(update={"min_lead": self.rank_min_lead})
+        #: the model's lead from whole sentences or from the clauses they do not share
+        self.rank_calibration = settings.calibration if rank_calibration is None else rank_calibration
         self.last_ranking: Reranking[Candidate] | None = None
         #: settles a clarification the LLM asks for when it writes a spec the parser could not
         self.clarify = clarify
@@ -167,7 +176,8 @@ class HybridFrontend:
         try:
             ranking = rerank_in_scene(draft.candidates, client=self.client, scene=scene, instruction=instruction,
                                       margin=self.rank_margin, weight=self.rank_weight,
-                                      min_lead=self.rank_min_lead, lead_needed=self.lead_needed)
+                                      min_lead=self.rank_min_lead, lead_needed=self.lead_needed,
+                                      clauses_of=_clauses if self.rank_calibration == "clauses" else None)
         except LLMScoringUnsupported:
             return draft
         except SCORING_OUTAGES as exc:
@@ -262,6 +272,10 @@ class HybridFrontend:
             return draft
         corrected = ReadingNote(span="(LLM review)", reason="the LLM corrected the offline reading", kind="assumed")
         return Reading(spec=spec, notes=(*draft.notes, corrected))
+
+
+def _clauses(candidate: Candidate) -> tuple[str, ...]:
+    return clause_sentences(candidate.goals)
 
 
 def _resolutions(candidate: Candidate) -> list[tuple[str, str, str]]:

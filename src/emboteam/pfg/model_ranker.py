@@ -19,11 +19,11 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
-from typing import Generic, Protocol, TypeVar
+from typing import Generic, Literal, Protocol, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
@@ -36,6 +36,11 @@ from emboteam.world.scene import Scene
 #: rounds by ``benchmarks/pmi_dev_rounds.py`` (the fit, its date and command are in the
 #: file's ``fitted`` entry; docs/llm.md has the grid). Data, checked at load.
 SETTINGS_FILE = Path(__file__).with_name("model_ranker.json")
+
+#: how the model's lead of a close candidate over the prior's first is formed: ``sentence``
+#: the difference of the whole sentences' PMIs; ``clauses`` the PMIs of the clauses the two
+#: do not share, where leaving a clause out is never a gain (:func:`clause_lead`)
+Calibration = Literal["sentence", "clauses"]
 
 
 class ModelRankerDataError(EmboTeamError):
@@ -71,6 +76,8 @@ class RankerSettings(BaseModel):
     min_lead: float = Field(0.0, ge=0, le=20)
     #: the rule that chose ``kinds`` from the fit (stated, so a refit applies it again)
     kinds_rule: str = Field("", max_length=2000)
+    #: how the model's lead over the first is formed (:data:`Calibration`)
+    calibration: Calibration = "sentence"
     #: per kind of doubt (``Resolution.kind``): may the model judge it; a kind not listed
     #: may not be judged (a new kind has no evidence yet). Empty: every kind may be.
     kinds: dict[str, KindPermission] = Field(default_factory=dict)
@@ -223,21 +230,102 @@ def rerank(candidates: Sequence[C], *, client: LLMClient, objects: str, instruct
                      overturned=scored[0].candidate is not candidates[0], response=response)
 
 
+def clause_lead(first: Sequence[str], other: Sequence[str], pmi: Mapping[str, float], *,
+                drops: bool = False) -> float | None:
+    """How far ``other`` leads ``first`` by the PMIs of the clauses they do not share (the
+    clauses both say cancel): the mean PMI of the clauses only ``other`` says minus the mean
+    of those only ``first`` says, a side with none counting 0 (a neutral clause).
+
+    A reading that only leaves clauses of the first out is not judged (None), unless
+    ``drops``: a clause the instruction does not strongly predict often has a negative PMI,
+    so a score in which a missing clause counts 0 rewards leaving requested things out
+    (docs/llm.md, "The sentence's form"). ``pmi`` maps each clause sentence to its PMI."""
+    said = set(other)
+    gone = [c for c in dict.fromkeys(first) if c not in said]
+    new = [c for c in dict.fromkeys(other) if c not in set(first)]
+    if not new and not (drops and gone):
+        return None
+    return _mean(pmi[c] for c in new) - _mean(pmi[c] for c in gone)
+
+
+def _mean(values: Iterable[float]) -> float:
+    got = list(values)
+    return sum(got) / len(got) if got else 0.0
+
+
+def differing_clauses(first: Sequence[str], others: Sequence[Sequence[str]], *, drops: bool = False,
+                      limit: int = 16) -> tuple[tuple[str, ...], tuple[int, ...]]:
+    """The clause sentences to score for comparing ``others`` with ``first`` (those not
+    shared, without repeats, at most ``limit``: one request) and the indices of the others
+    they allow to judge (by :func:`clause_lead`; an other whose clauses would pass the
+    limit is left out)."""
+    asked: dict[str, None] = {}
+    judged: list[int] = []
+    for i, other in enumerate(others):
+        gone = [c for c in first if c not in set(other)]
+        new = [c for c in other if c not in set(first)]
+        if not new and not (drops and gone):
+            continue
+        more = dict.fromkeys([*asked, *new, *gone])
+        if len(more) > limit:
+            break
+        asked = more
+        judged.append(i)
+    return tuple(asked), tuple(judged)
+
+
+def rerank_by_clauses(candidates: Sequence[C], *, client: LLMClient, objects: str, instruction: str,
+                      margin: float, weight: float, clauses_of: Callable[[C], Sequence[str]],
+                      max_scored: int = MAX_SCORED, tail: Sequence[C] = (), min_lead: float = 0.0,
+                      lead_of: Callable[[C], float] | None = None) -> Reranking[C]:
+    """:func:`rerank` with the ``clauses`` calibration: the close candidates are compared
+    with the prior's first by :func:`clause_lead` (``clauses_of(candidate)``: its end state
+    as one sentence per condition); the clauses none of them differ in are not asked, a
+    candidate that only leaves clauses out is not judged, and when none is judged nothing
+    is asked. ``Ranked.pmi`` is the candidate's clause lead over the first (0 for the first)."""
+    priors = [float(c.score) for c in candidates]
+    n = min(close_count(priors, margin), max_scored)
+    own = [tuple(dict.fromkeys(clauses_of(c))) for c in candidates[:n]]
+    texts, judged_at = differing_clauses(own[0], own[1:]) if n >= 2 else ((), ())
+    if not judged_at:
+        return Reranking((*_unscored(candidates), *_unscored(tail)), scored=False, overturned=False)
+    response = client.score(ScoreRequest(objects=objects, instruction=instruction, candidates=texts))
+    pmi = dict(zip(texts, response.pmi, strict=True))
+    first = Ranked(candidates[0], priors[0], 0.0, priors[0])
+    scored = [first]
+    for i in judged_at:
+        lead = clause_lead(own[0], own[i + 1], pmi)
+        assert lead is not None         # differing_clauses judged it
+        scored.append(Ranked(candidates[i + 1], priors[i + 1], lead, priors[i + 1] + weight * lead))
+    scored.sort(key=lambda r: -r.combined)      # stable: the first wins a tie
+    needed = lead_of or (lambda _: min_lead)
+    winner = next(r for r in scored if r is first or (r.pmi or 0.0) > needed(r.candidate))
+    scored = [winner, *(r for r in scored if r is not winner)]
+    picked = {id(r.candidate) for r in scored}
+    rest = [c for c in candidates if id(c) not in picked]
+    return Reranking((*scored, *_unscored(rest), *_unscored(tail)), scored=True,
+                     overturned=winner is not first, response=response)
+
+
 def _unscored(candidates: Sequence[C]) -> tuple[Ranked[C], ...]:
     return tuple(Ranked(c, float(c.score), None, float(c.score)) for c in candidates)
 
 
 def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene, instruction: str,
                     margin: float, weight: float, min_lead: float = 0.0,
-                    lead_needed: Callable[[C, C], float | None] | None = None) -> Reranking[C]:
+                    lead_needed: Callable[[C, C], float | None] | None = None,
+                    clauses_of: Callable[[C], Sequence[str]] | None = None) -> Reranking[C]:
     """:func:`rerank` with the objects summary of ``scene`` for the instruction and the
     candidates' sentences: the one call a front end makes. ``lead_needed(first, other)``
     says what PMI lead ``other`` needs to overturn the prior's ``first``, or None when the
     model may not judge the doubt between them (a kind on which it was no better than the
     prior): those candidates are not scored and keep their place by the prior after the
-    scored ones; when none may be judged, nothing is asked."""
+    scored ones; when none may be judged, nothing is asked. With ``clauses_of`` (a
+    candidate's end state, one sentence per condition) the ``clauses`` calibration
+    (:func:`rerank_by_clauses`) stands for the whole sentences' PMI."""
     if lead_needed is None or not candidates:
-        return _rerank_scene(list(candidates), [], client, scene, instruction, (margin, weight, min_lead), None)
+        return _rerank_scene(list(candidates), [], client, scene, instruction, (margin, weight, min_lead), None,
+                             clauses_of)
     first = candidates[0]
     leads = {id(c): lead_needed(first, c) for c in candidates[1:]}
     judged = [first, *(c for c in candidates[1:] if leads[id(c)] is not None)]
@@ -246,14 +334,19 @@ def rerank_in_scene(candidates: Sequence[C], *, client: LLMClient, scene: Scene,
     def lead_of(c: C) -> float:
         return leads.get(id(c)) or 0.0
 
-    return _rerank_scene(judged, rest, client, scene, instruction, (margin, weight, min_lead), lead_of)
+    return _rerank_scene(judged, rest, client, scene, instruction, (margin, weight, min_lead), lead_of, clauses_of)
 
 
 def _rerank_scene(candidates: Sequence[C], tail: Sequence[C], client: LLMClient, scene: Scene, instruction: str,
-                  settings: tuple[float, float, float], lead_of: Callable[[C], float] | None) -> Reranking[C]:
+                  settings: tuple[float, float, float], lead_of: Callable[[C], float] | None,
+                  clauses_of: Callable[[C], Sequence[str]] | None = None) -> Reranking[C]:
     margin, weight, min_lead = settings
     # over every candidate, judged or not: a sentence's PMI then does not depend on which
     # others the model may judge (and is the one benchmarks/pmi_dev_rounds.py recorded)
     objects = objects_summary(scene, (instruction, *(c.sentence for c in (*candidates, *tail))))
+    if clauses_of is not None:
+        return rerank_by_clauses(candidates, client=client, objects=objects, instruction=instruction,
+                                 margin=margin, weight=weight, clauses_of=clauses_of, tail=tail,
+                                 min_lead=min_lead, lead_of=lead_of)
     return rerank(candidates, client=client, objects=objects, instruction=instruction, margin=margin,
                   weight=weight, tail=tail, min_lead=min_lead, lead_of=lead_of)

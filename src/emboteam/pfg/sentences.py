@@ -93,3 +93,9 @@ def sentence(conditions: Sequence[Condition]) -> str:
         return "Nothing changes."
     text = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
     return text[0].upper() + text[1:] + "."
+
+
+def clause_sentences(conditions: Sequence[Condition]) -> tuple[str, ...]:
+    """Each condition as a sentence of its own ("The apple is in the fridge."): what the
+    model scores clause by clause (``model_ranker.clause_lead``)."""
+    return tuple(sentence([c]) for c in conditions)
