@@ -69,11 +69,14 @@ def test_the_box_cell_bound_is_its_optimum_through_the_carry_term() -> None:
     assert ref is not None and ref.optimal and b.value <= ref.makespan + 1e-6
 
 
-@pytest.mark.parametrize("cell", [("FloorPlan201", 8, 24, 1), ("FloorPlan201", 8, 8, 1), ("FloorPlan201", 4, 16, 0)],
+@pytest.mark.parametrize("cell", [("FloorPlan201", 8, 24, 1), ("FloorPlan201", 8, 8, 1), ("FloorPlan201", 8, 16, 1)],
                          ids=lambda c: f"{c[0]} {c[1]}x{c[2]} seed {c[3]}")
-def test_the_bound_with_the_carry_term_is_never_above_the_proven_optimum(cell: tuple[str, int, int, int]) -> None:
+def test_the_carry_term_is_never_above_the_proven_optimum(cell: tuple[str, int, int, int]) -> None:
+    """Cells where the term sets the bound (19.5, 18.0 and 18.0 s; the other terms 15.0)."""
     _, spec, state = sweep_input(*cell)
     plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+    b = simulate(plan, planning_state(state), spec.goal()).resources
+    assert b.carry > max(b.work, b.subtask, b.spot_window, b.object_window) and b.value == b.carry
     ref = reference(plan, spec, planning_state(state), limit=10.0)
     assert ref is not None and ref.optimal
-    assert 0 < plan.resource_bound <= ref.makespan + 1e-6
+    assert 0 < plan.resource_bound == b.value <= ref.makespan + 1e-6
