@@ -55,7 +55,8 @@ class MergedPlan(BaseModel):
     lower_bound: float = Field(0.0, description="max(critical path, busiest robot's work)")
     resource_bound: float = Field(0.0, description="max(total work / robots, longest subtask of one robot, "
                                   "busiest spot's serial time with the least time before and after it, "
-                                  "serial time on the busiest object): bounds any schedule of these actions")
+                                  "serial time on the busiest object, a carried box's put-down and the work into it "
+                                  "after): bounds any schedule of these actions")
     joint: bool = Field(False, description="solved as one joint multi-robot problem (fallback)")
     planner_calls: int = 0
     plan_seconds: float = 0.0

@@ -10,13 +10,15 @@ plan's own allocation and waits as given: a ratio near 1 says little about them)
 *resource-aware* bound :func:`resource_bound`, which takes neither: any schedule of these
 actions, by any robots, needs at least max(total work / robots, the longest subtask one
 robot does, the busiest interaction spot's serial time with the least time before its
-first use and after its last, the serial time on the busiest object).
+first use and after its last, the serial time on the busiest object, the work done into a
+carried box after its put-down).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from emboteam.hp.carry_bound import carry_bound
 from emboteam.hp.plan import MergedPlan, PlanStep
 from emboteam.sim.simulator import Simulator
 from emboteam.world.actions import Skill
@@ -43,7 +45,10 @@ class ResourceBound:
       the steps of a robot holding it (carrying it, putting it, slicing with it) cannot
       overlap, since the simulator refuses acting on an object another robot holds and
       an object not held is reached from its spot, which one robot holds at a time; with
-      heads and tails as for a spot (``object_window``).
+      heads and tails as for a spot (``object_window``);
+    - ``carry``: work done into (or on) a receptacle at the place a robot carried it to
+      cannot start before its put-down, which ends no earlier than the least drive to the
+      receptacle plus the carry (:mod:`emboteam.hp.carry_bound`; only with the start state).
     """
 
     value: float = 0.0
@@ -63,14 +68,18 @@ class ResourceBound:
     #: the largest one-machine bound over the objects (>= ``object``), and its object
     object_window: float = 0.0
     object_window_name: str = ""
+    #: the put-down of a carried receptacle, then the work at its new place, and that receptacle
+    carry: float = 0.0
+    carry_name: str = ""
 
 
 def resource_bound(plan: MergedPlan, durations: dict[str, float], spots: dict[str, str],
-                   holding: dict[str, str] | None = None) -> ResourceBound:
+                   holding: dict[str, str] | None = None, start: WorldState | None = None) -> ResourceBound:
     """:class:`ResourceBound` of ``plan``; ``spots`` maps the id of each step that holds an
     interaction spot (every step but GoToObject) to the spot it held; ``holding`` the id
     of each step to the object its robot held when it began (when not given: followed
-    through the plan's pickups and puts, robots starting empty-handed)."""
+    through the plan's pickups and puts, robots starting empty-handed); ``start``: the
+    state the plan starts from, for the ``carry`` term (0 without it)."""
     if holding is None:
         holding = _holding(plan)
     total = 0.0
@@ -98,8 +107,9 @@ def resource_bound(plan: MergedPlan, durations: dict[str, float], spots: dict[st
     obj = max(on, key=lambda k: (on[k], k), default="")
     obj_window, obj_window_name = _window(jobs, durations, objects)
     value = max(work, subtask, spot, window, on.get(obj, 0.0), obj_window)
-    return ResourceBound(value, work, subtask, spot, busiest, window, window_name, on.get(obj, 0.0), obj,
-                         obj_window, obj_window_name)
+    carry, carry_name = (0.0, "") if start is None else carry_bound(plan, durations, spots, start, value)
+    return ResourceBound(max(value, carry), work, subtask, spot, busiest, window, window_name, on.get(obj, 0.0), obj,
+                         obj_window, obj_window_name, carry, carry_name)
 
 
 def _holding(plan: MergedPlan) -> dict[str, str]:
@@ -234,9 +244,9 @@ class _Run:
         return None
 
 
-def _timing(plan: MergedPlan, run: _Run) -> Timing:
-    """The timing of a run that ended: failed if steps were left waiting, else the
-    makespan and both lower bounds over the measured durations."""
+def _timing(plan: MergedPlan, run: _Run, start: WorldState) -> Timing:
+    """The timing of a run that ended (from ``start``): failed if steps were left waiting,
+    else the makespan and both lower bounds over the measured durations."""
     left = [s.id for q in run.queues.values() for s in q]
     if left:
         return Timing(ok=False, failure=f"steps {', '.join(left[:5])} never became ready (their waits "
@@ -245,7 +255,7 @@ def _timing(plan: MergedPlan, run: _Run) -> Timing:
     makespan = max((e for _, e in times.values()), default=0.0)
     durations = {k: e - s for k, (s, e) in times.items()}
     return Timing(ok=True, times=times, makespan=makespan, lower_bound=lower_bound(plan, durations),
-                  resources=resource_bound(plan, durations, run.held, run.holding), final=run.sim.state)
+                  resources=resource_bound(plan, durations, run.held, run.holding, start), final=run.sim.state)
 
 
 def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None, *,
@@ -265,7 +275,7 @@ def simulate(plan: MergedPlan, state: WorldState, goal: Goal | None = None, *,
         failed = run.advance()
         if failed is not None:
             return failed
-    timing = _timing(plan, run)
+    timing = _timing(plan, run, state)
     if timing.ok and goal is not None:
         report = check_goal(goal, sim.state)
         if not report.success:
