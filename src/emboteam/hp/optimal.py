@@ -37,7 +37,9 @@ goal seeds 3 and 4, proven in 10 deterministic seconds, not before). Its domains
 the hint's makespan, and robots no constraint tells apart (:func:`interchangeable`) take
 groups in a fixed order: both exact, neither changes an optimum. Its portfolio is four
 full-problem searches without large-neighbourhood search (:data:`PORTFOLIO`): the cells
-left unproven were min-max routing problems whose proof is search, not the LP.
+left unproven were min-max routing problems whose proof is search, not the LP. Where it
+ends unproven, :func:`solve` can go on with the route relaxation's bound
+(:mod:`.optimal_bound`) and with branch-and-check one cap at a time (:mod:`.optimal_check`).
 """
 
 from __future__ import annotations
