@@ -66,7 +66,7 @@ class Row:
 
 
 def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfig, limit: float,
-        bound_limit: float = 0.0) -> list[Row]:
+        bound_limit: float = 0.0, check_limit: float = 0.0) -> list[Row]:
     rows: list[Row] = []
     for label, spec, state in inputs:
         t0 = time.perf_counter()
@@ -81,7 +81,8 @@ def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfi
         row.carry, row.without_carry = _carry(plan, spec, state)
         t1 = time.perf_counter()
         try:
-            ref = (reference(plan, spec, planning_state(state), limit, bound_limit=bound_limit)
+            ref = (reference(plan, spec, planning_state(state), limit, bound_limit=bound_limit,
+                             check_limit=check_limit)
                    if limit > 0 else None)
         except ScheduleTimeoutError as exc:  # the wall-clock safety net: no answer
             ref, row.error = None, str(exc)[:120]
@@ -164,6 +165,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--bound-limit", type=float, default=0.0,
                     help="where CP-SAT ends unproven, this many more deterministic seconds on the route relaxation "
                     "(emboteam.hp.optimal_bound) for a higher bound; 0: none")
+    ap.add_argument("--check-limit", type=float, default=0.0,
+                    help="where the bound is still below the best schedule, this many more deterministic seconds of "
+                    "branch-and-check, one cap at a time (emboteam.hp.optimal_check); 0: none")
     ap.add_argument("--out", type=Path, help="write the rows here (JSON)")
     args = ap.parse_args(argv)
     if args.schedule == "heuristic":
@@ -171,18 +175,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     config = PlannerConfig(schedule="optimal" if args.schedule == "optimal" else "fast")
     load0 = os.getloadavg()[0]
     started = time.strftime("%Y-%m-%d %H:%M")
-    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit, args.bound_limit)
+    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit, args.bound_limit, args.check_limit)
     seeds = [int(s) for s in args.seeds.split(",")]
     cells: dict[int, list[Row]] = {}
     if args.cells and not args.no_sweep:
-        cells[-1] = run(cell_inputs(args.cells), config, args.limit, args.bound_limit)
+        cells[-1] = run(cell_inputs(args.cells), config, args.limit, args.bound_limit, args.check_limit)
     elif not args.no_sweep:
         for seed in seeds:
             cells[seed] = run(sweep_inputs([int(x) for x in args.robots.split(",")],
                                            [int(x) for x in args.conditions.split(",")], [seed]), config, args.limit,
-                               args.bound_limit)
+                               args.bound_limit, args.check_limit)
     lines = [f"{started}, load {load0:.1f} before, {os.cpu_count()} cores; schedule {args.schedule}, CP-SAT limit "
-             f"{args.limit:g} deterministic s, route bound {args.bound_limit:g} s"]
+             f"{args.limit:g} deterministic s, route bound {args.bound_limit:g} s, "
+             f"branch-and-check {args.check_limit:g} s"]
     if suite:
         lines += summary(suite, "MACE-THOR")
     for seed, rows in cells.items():

@@ -13,6 +13,7 @@ from emboteam.hp import optimal
 from emboteam.hp.optimal import Job, Op, Problem, ScheduleTimeoutError, problem_of, reference, solve, travel
 from emboteam.hp.optimal_bound import route_bound
 from emboteam.hp.optimal_carry import CarryLog
+from emboteam.hp.optimal_check import CapCheck, check_cap
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
@@ -201,10 +202,10 @@ def test_symmetry_breaking_among_identical_robots_keeps_the_optimum() -> None:
     assert optimal.interchangeable(moved) == [["robot1", "robot2"]]
 
 
-def _route_bound(problem: Problem) -> float:
+def _route_bound(problem: Problem, timed: bool = False) -> float:
     """:func:`emboteam.hp.optimal_bound.route_bound` on ``problem``'s strong model, seconds."""
     model = optimal._Model(problem, None, tight=True)
-    routes = route_bound(problem, model.routing(), optimal._solver(True, 5.0, 2))
+    routes = route_bound(problem, model.routing(), optimal._solver(True, 5.0, 2), timed=timed)
     assert routes.proven
     return routes.ticks * model.unit / optimal.SCALE
 
@@ -238,6 +239,55 @@ def test_the_route_bound_is_never_above_the_proven_optimum(make: Callable[[], tu
     ref = solve(problem, plan, limit=10.0)
     assert ref.optimal
     assert 0 < _route_bound(problem) <= ref.makespan + 1e-6
+    assert 0 < _route_bound(problem, timed=True) <= ref.makespan + 1e-6
+    # branch-and-check never finds a schedule below the optimum nor refutes the optimum's cap
+    model = optimal._Model(problem, plan, tight=True)
+    optimum = round(ref.makespan * optimal.SCALE / model.unit)
+    assert _check(model, optimum - 1).verdict in ("none", "unknown")
+    assert _check(model, optimum).verdict in ("found", "unknown")
+
+
+def _check(model: optimal._Model, cap: int) -> CapCheck:
+    """:func:`emboteam.hp.optimal_check.check_cap` on ``model`` at ``cap`` ticks, 5 s."""
+    return check_cap(model.p, model.routing(), (model.m, model.x, model.makespan), cap, 5.0,
+                     lambda s: optimal._solver(True, s, 2))
+
+
+def test_the_timed_route_bound_counts_a_wait_across_robots() -> None:
+    """Two robots, each with its own job; the near one's job waits for the far one's. The
+    routes alone end when the far job does; the timed relaxation adds the near job after
+    it, which is the optimum (the test fails with the waits left out of the timed part)."""
+    team = parse_team(["1", "1"])
+    profiles = {"robot1": team[0], "robot2": team[1]}
+    jobs = [_job(0, "robot1", (4.0, 0.0), 5.0), _job(1, "robot2", (1.0, 0.0), 2.0)]
+    problem = Problem(jobs, {"j0": ("robot1",), "j1": ("robot2",)}, {"robot1": (0.0, 0.0), "robot2": (0.0, 0.0)},
+                      profiles, precedences=[("s0", "s1")])
+    best = solve(problem, limit=5.0)
+    assert best.optimal
+    assert abs(best.makespan - (travel(team[0], (0.0, 0.0), (4.0, 0.0)) + 5.0 + 2.0)) < 0.05
+    assert _route_bound(problem) < best.makespan - 1.0
+    assert abs(_route_bound(problem, timed=True) - best.makespan) < 0.05
+
+
+def test_branch_and_check_refutes_routes_a_shared_spot_makes_too_long() -> None:
+    """Two jobs at one spot, two robots: the relaxation (no spots) ends both at once, each
+    robot taking one; the check finds that one must wait for the other, refutes both
+    splits, and proves the cap below the optimum empty; at the optimum it finds a schedule."""
+    team = parse_team(["1", "1"])
+    profiles = {"robot1": team[0], "robot2": team[1]}
+    jobs = [_job(0, "robot1", (2.0, 0.0), 5.0), _job(1, "robot1", (2.0, 0.0), 5.0)]
+    jobs[1].ops[0].spot = jobs[0].ops[0].spot
+    problem = Problem(jobs, {j.group: ("robot1", "robot2") for j in jobs}, {"robot1": (0.0, 0.0), "robot2": (0.0, 0.0)},
+                      profiles)
+    best = solve(problem, limit=5.0)
+    assert best.optimal
+    model = optimal._Model(problem, None, tight=True)
+    optimum = round(best.makespan * optimal.SCALE / model.unit)
+    assert abs(_route_bound(problem, timed=True) - (best.makespan - 5.0)) < 0.05  # no spots: both at once
+    below = _check(model, optimum - 1)
+    assert below.verdict == "none" and below.refuted == 2
+    at = _check(model, optimum)
+    assert at.verdict == "found" and at.value(model.makespan) <= optimum
 
 
 def test_nothing_goes_into_a_box_while_another_robot_carries_it() -> None:

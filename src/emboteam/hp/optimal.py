@@ -37,7 +37,9 @@ goal seeds 3 and 4, proven in 10 deterministic seconds, not before). Its domains
 the hint's makespan, and robots no constraint tells apart (:func:`interchangeable`) take
 groups in a fixed order: both exact, neither changes an optimum. Its portfolio is four
 full-problem searches without large-neighbourhood search (:data:`PORTFOLIO`): the cells
-left unproven were min-max routing problems whose proof is search, not the LP.
+left unproven were min-max routing problems whose proof is search, not the LP. Where it
+ends unproven, :func:`solve` can go on with the route relaxation's bound
+(:mod:`.optimal_bound`) and with branch-and-check one cap at a time (:mod:`.optimal_check`).
 """
 
 from __future__ import annotations
@@ -51,6 +53,7 @@ from ortools.sat.python import cp_model
 
 from emboteam.hp.optimal_bound import RouteBound, Routing, route_bound
 from emboteam.hp.optimal_carry import CarryLog
+from emboteam.hp.optimal_check import CapCheck, check_cap
 from emboteam.hp.optimal_problem import Job as Job
 from emboteam.hp.optimal_problem import Op as Op
 from emboteam.hp.optimal_problem import Point as Point
@@ -548,7 +551,29 @@ class _Model:
         """The routing part of the model, for :func:`emboteam.hp.optimal_bound.route_bound`."""
         inner = {(r, j.id): self._inner(profile, j) for r, profile in self.p.profiles.items()
                  for j in self.p.jobs if r in self.p.candidates[j.group]}
-        return Routing({key: self.drive.get(key, 0) for key in self.arc}, inner, dict(self.size), self.horizon)
+        heads: dict[str, int] = {}
+        tails: dict[str, int] = {}
+        for j in self.p.jobs:
+            for r in self.p.candidates[j.group]:
+                for o, head, tail in self._offsets(self.p.profiles[r], j):
+                    heads[o] = min(head, heads.get(o, head))
+                    tails[o] = min(tail, tails.get(o, tail))
+        return Routing({key: self.drive.get(key, 0) for key in self.arc}, inner, dict(self.size), self.horizon,
+                       heads, tails)
+
+    def _offsets(self, profile: RobotProfile, j: Job) -> list[tuple[str, int, int]]:
+        """Each operation of ``j`` for a robot of ``profile``: the least ticks from the
+        job's first operation's start to its start, and from its end to the job's end
+        (its operations and the drives between them; waits only add)."""
+        steps = [self._u(j.ops[0].seconds)]
+        for a, b in zip(j.ops, j.ops[1:], strict=False):
+            steps += [self._travel(profile, a.place, b.goal) if b.drive else 0, self._u(b.seconds)]
+        total = sum(steps)
+        out = []
+        for k, o in enumerate(j.ops):
+            head = sum(steps[:2 * k])
+            out.append((o.step, head, total - head - steps[2 * k]))
+        return out
 
     def _hint(self, plan: MergedPlan) -> None:
         starts_of = {s.id: s.est_start for s in plan.steps}
@@ -573,7 +598,8 @@ class _Model:
 
 
 def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT,
-          linearization: int = 2, symmetry: bool = True, bound_limit: float = 0.0) -> Reference:
+          linearization: int = 2, symmetry: bool = True, bound_limit: float = 0.0,
+          check_limit: float = 0.0) -> Reference:
     """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with
     seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2`` puts the
     circuits and the route lengths into the LP (``_Model._routes``): what proves the
@@ -586,7 +612,11 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     :data:`WALL_FACTOR`) stops it. ``bound_limit`` > 0 (strong model only): where the
     search ends unproven, that many more deterministic seconds on the route relaxation
     (:mod:`emboteam.hp.optimal_bound`), whose bound, if higher, is the answer's (and a
-    proof when it reaches the best schedule)."""
+    proof when it reaches the best schedule). ``check_limit`` > 0 (strong model only): where
+    the bound is still below the best schedule, that many more deterministic seconds of
+    branch-and-check (:mod:`emboteam.hp.optimal_check`), one cap at a time from the bound
+    up: a cap nothing ends by raises the bound a tick, a schedule found at it is the
+    answer (proven: nothing ends earlier)."""
     strong = linearization >= 2
     model = _Model(problem, hint, tight=strong, symmetry=symmetry)
     solver, status = _run(model, strong, limit, linearization)
@@ -605,6 +635,14 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     if status == cp_model.FEASIBLE and strong and bound_limit > 0:
         routes = _route_bound(model, bound_limit, {(g, r): r == chosen[g] for g, r in model.x})
         bound, used = max(bound, routes.ticks), used + routes.deterministic
+    if bound < best and strong and check_limit > 0:
+        bound, found, spent = _check_caps(model, bound, best, check_limit)
+        used += spent
+        if found is not None:
+            best, bound = bound, bound
+            chosen = {g: next(r for r in robots if found.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
+            assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
+            starts = {sid: found.value(v) * tick for sid, v in model.start.items()}
     proven = status == cp_model.OPTIMAL or bound >= best
     return Reference("optimal" if proven else "feasible", best * tick, min(bound, best) * tick, assignment, starts,
                      used)
@@ -617,6 +655,26 @@ def _route_bound(model: _Model, limit: float, hint: Mapping[tuple[str, str], boo
     routes = route_bound(model.p, model.routing(), solver, hint)
     _check(solver, limit, None)
     return routes
+
+
+def _check_caps(model: _Model, bound: int, best: int, limit: float
+                ) -> tuple[int, CapCheck | None, float]:
+    """Branch-and-check (:func:`emboteam.hp.optimal_check.check_cap`) at caps ``bound``,
+    ``bound`` + 1, ... below ``best`` within ``limit`` deterministic seconds in all: the
+    bound proven, the check that found a schedule ending by it (None if none was found)
+    and the seconds spent."""
+    used = 0.0
+    full = (model.m, model.x, model.makespan)
+    while bound < best and used < limit:
+        answer = check_cap(model.p, model.routing(), full, bound, limit - used, lambda s: _solver(True, s, 2))
+        used += answer.deterministic
+        if answer.verdict == "none":
+            bound += 1
+            continue
+        if answer.verdict == "found":
+            return bound, answer, used
+        break
+    return bound, None, used
 
 
 def _run(model: _Model, strong: bool, limit: float, linearization: int) -> tuple[cp_model.CpSolver, cp_model.CpSolverStatus]:
@@ -655,7 +713,7 @@ def _check(solver: cp_model.CpSolver, limit: float, status: cp_model.CpSolverSta
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
               max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0,
-              carries: bool = True) -> Reference | None:
+              carries: bool = True, check_limit: float = 0.0) -> Reference | None:
     """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
     the plan cannot be modelled (its replay fails) or the model is larger than
     ``max_arcs`` (:func:`arcs`). ``carries``: as :func:`problem_of` (False only for a
@@ -663,4 +721,4 @@ def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float 
     problem = problem_of(plan, spec, start, carries)
     if problem is None or not problem.jobs or arcs(problem) > max_arcs:
         return None
-    return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit)
+    return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit, check_limit=check_limit)
