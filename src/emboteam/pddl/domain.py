@@ -22,18 +22,31 @@ Design (docs/planning.md has the long form):
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cache, lru_cache
 
 from emboteam.errors import EmboTeamError
 from emboteam.pddl import vocabulary
 from emboteam.pddl.literal import Literal
-from emboteam.pddl.schema import A, Atom, Effect, Implies, N, Param, Schema, bindings, holds
+from emboteam.pddl.recorded import Recorded, reused
+from emboteam.pddl.schema import (
+    A,
+    Atom,
+    Effect,
+    Generator,
+    Implies,
+    N,
+    Param,
+    Schema,
+    Truth,
+    bindings,
+)
 from emboteam.sim.rules import piece_ids
 from emboteam.world.actions import Action, Skill
 from emboteam.world.catalogue import load_catalogue
-from emboteam.world.state import ObjectState, WorldState
+from emboteam.world.state import REACH, ObjectState, WorldState
 
 DOMAIN_NAME = "emboteam-thor"
 
@@ -309,10 +322,14 @@ class Universe:
         self.view = WorldState(floor_plan=state.floor_plan, objects={**state.objects, **pieces},
                                robots=state.robots)
         self.objects: tuple[str, ...] = tuple(objects) if objects is not None else tuple(self.view.objects)
+        self._allowed = frozenset(self.objects)
         self.robots: tuple[str, ...] = tuple(robots) if robots is not None else tuple(
             r for r, rs in state.robots.items() if not rs.down)
         self.can_place = can_place
         self._memo: dict[tuple[str, tuple[str, ...]], bool] = {}
+        #: groundings by (schema, binding), each with the answers of the state it depended
+        #: on (:mod:`emboteam.pddl.recorded`); shared with the views :meth:`at` makes
+        self.groundings: dict[tuple[str, tuple[tuple[str, str], ...]], list[Recorded[Grounding]]] = {}
 
     def static(self, pred: str, args: tuple[str, ...]) -> bool:
         key = (pred, args)
@@ -337,6 +354,10 @@ class Universe:
             return _call(entry[1], self.state, args)
         return self.static(pred, args)
 
+    def fluent(self, evaluator: vocabulary.Evaluator, args: tuple[str, ...]) -> bool:
+        """A fluent's evaluator on the live state (:func:`_call`)."""
+        return _call(evaluator, self.state, args)
+
     def at(self, state: WorldState) -> Universe:
         """The same objects and (memoised) statics over another state of the same episode:
         statics never change, so a plan's steps share one universe."""
@@ -354,32 +375,40 @@ class Universe:
         if not atom.positive or len(atom.args) != 2:
             return None
         a, b = (binding.get(x, x) for x in atom.args)
+        return self.values(atom.pred, a, b, var)
+
+    def values(self, pred: str, a: str, b: str, var: str) -> list[str] | None:
+        """:meth:`generate` for ``(pred a b)`` with its arguments bound as far as they are."""
         s = self.state
-        if atom.pred == "at" and not a.startswith("?") and b == var:
+        if pred == "at" and not a.startswith("?") and b == var:
             # what a robot reaches (goto forgets it all): one distance test per object,
             # not a grounding pass per object; the condition is still tested on each
             if a not in s.robots:
                 return []
-            return [o for o in self.objects if o in s.objects and s.in_reach(a, o)]
-        if atom.pred == "at" and a == var and not b.startswith("?"):
+            # WorldState.in_reach, inlined: the robot's position read once, not per object
+            x, z = s.robots[a].position
+            objects = s.objects
+            return [o for o in self.objects if (t := objects.get(o)) is not None
+                    and (t.held_by == a or math.hypot(t.position[0] - x, t.position[2] - z) <= REACH)]
+        if pred == "at" and a == var and not b.startswith("?"):
             if b not in s.objects:
                 return []
             return [r for r in self.robots if r in s.robots and s.in_reach(r, b)]
-        allowed = set(self.objects)
-        if atom.pred in ("within", "in") and a == var and not b.startswith("?"):
-            found = s.descendants(b) if atom.pred == "within" else s.children(b)
+        allowed = self._allowed
+        if pred in ("within", "in") and a == var and not b.startswith("?"):
+            found = s.descendants(b) if pred == "within" else s.children(b)
             return [o.id for o in found if o.id in allowed] if b in s.objects else []
-        if atom.pred in ("within", "in") and b == var and not a.startswith("?"):
+        if pred in ("within", "in") and b == var and not a.startswith("?"):
             if a not in s.objects:
                 return []
-            chain = s.ancestors(a) if atom.pred == "within" else [p for p in [s.objects[a].parent] if p]
+            chain = s.ancestors(a) if pred == "within" else [p for p in [s.objects[a].parent] if p]
             return [x for x in chain if x in allowed]
-        if atom.pred == "piece-of" and a == var and not b.startswith("?"):
+        if pred == "piece-of" and a == var and not b.startswith("?"):
             return [p for p in self.objects if p in self.view.objects and self.view.objects[p].source == b]
-        if atom.pred in ("switches", "waters", "controls") and b == var and not a.startswith("?"):
+        if pred in ("switches", "waters", "controls") and b == var and not a.startswith("?"):
             o = self.view.objects.get(a)
             return [c for c in o.controls if c in allowed] if o is not None else []
-        if atom.pred in ("switches", "waters", "controls") and a == var and not b.startswith("?"):
+        if pred in ("switches", "waters", "controls") and a == var and not b.startswith("?"):
             return [o.id for o in self.view.objects.values() if b in o.controls and o.id in allowed]
         return None
 
@@ -459,9 +488,18 @@ def ground(schema: Schema, binding: Mapping[str, str], universe: Universe) -> Gr
 
     ``pre`` lists every precondition literal (universal ones expanded); ``post`` lists the
     positive effects and the negative effects that change something (a delete of an
-    already-false fact says nothing worth checking). Equalities are left out.
+    already-false fact says nothing worth checking). Equalities are left out. A grounding
+    of the same step on an earlier state of the universe is reused when this state gives
+    every answer it was computed from (:mod:`emboteam.pddl.recorded`).
     """
-    truth = universe.truth
+    key = (schema.name, tuple(binding.items()))
+    return reused(universe.groundings, key, universe,
+                  lambda rec: _ground(schema, binding, universe.domain, rec.truth, rec.generate))
+
+
+def _ground(schema: Schema, binding: Mapping[str, str], domain: Callable[[str], Sequence[str]],
+            truth: Truth, generate: Generator) -> Grounding:
+    """:func:`ground` with the state's answers from ``truth`` and ``generate``."""
     evaluated: list[tuple[Atom, frozenset[str]]] = []
 
     def observe(atom: Atom, b: Mapping[str, str], quantified: frozenset[str]) -> None:
@@ -475,17 +513,19 @@ def ground(schema: Schema, binding: Mapping[str, str], universe: Universe) -> Gr
             if item.pred != "=":
                 pre.append(_literal(item.bind(binding)))
             continue
-        for b in bindings(item.vars, item.guard, binding, universe.domain, truth, None, universe.generate):
+        for b in bindings(item.vars, item.guard, binding, domain, truth, None, generate):
             pre.append(_literal(item.then.bind(b)))
     post: dict[Literal, None] = {}
     fired: list[tuple[Atom, frozenset[str]]] = []
     for eff in schema.effects:
-        for b in bindings(eff.vars, eff.when, binding, universe.domain, truth, observe, universe.generate):
+        for b in bindings(eff.vars, eff.when, binding, domain, truth, observe, generate):
             quantified = frozenset(b[v] for v, _ in eff.vars)
             for atom in eff.then:
                 g = atom.bind(b)
                 fired.append((g, quantified & frozenset(g.args)))
-                if g.positive or holds(g.negate(), {}, truth):
+                # a delete is kept when its fact holds now (holds(g.negate(), ...), without
+                # building the negated atom)
+                if g.positive or (g.args[0] == g.args[1] if g.pred == "=" else truth(g.pred, g.args)):
                     post.setdefault(_literal(g), None)
     # an add and a delete of one fact: the add wins (PDDL semantics in Fast Downward)
     adds = {(lit.predicate, lit.args) for lit in post if lit.positive}

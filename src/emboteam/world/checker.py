@@ -106,12 +106,14 @@ def check_condition(cond: Condition, state: WorldState) -> ConditionResult:
     if pred is Predicate.inside and where is not None and where.types:
         where = _place_ref(where.types)
     witnesses: list[str] = []
-    for o in objects.values():
-        if ref_id is not None:
-            if o.id != ref_id and o.source != ref_id:
-                continue
-        elif o.type not in ref_types and (o.source is None or objects[o.source].type not in ref_types):
-            continue
+    # the subjects first, in the state's order, in one comprehension (most conditions name
+    # one object of some eighty)
+    if ref_id is not None:
+        subjects = [o for o in objects.values() if o.id == ref_id or o.source == ref_id]
+    else:
+        subjects = [o for o in objects.values() if o.type in ref_types
+                    or (o.source is not None and objects[o.source].type in ref_types)]
+    for o in subjects:
         if pred is Predicate.sliced:
             ok = o.is_sliced and o.source is None  # the whole, not each of its pieces
         elif pred is Predicate.broken and o.gone:

@@ -11,6 +11,7 @@ from emboteam.hp.config import PlannerConfig
 from emboteam.hp.merge import GroundedStep
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.requirements import Need
+from emboteam.pddl.domain import Universe
 from emboteam.pddl.errors import PlannerTimeoutError, PlanningError, UnsolvableSubtaskError
 from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import FastDownward, SolveResult
@@ -115,6 +116,13 @@ class Context:
     team: list[str]
     needs: Mapping[str, Sequence[Need]]
     notes: list[str] = field(default_factory=list)
+    #: objects, statics and groundings over ``start`` that every stage's replays share
+    #: (:meth:`Universe.at` their own states): a step grounded by one stage is reused by
+    #: the next where the state answers alike (:mod:`emboteam.pddl.recorded`)
+    universe: Universe = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self.universe = Universe(self.start.copy())
 
     @property
     def independent(self) -> bool:

@@ -28,7 +28,6 @@ from emboteam.hp.stages.context import Context, Draft, Fallback, Invalid, Record
 from emboteam.hp.stages.merge import merge_causal
 from emboteam.hp.stages.replay import replay
 from emboteam.hp.visits import merge_visits
-from emboteam.pddl.domain import Universe
 from emboteam.pddl.errors import PlannerMemoryError, PlanningError
 from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import SolveResult
@@ -57,7 +56,7 @@ class _Rounds:
     def __init__(self, ctx: Context, prefer: Mapping[str, str] | None, notes: list[str]) -> None:
         self.ctx, self.prefer, self.notes = ctx, prefer, notes
         self.forward = ctx.start.copy()
-        self.universe = Universe(self.forward)
+        self.universe = ctx.universe.at(self.forward)
         self.accepted: list[GroundedStep] = []
         self.done: set[str] = set()
         self.unit_of: dict[str, str] = {}

@@ -25,7 +25,7 @@ def reorder(ctx: Context, draft: Draft) -> Draft:
     if not ctx.independent or len(draft.record.sequence) != len(draft.plan.steps):
         return draft
     plan, seq = draft.plan, draft.record.sequence
-    universe = Universe(ctx.start.copy())
+    universe = ctx.universe
     tried = 0
     while tried < spot_order.TRIES:
         options = spot_order.candidates(plan, spot_order.TRIES - tried)

@@ -43,15 +43,18 @@ def replay(trial: WorldState, steps: Sequence[SeqStep], universe: Universe,
 
 def replay_to_goal(start: WorldState, steps: Sequence[SeqStep], goal: Goal,
                    repair: Callable[[WorldState, SeqStep], list[Action]] | None = None,
-                   head: Sequence[GroundedStep] = ()) -> tuple[list[GroundedStep], str | None]:
+                   head: Sequence[GroundedStep] = (), universe: Universe | None = None
+                   ) -> tuple[list[GroundedStep], str | None]:
     """:func:`replay` of a whole rebuilt plan from a copy of ``start``: its grounded steps,
     or why it cannot stand (it no longer runs, or it ends without reaching ``goal``). The
     improvement stages that rebuild a plan in a new order (route, CP-SAT's schedule) share it.
     ``head``: the plan's first steps, already grounded from ``start`` by a replay and left
     as they were (a rebuild that changes only later steps): applied, not grounded again
-    (replaying a replay's own steps grounds them as they are), ``steps`` after them."""
+    (replaying a replay's own steps grounds them as they are), ``steps`` after them.
+    ``universe``: one made for ``start`` (:attr:`Context.universe`), whose groundings are
+    reused where they hold."""
     state = start.copy()
-    universe = Universe(state.copy())
+    universe = universe if universe is not None else Universe(state.copy())
     for g in head:
         apply_action(state, g.robot, g.action)
     grounded, why = replay(state, steps, universe, repair)

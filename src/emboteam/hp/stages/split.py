@@ -81,7 +81,7 @@ def _cut(ctx: Context, draft: Draft) -> _Cut | None:
     kept = [c for t in ctx.spec.subtasks if t.id not in members for c in t.goal if check_condition(c, here).holds]
     subjects = {t.id: frozenset(_kind(c.subject, start) for c in t.goal) for t in ctx.spec.subtasks
                 if t.id in members}
-    return _Cut(target, before, gone, rest, here, kept, Universe(start.copy()), subjects)
+    return _Cut(target, before, gone, rest, here, kept, ctx.universe, subjects)
 
 
 def _conds(ctx: Context, part: Sequence[str]) -> list[Condition]:
