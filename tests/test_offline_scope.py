@@ -6,22 +6,18 @@ kind ``checklist``), and an undo that sends a moved thing back where it came fro
 
 from __future__ import annotations
 
-from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.offline.foreign import translate
 from emboteam.pfg.offline.surface import read_surface
 from emboteam.pfg.offline.text import fold_accents, normalize
 from emboteam.pfg.reading import Reading
-from emboteam.world.robots import parse_team
-from emboteam.world.scene import load_scene
+from offline_reading import read_offline
 
 _READER = OfflineFrontend()
 
 
 def read(text: str, fp: int) -> Reading:
-    scene = load_scene(f"FloorPlan{fp}")
-    team = parse_team("1,2,3")
-    return _READER.parse(text, scene, initial_state({}, scene, team), team)
+    return read_offline(_READER, text, f"FloorPlan{fp}")
 
 
 def first(reading: Reading) -> set[str]:

@@ -37,10 +37,9 @@ BOTH = Reading("The tomato is in the microwave and the fridge is open.", -0.9)
 FAR = Reading("The fridge is open.", -4.0)
 
 
-def cassette(folder: Path, pmi: dict[str, float]) -> str:
+def cassette(folder: Path, pmi: dict[str, float], objects: str = OBJECTS) -> str:
     """A cassette answering the one request the ranker should make, with these PMIs."""
-    sentences = tuple(pmi)
-    request = ScoreRequest(objects=OBJECTS, instruction=INSTRUCTION, candidates=sentences)
+    request = ScoreRequest(objects=objects, instruction=INSTRUCTION, candidates=tuple(pmi))
     scores = tuple(CandidateScore(sentence=s, conditional=-10.0 + v, unconditional=-10.0, tokens=8)
                    for s, v in pmi.items())
     store = Cassette(folder)
@@ -414,16 +413,6 @@ def test_clause_lead_cancels_shared_clauses_and_gives_no_gain_for_a_missing_one(
     assert differing_clauses(AS_READ.clauses, others, limit=2) == ((IN_FRIDGE, IN_MICROWAVE), (0,))
 
 
-def _clause_cassette(folder: Path, pmi: dict[str, float], objects: str) -> str:
-    request = ScoreRequest(objects=objects, instruction=INSTRUCTION, candidates=tuple(pmi))
-    scores = tuple(CandidateScore(sentence=s, conditional=-10.0 + v, unconditional=-10.0, tokens=8)
-                   for s, v in pmi.items())
-    store = Cassette(folder)
-    store.open_for_recording("test:handmade")
-    store.save_score(request, ScoreResponse(scores=scores, input_tokens=100, evaluated_tokens=40, model="m"))
-    return f"replay:{folder}"
-
-
 def test_rerank_by_clauses_asks_only_the_differing_clauses_and_never_rewards_a_drop(tmp_path: Path) -> None:
     """The one request holds the clauses the judged readings do not share with the first
     (the cassette holds only that request: any other would be a replay miss); the reading
@@ -436,7 +425,7 @@ def test_rerank_by_clauses_asks_only_the_differing_clauses_and_never_rewards_a_d
     def clauses_of(c: Clausal) -> tuple[str, ...]:
         return c.clauses
 
-    client = make_client(_clause_cassette(tmp_path / "a", {IN_FRIDGE: 4.0, IN_MICROWAVE: 1.0, DOOR_OPEN: 0.5},
+    client = make_client(cassette(tmp_path / "a", {IN_FRIDGE: 4.0, IN_MICROWAVE: 1.0, DOOR_OPEN: 0.5},
                                           OBJECTS))
     args: dict[str, Any] = {"client": client, "objects": OBJECTS, "instruction": INSTRUCTION, "margin": 1.0,
                             "weight": 1.0, "clauses_of": clauses_of}
