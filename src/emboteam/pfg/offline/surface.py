@@ -31,6 +31,7 @@ from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.foreign import translate, warm_foreign
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
+from emboteam.pfg.offline.layout import Layout, Words, read_layout
 from emboteam.pfg.offline.morphology import edit_distance, singular, verb_lemma
 from emboteam.pfg.offline.text import fold_accents, split_camel
 from emboteam.world.goals import Condition
@@ -67,6 +68,15 @@ class Calque(Strict):
     place_preposition: str = "in"
 
 
+class RealWords(Strict):
+    """A real English word that a voice keyboard or autocorrect put for a scene thing ("the
+    pit stays on the stove"): after one of ``after``, heading its noun phrase, unknown to the
+    lexicon, and sounding like the name of one scene type but for its ``vowels``."""
+
+    after: tuple[str, ...]
+    vowels: str = "aeiou"
+
+
 class SurfaceFile(Strict):
     """``data/surface.json``."""
 
@@ -75,11 +85,13 @@ class SurfaceFile(Strict):
     and_sounds: tuple[str, ...]
     transcript: Transcript
     calque: Calque
+    real_words: RealWords
+    layout: Layout
 
 
 #: the kind of guess that names an alternative text for the priors, when several fired:
 #: the one that changes the reading most (a transcript's clause breaks) first
-_LABEL_ORDER = ("clause_breaks", "transcript", "sound_join", "calque", "and_heard")
+_LABEL_ORDER = ("clause_breaks", "transcript", "sound_join", "calque", "and_heard", "real_word")
 
 
 @dataclass(frozen=True)
@@ -177,6 +189,29 @@ def _closed_words() -> frozenset[str]:
 
 def _closed(word: str) -> bool:
     return word.lower() in _closed_words()
+
+
+def _says_what(cell: str) -> bool:
+    """Whether a list's cell says what to do in its own words: a verb or a state first
+    ("stays on the counter", "off"), not a thing or a place ("the cabinet")."""
+    first = next(iter(re.findall(r"[a-z]+", cell.lower())), "")
+    return first in lx.STATES or (verb_lemma(first) is not None and not _is_noun(first))
+
+
+def _bare(item: str) -> bool:
+    """Whether a list item only names things ("the card", "both keys")."""
+    words = re.findall(r"[a-z]+", item.lower())
+    return bool(words) and all(w in lx.DETERMINERS or w in lx.QUANTIFIERS or w in lx.NUMBERS
+                               or w in {"and", "or"} or (_nounish(w) and not _is_verb(w)) for w in words)
+
+
+def _a_place(heading: str) -> bool:
+    """Whether a list's heading is a place ("into the box:", "on the counter:")."""
+    first = next(iter(re.findall(r"[a-z]+", heading.lower())), "")
+    return any(p.split()[0] == first for p in lx.PREPOSITIONS)
+
+
+_LIST_WORDS = Words(_says_what, _bare, _a_place)
 
 
 def _opens_phrase(word: str) -> bool:
@@ -295,6 +330,44 @@ def _may_mishear(run: list[str], after_det: bool) -> bool:
     vocabulary = lx.vocabulary()
     return any(w.lower() not in vocabulary for w in run) and not any(_closed(w) for w in run) \
         and not any(verb_lemma(w.lower()) for w in run[1:])
+
+
+# -- real words for scene things ("the pit" for the pot) ------------------------------------
+
+def _real_words(words: list[str], scene_types: frozenset[str]) -> list[str]:
+    """A real English word in a thing's slot that names nothing and sounds like one scene
+    thing but for a vowel ("the cattle", "the sunk") is that thing: a guess (the alternative
+    text), since it may mean what it says. A word the lexicon knows, a modifier ("the top
+    shelf") and a non-word (the spelling corrector's) are left alone."""
+    from emboteam.pfg.offline.morphology import is_english_word
+
+    rule = _data()[0].real_words
+    out = list(words)
+    for k in range(1, len(words)):
+        w = words[k].lower()
+        if words[k - 1].lower() not in rule.after or not w.isalpha() or w in lx.vocabulary() or _nounish(w):
+            continue
+        if k + 1 < len(words) and _nounish(words[k + 1]):
+            continue
+        name = _vowel_slip(w, scene_types, rule.vowels)
+        if name is not None and is_english_word(w):
+            out[k] = name
+    return out
+
+
+def _vowel_slip(word: str, scene_types: frozenset[str], vowels: str) -> str | None:
+    """The one scene thing's name that sounds like ``word`` but for its vowels, or None
+    (none, or several types: no guess)."""
+    from emboteam.pfg.offline.doubts.sound_alike import _sounds, sound
+
+    said = sound(word)
+    found = {types[0]: s for s, types in _sounds(scene_types).get(said[:1], ())
+             if len(s) == len(said) and s != said
+             and all(a == b or (a in vowels and b in vowels) for a, b in zip(s, said, strict=True))}
+    if len(found) != 1:
+        return None
+    (type_, heard), = found.items()
+    return next((p for p, ps in _named_sounds(type_) if ps == heard), None)
 
 
 # -- "the N of the M" --------------------------------------------------------------------
@@ -424,6 +497,10 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
     data = _data()[0]
     kinds: list[str] = []
     text = fold_accents(text)
+    laid = read_layout(text, data.layout, _LIST_WORDS)
+    if laid != text:
+        kinds.append("layout")
+        text = laid
     transcript = _transcript(text)
     said = split_camel(_rewrite(text, types, True, kinds))
     words = _words(said)
@@ -443,7 +520,8 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
     # a misheard "in" is speech-to-text's: only in a text without punctuation
     for kind, step in (("and_heard", _in_as_and if _unpunctuated(text) else None),
                        ("sound_join", lambda w: _split_words(w, types, guess=True)),
-                       ("clause_breaks", _clause_starts if transcript else None)):
+                       ("clause_breaks", _clause_starts if transcript else None),
+                       ("real_word", lambda w: _real_words(w, types))):
         if step is None:
             continue
         words = _words(alt)
