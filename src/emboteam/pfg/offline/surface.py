@@ -120,8 +120,12 @@ def _rewrite(text: str, scene_types: Collection[str], certain: bool, kinds: list
     for pattern, rule, required in _data()[1]:
         if rule.certain != certain or (rule.needs and not any(t in scene_types for t in rule.needs)):
             continue
-        if lower is not None and required is not None and not any(n in lower for n in required):
-            continue
+        if lower is not None and required is not None:
+            for needle in required:     # a loop, not any(): no generator per rule
+                if needle in lower:
+                    break
+            else:
+                continue
         new = pattern.sub(rule.replace, text)
         if new != text:
             kinds.append(rule.kind)
