@@ -7,12 +7,12 @@ machine says little about the code, so it is measured here and reported, not ass
 
     .venv/bin/python benchmarks/offline_speed.py          # a line of numbers
     .venv/bin/python benchmarks/offline_speed.py --json   # one JSON object on stdout
-    .venv/bin/python benchmarks/offline_speed.py --cpu    # CPU time of this process instead
+    .venv/bin/python benchmarks/offline_speed.py --cpu    # the target checked on CPU time
 
-``--cpu`` times each instruction with ``time.process_time`` (CPU time of this process) rather
-than the wall clock: other jobs on a loaded machine then inflate it far less, which makes it
-the number to compare two versions of the reader on a shared machine. The target is checked
-on wall time on an idle machine.
+Each instruction is timed on both clocks: the wall clock and ``time.process_time`` (CPU time
+of this process, the ``cpu_*`` numbers). Other jobs on a loaded machine inflate CPU time far
+less, which makes it the number to compare two versions of the reader on a shared machine;
+the target is checked on wall time on an idle machine (``--cpu``: on CPU time).
 
 Exit status 0 when the target is met, 1 when it is not.
 """
@@ -25,7 +25,6 @@ import json
 import statistics
 import sys
 import time
-from collections.abc import Callable
 from pathlib import Path
 
 from emboteam.bench.offline_accuracy import initial_state, load_records
@@ -38,7 +37,16 @@ DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
 TARGET_MS = 5.0
 
 
-def measure(clock: Callable[[], float] = time.perf_counter) -> dict[str, float | int]:
+def _stats(times: list[float], prefix: str = "") -> dict[str, float]:
+    return {f"{prefix}mean_ms": round(statistics.mean(times) * 1000, 3),
+            f"{prefix}median_ms": round(statistics.median(times) * 1000, 3),
+            f"{prefix}p95_ms": round(statistics.quantiles(times, n=20)[-1] * 1000, 3),
+            f"{prefix}max_ms": round(max(times) * 1000, 3)}
+
+
+def measure(cpu: bool = False) -> dict[str, float | int]:
+    """Wall and CPU time per instruction; the unprefixed numbers are the clock the target
+    is checked on (wall, or CPU with ``cpu``), ``other_*`` the other clock's."""
     records = load_records(DATA / "offline_dev.jsonl") + load_records(DATA / "offline_heldout.jsonl")
     frontend = OfflineFrontend()     # builds the lexicon and spelling caches
     team = parse_team("1,2")
@@ -46,33 +54,34 @@ def measure(clock: Callable[[], float] = time.perf_counter) -> dict[str, float |
     for r in records:
         scene = load_scene(str(r["scene"]))
         prepared.append((str(r["instruction"]), scene, initial_state(r, scene, team)))
-    times = []
+    wall: list[float] = []
+    used: list[float] = []
     for text, scene, state in prepared:
-        start = clock()
+        start, start_cpu = time.perf_counter(), time.process_time()
         with contextlib.suppress(EmboTeamError):   # errors are timed too
             frontend.decompose(text, scene, state, team)
-        times.append(clock() - start)
-    return {"instructions": len(times), "mean_ms": round(statistics.mean(times) * 1000, 3),
-            "median_ms": round(statistics.median(times) * 1000, 3),
-            "p95_ms": round(statistics.quantiles(times, n=20)[-1] * 1000, 3),
-            "max_ms": round(max(times) * 1000, 3), "target_ms": TARGET_MS}
+        used.append(time.process_time() - start_cpu)
+        wall.append(time.perf_counter() - start)
+    checked, other = (used, wall) if cpu else (wall, used)
+    return {"instructions": len(wall), **_stats(checked), **_stats(other, "other_"), "target_ms": TARGET_MS}
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--json", action="store_true", help="one JSON object on stdout")
     parser.add_argument("--cpu", action="store_true",
-                        help="time with the CPU time of this process (less sensitive to load)")
+                        help="check the target on the CPU time of this process (less sensitive to load)")
     args = parser.parse_args()
-    result = {**measure(time.process_time if args.cpu else time.perf_counter),
-              "clock": "cpu" if args.cpu else "wall"}
+    result = {**measure(args.cpu), "clock": "cpu" if args.cpu else "wall"}
     met = result["mean_ms"] < TARGET_MS and result["p95_ms"] < TARGET_MS
     if args.json:
         print(json.dumps({**result, "target_met": met}))
     else:
+        other = "wall" if args.cpu else "cpu"
         print(f"{result['clock']} parse time over {result['instructions']} instructions: mean {result['mean_ms']} ms, "
               f"median {result['median_ms']} ms, p95 {result['p95_ms']} ms, max {result['max_ms']} ms "
-              f"(target < {TARGET_MS:g} ms mean and p95: {'met' if met else 'NOT met'})")
+              f"(target < {TARGET_MS:g} ms mean and p95: {'met' if met else 'NOT met'}); {other}: mean "
+              f"{result['other_mean_ms']} ms, median {result['other_median_ms']} ms, p95 {result['other_p95_ms']} ms")
     return 0 if met else 1
 
 

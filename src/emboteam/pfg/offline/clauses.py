@@ -113,13 +113,15 @@ def _sentences(items: list[Item]) -> list[tuple[list[Item], str | None]]:
 
 #: team members named without a number: "one of you", "the other", "another robot"
 TEAM_SUBJECTS = _W.phrases("team_subjects")
+_LONGEST_TEAM_SUBJECT = max(map(len, TEAM_SUBJECTS), default=0)
 
 
 def team_subject(items: list[Item], j: int) -> int:
     """The index after a team-member subject at ``j`` ("one of you", "the other"), else
     ``j``."""
+    said = tuple(x.text for x in items[j:j + _LONGEST_TEAM_SUBJECT])    # the words once, not per phrase
     for words in TEAM_SUBJECTS:
-        if tuple(x.text for x in items[j:j + len(words)]) == words:
+        if said[:len(words)] == words:
             return j + len(words)
     return _DESCRIBED_MEMBER.end(items, j) or j     # "the strong robot": described by its build
 

@@ -10,13 +10,15 @@ Damerau-Levenshtein recurrence; a fuzzy-matching package would be a new dependen
 from __future__ import annotations
 
 from collections.abc import Collection
-from functools import cache
+from functools import cache, lru_cache
 
 from emboteam.pfg.offline import lexicon as lx
 
 
-def singular_candidates(word: str) -> list[str]:
-    """Possible singular forms of ``word``, most likely first (the word itself last)."""
+@lru_cache(maxsize=8192)
+def singular_candidates(word: str) -> tuple[str, ...]:
+    """Possible singular forms of ``word``, most likely first (the word itself last);
+    remembered per word (the tagger asks of every span of words)."""
     out: list[str] = []
     if word.endswith("ies") and len(word) > 4:
         out.append(word[:-3] + "y")
@@ -27,7 +29,7 @@ def singular_candidates(word: str) -> list[str]:
     if word.endswith("s") and not word.endswith("ss"):
         out.append(word[:-1])
     out.append(word)
-    return out
+    return tuple(out)
 
 
 def singular(word: str, known: Collection[str]) -> tuple[str, bool]:

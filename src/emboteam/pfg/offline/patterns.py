@@ -155,7 +155,10 @@ def _compile(token: Token, tables: WordTables) -> tuple[Check, frozenset[str] | 
         first = words if name == "LOWER" and want else first
 
     def check(item: Item) -> bool:
-        return all(one(item) for one in checks)
+        for one in checks:  # noqa: SIM110 (a loop, not all(): no generator per item)
+            if not one(item):
+                return False
+        return True
 
     return (checks[0] if len(checks) == 1 else check), first
 
@@ -227,8 +230,14 @@ class Rule:
     def _end(self, items: list[Item], j: int) -> int | None:
         if self.not_after is not None and j > 0 and (items[j - 1].text in self.not_after[0]) is self.not_after[1]:
             return None
-        word = items[j].text if j < len(items) else None
+        n = len(items)
+        word = items[j].text if j < n else None
         for alternative in self.by_word.get(word, self.any_word) if word is not None else self.any_word:
+            one = alternative.one
+            if one is not None:     # :meth:`Compiled.end`'s plain token, without its call
+                if j < n and one(items[j]):
+                    return j + 1
+                continue
             end = alternative.end(items, j)
             if end is not None:
                 return end

@@ -33,6 +33,7 @@ from emboteam.pfg.offline.foreign import translate, warm_foreign
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
 from emboteam.pfg.offline.layout import Layout, Words, read_layout
 from emboteam.pfg.offline.morphology import edit_distance, singular, verb_lemma
+from emboteam.pfg.offline.regex_filter import needles
 from emboteam.pfg.offline.text import fold_accents, split_camel
 from emboteam.world.goals import Condition
 
@@ -111,29 +112,37 @@ class Surface:
 
 
 @cache
-def _data() -> tuple[SurfaceFile, tuple[tuple[re.Pattern[str], SurfaceRewrite], ...]]:
+def _data() -> tuple[SurfaceFile, tuple[tuple[re.Pattern[str], SurfaceRewrite, frozenset[str] | None], ...]]:
     data = load("surface.json", SurfaceFile)
-    return data, tuple((re.compile(r.pattern, re.IGNORECASE), r) for r in data.rewrites)
+    return data, tuple((re.compile(r.pattern, re.IGNORECASE), r, _lower_needles(r.pattern)) for r in data.rewrites)
 
 
-@cache
-def _any_rule(certain: bool) -> re.Pattern[str]:
-    """Every rule of one certainty as one alternation: most texts match none, and one
-    search says so (the reader's time budget)."""
-    return re.compile("|".join(f"(?:{r.pattern})" for _, r in _data()[1] if r.certain == certain), re.IGNORECASE)
+def _lower_needles(pattern: str) -> frozenset[str] | None:
+    """Lower-case strings one of which any match of the case-blind ``pattern`` contains in
+    an ASCII text (:mod:`.regex_filter`); None when it promises none in ASCII."""
+    found = needles(re.compile(pattern))
+    return frozenset(n.lower() for n in found) if found is not None and all(n.isascii() for n in found) else None
 
 
 def _rewrite(text: str, scene_types: Collection[str], certain: bool, kinds: list[str]) -> str:
-    """The rules of one certainty, in order; the kinds that changed the text noted."""
-    if not _any_rule(certain).search(text):
-        return text
-    for pattern, rule in _data()[1]:
+    """The rules of one certainty, in order; the kinds that changed the text noted. A rule
+    none of whose needles an ASCII text has cannot match it and is skipped (most texts
+    match no rule: the reader's time budget)."""
+    lower = text.lower() if text.isascii() else None
+    for pattern, rule, required in _data()[1]:
         if rule.certain != certain or (rule.needs and not any(t in scene_types for t in rule.needs)):
             continue
+        if lower is not None and required is not None:
+            for needle in required:     # a loop, not any(): no generator per rule
+                if needle in lower:
+                    break
+            else:
+                continue
         new = pattern.sub(rule.replace, text)
         if new != text:
             kinds.append(rule.kind)
             text = new
+            lower = text.lower() if text.isascii() else None
     return text
 
 
@@ -261,7 +270,8 @@ def _joined_names() -> dict[str, tuple[tuple[str, frozenset[str]], ...]]:
 
 def _scene_name(joined: str, scene_types: frozenset[str]) -> str | None:
     """The noun phrase that, run together, is ``joined`` and names a type of the scene."""
-    return next((p for p, types in _joined_names().get(joined, ()) if types & scene_types), None)
+    named = _joined_names().get(joined)
+    return None if named is None else next((p for p, types in named if types & scene_types), None)
 
 
 def _sounds_like(joined: str, scene_types: frozenset[str]) -> str | None:
@@ -290,21 +300,24 @@ def _split_words(words: list[str], scene_types: frozenset[str], guess: bool) -> 
     exactly and its first word names nothing, as a guess when it only sounds like it ("so
     far", "to motto", "hold her"). The words after the first of a run become ""."""
     out = list(words)
+    alpha = [w.isalpha() for w in words]
     k = 0
     while k < len(words):
-        name, n = _run_name(words, k, scene_types, guess)
+        name, n = _run_name(words, alpha, k, scene_types, guess)
         if name is not None:
             out[k:k + n] = [name] + [""] * (n - 1)
         k += n
     return out
 
 
-def _run_name(words: list[str], k: int, scene_types: frozenset[str], guess: bool) -> tuple[str | None, int]:
-    """The scene name the run of words from ``k`` says, and the run's length (1: none)."""
+def _run_name(words: list[str], alpha: list[bool], k: int, scene_types: frozenset[str],
+              guess: bool) -> tuple[str | None, int]:
+    """The scene name the run of words from ``k`` says, and the run's length (1: none);
+    ``alpha``: whether each word is letters only."""
     for n in (3, 2):
-        run = words[k:k + n]
-        if len(run) < n or not all(w.isalpha() for w in run):
+        if k + n > len(words) or not all(alpha[k:k + n]):
             continue
+        run = words[k:k + n]
         joined = "".join(run).lower()
         exact = _scene_name(joined, scene_types) or \
             (_scene_name(joined[:-1], scene_types) if joined.endswith("s") else None)
@@ -484,8 +497,6 @@ def _transcript(text: str) -> bool:
 def warm_surface() -> None:
     """Load the rules and index the names ahead of the first instruction."""
     _data()
-    _any_rule(True)
-    _any_rule(False)
     _joined_names()
     _closed_words()
     warm_foreign()

@@ -193,11 +193,15 @@ def _collective(reading: NounReading) -> NounReading:
     return reading
 
 
+#: the lexicon's idioms, compiled once
+_IDIOMS = tuple((re.compile(pattern), repl) for pattern, repl in lx.IDIOMS)
+
+
 def tag(text: str) -> list[Item]:
     """Items of an instruction, in order."""
     normal = " ".join(t.text for t in tokenize(text))
-    for pattern, repl in lx.IDIOMS:
-        normal = re.sub(pattern, repl, normal)
+    for pattern, repl in _IDIOMS:
+        normal = pattern.sub(repl, normal)
     words, fixed = _repair(normal.split())
     items: list[Item] = []
     i = 0

@@ -48,10 +48,14 @@ class Token:
 
 def split_camel(text: str) -> str:
     """``CounterTop`` -> ``Counter Top``, ``TVStand`` -> ``TV Stand``, ``robot2`` -> ``robot 2``."""
-    text = re.sub(r"(?<=[a-z])(?=[A-Z])", " ", text)
-    text = re.sub(r"(?<=[A-Z])(?=[A-Z][a-rt-z]|[A-Z]s[a-z])", " ", text)   # not "CDs"
-    text = re.sub(r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?=[A-Za-z])", " ", text)
+    for pattern in _CAMEL:
+        text = pattern.sub(" ", text)
     return text
+
+
+#: where split_camel puts a space: lower-upper, upper-Upperlower (not "CDs"), letter-digit
+_CAMEL = tuple(map(re.compile, (r"(?<=[a-z])(?=[A-Z])", r"(?<=[A-Z])(?=[A-Z][a-rt-z]|[A-Z]s[a-z])",
+                                r"(?<=[A-Za-z])(?=\d)|(?<=\d)(?=[A-Za-z])")))
 
 
 _ARROW = r"\s*(?:->|=>|\u2192|\u27f6)\s*"
@@ -93,12 +97,16 @@ def normalize(text: str) -> str:
     text = apply_rewrites(_REPLACE, text)
     text = apply_rewrites(_CONTRACTIONS, split_camel(text).lower())
     text = apply_rewrites(_CHAT, spoken(text))
-    text = re.sub(r"(?<=[a-z])-(?=[a-z])", " ", text)   # counter-top, well-lit
+    text = _HYPHEN.sub(" ", text)   # counter-top, well-lit
     text = rephrase(text)
-    text = re.sub(r"(?<=\d)(st|nd|rd|th)\b", "", text)   # 2nd -> 2
-    text = re.sub(r"([.,;:!?])", r" \1 ", text)
-    text = re.sub(r"[^a-z0-9.,;:!? ]+", " ", text)
-    return re.sub(r"\s+", " ", text).strip()
+    text = _ORDINAL_SUFFIX.sub("", text)   # 2nd -> 2
+    text = _MARK.sub(r" \1 ", text)
+    text = _OTHER.sub(" ", text)
+    return _SPACES.sub(" ", text).strip()
+
+
+_HYPHEN, _ORDINAL_SUFFIX = re.compile(r"(?<=[a-z])-(?=[a-z])"), re.compile(r"(?<=\d)(st|nd|rd|th)\b")
+_MARK, _OTHER, _SPACES = re.compile(r"([.,;:!?])"), re.compile(r"[^a-z0-9.,;:!? ]+"), re.compile(r"\s+")
 
 
 def tokenize(text: str) -> list[Token]:

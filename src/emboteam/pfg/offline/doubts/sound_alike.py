@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
-from functools import cache
+from functools import cache, lru_cache
 from pathlib import Path
 
 from pydantic import BaseModel
@@ -40,12 +40,17 @@ def load_sound_alike(path: Path = SOUND_FILE) -> SoundAlike:
     return read(path, SoundAlike)
 
 
+_NOT_LETTER, _DOUBLED = re.compile(r"[^a-z]"), re.compile(r"(.)\1+")
+
+
+@lru_cache(maxsize=8192)
 def sound(text: str) -> str:
-    """The letters of ``text`` as they sound (rewrites applied, doubled letters single)."""
-    out = re.sub(r"[^a-z]", "", text.lower())
+    """The letters of ``text`` as they sound (rewrites applied, doubled letters single);
+    remembered: the same words come back in every instruction."""
+    out = _NOT_LETTER.sub("", text.lower())
     for a, b in load_sound_alike().rewrites:
         out = out.replace(a, b)
-    return re.sub(r"(.)\1+", r"\1", out)
+    return _DOUBLED.sub(r"\1", out)
 
 
 def _limit(n: int) -> int:
@@ -105,7 +110,10 @@ def heard(items: Sequence[Item], scene_types: frozenset[str]) -> list[tuple[int,
     return out
 
 
+@lru_cache(maxsize=8192)
 def _closest(said: str, scene_types: frozenset[str], limit: int | None = None) -> tuple[str, ...] | None:
+    """The scene types of the nearest phrase sound within ``limit`` edits (the length's own
+    limit when None); remembered per sound and scene: most of a sound-alike search's time."""
     if len(said) < 3:
         return None
     limit = _limit(len(said)) if limit is None else limit
