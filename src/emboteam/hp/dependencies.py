@@ -57,8 +57,12 @@ def _locs(state: WorldState, o: str) -> set[str]:
     return {f"loc:{a}" for a in _chain(state, o)}
 
 
-def _read(robot: str, atom: Atom, quantified: frozenset[str], state: WorldState) -> set[str]:
-    pred, args = atom.pred, atom.args
+_NONE: frozenset[str] = frozenset()
+
+
+def _read(robot: str, pred: str, args: tuple[str, ...], quantified: frozenset[str], state: WorldState) -> set[str]:
+    """The variables a condition ``(pred args)`` reads (an atom's or a literal's, whose sign
+    does not matter: only what is read)."""
     if pred == "at":
         if args[0] != robot:
             return set()
@@ -109,9 +113,9 @@ def footprint(robot: str, grounding: Grounding, state: WorldState) -> Footprint:
     """Reads and writes of a step grounded on ``state`` (the state before it)."""
     reads: set[str] = set()
     for lit in grounding.pre:
-        reads |= _read(robot, Atom(lit.predicate, lit.args, lit.positive), frozenset(), state)
+        reads |= _read(robot, lit.predicate, lit.args, _NONE, state)
     for atom, quantified in grounding.evaluated:
-        reads |= _read(robot, atom, quantified, state)
+        reads |= _read(robot, atom.pred, atom.args, quantified, state)
     writes: set[str] = set()
     updates: set[str] = set()
     for atom, _ in grounding.fired:

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 from emboteam.hp.merge import nominal_seconds
 from emboteam.sim.rules import apply_action, check_action
 from emboteam.world.actions import Action, Skill
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -142,7 +142,7 @@ class _Aim:
     @classmethod
     def of(cls, plan: Plan, goals: Sequence[Condition], end: WorldState) -> _Aim:
         robots = sorted({r for r, _ in plan})
-        wanted = [c for c in goals if check_condition(c, end).holds]
+        wanted = [c for c in goals if condition_holds(c, end)]
         return cls(robots, wanted, _holdings(end, robots))
 
     def kept_by(self, found: _Found, trace: _Trace) -> bool:
@@ -152,7 +152,7 @@ class _Aim:
         _, end, seconds, k = found
         return (_holdings(end, self.robots) == self.hands
                 and all(seconds.get(r, 0.0) <= trace.total.get(r, 0.0) + 1e-9 for r in self.robots)
-                and (k is not None or all(check_condition(c, end).holds for c in self.wanted)))
+                and (k is not None or all(condition_holds(c, end) for c in self.wanted)))
 
 
 @dataclass

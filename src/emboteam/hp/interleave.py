@@ -28,7 +28,7 @@ from collections.abc import Sequence
 from emboteam.hp.merge import GroundedStep, SeqStep, StepFailure, advance, order
 from emboteam.hp.rounds import already_done, preparations
 from emboteam.pddl.domain import Universe
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import check_condition, condition_holds
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -67,7 +67,7 @@ def interleave(base: WorldState, plans: Sequence[Sequence[SeqStep]], must_hold: 
     if first is None:
         return None
     state = first[1]
-    unmet = [c for c in must_hold if not check_condition(c, state).holds]
+    unmet = [c for c in must_hold if not condition_holds(c, state)]
     if not unmet:
         return first
     touched = {x for c in unmet for x in (c.subject.id, c.receptacle.id if c.receptacle else None) if x}
@@ -77,7 +77,7 @@ def interleave(base: WorldState, plans: Sequence[Sequence[SeqStep]], must_hold: 
     if not late or len(late) == len(plans):
         return None
     again = _schedule(base, [p for k, p in enumerate(plans) if k not in late], [plans[k] for k in late], universe)
-    if again is None or not all(check_condition(c, again[1]).holds for c in must_hold):
+    if again is None or not all(condition_holds(c, again[1]) for c in must_hold):
         return None
     return again
 

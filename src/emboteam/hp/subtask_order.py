@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from emboteam.hp.merge import GroundedStep
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.sim.rules import apply_action
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -98,11 +98,11 @@ def goal_changes(start: WorldState, steps: Sequence[GroundedStep], conditions: C
     if not unique:
         return [GoalChange() for _ in steps]
     state = start.copy()
-    holds = {k: check_condition(c, state).holds for k, c in unique.items()}
+    holds = {k: condition_holds(c, state) for k, c in unique.items()}
     out: list[GoalChange] = []
     for s in steps:
         apply_action(state, s.robot, s.action)
-        now = {k: check_condition(c, state).holds for k, c in unique.items()}
+        now = {k: condition_holds(c, state) for k, c in unique.items()}
         out.append(GoalChange(made_true=frozenset(k for k in unique if now[k] and not holds[k]),
                               made_false=frozenset(k for k in unique if holds[k] and not now[k])))
         holds = now

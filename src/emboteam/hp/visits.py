@@ -35,7 +35,7 @@ from emboteam.hp.eliminate import Plan, eliminate
 from emboteam.hp.merge import nominal_seconds
 from emboteam.sim.rules import apply_action, check_action
 from emboteam.world.actions import Action, Skill
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -59,7 +59,7 @@ def merge_visits(state: WorldState, actions: Sequence[tuple[str, Action]], goals
         return plan
     end, spent = base
     robots = sorted({r for r, _ in plan})
-    wanted = [c for c in goals if check_condition(c, end).holds]
+    wanted = [c for c in goals if condition_holds(c, end)]
     hands = {r: end.robots[r].holding for r in robots}
     limit = dict(spent)  # no robot may come to spend more than in the original
     best = sum(spent.values())
@@ -73,7 +73,7 @@ def merge_visits(state: WorldState, actions: Sequence[tuple[str, Action]], goals
             if (sum(seconds.values()) < best - MIN_GAIN
                     and all(seconds.get(r, 0.0) <= limit.get(r, 0.0) + 1e-9 for r in robots)
                     and {r: end.robots[r].holding for r in robots} == hands
-                    and all(check_condition(c, end).holds for c in wanted)):
+                    and all(condition_holds(c, end) for c in wanted)):
                 plan, best = cand, sum(seconds.values())
                 break
         else:

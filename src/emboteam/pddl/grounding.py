@@ -104,12 +104,10 @@ class _Facts:
         rel = self.by_pred.get(fact[0])
         return rel is not None and fact[1:] in rel
 
-    def lookup(self, pred: str, positions: tuple[int, ...], key: tuple[str, ...]) -> Sequence[tuple[str, ...]]:
-        rel = self.by_pred.get(pred)
-        if not rel:
-            return ()
-        if not positions:
-            return list(rel)
+    def index(self, pred: str, positions: tuple[int, ...]) -> dict[tuple[str, ...], list[tuple[str, ...]]]:
+        """The facts of ``pred`` by their arguments at ``positions`` (a non-empty tuple),
+        in the relation's order; built again only when the relation has grown."""
+        rel = self.by_pred.get(pred, set())
         version = self.version.get(pred, 0)
         hit = self._index.get((pred, positions))
         if hit is None or hit[0] != version:
@@ -119,17 +117,40 @@ class _Facts:
                     table.setdefault(tuple(args[p] for p in positions), []).append(args)
             hit = (version, table)
             self._index[(pred, positions)] = hit
-        return hit[1].get(key, ())
+        return hit[1]
 
 
 @dataclass(frozen=True, slots=True)
 class _Match:
-    """Join step: look the atom up among the facts, binding its unknown arguments."""
+    """Join step: look the atom up among the facts, binding its unknown arguments.
+
+    ``spec`` gives each argument's kind (``const``, ``bound``, ``new``, ``repeat``: a new
+    variable seen earlier in the atom); the rest is ``spec`` worked out once for
+    :meth:`_Query.run`: the index key (constant or variable per position), the positions
+    whose values bind new variables, the repeats with the position of their first
+    occurrence, and the type checks by position."""
 
     pred: str
     positions: tuple[int, ...]
     spec: tuple[tuple[str, str], ...]
     checks: tuple[tuple[str, str], ...]
+    key: tuple[tuple[bool, str], ...] = ()
+    news: tuple[tuple[int, str], ...] = ()
+    repeats: tuple[tuple[int, int], ...] = ()
+    typed: tuple[tuple[int, str], ...] = ()
+
+    @classmethod
+    def of(cls, pred: str, positions: tuple[int, ...], spec: tuple[tuple[str, str], ...],
+           checks: tuple[tuple[str, str], ...]) -> _Match:
+        first: dict[str, int] = {}
+        for i, (kind, val) in enumerate(spec):
+            if kind == "new":
+                first[val] = i
+        return cls(pred, positions, spec, checks,
+                   key=tuple((spec[p][0] == "const", spec[p][1]) for p in positions),
+                   news=tuple((i, val) for i, (kind, val) in enumerate(spec) if kind == "new"),
+                   repeats=tuple((i, first[val]) for i, (kind, val) in enumerate(spec) if kind == "repeat"),
+                   typed=tuple((first[v], t) for v, t in checks))
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,6 +174,9 @@ class _Query:
         #: an Atom is a filter (tested once its variables are bound)
         self.steps: list[Atom | _Match | _Enum] = []
         self.free = tuple(free)
+        #: the predicates whose facts the bindings depend on (a run gives the same rows
+        #: while none of them gets a new fact)
+        self.preds = tuple(sorted({a.pred for a in (*atoms, *filters) if a.pred != "="}))
         types = dict(free)
 
         def place_filters() -> None:
@@ -184,7 +208,7 @@ class _Query:
                 place_filters()
                 continue
             checks = tuple((v, types[v]) for v in fresh if v in types)
-            self.steps.append(_Match(best.pred, positions, tuple(spec), checks))
+            self.steps.append(_Match.of(best.pred, positions, tuple(spec), checks))
             known.update(fresh)
             place_filters()
         for name, type_ in free:
@@ -198,42 +222,62 @@ class _Query:
     def run(self, base: Mapping[str, str], facts: _Facts, domain: Callable[[str], Sequence[str]],
             kinds: Mapping[str, frozenset[str]]) -> list[dict[str, str]]:
         """Every binding, extended step by step (breadth first: plain lists are much
-        cheaper than a recursion of generators in CPython)."""
+        cheaper than a recursion of generators in CPython). The facts do not change during
+        a run, so each step looks its relation (or index) up once for all rows."""
         rows: list[dict[str, str]] = [dict(base)]
         for step in self.steps:
             if not rows:
                 break
-            out: list[dict[str, str]] = []
             if isinstance(step, Atom):
-                pred, atom_args, positive = step.pred, step.args, step.positive
-                for b in rows:
-                    args = tuple(b.get(a, a) for a in atom_args)
-                    value = args[0] == args[1] if pred == "=" else ((pred, *args) in facts)
-                    if value == positive:
-                        out.append(b)
+                rows = _filtered(step, rows, facts)
             elif isinstance(step, _Enum):
                 name, values = step.name, domain(step.type_)
-                out = [{**b, name: v} for b in rows for v in values]
+                rows = [{**b, name: v} for b in rows for v in values]
             else:
-                pred, positions, spec, checks = step.pred, step.positions, step.spec, step.checks
-                width = len(spec)
-                for b in rows:
-                    key = tuple(val if k == "const" else b[val] for k, val in (spec[p] for p in positions))
-                    for args in facts.lookup(pred, positions, key):
-                        if len(args) != width:
-                            continue
-                        nb = dict(b)
-                        ok = True
-                        for (k, val), a in zip(spec, args, strict=True):
-                            if k == "new":
-                                nb[val] = a
-                            elif k == "repeat" and nb[val] != a:
-                                ok = False
-                                break
-                        if ok and all(nb[v] in kinds[t] for v, t in checks):
-                            out.append(nb)
-            rows = out
+                rows = _matched(step, rows, facts, kinds)
         return rows
+
+
+def _filtered(step: Atom, rows: list[dict[str, str]], facts: _Facts) -> list[dict[str, str]]:
+    """The rows under which ``step`` (every variable bound) holds: equality, or the atom
+    among the facts (or not, for a negative one)."""
+    pred, atom_args, positive = step.pred, step.args, step.positive
+    if pred == "=":
+        x, y = atom_args
+        return [b for b in rows if (b.get(x, x) == b.get(y, y)) == positive]
+    rel = facts.by_pred.get(pred)
+    if rel is None:
+        return [] if positive else rows
+    return [b for b in rows if (tuple([b.get(a, a) for a in atom_args]) in rel) == positive]
+
+
+def _matched(step: _Match, rows: list[dict[str, str]], facts: _Facts,
+             kinds: Mapping[str, frozenset[str]]) -> list[dict[str, str]]:
+    """Each row extended by every fact of ``step``'s atom that agrees with it, in the
+    order of the facts (a fact of another arity, a repeat that differs or a value not of
+    its variable's type is skipped)."""
+    rel = facts.by_pred.get(step.pred)
+    if not rel:
+        return []
+    width, key, news, repeats = len(step.spec), step.key, step.news, step.repeats
+    typed = [(i, kinds[t]) for i, t in step.typed]
+    table = facts.index(step.pred, step.positions) if step.positions else None
+    every = list(rel) if table is None else []
+    out: list[dict[str, str]] = []
+    for b in rows:
+        found = every if table is None else table.get(tuple([val if const else b[val] for const, val in key]), ())
+        for args in found:
+            if len(args) != width:
+                continue
+            if repeats and any(args[i] != args[j] for i, j in repeats):
+                continue
+            if typed and not all(args[i] in kind for i, kind in typed):
+                continue
+            nb = dict(b)
+            for i, name in news:
+                nb[name] = args[i]
+            out.append(nb)
+    return out
 
 
 # ---- the compiled domain -------------------------------------------------------------------
@@ -369,7 +413,7 @@ def compile_domain(schemas: tuple[Schema, ...], derived_texts: tuple[str, ...]) 
 # ---- grounding -------------------------------------------------------------------------------
 
 def _fact(atom: Atom, b: Mapping[str, str]) -> Fact:
-    return (atom.pred, *(b.get(a, a) for a in atom.args))
+    return (atom.pred, *[b.get(a, a) for a in atom.args])
 
 
 class _Grounder:
@@ -383,6 +427,9 @@ class _Grounder:
         self._effect_seen: dict[tuple[int, int, tuple[str, ...]], tuple[int, ...]] = {}
         #: the bindings found at that stamp (reused for the operators when still current)
         self._effect_rows: dict[tuple[int, int, tuple[str, ...]], list[dict[str, str]]] = {}
+        #: a query without given values -> the versions of its predicates and its rows then
+        #: (the operators and axioms ask again what the fixpoint's last round found)
+        self._rows: dict[int, tuple[tuple[int, ...], list[dict[str, str]]]] = {}
         for f in init:
             self.facts.add(f)
 
@@ -390,7 +437,19 @@ class _Grounder:
         return self.lists.get(type_, ())
 
     def actions(self, plan: _SchemaPlan) -> list[dict[str, str]]:
-        return plan.query.run({}, self.facts, self.domain, self.kinds)
+        return self._every(plan.query)
+
+    def _every(self, query: _Query) -> list[dict[str, str]]:
+        """``query``'s bindings from no given values; the rows of its last run while its
+        predicates have no new facts (callers read the rows, never change them)."""
+        version = self.facts.version
+        stamp = tuple([version.get(p, 0) for p in query.preds])
+        kept = self._rows.get(id(query))
+        if kept is not None and kept[0] == stamp:
+            return kept[1]
+        rows = query.run({}, self.facts, self.domain, self.kinds)
+        self._rows[id(query)] = (stamp, rows)
+        return rows
 
     def reach(self) -> None:
         """The relaxed fixpoint; a schema or rule is evaluated again only when a predicate
@@ -418,12 +477,11 @@ class _Grounder:
         out: list[Fact] = []
         version = self.facts.version
         params = [v for v, _ in sp.schema.params]
+        adding = [(j, ep, positives) for j, ep in enumerate(sp.effects)
+                  if (positives := [a for a in ep.then if a.positive])]
         for b in self.actions(sp):
-            key = tuple(b[v] for v in params)
-            for j, ep in enumerate(sp.effects):
-                positives = [a for a in ep.then if a.positive]
-                if not positives:
-                    continue
+            key = tuple([b[v] for v in params])
+            for j, ep, positives in adding:
                 stamp = tuple(version.get(p, 0) for p in ep.deps)
                 if self._effect_seen.get((index, j, key)) == stamp:
                     continue  # same action, nothing new its effect could bind to
@@ -436,7 +494,7 @@ class _Grounder:
     def _rule_heads(self, rp: _RulePlan) -> list[Fact]:
         head = rp.rule
         return [(head.pred, *(b[v] for v, _ in head.params))
-                for b in rp.query.run({}, self.facts, self.domain, self.kinds)]
+                for b in self._every(rp.query)]
 
     # ---- after the fixpoint ------------------------------------------------------------
     def lit(self, atom: Atom, b: Mapping[str, str]) -> Lit | bool:
@@ -520,7 +578,7 @@ class _Grounder:
         out: list[GroundAxiom] = []
         for rp in self.d.rules:
             head = rp.rule
-            for b in rp.query.run({}, self.facts, self.domain, self.kinds):
+            for b in self._every(rp.query):
                 body: dict[Fact, bool] = {}
                 ok = True
                 for a in (*rp.positive, *rp.negative):

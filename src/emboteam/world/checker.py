@@ -8,7 +8,9 @@ different apples, as in SMART-LLM's and ALFRED's goal checks.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from functools import lru_cache
+from itertools import islice
 
 from pydantic import BaseModel, ConfigDict
 
@@ -97,6 +99,26 @@ def _unary(pred: Predicate, o: ObjectState, liquid: str | None) -> bool:
 
 
 def check_condition(cond: Condition, state: WorldState) -> ConditionResult:
+    """The condition's truth on ``state``, with the objects that satisfy it."""
+    witnesses = tuple(_witnesses(cond, state))
+    satisfied = len(witnesses)
+    return ConditionResult(condition=cond, holds=satisfied >= cond.count, satisfied=satisfied,
+                           required=cond.count, witnesses=witnesses)
+
+
+def condition_holds(cond: Condition, state: WorldState) -> bool:
+    """``check_condition(cond, state).holds``, without the report: the planner asks
+    thousands of times a plan (every protected goal after each unit it accepts), and
+    building the validated result cost more than the check; it stops at the
+    ``count``-th witness."""
+    need = cond.count
+    if need <= 0:
+        return True
+    return next(islice(_witnesses(cond, state), need - 1, None), None) is not None
+
+
+def _witnesses(cond: Condition, state: WorldState) -> Iterator[str]:
+    """The ids of the objects that satisfy ``cond``, in the state's order."""
     # the planner checks conditions thousands of times per plan: the subject test of
     # :func:`matches` is inlined here and the receptacle reference built once per call
     objects = state.objects
@@ -105,7 +127,6 @@ def check_condition(cond: Condition, state: WorldState) -> ConditionResult:
     where = cond.receptacle
     if pred is Predicate.inside and where is not None and where.types:
         where = _place_ref(where.types)
-    witnesses: list[str] = []
     # the subjects first, in the state's order, in one comprehension (most conditions name
     # one object of some eighty)
     if ref_id is not None:
@@ -126,10 +147,7 @@ def check_condition(cond: Condition, state: WorldState) -> ConditionResult:
         else:
             ok = _unary(pred, o, cond.liquid)
         if ok:
-            witnesses.append(o.id)
-    satisfied = len(witnesses)
-    return ConditionResult(condition=cond, holds=satisfied >= cond.count, satisfied=satisfied,
-                           required=cond.count, witnesses=tuple(witnesses))
+            yield o.id
 
 
 @lru_cache(maxsize=1024)

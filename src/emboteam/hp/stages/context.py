@@ -16,7 +16,7 @@ from emboteam.pddl.errors import PlannerTimeoutError, PlanningError, UnsolvableS
 from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import FastDownward, SolveResult
 from emboteam.pfg.taskspec import TaskSpec
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -92,7 +92,7 @@ class Solver:
     def unsolvable(self, what: str, conditions: Sequence[Condition], state: WorldState,
                    robots: Sequence[str]) -> UnsolvableSubtaskError:
         """Name the conditions that cannot be reached (each tried alone, a few calls)."""
-        unmet = [c for c in conditions if not check_condition(c, state).holds]
+        unmet = [c for c in conditions if not condition_holds(c, state)]
         culprits: list[Condition] = []
         if 1 < len(unmet) <= 4:
             problems = [build_problem(state, [c], robots, name="why", narrow=False, release=False)

@@ -33,7 +33,7 @@ from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import SolveResult
 from emboteam.pfg.taskspec import Subtask
 from emboteam.world.actions import Action, Skill
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import check_condition, condition_holds
 from emboteam.world.goals import Condition
 from emboteam.world.state import WorldState
 
@@ -181,8 +181,8 @@ class _Rounds:
             grounded, why = replay(trial, steps, self.universe)
             missing, broken = [], []
             if why is None:
-                missing = [c for c in u.conditions if not check_condition(c, trial).holds]
-                broken = [c for c, _ in self.protected.values() if not check_condition(c, trial).holds]
+                missing = [c for c in u.conditions if not condition_holds(c, trial)]
+                broken = [c for c, _ in self.protected.values() if not condition_holds(c, trial)]
             if why is None and not missing and not broken:
                 self._accept(u, grounded, after=trial)
                 return steps
@@ -268,7 +268,7 @@ class _Rounds:
 
 
 def _nothing_to_do(u: Unit, state: WorldState) -> bool:
-    if not all(check_condition(c, state).holds for c in u.conditions):
+    if not all(condition_holds(c, state) for c in u.conditions):
         return False
     return all(state.robots[r].holding is None or not (
         state.robots[r].profile.can(Skill.PutObject) or state.robots[r].profile.can(Skill.DropHandObject))

@@ -15,7 +15,7 @@ from emboteam.hp.stages.rebuilt import Rebuilt, simulated
 from emboteam.hp.stages.replay import replay_reusing
 from emboteam.pddl.domain import Universe
 from emboteam.sim.rules import apply_action
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 
 log = logging.getLogger(__name__)
 
@@ -59,7 +59,7 @@ def _moved(ctx: Context, seq: list[GroundedStep], block: spot_order.Block, new_o
         apply_action(state, g.robot, g.action)
     grounded, why = replay_reusing(state, [seq[k] for k in new_order[p:]],
                                    {i for i, k in enumerate(new_order[p:]) if seq[k].robot == block.robot}, universe)
-    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
+    if why is None and not all(condition_holds(c, state) for c in ctx.spec.goal().conditions):
         why = "misses the goal"
     if why is not None:
         log.debug("moving %s fails: %s", block, why)

@@ -12,7 +12,7 @@ from emboteam.hp.rounds import already_done, preparations
 from emboteam.pddl.domain import Universe
 from emboteam.sim.rules import apply_action
 from emboteam.world.actions import Action
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 from emboteam.world.goals import Goal
 from emboteam.world.state import WorldState
 
@@ -58,7 +58,7 @@ def replay_to_goal(start: WorldState, steps: Sequence[SeqStep], goal: Goal,
     for g in head:
         apply_action(state, g.robot, g.action)
     grounded, why = replay(state, steps, universe, repair)
-    if why is None and not all(check_condition(c, state).holds for c in goal.conditions):
+    if why is None and not all(condition_holds(c, state) for c in goal.conditions):
         why = "misses the goal"
     return [*head, *grounded], why
 

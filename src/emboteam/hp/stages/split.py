@@ -31,7 +31,7 @@ from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import SolveResult
 from emboteam.sim.durations import navigation_seconds
 from emboteam.sim.rules import apply_action
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import check_condition, condition_holds
 from emboteam.world.goals import Condition, ObjectRef
 from emboteam.world.state import WorldState
 
@@ -78,7 +78,7 @@ def _cut(ctx: Context, draft: Draft) -> _Cut | None:
     for g in before:
         apply_action(here, g.robot, g.action)
     members = set(target.members)
-    kept = [c for t in ctx.spec.subtasks if t.id not in members for c in t.goal if check_condition(c, here).holds]
+    kept = [c for t in ctx.spec.subtasks if t.id not in members for c in t.goal if condition_holds(c, here)]
     subjects = {t.id: frozenset(_kind(c.subject, start) for c in t.goal) for t in ctx.spec.subtasks
                 if t.id in members}
     return _Cut(target, before, gone, rest, here, kept, ctx.universe, subjects)
@@ -189,7 +189,7 @@ def _split_parts(ctx: Context, plan: MergedPlan, cut: _Cut, robots: Sequence[str
             return None
         after = state.copy()
         grounded, why = replay(after, _steps_of(ctx, problem, result, part, state), cut.universe)
-        if why is not None or not all(check_condition(c, after).holds for c in _conds(ctx, part)):
+        if why is not None or not all(condition_holds(c, after) for c in _conds(ctx, part)):
             log.debug("part %s of %s fails: %s", part, robot, why or "misses its goal")
             return None
         new.extend(grounded)
@@ -212,7 +212,7 @@ def _appended(ctx: Context, plan: MergedPlan, cut: _Cut, new: Sequence[GroundedS
     if why is not None:
         return None
     parts, why = replay(trial, [SeqStep(g.robot, g.action, g.subtask, g.group) for g in new], cut.universe)
-    if why is not None or not all(check_condition(c, trial).holds for c in ctx.spec.goal().conditions):
+    if why is not None or not all(condition_holds(c, trial) for c in ctx.spec.goal().conditions):
         return None
     return _kept(ctx, plan, [*cut.before, *tail, *parts], what)
 
@@ -223,7 +223,7 @@ def _spliced(ctx: Context, plan: MergedPlan, cut: _Cut, state: WorldState, new: 
     and its sequence when shorter than ``plan``, else None."""
     trial = state.copy()
     tail, why = replay_reusing(trial, cut.rest, set(), cut.universe, [*cut.gone, *new])
-    if why is not None or not all(check_condition(c, trial).holds for c in ctx.spec.goal().conditions):
+    if why is not None or not all(condition_holds(c, trial) for c in ctx.spec.goal().conditions):
         return None
     return _kept(ctx, plan, [*cut.before, *new, *tail], what)
 
@@ -257,7 +257,7 @@ def split_clusters(ctx: Context, draft: Draft) -> Draft:
             continue
         after = cut.here.copy()
         grounded, why = replay(after, _steps_of(ctx, problem, result, a, cut.here), cut.universe)
-        if why is not None or not all(check_condition(c, after).holds for c in _conds(ctx, a)):
+        if why is not None or not all(condition_holds(c, after) for c in _conds(ctx, a)):
             continue
         second_problem = _split_problem(after, _conds(ctx, b), target.robot, [*cut.kept, *_conds(ctx, a)])
         if second_problem is not None:

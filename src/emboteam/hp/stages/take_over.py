@@ -16,7 +16,7 @@ from emboteam.hp.stages.rebuilt import Rebuilt, adopted, shorter, simulated
 from emboteam.hp.stages.replay import replay_reusing
 from emboteam.hp.take_over import candidates, taken_over
 from emboteam.sim.rules import apply_action
-from emboteam.world.checker import check_condition
+from emboteam.world.checker import condition_holds
 
 log = logging.getLogger(__name__)
 
@@ -36,7 +36,7 @@ def _tried(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], index: 
         apply_action(state, g.robot, g.action)
     tail = [taken_over(sequence, index, robot), *sequence[index + 1:]]
     grounded, why = replay_reusing(state, tail, {0}, ctx.universe, [sequence[index]])
-    if why is None and not all(check_condition(c, state).holds for c in ctx.spec.goal().conditions):
+    if why is None and not all(condition_holds(c, state) for c in ctx.spec.goal().conditions):
         why = "misses the goal"
     if why is not None:
         log.debug("%s taking over step %d fails: %s", robot, index, why)
