@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
+from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS, is_unmeasured
 from emboteam.bench.importers.smart_llm import import_smart_llm
 from emboteam.bench.mace_thor import load_mace_thor
 from emboteam.bench.standin import DISCLAIMER, StandInServer, known_tasks
@@ -104,7 +104,7 @@ def development_rounds(data: Path = DATA, extra: Sequence[tuple[str, Path]] = ()
         return int(p.parent.name.removeprefix("blind_r"))
 
     out = [_dir_round(p.parent.name, p) for p in sorted(data.glob("blind_r*/dev"), key=number)
-           if p.parent.name not in HELD_OUT]
+           if p.parent.name not in HELD_OUT and not is_unmeasured(p.parent)]
     out += [_dir_round(f"{name}-heldout", data / name / "heldout") for name in READ_HELDOUT
             if (data / name / "heldout").is_dir()]
     out += [_dir_round(name, path) for name, path in extra]

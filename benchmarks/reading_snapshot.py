@@ -2,7 +2,7 @@
 refactoring of the reader can be checked for an unchanged behaviour with a plain diff.
 
 What is read: every line of every ``FloorPlanN*.json`` under ``tests/data/blind_r*/`` (dev
-and heldout folders; the held-out rounds of ``HELD_OUT_ROUNDS`` excluded), ``tests/data/offline_*.jsonl``, MACE-THOR,
+and heldout folders; the held-out rounds of ``HELD_OUT_ROUNDS`` and rounds still marked unmeasured excluded), ``tests/data/offline_*.jsonl``, MACE-THOR,
 and the SMART-LLM peers' tasks under ``/work/shared/data/peers`` (or ``--peers DIR``).
 Never ``tests/data/unseen_tasks.json``. For each instruction: the goal conditions, the
 full TaskSpec, the notes and the unsure conditions, or the error's class and message.
@@ -23,7 +23,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS
+from emboteam.bench.dev_corpus import HELD_OUT_ROUNDS, is_unmeasured
 from emboteam.bench.importers.lenient import read_record
 from emboteam.bench.importers.smart_llm import _floor_number, task_files
 from emboteam.bench.mace_thor import load_mace_thor
@@ -68,8 +68,8 @@ def _smart_llm(root: Path) -> Iterator[Item]:
 
 def items(peers: Path) -> Iterator[Item]:
     for round_dir in sorted(DATA.glob("blind_r*")):
-        if round_dir.name in EXCLUDED_ROUNDS:
-            continue
+        if round_dir.name in EXCLUDED_ROUNDS or is_unmeasured(round_dir):
+            continue   # held out, or awaiting its one fresh measurement: nobody reads it yet
         for part in ("dev", "heldout"):
             if (round_dir / part).is_dir():
                 yield from _smart_llm(round_dir / part)
