@@ -81,12 +81,11 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
     if one.parent is not None and ctx.state.obj(one.parent).type in dest:
         return None     # the goal read is where the one is already: not the move meant
     kept = Counter(ctx.state.obj(str(o.parent)).type for o in objs if o.id != one.id)
+    if dest & set(kept):
+        return None     # "the one already in a drawer is fine": the one joins the others, no other reading
     # by type: with every other instance kept where it is, only the one can move
-    # "the one already in a drawer is fine": those kept where the one goes count with it
-    add: list[Condition] = [move.model_copy(update={"subject": ObjectRef(types=(type_,)),
-                                                    "count": 1 + sum(n for p, n in kept.items() if p in dest)})]
-    add += [placed(type_, p).model_copy(update={"count": n}) if n > 1 else placed(type_, p)
-            for p, n in kept.items() if p not in dest]
+    add: list[Condition] = [move.model_copy(update={"subject": ObjectRef(types=(type_,)), "count": 1})]
+    add += [placed(type_, p).model_copy(update={"count": n}) if n > 1 else placed(type_, p) for p, n in kept.items()]
     if set(add) == set(moving):
         return None
     return Doubt(KIND, ctx.items[k].text, (Choice(AS_READ, "as read"),

@@ -61,9 +61,11 @@ def _one_excepted(ctx: DoubtContext) -> list[Doubt]:
     left out (a word of its type's name: the desk lamp)."""
     out = []
     for m, item, types in ctx.mentions():
-        end = ctx.clause_bounds(m)[1]
-        e = next((j for j in range(m + 1, min(end, m + 6)) if ctx.items[j].text in EXCLUDERS), len(ctx.items))
-        if len(types) < 2 or e >= len(ctx.items) or not _quantified(ctx, e + 1):
+        if len(types) < 2:
+            continue
+        near = ctx.items[m + 1:m + 6]
+        e = m + 1 + next((n for n, i in enumerate(near) if i.text in EXCLUDERS or i.punct), len(near))
+        if e >= len(ctx.items) or ctx.items[e].text not in EXCLUDERS or not _quantified(ctx, e + 1):
             continue
         pro_forms = load_rule_words().contents.pro_forms
         one = next((j for j in range(e + 1, min(len(ctx.items), e + 5)) if ctx.items[j].text in pro_forms), None)
