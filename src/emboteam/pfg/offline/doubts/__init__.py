@@ -20,6 +20,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | instance | :mod:`.instances` (one object, or any of its type) |
 | contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
 | resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
+| compare | :mod:`.compare` ("the heavier of the two ... goes on the bed": the scene's masses pick) |
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.destination` (where a thing's own words send it; the one destination finder, ``destination_cues.json``) |
@@ -37,6 +38,7 @@ from __future__ import annotations
 
 from emboteam.pfg.candidates import Doubt
 from emboteam.pfg.offline.doubts import (
+    compare,
     contents,
     destination,
     device,
@@ -83,7 +85,7 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
-             *instances.doubts(ctx), *others.doubts(ctx), *switches.doubts(ctx), *placed_instead.doubts(ctx),
+             *instances.doubts(ctx), *others.doubts(ctx), *compare.doubts(ctx), *switches.doubts(ctx), *placed_instead.doubts(ctx),
              *(d for d in reading_doubts(ctx) if d.kind != device_state.KIND)]
     return [d for d in found if len(d.choices) > 1]
 

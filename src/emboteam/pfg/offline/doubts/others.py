@@ -81,6 +81,8 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
     if one.parent is not None and ctx.state.obj(one.parent).type in dest:
         return None     # the goal read is where the one is already: not the move meant
     kept = Counter(ctx.state.obj(str(o.parent)).type for o in objs if o.id != one.id)
+    if dest & set(kept):
+        return None     # "the one already in a drawer is fine": the one joins the others, no other reading
     # by type: with every other instance kept where it is, only the one can move
     add: list[Condition] = [move.model_copy(update={"subject": ObjectRef(types=(type_,)), "count": 1})]
     add += [placed(type_, p).model_copy(update={"count": n}) if n > 1 else placed(type_, p) for p, n in kept.items()]

@@ -43,6 +43,9 @@ class Contents(_Closed):
     #: quantifiers of what is left ("the rest", "everything else"): the things the
     #: reading places anywhere else are no part of the set
     remainder: list[str] = Field(default_factory=list)
+    #: words that stand for the quantified whole's noun after an excluder ("every lamp but
+    #: the desk one")
+    pro_forms: list[str] = Field(default_factory=list)
     reach: int = Field(8, ge=1, le=30)
     note: str = ""
 
@@ -124,6 +127,25 @@ class Undo(_Closed):
     note: str = ""
 
 
+class Compare(_Closed):
+    """A thing singled out by comparison (:mod:`.compare`)."""
+    #: comparatives and superlatives that pick the greatest mass ("heavier", "bigger")
+    more: list[str]
+    #: those that pick the least ("lighter", "smaller")
+    less: list[str]
+    #: words that may stand between the comparative and the name ("the bigger one")
+    heads: list[str]
+    #: what names the pool ("of the two", "from the two")
+    pool_cues: list[Words]
+    #: what leaves a thing out of the pool ("not the laptop")
+    excluders: list[Words]
+    #: what ends the clause of the thing picked ("the bigger goes in a cupboard; ...")
+    clause_ends: list[str]
+    #: keeping words after it: the others stay where they are ("the small one stays")
+    keepers: list[str]
+    note: str = ""
+
+
 class RuleWords(_Closed):
     about: str = ""
     sentence_ends: list[str]
@@ -137,6 +159,7 @@ class RuleWords(_Closed):
     correction: Correction
     contradiction: Contradiction
     undo: Undo
+    compare: Compare
 
 
 @cache

@@ -27,7 +27,7 @@ UNDO = "undo"
 
 
 def doubts(ctx: DoubtContext) -> list[Doubt]:
-    return [*_exclusions(ctx), *_undone(ctx)]
+    return [*_exclusions(ctx), *_one_excepted(ctx), *_undone(ctx)]
 
 
 def _exclusions(ctx: DoubtContext) -> list[Doubt]:
@@ -40,7 +40,44 @@ def _exclusions(ctx: DoubtContext) -> list[Doubt]:
         if hit and len(hit) < len(ctx.goals):
             out.append(Doubt("exclusion", item.text, (
                 Choice(AS_READ, f"{item.text!r} is asked for"),
-                Choice("drop_excluded", f"{item.text!r} is left out", drop=hit))))
+                Choice("drop_quantified" if _quantified(ctx, k) else "drop_excluded",
+                       f"{item.text!r} is left out", drop=hit))))
+    return out
+
+
+def _quantified(ctx: DoubtContext, k: int) -> bool:
+    """Whether an excluder before the thing at ``k`` follows a quantifier of its clause
+    ("every lamp but the little desk one", "all but the candle"): an exception to a
+    whole, not a thing asked for after a contrast ("..., but the mug goes in the sink")."""
+    at = next((j for j in range(k - 1, max(0, k - 4) - 1, -1) if ctx.items[j].text in EXCLUDERS), None)
+    start = ctx.clause_bounds(at)[0] if at is not None else k
+    return at is not None and any(i.quant is not None or i.text in load_rule_words().contents.quantifiers
+                                  for i in ctx.items[max(start, at - 6):at])
+
+
+def _one_excepted(ctx: DoubtContext) -> list[Doubt]:
+    """"every lamp but the little desk one": "one" after an excluder stands for the
+    quantified whole's noun, and the words before it say which of the whole's types is
+    left out (a word of its type's name: the desk lamp)."""
+    out = []
+    for m, item, types in ctx.mentions():
+        if len(types) < 2:
+            continue
+        near = ctx.items[m + 1:m + 6]
+        e = m + 1 + next((n for n, i in enumerate(near) if i.text in EXCLUDERS or i.punct), len(near))
+        if e >= len(ctx.items) or ctx.items[e].text not in EXCLUDERS or not _quantified(ctx, e + 1):
+            continue
+        pro_forms = load_rule_words().contents.pro_forms
+        one = next((j for j in range(e + 1, min(len(ctx.items), e + 5)) if ctx.items[j].text in pro_forms), None)
+        if one is None:
+            continue
+        said = {i.text for i in ctx.items[e + 1:one] if len(i.text) > 2}
+        left = [t for t in types if any(w in t.lower() for w in said)]
+        hit = tuple(c for c in ctx.goals if left and ref_types(c.subject) == {left[0]})
+        if len(left) == 1 and hit and len(hit) < len(ctx.goals):
+            out.append(Doubt("exclusion", " ".join(i.text for i in ctx.items[e:one + 1]), (
+                Choice(AS_READ, f"{item.text!r} all asked for"),
+                Choice("drop_quantified", f"the {left[0]} is left out", drop=hit))))
     return out
 
 
