@@ -367,26 +367,29 @@ def _persons_act_then_request(sentence: list[Item], j: int, current: Clause) -> 
 
 #: what opens a time clause besides a subordinator ("by the time I'm back ...")
 _TIME_OPENERS = _W.phrases("time_openers")
+_OPENER_WORDS = frozenset(p[0] for p in _TIME_OPENERS)
 
 
 def _time_then_subject(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """"by the time I'm back the keys are in the box", "when I get home the TV is on": a
     subject with its own predicate after a time clause of the speaker's own doing (a person,
     a verb, no thing named), without a comma between them."""
+    it, timed = sentence[j], current.link not in (AND, THEN, None)
+    if not (it.det or it.noun is not None) or not (timed or (current.items and current.items[0].text in _OPENER_WORDS)):
+        return None     # (most places: no subject here, or no time clause before it)
     words = [x for x in current.items if x.punct is None]
     opener = next((len(p) for p in _TIME_OPENERS if tuple(x.text for x in words[:len(p)]) == p), 0)
-    if not opener and current.link in (AND, THEN, None):
+    if not (opener or timed):
         return None
     rest = words[opener:]
     if not (len(rest) >= 2 and rest[0].text in _HUMAN and any(x.verb is not None or x.copula for x in rest[1:])
             and not any(x.noun is not None and x.noun.concept.kind != "room" for x in rest)):
         return None
-    last, it = rest[-1], sentence[j]
+    last = rest[-1]
     if (last.verb is not None and not last.copula and last.verb.sense.act is not lx.Act.GO) or last.det \
             or last.quant is not None or (last.prep is not None and last.particle is None):
         return None     # "when I get (home)", "when I open the (box)": its object or place is still to come
-    if not (it.det or it.noun is not None) or (it.noun is not None and it.noun.concept.kind == "room") \
-            or subject_here(sentence, j) is None:
+    if (it.noun is not None and it.noun.concept.kind == "room") or subject_here(sentence, j) is None:
         return None
     return _Cut(AND)
 
