@@ -13,6 +13,7 @@ from dataclasses import replace
 from emboteam.pfg.offline import lexicon, phrases
 from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.cues import is_statement
+from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.patterns import pattern_tables
@@ -516,4 +517,40 @@ def reasons(clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
                 and nxt.sentence == clauses[k].sentence and any(i.verb is not None for i in nxt.items):
             parsed[k] = replace(p, frames=[])
             silent.add(k)
+    return silent
+
+
+def told_ahead(items: list[Item], clauses: list[Clause], parsed: list[ParsedClause]) -> set[int]:
+    """"By the time I'm back the keys are in the box", "tomorrow morning the laptop will be
+    shut": under a narrative cue (``rule_words.json``, ``stated``) a statement of where a
+    thing is or what state it is in tells the end state, so it is read as wished, as after
+    "make sure", from the cue on; an act nobody did asks nothing. Other past and perfect
+    tenses ("has been on all night"), negations and questions stay as they were. Returns
+    the clauses of acts nobody did (no note for them)."""
+    silent: set[int] = set()
+    cues = find(items, 0, len(items), load_rule_words().stated.narrative_cues)
+    if not cues:
+        return silent
+    first = items[cues[0][0]]
+    cued = next((k for k, c in enumerate(clauses) if any(i is first for i in c.items)), None)
+    if cued is None:
+        return silent
+    if clauses[cued].items[0] is not first:
+        cued += 1   # "... in a cabinet where nobody can find it": the cue frames what follows it
+    for k, (c, p) in enumerate(zip(clauses, parsed, strict=True)):
+        if k >= cued and p.frames and all(f.report and f.past and f.negated for f in p.frames):
+            # "... and nobody switched the light off": in the picture the act did not happen,
+            # so it asks nothing (what it names stays for the rest of the reading)
+            parsed[k] = replace(p, frames=[])
+            silent.add(k)
+            continue
+        if k < cued or not p.frames or c.extra.get("question") or c.link not in (AND, THEN) \
+                or any(i.text == "been" for i in c.items):
+            continue
+        if not all(f.report and not f.past and not f.negated and f.targets
+                   and all(t.head.pron is None for t in f.targets) for f in p.frames):
+            continue
+        again = parse_clause(c, directive=True)
+        if again.frames and not any(f.report or f.negated for f in again.frames):
+            parsed[k] = again
     return silent

@@ -189,6 +189,9 @@ def _ends_with_place(items: list[Item]) -> bool:
 _NP_WORDS = _W.set("np_words")
 #: adjectives inside a subject ("the big floor lamp's still on")
 _NP_ADJECTIVES = _W.set("np_adjectives")
+#: nouns plural in form though the lexicon lists them as one thing ("the keys live in a
+#: drawer": a plural subject takes the verb's base form)
+_PLURAL_IN_FORM = _W.set("plural_in_form")
 
 
 def _skip_np(items: list[Item], j: int) -> int:
@@ -248,7 +251,8 @@ def subject_here(items: list[Item], j: int, asked: bool = False) -> str | None:
     if predicate is not None:
         return predicate.then
     plural = items[j].text in ("they", "these", "those", "both", "all") or any(
-        x.conj == "and" or (x.noun is not None and x.noun.plural) for x in items[j:k])
+        x.conj == "and" or (x.noun is not None and (x.noun.plural or x.noun.phrase in _PLURAL_IN_FORM))
+        for x in items[j:k])
     if it.verb is not None and (it.verb.form == "s" or ((plural or asked) and it.verb.form == "base")) \
             and it.noun is None \
             and it.verb.sense.act is lx.Act.GO:
@@ -363,6 +367,35 @@ def _persons_act_then_request(sentence: list[Item], j: int, current: Clause) -> 
     return None
 
 
+#: what opens a time clause besides a subordinator ("by the time I'm back ...")
+_TIME_OPENERS = _W.phrases("time_openers")
+_OPENER_WORDS = frozenset(p[0] for p in _TIME_OPENERS)
+
+
+def _time_then_subject(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"by the time I'm back the keys are in the box", "when I get home the TV is on": a
+    subject with its own predicate after a time clause of the speaker's own doing (a person,
+    a verb, no thing named), without a comma between them."""
+    it, timed = sentence[j], current.link not in (AND, THEN, None)
+    if not (it.det or it.noun is not None) or not (timed or (current.items and current.items[0].text in _OPENER_WORDS)):
+        return None     # (most places: no subject here, or no time clause before it)
+    words = [x for x in current.items if x.punct is None]
+    opener = next((len(p) for p in _TIME_OPENERS if tuple(x.text for x in words[:len(p)]) == p), 0)
+    if not (opener or timed):
+        return None
+    rest = words[opener:]
+    if not (len(rest) >= 2 and rest[0].text in _HUMAN and any(x.verb is not None or x.copula for x in rest[1:])
+            and not any(x.noun is not None and x.noun.concept.kind != "room" for x in rest)):
+        return None
+    last = rest[-1]
+    if (last.verb is not None and not last.copula and last.verb.sense.act is not lx.Act.GO) or last.det \
+            or last.quant is not None or (last.prep is not None and last.particle is None):
+        return None     # "when I get (home)", "when I open the (box)": its object or place is still to come
+    if (it.noun is not None and it.noun.concept.kind == "room") or subject_here(sentence, j) is None:
+        return None
+    return _Cut(AND)
+
+
 def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     """"once it's sliced stick a couple of the slices in the fridge", "once the mug's full
     switch the coffee maker off": the state, then the request."""
@@ -450,7 +483,7 @@ def _run_on_states(sentence: list[Item], j: int, current: Clause) -> bool:
 #: the rules that say whether a clause starts at an item, in order: the first that applies
 #: decides (its link may be None: no boundary after all)
 BOUNDARY_RULES: tuple[Callable[[list[Item], int, Clause], _Cut | None], ...] = (
-    _sequence_marker, _person_then_request, _persons_act_then_request, _state_then_request,
+    _sequence_marker, _person_then_request, _persons_act_then_request, _time_then_subject, _state_then_request,
     _robot_named, _run_on_request, _coordination, _subordinator,
 )
 

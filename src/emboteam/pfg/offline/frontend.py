@@ -30,6 +30,7 @@ from emboteam.pfg.offline.clause_passes import (
     repeat_for_also,
     share_objects,
     small_talk,
+    told_ahead,
     whereabouts,
 )
 from emboteam.pfg.offline.clauses import AND, THEN, Clause, segment
@@ -377,6 +378,7 @@ class OfflineFrontend:
         silent |= labelled_lists(clauses, parsed_clauses)
         silent |= fix_up_complaints(parsed_clauses)
         silent |= reasons(clauses, parsed_clauses)
+        silent |= told_ahead(items, clauses, parsed_clauses)
         attach_means(parsed_clauses)
         share_objects(clauses, parsed_clauses)
         gapped_objects(clauses, parsed_clauses)
