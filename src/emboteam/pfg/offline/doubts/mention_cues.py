@@ -31,6 +31,7 @@ from emboteam.pfg.offline.doubts.mention_words import (
     load_mention_cues,
     segment,
     side,
+    sided,
 )
 from emboteam.pfg.offline.doubts.state_words import load_state_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
@@ -127,19 +128,23 @@ def said_state(ctx: DoubtContext, k: int, end: int, thing: str) -> Condition | N
     return None
 
 
-def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool) -> Predicate:
+def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool, as_is: bool) -> Predicate:
     """The switch state a thing kept as it is ends in: its start state, unless the
     reading switches the rest of its group to that state ("lights off (desk lamp can
-    stay)": an exception to the group, it stays as the person believes it is: the other)."""
+    stay)": an exception to the group, it stays as the person believes it is: the other)
+    and its words do not name the start state itself (``as_is``: "the big lamp stays how
+    it is" beside "the small lamp on": on, as it is)."""
     now = Predicate.switched_on if is_on else Predicate.switched_off
+    if as_is:
+        return now
     group = next((set(g) for g in load_mention_cues().groups if thing in g), set())
     if any(c.predicate is now and (ref_types(c.subject) & group) - {thing} for c in ctx.goals):
         return _OPPOSITE[now]
     return now
 
 
-def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[str, int] | None = None) -> tuple[
-        Condition, ...]:
+def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[str, int] | None = None,
+         as_is: bool = False) -> tuple[Condition, ...]:
     """The thing as it is: its start place (a thing that is picked up; of several, the one
     in the receptacle named nearest to it, ``named``: type -> distance, "the toilet paper
     in the bin is fine") and the state its words name ("the candle stays and gets lit"),
@@ -154,7 +159,7 @@ def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[
     if "pickupable" in props and o.parent is not None:
         out.append(placed(thing, ctx.state.obj(o.parent).type))
     elif state is None and "toggleable" in props:
-        out.append(one_object(_kept_switch(ctx, thing, o.is_on), thing))
+        out.append(one_object(_kept_switch(ctx, thing, o.is_on, as_is), thing))
     elif state is None and "openable" in props:
         out.append(one_object(Predicate.open if o.is_open else Predicate.closed, thing))
     return tuple(out)
@@ -173,11 +178,12 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     # a thing kept as it is takes only a state said after it ("the lamp stays on"), not
     # the state of the clause before ("lights off, the desk lamp can stay")
     state = _state(ctx, k, start, end, thing, before=keep is None)
+    as_is = sided(ctx, k, start, end, data.as_is)
     if keep == "after":
-        goals = kept(ctx, thing, state, named)
+        goals = kept(ctx, thing, state, named, as_is)
         return ("keep", goals) if goals else None
     if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
-        goals = kept(ctx, thing, state, named)
+        goals = kept(ctx, thing, state, named, as_is)
         if there := destination(ctx, k, thing, end):
             goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there[0]))
         return ("leave", goals) if goals else None

@@ -44,6 +44,9 @@ class MentionCues(_Closed):
     condition_words: list[str]
     #: things switched as a group ("lights off"): one kept out of its group's switch is an exception
     groups: list[list[str]]
+    #: keeping cues that name the start state itself ("stays how it is", "the way it is"):
+    #: a thing kept so keeps its start switch state, never read as an exception to its group
+    as_is: list[SidedCue] = Field(default_factory=list)
     chatter: list[SidedCue]
     #: how far from the thing a keeping cue may stand ("the keys stay on the little table")
     cue_reach: int = Field(6, ge=1, le=20)
