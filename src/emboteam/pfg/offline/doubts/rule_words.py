@@ -71,6 +71,9 @@ class Cue(_Closed):
     #: where the thing kept on stands: before the cue, after it, either (after first), or
     #: the cue names it itself ("by the candle lit")
     kept: Literal["before", "after", "either", "inside"]
+    #: verbs that, said before the cue in its sentence, make it an idiom of its own
+    #: ("leave the candle alone": do not touch it, not "the candle alone on")
+    not_after: list[str] = Field(default_factory=list)
 
 
 class Exclusive(_Closed):
