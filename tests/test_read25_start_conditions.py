@@ -69,3 +69,11 @@ def test_a_condition_that_holds_and_is_only_kept_stays() -> None:
 def test_off_with_it_inside_a_phrase_is_no_switch() -> None:
     # "get on with it" is no "switch it on": the idiom needs a clause of its own
     assert "switched_on(FloorLamp)" not in goal("Get on with it and put the keys in the box.")
+
+
+def test_a_state_that_means_an_act_is_a_condition() -> None:
+    # idioms.json: "open means you shut it" is "if it is open, shut it"; the state is no goal
+    read = goal("Put the keys in the box. The laptop: open means you shut it, shut means you leave it.")
+    assert read == {"inside(KeyChain, Box)", "closed(Laptop)"}
+    read = goal("Put the keys in the box. Same for the desk lamp: on means you turn it off, off means you leave it.")
+    assert read == {"inside(KeyChain, Box)", "switched_off(DeskLamp)"}
