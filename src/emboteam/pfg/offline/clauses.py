@@ -409,6 +409,16 @@ def _state_then_request(sentence: list[Item], j: int, current: Clause) -> _Cut |
     return None
 
 
+def _condition_then_state(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
+    """"if the floor lamp's on, off with it", "if it's shut, open": after the condition's
+    state and a comma, a bare state word is the branch, said without a verb."""
+    items = current.items
+    if current.link == "if" and sentence[j].punct == "," and len(items) >= 2 and items[-1].state is not None \
+            and any(i.copula for i in items) and j + 1 < len(sentence) and sentence[j + 1].state is not None:
+        return _Cut(AND)
+    return None
+
+
 def _robot_named(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     return _Cut(AND) if sentence[j].robot is not None and _content(current.items) else None
 
@@ -484,7 +494,7 @@ def _run_on_states(sentence: list[Item], j: int, current: Clause) -> bool:
 #: decides (its link may be None: no boundary after all)
 BOUNDARY_RULES: tuple[Callable[[list[Item], int, Clause], _Cut | None], ...] = (
     _sequence_marker, _person_then_request, _persons_act_then_request, _time_then_subject, _state_then_request,
-    _robot_named, _run_on_request, _coordination, _subordinator,
+    _condition_then_state, _robot_named, _run_on_request, _coordination, _subordinator,
 )
 
 

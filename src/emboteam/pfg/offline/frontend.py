@@ -70,6 +70,8 @@ from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
+from emboteam.pfg.offline.start_conditions import conditionals
+from emboteam.pfg.offline.start_conditions import settle as settle_start_conditions
 from emboteam.pfg.offline.surface import KIND as SURFACE
 from emboteam.pfg.offline.surface import Surface, read_surface, warm_surface
 from emboteam.pfg.offline.tagger import Item, tag
@@ -374,6 +376,7 @@ class OfflineFrontend:
             purpose_acts(c, parsed)
             again_sequence(c, parsed)
             parsed_clauses.append(parsed)
+        start_conds = conditionals(clauses, parsed_clauses)
         silent = drop_conditions(clauses, parsed_clauses) | chat
         silent |= labelled_lists(clauses, parsed_clauses)
         silent |= fix_up_complaints(parsed_clauses)
@@ -444,6 +447,7 @@ class OfflineFrontend:
                 semantics.note(h, ci, "place" if subject_pronoun else None)
             if not any(f.act is not None or f.state is not None for f in parsed.frames):
                 unknown.extend(parsed.unknown)
+        settle_start_conditions(start_conds, drafts, semantics.g)
         drop_fulfilled_wishes(drafts)
         drop_guessed_water(drafts)
         drop_holds_before_placing(drafts)

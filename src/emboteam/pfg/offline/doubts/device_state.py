@@ -155,6 +155,8 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         corrected = corrected or (found is not None and item.text in corrections)
         said = _word_state(ctx.items, j, words, type_)
         if said is not None and condition:
+            if _present(ctx, type_, said.family) == (said.polarity == flipped):
+                return None     # "if the lamp's on, off with it" while it is off: not this branch
             condition, flipped, said = False, False, None
         if said is not None:
             label = said.label
