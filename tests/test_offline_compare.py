@@ -8,19 +8,15 @@ FloorPlan426 two toilet rolls on the toilet; FloorPlan409 a roll in a drawer, on
 
 from __future__ import annotations
 
-from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.reading import Reading
-from emboteam.world.robots import parse_team
-from emboteam.world.scene import load_scene
+from offline_reading import read_offline
 
 _READER = OfflineFrontend()
 
 
 def read(text: str, fp: int) -> Reading:
-    scene = load_scene(f"FloorPlan{fp}")
-    team = parse_team("1,2,3")
-    return _READER.parse(text, scene, initial_state({}, scene, team), team)
+    return read_offline(_READER, text, f"FloorPlan{fp}")
 
 
 def goals(text: str, fp: int) -> set[str]:
