@@ -10,7 +10,7 @@ import pytest
 
 from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.pfg.offline.list_positions import resolve_list_positions
+from emboteam.pfg.offline.list_positions import EARLIER_LIST, earlier_list_reading, resolve_list_positions
 from emboteam.pfg.offline.tagger import tag
 from emboteam.world.robots import parse_team
 from emboteam.world.scene import load_scene
@@ -104,3 +104,23 @@ def test_the_one_mentioned_first_and_a_number_on_the_list() -> None:
     assert resolved("Take the watch, the keys and the pen. The one I mentioned first goes in the box, "
                     "number three on my list goes in the drawer.").endswith(
         "the watch goes in the box , the pen goes in the drawer .")
+
+
+def test_a_position_that_fits_two_lists_is_a_point_of_doubt() -> None:
+    # the latest list is read; the list before it is the other candidate, not a silent guess
+    scene = load_scene(201)
+    team = parse_team("1,2")
+    reading = FRONTEND.parse("The pen and the pencil are on the table, the watch and the keys on the sofa. "
+                             "Put the first in the box.", scene, initial_state({}, scene, team), team)
+    assert "inside(Watch, Box)" in {str(c) for c in reading.candidates[0].goals}
+    other = [c for d in reading.doubts for c in d.choices if c.label == EARLIER_LIST]
+    assert len(other) == 1 and "inside(Pen, Box)" in {str(c) for c in other[0].add}
+    assert "inside(Watch, Box)" in {str(c) for c in other[0].drop}
+
+
+def test_a_position_only_one_list_fits_has_no_other_reading() -> None:
+    # "the third": only the first list has three items
+    assert earlier_list_reading(tag("The pen, the pencil and the card are here, the watch and the keys there. "
+                                    "The third goes in the box.")) is None
+    assert resolved("The pen, the pencil and the card are here, the watch and the keys there. "
+                    "The third goes in the box.").endswith("the card goes in the box .")

@@ -66,7 +66,7 @@ from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineP
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.knowledge import word_tables
-from emboteam.pfg.offline.list_positions import resolve_list_positions
+from emboteam.pfg.offline.list_positions import EARLIER_LIST, earlier_list_reading, resolve_list_positions
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
@@ -242,6 +242,7 @@ class OfflineFrontend:
         tagged = _tag(surface.text)     # as said, self-corrections and all: what the points of doubt read
         try:
             alternatives = self._surface_readings(text, surface, scene, state, team)
+            alternatives |= self._earlier_list_reading(text, surface.text, scene, state, team)
             return self._surfaced(self._read(text, tagged, scene, state, team, alternatives), alternatives)
         except ContradictoryInstruction:
             raise
@@ -281,6 +282,19 @@ class OfflineFrontend:
         except OfflineParseError:
             return {}
         return {surface.label: (surface.alternative, read)}
+
+    def _earlier_list_reading(self, text: str, said: str, scene: Scene, state: WorldState,
+                              team: Sequence[RobotProfile]) -> dict[str, tuple[str, Reading]]:
+        """The reading with a position in a list ("the first") resolved to the list named
+        before the latest one, when it fits both (:mod:`.list_positions`): a point of doubt."""
+        items = earlier_list_reading(tag(said))
+        if items is None:
+            return {}
+        try:
+            read = self._read(text, items, scene, state, team, candidates=False)
+        except OfflineParseError:
+            return {}
+        return {EARLIER_LIST: (" ".join(i.text for i in items), read)}
 
     @staticmethod
     def _surfaced(reading: Reading, alternatives: dict[str, tuple[str, Reading]]) -> Reading:

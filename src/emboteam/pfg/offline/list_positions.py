@@ -53,6 +53,8 @@ class ListPositionsFile(Strict):
 
 
 _DATA = load("list_positions.json", ListPositionsFile)
+#: the label of the other reading (a surface alternative: doubts/priors.json ``surface``)
+EARLIER_LIST = "earlier_list"
 _SENTENCE_ENDS = frozenset(".!?")
 #: words without which no reference is said (a quick test before any work)
 _TRIGGERS = frozenset(_DATA.positions) | _DATA.middle | _DATA.remainders | _DATA.counted_remainders \
@@ -111,7 +113,7 @@ def _joined(items: list[Item], a: int, b: int) -> bool:
 
 def _kind_named(word: Item, header: Item) -> Item | None:
     """"the bar" of "the two soaps": the word and the kind together as one noun of the lexicon."""
-    kinds = {header.text, header.text.removesuffix("s"), header.text.removesuffix("es")}
+    kinds = tuple(dict.fromkeys((header.text, header.text.removesuffix("s"), header.text.removesuffix("es"))))
     for phrase in [f"{k} {word.text}" for k in kinds] + [f"{word.text} {k}" for k in kinds]:
         got = tag(phrase)
         if len(got) == 1 and got[0].noun is not None:
@@ -239,38 +241,53 @@ def _picked(ref: tuple[int, str, int, int | None], lst: _List) -> list[int] | No
 def resolve_list_positions(items: list[Item]) -> list[Item]:
     """The items with every reference to a position in the speaker's latest list replaced by
     the noun phrases of the items it picks (joined by "and")."""
+    return _resolve(items, earlier=False)[0]
+
+
+def earlier_list_reading(items: list[Item]) -> list[Item] | None:
+    """The items with a reference that also fits the list named before the latest one
+    ("the pen and the book ..., the mug and the plate ...: the first goes ...") resolved to
+    that earlier list: the other reading of a point of doubt; None when no reference fits two."""
+    out, ambiguous = _resolve(items, earlier=True)
+    return out if ambiguous else None
+
+
+def _resolve(items: list[Item], earlier: bool) -> tuple[list[Item], bool]:
+    """The items with the references resolved (to the earlier of two lists that fit, when
+    ``earlier``), and whether any reference fitted two lists."""
     if not any((i.corrected_from or i.text) in _TRIGGERS for i in items):
-        return items
+        return items, False
     sentence_of, s = [], 0
     for it in items:
         sentence_of.append(s)
         s += it.punct is not None and it.punct in _SENTENCE_ENDS
-    lists = _lists(items, sentence_of)
-    if not lists:
-        return items
-    current: _List | None = None
-    pending = list(lists)
+    pending = _lists(items, sentence_of)
+    named: list[_List] = []     # the lists named so far, the latest last
     and_item, the = tag("and the")     # a reference back is definite: "an apple" -> "the apple"
     out: list[Item] = []
+    ambiguous = False
     k = 0
     while k < len(items):
         while pending and pending[0].end < k:
             new = pending.pop(0)
-            if current is None or not {_concept(m) for m in new.members} <= {_concept(m) for m in current.members}:
-                current = new
-        ref = _reference(items, k) if current is not None else None
-        if current is not None and ref is not None \
-                and sentence_of[k] - current.sentence <= _DATA.window_sentences \
-                and (picked := _picked(ref, current)) is not None:
+            if not named or not {_concept(m) for m in new.members} <= {_concept(m) for m in named[-1].members}:
+                named.append(new)
+        ref = _reference(items, k) if named else None
+        fits = [(lst, picked) for lst in reversed(named[-2:]) if ref is not None
+                and sentence_of[k] - lst.sentence <= _DATA.window_sentences
+                and (picked := _picked(ref, lst)) is not None]
+        if ref is not None and fits:
+            ambiguous |= len(fits) > 1
+            lst, picked = fits[-1] if earlier else fits[0]
             for n, i in enumerate(picked):
                 out.extend([and_item] if n else [])
-                out.extend(the if x.det else replace(x, extra=dict(x.extra)) for x in current.members[i])
-            current.picked.update(picked)
+                out.extend(the if x.det else replace(x, extra=dict(x.extra)) for x in lst.members[i])
+            lst.picked.update(picked)
             k = ref[0]
             continue
-        if current is not None and k > current.end and items[k].noun is not None:
+        if named and k > named[-1].end and items[k].noun is not None:
             # named again after the list ("half of them, the potato and the tomato"): picked
-            current.picked.update(i for i, m in enumerate(current.members) if _concept(m) == _concept([items[k]]))
+            named[-1].picked.update(i for i, m in enumerate(named[-1].members) if _concept(m) == _concept([items[k]]))
         out.append(items[k])
         k += 1
-    return out
+    return out, ambiguous
