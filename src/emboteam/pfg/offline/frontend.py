@@ -66,6 +66,7 @@ from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineP
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.list_positions import EARLIER_LIST, earlier_list_reading, resolve_list_positions
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
@@ -93,6 +94,11 @@ _PRONOUN_SUBJECT, _SUBJECT_PRONOUN, _REJECTED = (pattern_tables("frontend").patt
 #: a prefix of only these is the person's own words ("(when) you have got the egg out"),
 #: nothing left unread
 _PERSON_WORDS = _W.set("person_words")
+
+
+def _tag(text: str) -> list[Item]:
+    """The words tagged, a position in the speaker's own list read as the items it picks."""
+    return resolve_list_positions(tag(text))
 
 
 def _note(exc: OfflineParseError) -> ReadingNote:
@@ -233,21 +239,22 @@ class OfflineFrontend:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
         surface = read_surface(text, scene.types())
-        tagged = tag(surface.text)     # as said, self-corrections and all: what the points of doubt read
+        tagged = _tag(surface.text)     # as said, self-corrections and all: what the points of doubt read
         try:
             alternatives = self._surface_readings(text, surface, scene, state, team)
+            alternatives |= self._earlier_list_reading(text, surface.text, scene, state, team)
             return self._surfaced(self._read(text, tagged, scene, state, team, alternatives), alternatives)
         except ContradictoryInstruction:
             raise
         except OfflineParseError as exc:
             if surface.alternative is not None:
                 try:
-                    return self._read(text, tag(surface.alternative), scene, state, team)
+                    return self._read(text, _tag(surface.alternative), scene, state, team)
                 except OfflineParseError:
                     pass
             if surface.text != text:
                 try:
-                    return self._read(text, tag(text), scene, state, team)
+                    return self._read(text, _tag(text), scene, state, team)
                 except OfflineParseError:
                     pass
             # "the pineapple", "two bottles" (only one): what the scene lacks stands, unless
@@ -271,10 +278,23 @@ class OfflineFrontend:
         if surface.alternative is None:
             return {}
         try:
-            read = self._read(text, tag(surface.alternative), scene, state, team, candidates=False)
+            read = self._read(text, _tag(surface.alternative), scene, state, team, candidates=False)
         except OfflineParseError:
             return {}
         return {surface.label: (surface.alternative, read)}
+
+    def _earlier_list_reading(self, text: str, said: str, scene: Scene, state: WorldState,
+                              team: Sequence[RobotProfile]) -> dict[str, tuple[str, Reading]]:
+        """The reading with a position in a list ("the first") resolved to the list named
+        before the latest one, when it fits both (:mod:`.list_positions`): a point of doubt."""
+        items = earlier_list_reading(tag(said))
+        if items is None:
+            return {}
+        try:
+            read = self._read(text, items, scene, state, team, candidates=False)
+        except OfflineParseError:
+            return {}
+        return {EARLIER_LIST: (" ".join(i.text for i in items), read)}
 
     @staticmethod
     def _surfaced(reading: Reading, alternatives: dict[str, tuple[str, Reading]]) -> Reading:
