@@ -9,13 +9,10 @@ reading may have dropped a requested end state.
 from __future__ import annotations
 
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.mention_words import REACH as _REACH
 from emboteam.pfg.offline.doubts.mention_words import after_preposition, answers, chatter
-from emboteam.world.catalogue import load_catalogue
-
-
-def _props(type_: str) -> frozenset[str]:
-    return frozenset(load_catalogue().type(type_).properties)
+from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 
 #: words that put what follows out of the request: negation, exclusion, calling off
 EXCLUDERS = frozenset({"not", "no", "never", "except", "without", "but", "instead", "rather", "leave",
@@ -24,9 +21,8 @@ EXCLUDERS = frozenset({"not", "no", "never", "except", "without", "but", "instea
 #: words that make the rest of their clause a condition or a circumstance
 CONDITIONS = frozenset({"if", "when", "whenever", "unless", "once", "until", "while", "since", "because",
                         "as", "after", "before"})
-#: words that start a self-correction ("in the fridge, no, on the counter")
-CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scratch", "oops", "rather",
-                         "instead", "no", "nope", "nah"})
+#: words that start a self-correction ("in the fridge, no, on the counter"): ``rule_words.json``
+CORRECTIONS = frozenset(load_rule_words().correction.cues)
 #: words around a place that make it the scene of a chore, not a thing to act on ("tidy
 #: the counter: ...", "the floor is covered in stuff")
 CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
