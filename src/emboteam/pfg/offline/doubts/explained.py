@@ -9,33 +9,27 @@ reading may have dropped a requested end state.
 from __future__ import annotations
 
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
+from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.mention_words import REACH as _REACH
 from emboteam.pfg.offline.doubts.mention_words import after_preposition, answers, chatter
-from emboteam.world.catalogue import load_catalogue
+from emboteam.pfg.offline.doubts.rule_words import load_rule_words
+from emboteam.pfg.offline.knowledge import word_tables
 
-
-def _props(type_: str) -> frozenset[str]:
-    return frozenset(load_catalogue().type(type_).properties)
-
+_W = word_tables("explained")     # data/words.json
 #: words that put what follows out of the request: negation, exclusion, calling off
-EXCLUDERS = frozenset({"not", "no", "never", "except", "without", "but", "instead", "rather", "leave",
-                       "forget", "skip", "besides", "apart", "excluding", "other", "than", "nor",
-                       "dont", "don't", "leaving", "ignore", "keep"})
+EXCLUDERS = _W.set("excluders")
 #: words that make the rest of their clause a condition or a circumstance
-CONDITIONS = frozenset({"if", "when", "whenever", "unless", "once", "until", "while", "since", "because",
-                        "as", "after", "before"})
-#: words that start a self-correction ("in the fridge, no, on the counter")
-CORRECTIONS = frozenset({"actually", "sorry", "wait", "correction", "mean", "scratch", "oops", "rather",
-                         "instead", "no", "nope", "nah"})
+CONDITIONS = _W.set("conditions")
+#: words that start a self-correction ("in the fridge, no, on the counter"): ``rule_words.json``
+CORRECTIONS = frozenset(load_rule_words().correction.cues)
 #: words around a place that make it the scene of a chore, not a thing to act on ("tidy
 #: the counter: ...", "the floor is covered in stuff")
-CHORE_WORDS = frozenset({"tidy", "clear", "declutter", "organise", "organize", "sort", "covered", "messy", "mess",
-                         "clutter", "cluttered", "cluttering", "clean", "empty"})
+CHORE_WORDS = _W.set("chore_words")
 #: words of result that start a main clause, not a condition ("So the phone and the card
 #: go up on a shelf")
-RESULTS = frozenset({"so", "therefore", "thus", "hence"})
+RESULTS = _W.set("results")
 #: words after "no" that make it no self-correction ("no longer lying about", "no more")
-NOT_CORRECTING = frozenset({"longer", "more", "matter", "one", "need", "way", "doubt", "problem"})
+NOT_CORRECTING = _W.set("not_correcting")
 #: the explanation of a mention the person negated or excluded
 NEGATED = "negated or excluded"
 #: the explanation of a mention a chatter cue frames ("we used to have ...": :mod:`.mention_cues`)
