@@ -46,6 +46,7 @@ from emboteam.pfg.answer_checks import repetition_problems, sure_condition_probl
 from emboteam.pfg.candidates import Candidate
 from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.doubt import needs_review
+from emboteam.pfg.doubt_gate import doubt_signals, gate_candidates
 from emboteam.pfg.focus import condition_types
 from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
 from emboteam.pfg.model_ranker import (
@@ -53,6 +54,8 @@ from emboteam.pfg.model_ranker import (
     Reranking,
     differing_kinds,
     load_ranker_settings,
+    objects_summary,
+    rerank,
     rerank_in_scene,
 )
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
@@ -137,6 +140,8 @@ class HybridFrontend:
         self.rank_kinds = settings.model_copy(update={"min_lead": self.rank_min_lead})
         #: the model's lead from whole sentences or from the clauses they do not share
         self.rank_calibration = settings.calibration if rank_calibration is None else rank_calibration
+        #: the reading's own doubt signals that let the model score a sure prior
+        self.doubt_gate = settings.doubt_gate
         self.last_ranking: Reranking[Candidate] | None = None
         #: settles a clarification the LLM asks for when it writes a spec the parser could not
         self.clarify = clarify
@@ -160,17 +165,20 @@ class HybridFrontend:
                                       clarify=self.clarify)
             return Reading(spec=spec, notes=(ReadingNote(span=instruction.strip(), reason=f"the offline parser "
                                              f"failed ({exc}); the LLM wrote the goals", kind="assumed"),))
-        draft = self.rank_close_candidates(draft, instruction, scene)
+        draft = self.rank_close_candidates(draft, instruction, scene, state)
         if self.when == "close" or (self.when == "doubt" and not needs_review(draft, instruction, state)):
             return draft
         return self.review(draft, instruction, scene, state, team, validate=validate)
 
     # ---- the local model as a scorer of close readings (issue 25) --------------------
-    def rank_close_candidates(self, draft: Reading, instruction: str, scene: Scene) -> Reading:
+    def rank_close_candidates(self, draft: Reading, instruction: str, scene: Scene,
+                              state: WorldState | None = None) -> Reading:
         """The reader's candidates re-ranked by the model where their priors are close
         (:mod:`emboteam.pfg.model_ranker`: PMI of each end-state sentence, one call, none
-        when the prior is sure). A backend without log-probabilities (Anthropic) leaves
-        the draft as read: the review below is its way to decide."""
+        when the prior is sure) or, given the ``state``, where the reading's own doubt
+        signals open the gate (:mod:`emboteam.pfg.doubt_gate`). A backend without
+        log-probabilities (Anthropic) leaves the draft as read: the review below is its
+        way to decide."""
         if len(draft.candidates) < 2 or self.rank_weight <= 0:
             return draft
         try:
@@ -178,6 +186,11 @@ class HybridFrontend:
                                       margin=self.rank_margin, weight=self.rank_weight,
                                       min_lead=self.rank_min_lead, lead_needed=self.lead_needed,
                                       clauses_of=_clauses if self.rank_calibration == "clauses" else None)
+            opened: tuple[str, ...] = ()
+            if not ranking.scored and state is not None and self.doubt_gate.rules:
+                opened = self.doubt_gate.opened_by(doubt_signals(draft, instruction, state))
+                if opened:
+                    ranking = self.rank_doubtful(draft, instruction, scene) or ranking
         except LLMScoringUnsupported:
             return draft
         except SCORING_OUTAGES as exc:
@@ -193,9 +206,25 @@ class HybridFrontend:
         if not ranking.overturned:
             return draft
         best = ranking.candidates[0]
+        why = f"the reading's doubt ({', '.join(opened)})" if opened else "a close reading"
         chosen = ReadingNote(span="(model ranking)", kind="assumed",
-                             reason=f"the local model preferred a close reading: {best.sentence}")
+                             reason=f"the local model preferred {why}: {best.sentence}")
         return replace(draft, spec=best.spec, candidates=ranking.candidates, notes=(*draft.notes, chosen))
+
+    def rank_doubtful(self, draft: Reading, instruction: str, scene: Scene) -> Reranking[Candidate] | None:
+        """The top candidates (``doubt_gate.top_k``, within ``max_gap``), scored in one call
+        whatever their priors, where a doubt signal opened the gate: the prior's first
+        stands unless another leads its PMI by more than the gate's ``min_lead`` (and its
+        prior plus weighted PMI too). None, and no call, when fewer than two differ."""
+        gate = self.doubt_gate
+        chosen = gate_candidates(draft.candidates, gate.top_k, gate.max_gap, gate.judge_drops)
+        if not chosen:
+            return None
+        picked = {id(c) for c in chosen}
+        rest = [c for c in draft.candidates if id(c) not in picked]
+        objects = objects_summary(scene, (instruction, *(c.sentence for c in draft.candidates)))
+        return rerank(chosen, client=self.client, objects=objects, instruction=instruction, margin=float("inf"),
+                      weight=gate.weight, min_lead=gate.min_lead, tail=rest)
 
     def lead_needed(self, first: Candidate, other: Candidate) -> float | None:
         """The PMI lead ``other`` needs to overturn ``first``, by the kinds of doubt the two

@@ -30,6 +30,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from emboteam.errors import EmboTeamError
 from emboteam.llm.client import LLMClient
 from emboteam.llm.scoring import ScoreRequest, ScoreResponse
+from emboteam.pfg.doubt_gate import DoubtGate
 from emboteam.world.scene import Scene
 
 #: the margin, weight and PMI lead the hybrid front end uses, fitted on the development
@@ -81,6 +82,9 @@ class RankerSettings(BaseModel):
     #: per kind of doubt (``Resolution.kind``): may the model judge it; a kind not listed
     #: may not be judged (a new kind has no evidence yet). Empty: every kind may be.
     kinds: dict[str, KindPermission] = Field(default_factory=dict)
+    #: the reading's own doubt signals that open the gate on a sure prior
+    #: (:mod:`emboteam.pfg.doubt_gate`); none: only close priors are scored
+    doubt_gate: DoubtGate = Field(default_factory=DoubtGate)
 
     def lead_for(self, kinds: Iterable[str]) -> float | None:
         """The PMI lead a close candidate needs to overturn the prior's first when the two
