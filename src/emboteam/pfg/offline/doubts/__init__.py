@@ -27,6 +27,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state) |
 | device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 | placed_instead | :mod:`.placed_instead` (a carried thing read as held or switched: placed where the words near it point) |
+| kept_place | :mod:`.kept_place` (a thing acted on with no place: the place its words keep or send it to, ``kept_place.json``) |
 | switch | :mod:`.switches` (a switch goal the other way; a named device, or its knob, switched: priors only) |
 
 The words of contents and exclusive are data: ``rule_words.json`` (:mod:`.rule_words`);
@@ -45,6 +46,7 @@ from emboteam.pfg.offline.doubts import (
     device_state,
     exclusive,
     instances,
+    kept_place,
     means,
     mention_cues,
     of_compound,
@@ -82,7 +84,8 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
     # a mention whose own words give its goal is settled by that doubt, not by the weaker
     # guesses of an unexplained mention or of a kept thing
     said = {d.span for d in cued}
-    found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *scope.doubts(ctx),
+    found = [*cued, *(d for d in unexplained.doubts(ctx) if d.span not in said), *kept_place.doubts(ctx, cued),
+             *scope.doubts(ctx),
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
              *instances.doubts(ctx), *others.doubts(ctx), *compare.doubts(ctx), *switches.doubts(ctx), *placed_instead.doubts(ctx),

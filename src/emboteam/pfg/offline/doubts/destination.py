@@ -199,6 +199,10 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
             continue
         # the thing itself (not its slices: "slice it, the slices on the plate"), by type
         mine = tuple(c for c in ctx.goals if c.predicate.value in replaces and c.subject.types == (thing,))
+        if any(c.predicate in (Predicate.inside, Predicate.held) for c in mine):
+            # a thing placed (or carried) and switched: its place is in doubt, not its state
+            # ("put it on the counter and light it")
+            mine = tuple(c for c in mine if c.predicate in (Predicate.inside, Predicate.held))
         dest = destination(ctx, k, thing) if mine else ()
         if not dest:
             continue      # a later mention may say where it goes ("phones, cards ... So the phone ... up on a shelf")
