@@ -53,7 +53,7 @@ import itertools
 import math
 import threading
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ortools.sat.python import cp_model
 
@@ -145,56 +145,92 @@ def problem_of(plan: MergedPlan, spec: TaskSpec, start: WorldState, carries: boo
     keep an operation on a carried receptacle between its carries (:mod:`emboteam.hp.optimal_carry`):
     no longer an exact model, but a heuristic's (the CP-SAT stage replans the drives and
     simulates what it gets, so a put may cross a carry at the box's other place)."""
-    state = start.copy()
-    jobs: list[Job] = []
-    open_: dict[str, Job] = {}
-    drive: dict[str, Point] = {}
-    objects: dict[str, list[tuple[str, str]]] = {}
-    held: dict[str, tuple[str, str]] = {}  # robot -> (object, its pickup op)
-    log = CarryLog()
+    replay = _Replay(start.copy())
     for s in plan.steps:
-        if check_action(state, s.robot, s.action) is not None:
+        if not replay.step(s):
             return None
-        job = open_.get(s.robot)
+    jobs = [j for j in replay.jobs if j.ops]
+    profiles = {r: start.robots[r].profile for r in plan.robots}
+    candidates = _groups(jobs, plan, profiles, fixed=replay.fixed(jobs, spec))
+    starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
+    waits, drives = _precedences(plan, jobs)
+    before, arrive = replay.carry_orders({j.ops[0].step for j in jobs}) if carries else (set(), set())
+    return Problem(jobs, candidates, starts, profiles, waits, drives, replay.shared(), start.floor_plan,
+                   sorted(before - arrive - set(waits)), sorted(arrive - set(drives)))
+
+
+@dataclass
+class _Replay:
+    """A plan replayed step by step (:func:`problem_of`): the jobs it forms (a robot's
+    steps until its hands are empty again), each robot's open job and pending drive,
+    the spans of one robot on each object, and the carries' log for their orders."""
+
+    state: WorldState
+    jobs: list[Job] = field(default_factory=list)
+    open_: dict[str, Job] = field(default_factory=dict)
+    #: robot -> where its last drive went (for the next operation's goal)
+    drive: dict[str, Point] = field(default_factory=dict)
+    objects: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
+    #: robot -> (the object it holds, its pickup op)
+    held: dict[str, tuple[str, str]] = field(default_factory=dict)
+    log: CarryLog = field(default_factory=CarryLog)
+
+    def step(self, s: PlanStep) -> bool:
+        """Replay ``s`` into its robot's open job (a new one if none); False when the
+        state does not allow it."""
+        if check_action(self.state, s.robot, s.action) is not None:
+            return False
+        job = self.open_.get(s.robot)
         if job is None:
-            job = open_[s.robot] = Job(f"{s.robot}#{len(jobs)}", s.robot, "")
-            jobs.append(job)
+            job = self.open_[s.robot] = Job(f"{s.robot}#{len(self.jobs)}", s.robot, "")
+            self.jobs.append(job)
         job.steps.append(s.id)
         job.subtasks.add(s.subtask)
         if s.action.skill is Skill.GoToObject:
-            drive[s.robot] = _point(state, s.action.target)
-            log.drive(state, s.robot, s.action.target)
-        else:
-            log.op(state, s.robot, s.id, s.action)
-            job.skills.add(s.action.skill)
-            if s.action.skill is Skill.PickupObject:
-                job.lift = max(job.lift, state.objects[s.action.target].mass)
-            rp = (state.robots[s.robot].position[0], state.robots[s.robot].position[1])
-            goal = drive.pop(s.robot, None)
-            job.ops.append(Op(s.id, rp, s.resources[0] if s.resources else s.action.target,
-                              s.est_end - s.est_start, goal is not None, goal if goal is not None else rp))
-        apply_action(state, s.robot, s.action)
-        if s.action.skill is not Skill.GoToObject:
-            _track(s, state.robots[s.robot].holding, held, objects)
-        if s.action.skill is not Skill.GoToObject and state.robots[s.robot].holding is None:
-            del open_[s.robot]  # hands empty: any other job may follow
-    jobs = [j for j in jobs if j.ops]
-    profiles = {r: start.robots[r].profile for r in plan.robots}
-    # a subtask the spec gives to a robot stays with it (a joining robot given work, an LLM's
-    # allocation): only the planner's own choices are the model's to change
-    assigned = {t.id for t in spec.subtasks if t.robot is not None}
-    fixed = {j.id for j in open_.values()} | {j.id for j in jobs if j.subtasks & assigned}
-    candidates = _groups(jobs, plan, profiles, fixed=fixed)
-    starts = {r: (start.robots[r].position[0], start.robots[r].position[1]) for r in plan.robots}
-    waits, drives = _precedences(plan, jobs)
-    carried: dict[str, list[tuple[str, str | None]]] = {
-        o: [(a, b) for a, b in spans if a != b] for o, spans in objects.items()}
-    for obj, pickup in held.values():  # still held when the plan ends
-        carried.setdefault(obj, []).append((pickup, None))
-    before, arrive = log.orders(carried, {j.ops[0].step for j in jobs}) if carries else (set(), set())
-    return Problem(jobs, candidates, starts, profiles, waits, drives,
-                   {o: spans for o, spans in objects.items() if len(spans) > 1}, start.floor_plan,
-                   sorted(before - arrive - set(waits)), sorted(arrive - set(drives)))
+            self.drive[s.robot] = _point(self.state, s.action.target)
+            self.log.drive(self.state, s.robot, s.action.target)
+            apply_action(self.state, s.robot, s.action)
+            return True
+        self._operate(job, s)
+        apply_action(self.state, s.robot, s.action)
+        holding = self.state.robots[s.robot].holding
+        _track(s, holding, self.held, self.objects)
+        if holding is None:
+            del self.open_[s.robot]  # hands empty: any other job may follow
+        return True
+
+    def _operate(self, job: Job, s: PlanStep) -> None:
+        """A manipulation step, before it is applied: an operation of ``job`` where its
+        robot stands, reached by the pending drive if any."""
+        self.log.op(self.state, s.robot, s.id, s.action)
+        job.skills.add(s.action.skill)
+        if s.action.skill is Skill.PickupObject:
+            job.lift = max(job.lift, self.state.objects[s.action.target].mass)
+        rp = (self.state.robots[s.robot].position[0], self.state.robots[s.robot].position[1])
+        goal = self.drive.pop(s.robot, None)
+        job.ops.append(Op(s.id, rp, s.resources[0] if s.resources else s.action.target,
+                          s.est_end - s.est_start, goal is not None, goal if goal is not None else rp))
+
+    def fixed(self, jobs: Sequence[Job], spec: TaskSpec) -> set[str]:
+        """The jobs that stay with their robot: those still open when the plan ends (its
+        hands full), and those of a subtask the spec gives to a robot (a joining robot
+        given work, an LLM's allocation): only the planner's own choices are the model's
+        to change."""
+        assigned = {t.id for t in spec.subtasks if t.robot is not None}
+        return {j.id for j in self.open_.values()} | {j.id for j in jobs if j.subtasks & assigned}
+
+    def shared(self) -> dict[str, list[tuple[str, str]]]:
+        """The objects several spans use (one robot at a time on each)."""
+        return {o: spans for o, spans in self.objects.items() if len(spans) > 1}
+
+    def carry_orders(self, first_ops: set[str]) -> tuple[set[tuple[str, str]], set[tuple[str, str]]]:
+        """The carries' orders (:meth:`CarryLog.orders`): every object's spans between
+        two places, and those still held when the plan ends."""
+        carried: dict[str, list[tuple[str, str | None]]] = {
+            o: [(a, b) for a, b in spans if a != b] for o, spans in self.objects.items()}
+        for obj, pickup in self.held.values():
+            carried.setdefault(obj, []).append((pickup, None))
+        return self.log.orders(carried, first_ops)
 
 
 def _point(state: WorldState, thing: str) -> Point:
@@ -342,12 +378,12 @@ class _Model:
         #: hundredths of a second per tick of the model: 1, or with ``tight`` the greatest
         #: common divisor of every duration and drive (:meth:`_quantum`)
         self.unit = self._quantum() if tight else 1
-        m = self.m = cp_model.CpModel()
-        horizon = self.horizon = max(self._horizon(), self._u(hint.makespan) + 1 if hint is not None else 0)
+        self.m = cp_model.CpModel()
+        self.horizon = max(self._horizon(), self._u(hint.makespan) + 1 if hint is not None else 0)
         #: the domains end at the hint's makespan (:meth:`_hinted_end`)
         self.capped = tight and cap and hint is not None
         if self.capped and hint is not None:
-            horizon = self.horizon = self._hinted_end(hint)
+            self.horizon = self._hinted_end(hint)
         self.x: dict[tuple[str, str], cp_model.IntVar] = {}
         self.start: dict[str, cp_model.IntVar] = {}
         self.end: dict[str, cp_model.IntVar] = {}
@@ -357,41 +393,61 @@ class _Model:
         #: (robot, from job, to job) -> arc literal ("" is the depot), and its drive
         self.arc: dict[tuple[str, str, str], cp_model.IntVar] = {}
         self.drive: dict[tuple[str, str, str], int] = {}
-        spots: dict[str, list[cp_model.IntervalVar]] = {}
         #: op -> the ops its drive waits for (see :attr:`Problem.drive_waits`)
         self.drive_after: dict[str, list[str]] = {}
         for a, b in [*problem.drive_waits, *problem.carry_waits]:
             self.drive_after.setdefault(b, []).append(a)
-        for g, robots in problem.candidates.items():
+        # the order in which variables and constraints are posted is the search's (CP-SAT's
+        # answer under a deterministic limit depends on it): keep it when changing these
+        self._assignments()
+        spots = self._operations()
+        self._orders(spots)
+        self._circuits()
+        self._loads()
+        self._objective()
+        self._routes()
+        self._break_symmetry()
+        self.m.minimize(self.makespan)
+        if hint is not None:
+            self._hint(hint)
+
+    def _assignments(self) -> None:
+        """One robot for each group, among its candidates."""
+        for g, robots in self.p.candidates.items():
             for r in robots:
-                self.x[(g, r)] = m.new_bool_var(f"x[{g},{r}]")
-            m.add_exactly_one(self.x[(g, r)] for r in robots)
-        for j in problem.jobs:
+                self.x[(g, r)] = self.m.new_bool_var(f"x[{g},{r}]")
+            self.m.add_exactly_one(self.x[(g, r)] for r in robots)
+
+    def _operations(self) -> dict[str, list[cp_model.IntervalVar]]:
+        """Every operation's start, end and interval; the intervals by spot."""
+        spots: dict[str, list[cp_model.IntervalVar]] = {}
+        for j in self.p.jobs:
             for o in j.ops:
-                s = self.start[o.step] = m.new_int_var(0, horizon, f"s[{o.step}]")
-                e = self.end[o.step] = m.new_int_var(0, horizon, f"e[{o.step}]")
+                s = self.start[o.step] = self.m.new_int_var(0, self.horizon, f"s[{o.step}]")
+                e = self.end[o.step] = self.m.new_int_var(0, self.horizon, f"e[{o.step}]")
                 self.size[o.step] = self._u(o.seconds)
-                spots.setdefault(o.spot, []).append(m.new_interval_var(s, self.size[o.step], e, f"i[{o.step}]"))
-        for j in problem.jobs:
+                spots.setdefault(o.spot, []).append(self.m.new_interval_var(s, self.size[o.step], e, f"i[{o.step}]"))
+        return spots
+
+    def _orders(self, spots: Mapping[str, list[cp_model.IntervalVar]]) -> None:
+        """Each job's operations in order (:meth:`_within`), one robot at a time at a spot
+        and on an object, and the plan's (and the carries') orders."""
+        for j in self.p.jobs:
             self._within(j)
         for ivs in spots.values():
             if len(ivs) > 1:
-                m.add_no_overlap(ivs)
-        for obj, spans in problem.objects.items():
-            m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
-        for a, b in problem.orders():
-            m.add(self.start[b] >= self.end[a])
-        self._circuits()
-        self._loads()
-        self.makespan = m.new_int_var(0, horizon, "makespan")
-        m.add_max_equality(self.makespan, [self.end[j.ops[-1].step] for j in problem.jobs])
+                self.m.add_no_overlap(ivs)
+        for obj, spans in self.p.objects.items():
+            self.m.add_no_overlap([self._span(obj, a, b) for a, b in spans])
+        for a, b in self.p.orders():
+            self.m.add(self.start[b] >= self.end[a])
+
+    def _objective(self) -> None:
+        """The makespan: the last operation's end, and no robot's load after it."""
+        self.makespan = self.m.new_int_var(0, self.horizon, "makespan")
+        self.m.add_max_equality(self.makespan, [self.end[j.ops[-1].step] for j in self.p.jobs])
         for load in self.load_end.values():
-            m.add(self.makespan >= load)
-        self._routes()
-        self._break_symmetry()
-        m.minimize(self.makespan)
-        if hint is not None:
-            self._hint(hint)
+            self.m.add(self.makespan >= load)
 
     def _relabel(self, plan: MergedPlan) -> dict[str, str]:
         """The hint's robots renamed within each class of interchangeable ones so that the
@@ -625,41 +681,56 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     up: a cap nothing ends by raises the bound a tick, a schedule found at it is the
     answer (proven: nothing ends earlier)."""
     strong = linearization >= 2
-    model = _Model(problem, hint, tight=strong, symmetry=symmetry)
-    solver, status = _run(model, strong, limit, linearization)
-    capped = 0.0  # the deterministic seconds of a capped solve that found nothing
-    if status in (cp_model.INFEASIBLE, cp_model.UNKNOWN) and model.capped:  # the hint was no schedule: no cap
-        capped = solver.deterministic_time
-        model = _Model(problem, hint, tight=strong, cap=False, symmetry=symmetry)
-        solver, status = _run(model, strong, max(limit - capped, 0.0), linearization)
+    model, solver, status, capped = _solved(problem, hint, strong, limit, linearization, symmetry)
     tick = model.unit / SCALE
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         name = "infeasible" if status == cp_model.INFEASIBLE else "unknown"
         return Reference(name, 0.0, solver.best_objective_bound * tick, {}, {}, capped + solver.deterministic_time)
-    chosen = {g: next(r for r in robots if solver.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
-    assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
-    starts = {sid: solver.value(v) * tick for sid, v in model.start.items()}
+    answer: cp_model.CpSolver | CapCheck = solver
     best, bound = round(solver.objective_value), round(solver.best_objective_bound)
     used = capped + solver.deterministic_time
     if status == cp_model.FEASIBLE and strong and bound_limit > 0:
-        routes = _route_bound(model, bound_limit, {(g, r): r == chosen[g] for g, r in model.x})
+        routes = _route_bound(model, bound_limit, _chosen(model, solver))
         bound, used = max(bound, routes.ticks), used + routes.deterministic
     if bound < best and strong and check_limit > 0:
         bound, found, spent = _check_caps(model, bound, best, check_limit)
         used += spent
         if found is not None:
-            best, bound = bound, bound
-            chosen = {g: next(r for r in robots if found.value(model.x[(g, r)])) for g, robots in problem.candidates.items()}
-            assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
-            starts = {sid: found.value(v) * tick for sid, v in model.start.items()}
+            best, answer = bound, found
     proven = status == cp_model.OPTIMAL or bound >= best
+    chosen = _chosen(model, answer)
+    assignment = {sid: chosen[j.group] for j in problem.jobs for sid in j.steps}
+    starts = {sid: answer.value(v) * tick for sid, v in model.start.items()}
     return Reference("optimal" if proven else "feasible", best * tick, min(bound, best) * tick, assignment, starts,
                      used)
 
 
-def _route_bound(model: _Model, limit: float, hint: Mapping[tuple[str, str], bool]) -> RouteBound:
+def _solved(problem: Problem, hint: MergedPlan | None, strong: bool, limit: float, linearization: int,
+            symmetry: bool) -> tuple[_Model, cp_model.CpSolver, cp_model.CpSolverStatus, float]:
+    """:func:`solve`'s search: the model with its domains capped at the hint's makespan
+    (strong model), and without the cap when the hint was no schedule after all (in what
+    is left of ``limit``). The model, its solver, its status and the deterministic
+    seconds of a capped solve that found nothing."""
+    model = _Model(problem, hint, tight=strong, symmetry=symmetry)
+    solver, status = _run(model, strong, limit, linearization)
+    capped = 0.0
+    if status in (cp_model.INFEASIBLE, cp_model.UNKNOWN) and model.capped:
+        capped = solver.deterministic_time
+        model = _Model(problem, hint, tight=strong, cap=False, symmetry=symmetry)
+        solver, status = _run(model, strong, max(limit - capped, 0.0), linearization)
+    return model, solver, status, capped
+
+
+def _chosen(model: _Model, answer: cp_model.CpSolver | CapCheck) -> dict[str, str]:
+    """The robot ``answer`` gives each group of ``model``."""
+    return {g: next(r for r in robots if answer.value(model.x[(g, r)])) for g, robots in model.p.candidates.items()}
+
+
+def _route_bound(model: _Model, limit: float, chosen: Mapping[str, str]) -> RouteBound:
     """:func:`emboteam.hp.optimal_bound.route_bound` on ``model``'s routes, with the strong
-    search's deterministic portfolio and safety net."""
+    search's deterministic portfolio and safety net, hinted with the robots ``chosen``
+    for the groups."""
+    hint = {(g, r): r == chosen[g] for g, r in model.x}
     return route_bound(model.p, model.routing(), _solver(True, limit, 2), hint)
 
 
