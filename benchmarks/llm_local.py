@@ -118,16 +118,28 @@ def load_results() -> dict[str, Any]:
     return {"model": None, "runs": {}}
 
 
+def write_results(data: dict[str, Any]) -> None:
+    OUT.mkdir(parents=True, exist_ok=True)
+    tmp = RESULTS.with_suffix(".tmp")
+    tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+    tmp.replace(RESULTS)
+
+
 def save_results(data: dict[str, Any], frontend: str) -> None:
     """Write ``frontend``'s rows into results.json, keeping the other front ends' rows as
     they are on disk (two runs of this script, one per front end, may share the file)."""
-    OUT.mkdir(parents=True, exist_ok=True)
     on_disk = load_results()
     on_disk["model"] = data["model"]
     on_disk["runs"].setdefault(frontend, {}).update(data["runs"][frontend])
-    tmp = RESULTS.with_suffix(".tmp")
-    tmp.write_text(json.dumps(on_disk, indent=1, sort_keys=True) + "\n")
-    tmp.replace(RESULTS)
+    write_results(on_disk)
+
+
+def drop_results(frontend: str) -> None:
+    """Remove ``frontend``'s rows from results.json (``--fresh``): a row not run again must
+    not stay behind, its calls gone with the old cassette."""
+    on_disk = load_results()
+    if on_disk["runs"].pop(frontend, None) is not None:
+        write_results(on_disk)
 
 
 def record(frontends: Sequence[str], only: Sequence[str], model: Path, *, redo: bool, fresh: bool,
@@ -139,6 +151,7 @@ def record(frontends: Sequence[str], only: Sequence[str], model: Path, *, redo: 
         if fresh and frontend != "offline":
             shutil.rmtree(cassette_dir(frontend), ignore_errors=True)
             data["runs"].pop(frontend, None)
+            drop_results(frontend)
         else:
             data["runs"][frontend] = load_results()["runs"].get(frontend, {})
         rows: dict[str, Any] = data["runs"].setdefault(frontend, {})
@@ -242,9 +255,12 @@ def per_task(data: dict[str, Any], frontend: str) -> str:
 
 def call_stats(frontend: str) -> str:
     """One line on the recorded calls of ``frontend`` (from its cassette): how long a call
-    took and how fast llama.cpp generated, the numbers that decide how big a run fits."""
-    entries = [json.loads(p.read_text()) for p in sorted(cassette_dir(frontend).glob("*.json"))
-               if p.name != "cassette.json"]
+    took and how fast llama.cpp generated, the numbers that decide how big a run fits.
+    Scoring calls (the model ranker's PMI, no completion) are counted apart."""
+    every = [json.loads(p.read_text()) for p in sorted(cassette_dir(frontend).glob("*.json"))
+             if p.name != "cassette.json"]
+    scores = [e for e in every if e.get("kind") == "score"]
+    entries = [e for e in every if e.get("kind") != "score"]
     answered = [e["response"] for e in entries if "response" in e]
     if not answered:
         return ""
@@ -256,7 +272,8 @@ def call_stats(frontend: str) -> str:
             f"{statistics.median(lat):.0f} s (max {max(lat):.0f} s), prompt median "
             f"{statistics.median(r['input_tokens'] for r in answered):.0f} tokens, completion median "
             f"{statistics.median(out_tokens):.0f} tokens ({cut} cut at the cap), "
-            f"{sum(out_tokens) / sum(lat):.1f} completion tokens per second of call.")
+            f"{sum(out_tokens) / sum(lat):.1f} completion tokens per second of call"
+            + (f"; and {len(scores)} scoring calls." if scores else "."))
 
 
 def write_doc(data: dict[str, Any]) -> None:

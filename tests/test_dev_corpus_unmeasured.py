@@ -60,3 +60,9 @@ def test_held_out_rounds_keep_their_tasks_outside_dev() -> None:
     assert {"blind_r54", "blind_r56", "blind_r58", "blind_r60"} <= set(HELD_OUT_ROUNDS)
     for name in HELD_OUT_ROUNDS:
         assert not (DATA / name / "dev").exists(), f"{name} is held out but has a dev folder"
+
+
+def test_a_held_out_round_is_skipped_by_name_even_with_a_dev_folder(tmp_path: Path) -> None:
+    _round(tmp_path, HELD_OUT_ROUNDS[-1], "# held out\n")
+    _round(tmp_path, "blind_r91", None)
+    assert _sets(tmp_path) == ["blind_r91"]

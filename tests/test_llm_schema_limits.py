@@ -70,8 +70,9 @@ def test_every_bound_is_stated_in_its_description(scene1: Scene, state1: WorldSt
 
 
 def test_the_system_prompt_states_the_answer_limits() -> None:
-    text = LLMFrontend(cast(LLMClient, None), max_subtasks=8, max_conditions=6).system_text()
-    for number in (8, 6, SUBJECT_TYPES_MAX, COUNT_MAX, DESCRIPTION_MAX):
+    text = LLMFrontend(cast(LLMClient, None)).system_text()
+    assert "over 12 subtasks, 6 conditions" in text  # the defaults, as the schema holds them
+    for number in (12, 6, SUBJECT_TYPES_MAX, COUNT_MAX, DESCRIPTION_MAX):
         assert str(number) in text
     assert "$" not in text  # every placeholder filled
     assert "null: the planner chooses and may combine members" in text  # what robot: null means

@@ -11,7 +11,7 @@ import pytest
 
 from emboteam.errors import EmboTeamError
 from emboteam.llm import LLMClient, LLMMalformedOutput, RetryPolicy, make_client
-from emboteam.pfg.llm_frontend import MAX_INSTRUCTION_CHARS, InstructionError, LLMFrontend
+from emboteam.pfg.llm_frontend import MAX_INSTRUCTION_CHARS, InstructionError, LLMFrontend, answer_token_cap
 from emboteam.pfg.schema import SceneVocabulary
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.goals import Predicate
@@ -104,7 +104,46 @@ def test_schema_is_strict_mode_shaped_and_closed_over_the_scene(scene1: Scene, s
     receptacles = set(condition["receptacle"]["anyOf"][0]["enum"])
     assert {"Fridge_1", "Fridge", "CounterTop", "Sink"} <= receptacles and "Apple_1" not in receptacles
     assert item["robot"]["anyOf"][0]["enum"] == ["robot1", "robot2"]
-    assert item["id"]["enum"] == [f"s{i}" for i in range(1, 9)]  # max_subtasks=8
+    assert item["id"]["enum"] == [f"s{i}" for i in range(1, 13)]  # max_subtasks=12
+
+
+#: thirteen openables of FloorPlan1, one subtask each: the answer form takes up to twelve
+OPEN_ALL = "Open every cabinet and every drawer."
+OPENABLES = [f"Cabinet_{i}" for i in range(1, 10)] + [f"Drawer_{i}" for i in range(1, 5)]
+
+
+def open_answer(n: int) -> dict[str, Any]:
+    return taskspec_answer(*(subtask(f"s{i}", cond("open", obj), description=f"Open {obj}.")
+                             for i, obj in enumerate(OPENABLES[:n], start=1)))
+
+
+@pytest.mark.parametrize("n", [9, 12])
+def test_a_right_answer_of_up_to_twelve_subtasks_is_accepted(n: int, scene1: Scene, state1: WorldState,
+                                                             team12: Sequence[RobotProfile]) -> None:
+    with ScriptedServer("openai", [Reply.answer(open_answer(n))]) as srv:
+        spec = LLMFrontend(llm(srv), repair_rounds=0).decompose(OPEN_ALL, scene1, state1, team12)
+    assert [s.id for s in spec.subtasks] == [f"s{i}" for i in range(1, n + 1)]
+    assert {str(c) for c in spec.goal().conditions} == {f"open({obj})" for obj in OPENABLES[:n]}
+
+
+def test_thirteen_subtasks_are_refused_with_the_limit_named(scene1: Scene, state1: WorldState,
+                                                           team12: Sequence[RobotProfile]) -> None:
+    with ScriptedServer("openai", [Reply.answer(open_answer(13))]) as srv, \
+            pytest.raises(LLMMalformedOutput) as caught:
+        LLMFrontend(llm(srv), repair_rounds=0).decompose(OPEN_ALL, scene1, state1, team12)
+    assert "subtasks: 13 items, at most 12 allowed" in str(caught.value)
+    assert "'s13' is not an allowed value" in str(caught.value)
+
+
+def test_the_answer_cap_grows_with_the_offline_reading(scene1: Scene, state1: WorldState,
+                                                       team12: Sequence[RobotProfile]) -> None:
+    many = ("Put the apple, the tomato, the potato, the egg, the bread, the lettuce and the mug in the fridge, "
+            "and turn off the light.")   # eight conditions: a right answer of 8 subtasks
+    unused = make_client("openai:m@http://127.0.0.1:9/v1")  # building a request makes no call
+    frontend = LLMFrontend(unused)
+    assert frontend.request(APPLE_AND_LIGHT, scene1, state1, team12).max_tokens == answer_token_cap() == 488
+    assert frontend.request(many, scene1, state1, team12).max_tokens == answer_token_cap(9)
+    assert LLMFrontend(unused, max_tokens=300).request(many, scene1, state1, team12).max_tokens == 300
 
 
 def test_unknown_object_is_fed_back_and_fixed(scene1: Scene, state1: WorldState,

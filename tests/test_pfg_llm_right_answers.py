@@ -34,15 +34,6 @@ FAST = RetryPolicy(max_attempts=1, base_delay=0.01, max_delay=0.02)
 #: tasks taken from each set, in file order (every MACE-THOR task)
 PER_SET = {"offline_dev": 12, "offline_dev_natural": 12, "mace-thor": 42}
 PER_BLIND_ROUND = 3
-#: right answers the front end still refuses, a known defect each (the test below that runs
-#: them fails loudly, strict, once the defect is fixed): task id -> why
-KNOWN_REFUSED = {
-    "blind_r57/FloorPlan5-1": "nine conditions, one subtask each: LLMFrontend's answer form allows at "
-                              "most 8 subtasks (max_subtasks=8), so the ninth id 's9' is refused; raising "
-                              "it changes the prompt and schema of every recorded LLM cassette",
-}
-
-
 @pytest.fixture(autouse=True)
 def _key(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("OPENAI_API_KEY", "sk-test")
@@ -108,7 +99,7 @@ def test_the_suite_covers_every_development_set_with_at_least_100_tasks() -> Non
 
 
 def test_right_answers_are_never_refused() -> None:
-    tasks = [d for d in chosen_tasks() if f"{d.set}/{d.task.id}" not in KNOWN_REFUSED]
+    tasks = chosen_tasks()
     refused: dict[str, list[str]] = {}
     with ScriptedServer("openai") as srv:
         client = make_client(srv.spec(), timeout=5, retry=FAST)
@@ -119,11 +110,3 @@ def test_right_answers_are_never_refused() -> None:
     assert refused == {}
     assert client.usage.calls == 2 * len(tasks)
 
-
-@pytest.mark.parametrize("key", sorted(KNOWN_REFUSED))
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason="a known refusal of a right answer (KNOWN_REFUSED)")
-def test_a_known_refusal_is_still_refused(key: str) -> None:
-    dev = next(d for d in chosen_tasks() if f"{d.set}/{d.task.id}" == key)
-    with ScriptedServer("openai") as srv:
-        client = make_client(srv.spec(), timeout=5, retry=FAST)
-        assert answer_task(client, srv, dev) == []

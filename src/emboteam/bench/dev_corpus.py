@@ -73,10 +73,11 @@ def is_unmeasured(round_dir: Path) -> bool:
 def development_tasks(data_dir: Path, *, mace_thor: bool = True) -> list[DevTask]:
     """Every development task with a ground-truth goal under ``data_dir`` (``tests/data``),
     in a fixed order (sets by name, tasks as their files list them). Rounds not yet
-    measured (:func:`is_unmeasured`) are skipped."""
+    measured (:func:`is_unmeasured`) and the held-out rounds (:data:`HELD_OUT_ROUNDS`, by
+    name, should one ever get a ``dev`` folder) are skipped."""
     out: list[DevTask] = []
     for round_dir in sorted(data_dir.glob("blind_r*/dev")):
-        if is_unmeasured(round_dir.parent):
+        if round_dir.parent.name in HELD_OUT_ROUNDS or is_unmeasured(round_dir.parent):
             continue
         name = round_dir.parent.name
         suite = import_smart_llm(round_dir, suite=name)

@@ -45,7 +45,8 @@ class Rejected(ValueError):
 
 def schema_errors(obj: Any, schema: dict[str, Any], limit: int = 8) -> list[str]:
     """Readable schema violations, shortest path first. Enum violations do not repeat the
-    (possibly hundreds of) allowed values: the prompt already lists them."""
+    (possibly hundreds of) allowed values: the prompt already lists them; a list over its
+    item limit is named by its length and the limit."""
     validator = jsonschema.Draft202012Validator(schema)
     errors = sorted(validator.iter_errors(obj), key=lambda e: (len(e.absolute_path), str(e.absolute_path)))
     out: list[str] = []
@@ -58,6 +59,9 @@ def schema_errors(obj: Any, schema: dict[str, Any], limit: int = 8) -> list[str]
                        f"(an allowed value or null)")
         elif e.validator == "additionalProperties":
             out.append(f"{where}: {e.message}")
+        elif e.validator == "maxItems" and isinstance(e.instance, list):
+            # the bound, not a cut-off repr of the whole list: what the model must change
+            out.append(f"{where}: {len(e.instance)} items, at most {e.validator_value} allowed")
         else:
             out.append(f"{where}: {_short(e.message)}")
     if len(errors) > limit:

@@ -48,7 +48,13 @@ from emboteam.pfg.clarification import ClarifyHook
 from emboteam.pfg.doubt import needs_review
 from emboteam.pfg.doubt_gate import doubt_signals, gate_candidates
 from emboteam.pfg.focus import condition_types
-from emboteam.pfg.llm_frontend import LLMFrontend, Validator, mentioned_types, quote_instruction
+from emboteam.pfg.llm_frontend import (
+    LLMFrontend,
+    Validator,
+    answer_token_cap,
+    mentioned_types,
+    quote_instruction,
+)
 from emboteam.pfg.model_ranker import (
     Calibration,
     Reranking,
@@ -114,7 +120,7 @@ class HybridFrontend:
     stage = "pfg.review"
 
     def __init__(self, client: LLMClient, parse: Parse, *, when: LLMWhen = "doubt",
-                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int = 768,
+                 llm: LLMFrontend | None = None, review_rounds: int = 2, max_tokens: int | None = None,
                  rank_margin: float | None = None, rank_weight: float | None = None,
                  rank_min_lead: float | None = None, rank_calibration: Calibration | None = None,
                  clarify: ClarifyHook | None = None) -> None:
@@ -125,10 +131,11 @@ class HybridFrontend:
         #: feedback rounds of a review; the draft stands after them, so more rounds only
         #: cost calls when the model cannot correct itself
         self.review_rounds = review_rounds
-        #: "ok" is a dozen tokens; a corrected spec of 8 subtasks fits in 768. Bounding the
+        #: "ok" is a dozen tokens; by default a corrected spec as long as the answer form
+        #: allows (the LLM front end's max_subtasks, one condition each) fits. Bounding the
         #: answer by tokens, not by a time-out, keeps a slow local model's runs reproducible
         #: (a cut-off answer is recorded and fed back; a timed-out call is not recorded)
-        self.max_tokens = max_tokens
+        self.max_tokens = max_tokens if max_tokens is not None else answer_token_cap(self.llm.max_subtasks)
         #: the model ranker's margin, weight (0 turns it off) and PMI lead, by default the
         #: fitted ones (pfg/model_ranker.json); the last ranking, for views
         settings = load_ranker_settings()

@@ -67,7 +67,7 @@ NEEDED_SUBTASKS = 6
 def answer_token_cap(subtasks: int = NEEDED_SUBTASKS) -> int:
     """Completion tokens a valid answer of ``subtasks`` one-condition subtasks needs.
 
-    The schema allows more (8 subtasks of up to 6 conditions): only a model that loops,
+    The schema allows more (12 subtasks of up to 6 conditions): only a model that loops,
     repeating a subtask until the schema's limit, comes near it. On a 2-core CPU every
     token costs 0.1-1 s, so the cap, not the schema, bounds a looping answer (the
     recorded 531-token loop took 43 min); the cut-off answer is fed back like any other.
@@ -121,7 +121,7 @@ class LLMFrontend:
     name = "llm"
     stage = "pfg"
 
-    def __init__(self, client: LLMClient, *, fewshot: int = 1, repair_rounds: int = 2, max_subtasks: int = 8,
+    def __init__(self, client: LLMClient, *, fewshot: int = 1, repair_rounds: int = 2, max_subtasks: int = 12,
                  max_conditions: int = 6, max_tokens: int | None = None, seed: int = 0, focus: bool = True,
                  clarify: bool = True, avoid_set: str = "") -> None:
         self.client = client
@@ -136,8 +136,11 @@ class LLMFrontend:
         self.repair_rounds = repair_rounds
         self.max_subtasks = max_subtasks
         self.max_conditions = max_conditions
+        #: the completion cap: ``max_tokens`` as given, else what NEEDED_SUBTASKS need,
+        #: raised for an instruction the offline reading finds longer (:meth:`answer_cap`)
         self.max_tokens = max_tokens if max_tokens is not None else answer_token_cap(min(max_subtasks,
                                                                                            NEEDED_SUBTASKS))
+        self._cap_given = max_tokens is not None
         self.seed = seed
         self._draft_memo: tuple[str, WorldState, TaskSpec | None] | None = None
         #: an answer that leaves out the null clarification is read as having it
@@ -161,6 +164,16 @@ class LLMFrontend:
         if not self.focus:
             return None
         return focus_types(instruction, state, self.draft(instruction, scene, state, team))
+
+    def answer_cap(self, draft: TaskSpec | None) -> int:
+        """The completion cap of this task's answer: :attr:`max_tokens`, or, when the
+        offline reading (``draft``) has more conditions than that allows, one subtask per
+        condition and one more (at most ``max_subtasks``), so a long right answer is not
+        cut off; a given ``max_tokens`` is kept as it is."""
+        if self._cap_given or draft is None:
+            return self.max_tokens
+        needed = min(self.max_subtasks, len(draft.goal().conditions) + 1)
+        return max(self.max_tokens, answer_token_cap(needed))
 
     def system_text(self) -> str:
         """The system prompt, its limits filled in from this front end's schema."""
@@ -205,7 +218,8 @@ class LLMFrontend:
         return LLMRequest(stage=stage or self.stage,
                           messages=tuple(self.messages(instruction, scene, state, team, hint=hint)) + tuple(extra),
                           json_schema=self.schema(scene, state, team, extra_ids, listed), schema_name="taskspec",
-                          max_tokens=self.max_tokens, temperature=0.0, seed=self.seed)
+                          max_tokens=self.answer_cap(self.draft(instruction, scene, state, team)),
+                          temperature=0.0, seed=self.seed)
 
     # ---- calls -----------------------------------------------------------------------
     def converter(self, instruction: str, scene: Scene, state: WorldState, team: Sequence[RobotProfile],
