@@ -67,6 +67,14 @@ def load_properties(path: Path = PROPERTIES_FILE) -> PropertiesFile:
     return read(path, PropertiesFile)
 
 
+@cache
+def _openers() -> frozenset[str]:
+    """The words a property or a measure may start with (most tokens start none)."""
+    data = load_properties()
+    phrases = [*(w for prop in data.properties for w in prop.words), *data.measures.above, *data.measures.below]
+    return frozenset(w[0] for w in phrases)
+
+
 @dataclass(frozen=True)
 class Picked:
     """A property found in the words: where it is, its name and its alternative tests."""
@@ -104,6 +112,8 @@ def _measure(items: Sequence[Item], k: int, table: Measures) -> Picked | None:
 def picked_at(items: Sequence[Item], k: int, names_thing: Callable[[int], bool]) -> Picked | None:
     """The property whose words start at ``k``; not an adjective of a thing named right
     after it ("the small lamp" names a lamp, not a set)."""
+    if items[k].text not in _openers():
+        return None
     data = load_properties()
     found = _measure(items, k, data.measures)
     if found is not None:
