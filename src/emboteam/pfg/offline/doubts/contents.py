@@ -380,7 +380,9 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     start, end, exc_end = _sentence_with_exceptions(ctx, k, words)
     found = _source(ctx, k, end, words)
     if found is None:
-        return _anywhere(ctx, k, start, end, exc_end, words)
+        # a quantifier with a property and no receptacle: the whole room ("all the
+        # breakables"); an emptying verb names its receptacle ("clear what's loose on it")
+        return _anywhere(ctx, k, start, end, exc_end, words) if ctx.items[k].text in words.quantifiers else None
     src_at, source = found
     excepting = _excepted(ctx, start, exc_end, words)
     spots = excepting + _staying(ctx, start, exc_end, words)
