@@ -18,7 +18,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | of_compound | :mod:`.of_compound` |
 | means | :mod:`.means` (the microwave, coffee machine, toaster left as the end state) |
 | instance | :mod:`.instances` (one object, or any of its type) |
-| contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents) |
+| contents | :mod:`.contents` ("everything on X except Y goes in Z": a receptacle's contents; things picked by a property, "all the breakables", :mod:`.properties`) |
 | resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
 | compare | :mod:`.compare` ("the heavier of the two ... goes on the bed": the scene's masses pick) |
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |

@@ -14,17 +14,26 @@ set is that of the instance holding an excepted thing, of all of them for a plur
 doubt: "everything up there" with two shelves). An excepted thing keeps its present place
 (a goal), unless its own words send it somewhere ("..., which goes in a drawer"). The
 words are data (``rule_words.json``, ``contents``).
+
+The things may be picked out by a property instead of a name (:mod:`.properties`,
+``properties.json``): "everything small on the stand" narrows the set, "apart from what's
+plugged in" leaves its things out, "anything on it that runs on electricity stays" keeps
+them out of another phrase's set over the same receptacle, and "all the breakables into
+the box" with no receptacle named takes them from the whole room. A vague property
+("small") offers each of its tests as an alternative.
 """
 
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from dataclasses import replace
 
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.destination import destination, led, linked
+from emboteam.pfg.offline.doubts.properties import alternatives, properties_in
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.morphology import verb_lemma
@@ -34,6 +43,10 @@ from emboteam.world.goals import Condition, Predicate
 from emboteam.world.state import ObjectState
 
 KIND = "contents"
+#: the goals a contents choice never replaces: a device's state is told for itself
+DEVICE_STATES = frozenset({Predicate.open, Predicate.closed, Predicate.switched_on, Predicate.switched_off})
+#: the label of a vague property's less likely tests (its prior in priors.json)
+OTHER_TEST = "other_property_test"
 #: how many per-instance alternatives a source of several instances may offer
 MAX_SOURCES = 3
 
@@ -220,9 +233,13 @@ def _assigned(ctx: DoubtContext, o: ObjectState, holders: Sequence[ObjectState],
 
 
 def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: str,
-            excepted: dict[str, str | None], elsewhere: list[Condition]) -> Choice | None:
+            excepted: dict[str, str | None], elsewhere: list[Condition],
+            having: tuple[str, Callable[[ObjectState], bool]] | None = None,
+            stays: Callable[[ObjectState], bool] | None = None) -> Choice | None:
     cat = load_catalogue()
     objs = [ctx.state.obj(o) for o in _inside(ctx, holders)]
+    # a property picks the things out ("everything small on it"): the others stay
+    objs = [o for o in objs if having is None or having[1](o)]
     types = Counter(cat.source_type(o.type) or o.type for o in objs if not _assigned(ctx, o, holders, elsewhere))
     # what cannot go there is no part of the set ("everything into the cabinet": not the knife)
     moved = {t: n for t, n in types.items()
@@ -240,6 +257,10 @@ def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: st
     add = [_goal(t, dest, n) for t, n in moved.items()]
     add += [_goal(t, excepted[t] or source, n) for t, n in kept.items()]
     add += [placed(t, p) for t, p in excepted.items() if p is not None and t not in kept]
+    # what a keep by property names stays, also a thing nobody carries ("anything on it
+    # that runs on electricity stays where it is")
+    add += [placed(o.type, source) for o in ctx.state.objects.values()
+            if stays is not None and o.parent in {h.id for h in holders} and stays(o)]
     add += _closed_again(ctx, source)
     touched = set(moved) | set(kept) | {t for t, p in excepted.items() if p is not None}
     # a goal for a touched type is replaced when it is about the same things: the type has
@@ -248,14 +269,72 @@ def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: st
                if o.parent is not None and o.parent not in {h.id for h in holders}}
     # ... and so is a goal sending another instance's contents there (the reader took
     # every shelf; this alternative is one of them)
-    drop = tuple(c for c in ctx.goals if c not in add and (
+    # (not a device's state: "shut the laptop" stays whatever the set is)
+    drop = tuple(c for c in ctx.goals if c not in add and c.predicate not in DEVICE_STATES and (
         (ref_types(c.subject) & touched and not (ref_types(c.subject) & outside and c.receptacle is not None
                                                   and not ref_types(c.receptacle) & {source, dest}))
         or (ref_types(c.subject) & (set(every) | nested) and c.receptacle is not None
             and dest in ref_types(c.receptacle))))
     how = f"what is in/on the {type_name(source)} goes to the {type_name(dest)}" + (
-        f", except {', '.join(type_name(t) for t in excepted)}" if excepted else "")
+        f", except {', '.join(type_name(t) for t in excepted)}" if excepted else "") + (
+        f", those {having[0]}" if having is not None else "")
     return Choice("all_contents", how, drop=drop, add=tuple(dict.fromkeys(add)))
+
+
+def _having(ctx: DoubtContext, k: int, src_at: int, end: int, exc: tuple[int, int] | None = None,
+            ) -> list[tuple[str, Callable[[ObjectState], bool]]]:
+    """The ways of reading the properties that pick the things out, from the quantifier to
+    the phrase's verb ("everything small on the stand", "anything on it that runs on
+    electricity"; ``properties.json``), and those that leave things out, after an
+    excluder in ``exc`` ("apart from what's plugged in")."""
+    stop = k + 1
+    while stop < min(end, max(k, src_at) + 10):
+        item = ctx.items[stop]
+        if stop > src_at + 1 and item.verb is not None and item.noun is None:
+            break
+        stop += 1
+    stop += 4       # a property phrase may open with its verb ("runs on electricity")
+
+    def thing(j: int) -> bool:
+        return bool(ctx.named_types(ctx.items[j]))
+    words = load_rule_words().contents
+    spans = [] if exc is None else [(after, _span_end(ctx, after, exc[1], words))
+                                    for _, after in find(ctx.items, exc[0], exc[1], words.excluders)]
+    # after an excluder the property names the things left alone ("apart from what's plugged in")
+    left_out = [replace(p, negated=True) for lo, hi in spans for p in properties_in(ctx.items, lo, hi, thing)]
+    picked = [p for p in properties_in(ctx.items, k + 1, min(end, stop), thing)
+              if not any(lo <= p.start < hi for lo, hi in spans)]
+    return alternatives(picked + left_out)
+
+
+def _left_alone(ctx: DoubtContext, k: int, source: str, words: Contents,
+                ways: list[tuple[str, Callable[[ObjectState], bool]]],
+                ) -> tuple[list[tuple[str, Callable[[ObjectState], bool]]], Callable[[ObjectState], bool] | None]:
+    """``ways`` without the things another quantified phrase keeps by a property on the
+    same receptacle ("anything on it that runs on electricity stays where it is;
+    everything else on the desk goes into the box"), and the test of the kept ones."""
+    kept: list[tuple[str, Callable[[ObjectState], bool]]] = []
+    for k2 in _triggers(ctx, words):
+        _, end2 = sentence_bounds(ctx.items, k2)
+        found = _source(ctx, k2, end2, words) if k2 != k else None
+        if found is None or found[1] != source or \
+                not any(i.text in words.stay_verbs for i in ctx.items[k2:end2]):
+            continue
+        kept += _having(ctx, k2, found[0], end2)[:1]
+        # "..., and so do the book and the bowl": named things kept beside them
+        also = {t for _, after in find(ctx.items, k2, end2, words.stay_too)
+                for m, _, ts in ctx.mentions() if after <= m < _span_end(ctx, after, end2, words) for t in ts}
+        if also:
+            kept.append((", ".join(sorted(also)), lambda o, also=also: o.type in also))  # type: ignore[misc]
+    if not kept:
+        return ways, None
+
+    def stays(o: ObjectState) -> bool:
+        return any(t(o) for _, t in kept)
+
+    def without(how: str, test: Callable[[ObjectState], bool]) -> tuple[str, Callable[[ObjectState], bool]]:
+        return f"{how}, not {', '.join(h for h, _ in kept)}", lambda o: test(o) and not stays(o)
+    return [without(h, t) for h, t in ways or [("all", lambda o: True)]], stays
 
 
 def _sentence_with_exceptions(ctx: DoubtContext, k: int, words: Contents) -> tuple[int, int, int]:
@@ -267,16 +346,51 @@ def _sentence_with_exceptions(ctx: DoubtContext, k: int, words: Contents) -> tup
     return start, end, end
 
 
+def _anywhere(ctx: DoubtContext, k: int, start: int, end: int, exc_end: int, words: Contents) -> Doubt | None:
+    """Things picked out by a property alone, wherever they are ("all the breakables into
+    the box", "anything in here over four kilos goes onto the bed"): every carriable thing
+    of the room that satisfies it goes to the destination, the excepted ones stay."""
+    ways = _having(ctx, k, k, end, (start, exc_end))
+    if not ways:
+        return None
+    excepted = {t for _, types in _excepted(ctx, start, exc_end, words) for t in types}
+    dest = _destination(ctx, k, k, end, "", set(), excepted, words)
+    if dest is None:
+        return None
+    cat = load_catalogue()
+    # a thing the reading already places is named, not picked out by the property
+    placed_already = {t for c in ctx.goals if c.predicate is Predicate.inside for t in ref_types(c.subject)}
+    choices: list[Choice] = []
+    for i, (how, test) in enumerate(ways):
+        found = Counter(cat.source_type(o.type) or o.type for o in ctx.state.objects.values()
+                        if o.has("pickupable") and not o.gone and test(o) and o.type not in excepted | placed_already
+                        and o.type != dest and cat.can_place(o.type, dest))
+        if not found:
+            continue
+        add = tuple(_goal(t, dest, n) for t, n in sorted(found.items()))
+        if set(add) <= set(ctx.goals):
+            continue        # the reading as read (a vague property's other tests are still offered)
+        c = Choice("all_contents" if i == 0 else OTHER_TEST, f"what is {how} goes to the {type_name(dest)}", (), add)
+        if all((c.add, c.drop) != (o.add, o.drop) for o in choices):
+            choices.append(c)
+    return Doubt(KIND, ctx.items[k].text, (Choice(AS_READ, "the things as read"), *choices)) if choices else None
+
+
 def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     start, end, exc_end = _sentence_with_exceptions(ctx, k, words)
     found = _source(ctx, k, end, words)
     if found is None:
-        return None
+        # a quantifier with a property and no receptacle: the whole room ("all the
+        # breakables"); an emptying verb names its receptacle ("clear what's loose on it")
+        return _anywhere(ctx, k, start, end, exc_end, words) if ctx.items[k].text in words.quantifiers else None
     src_at, source = found
     excepting = _excepted(ctx, start, exc_end, words)
     spots = excepting + _staying(ctx, start, exc_end, words)
     named = {t for _, types in spots for t in types}
-    own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and linked(ctx, spots[0][0], m)}
+    # a place after an excepted thing is its own ("except the knife, which goes in a
+    # drawer"); not for a thing nobody moves ("so not the telly itself, goes into the box")
+    own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and linked(ctx, spots[0][0], m)
+           and any("pickupable" in _props(t) for t in spots[0][1])}
     rest = _remainder(ctx, k, words)
     dest = _destination(ctx, k, max(k, src_at) if rest else src_at, end, source, own, named, words)
     if dest is None:
@@ -289,16 +403,23 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     choices: list[Choice] = []
     # the instance holding the things excepted, or those placed elsewhere when the rest is meant
     marks = {t for _, types in excepting for t in types} | {t for c in elsewhere if rest for t in ref_types(c.subject)}
+    found_ways, stays = _left_alone(ctx, k, source, words, _having(ctx, k, src_at, end, (start, exc_end)))
+    ways: list[tuple[str, Callable[[ObjectState], bool]] | None] = [*found_ways] or [None]
     for holders in _source_sets(ctx, src_at, source, marks):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
-        excepted = {t: next(iter(destination(ctx, m, t, exc_end)), None) for m, types in spots for t in _which(types, present)}
-        c = _choice(ctx, holders, source, dest, excepted, elsewhere)
-        if c is not None and not c.drop and set(c.add) <= set(ctx.goals):
-            if not choices:
-                return None     # the likeliest set is the reading as read
-            continue
-        if c is not None:
-            choices.append(c)
+        # a thing nobody can carry has no place of its own ("not the telly itself, goes into the box")
+        excepted = {t: next(iter(destination(ctx, m, t, exc_end)), None) if "pickupable" in _props(t) else None
+                    for m, types in spots for t in _which(types, present)}
+        for having in ways:
+            c = _choice(ctx, holders, source, dest, excepted, elsewhere, having, stays)
+            if c is not None and having is not ways[0]:
+                c = replace(c, label=OTHER_TEST)     # a vague property read less likely ("small": under 200 g)
+            if c is not None and not c.drop and set(c.add) <= set(ctx.goals):
+                if not choices and len(ways) == 1:
+                    return None     # the likeliest set is the reading as read
+                continue            # (a vague property's other tests are still offered)
+            if c is not None and all((c.add, c.drop) != (o.add, o.drop) for o in choices):
+                choices.append(c)
     if not choices:
         return None
     return Doubt(KIND, ctx.items[k].text, (Choice(AS_READ, "the things as read"), *choices))

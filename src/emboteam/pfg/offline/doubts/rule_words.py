@@ -43,6 +43,9 @@ class Contents(_Closed):
     #: quantifiers of what is left ("the rest", "everything else"): the things the
     #: reading places anywhere else are no part of the set
     remainder: list[str] = Field(default_factory=list)
+    #: words that add named things to a keep just said ("... stays where it is, and so do
+    #: the book and the bowl")
+    stay_too: list[Words] = Field(default_factory=list)
     #: words that stand for the quantified whole's noun after an excluder ("every lamp but
     #: the desk one")
     pro_forms: list[str] = Field(default_factory=list)
