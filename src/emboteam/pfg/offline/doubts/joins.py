@@ -145,9 +145,14 @@ def _doubt(ctx: DoubtContext, j: int, k: int) -> Doubt | None:
 def _joined(ctx: DoubtContext, mine: tuple[Condition, ...], objs: list[ObjectState]) -> Condition | None:
     """The reading's goal that sends the type where others of it lie now, counting them."""
     for c in mine:
-        there = [o for o in objs if c.receptacle is not None and _parent(ctx, o) in ref_types(c.receptacle)]
-        if there and c.subject.id is None:
-            return c.model_copy(update={"count": min(len(objs), c.count + len(there))})
+        if c.receptacle is None:
+            continue
+        to = ref_types(c.receptacle)
+        there = [o for o in objs if _parent(ctx, o) in to]
+        if there:
+            sent = sum(g.count for g in mine if g.receptacle is not None and ref_types(g.receptacle) == to)
+            return placed(next(iter(ref_types(c.subject) & {o.type for o in objs})), next(iter(to))).model_copy(
+                update={"count": min(len(objs), sent + len(there))})
     return None
 
 
