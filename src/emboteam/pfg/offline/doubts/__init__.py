@@ -22,6 +22,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | resumed | :mod:`.resumed` ("the three vases, all of them you put in a cupboard": the pronoun's things) |
 | compare | :mod:`.compare` ("the heavier of the two ... goes on the bed": the scene's masses pick) |
 | others | :mod:`.others` ("the one on the table goes in the box, the other ones stay": one moved, the rest kept) |
+| joins | :mod:`.joins` ("the roll on the floor joins the other one": placed where the others of its kind end; ``joins.json``) |
 | exclusive | :mod:`.exclusive` ("only the floor lamp on": the other lights, screens off) |
 | next_place | :mod:`.destination` (where a thing's own words send it; the one destination finder, ``destination_cues.json``) |
 | mention_cue | :mod:`.mention_cues` (a thing with no goal read in its own words: kept, a state) |
@@ -46,6 +47,7 @@ from emboteam.pfg.offline.doubts import (
     device_state,
     exclusive,
     instances,
+    joins,
     kept_place,
     means,
     mention_cues,
@@ -71,7 +73,7 @@ def reading_doubts(ctx: DoubtContext) -> list[Doubt]:
     # a narrative's device states ("when I walk in the TV is on") may make a reading too
     told = device_state.doubts(ctx) if ctx.narrative else []
     found = [*contents.doubts(ctx), *exclusive.doubts(ctx), *destination.doubts(ctx), *told,
-             *resumed.doubts(ctx)]
+             *resumed.doubts(ctx), *joins.doubts(ctx)]
     return [d for d in found if len(d.choices) > 1]
 
 

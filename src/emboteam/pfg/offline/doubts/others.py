@@ -1,6 +1,7 @@
 """Point of doubt: one of a kind moved, "the other ones" kept ("the statue on the table
 goes in the box and the other ones stay where they are", "of the two rolls on the
-toilet, one goes on the hanger and the other stays", "the spare stays on its shelf").
+toilet, one goes on the hanger and the other stays", "the spare stays on its shelf"; the kept one said first: "of the two rolls, one stays there
+and the spare goes in the drawer").
 
 "The other(s)", "the spare", "the rest" with a keeping word after it, in the same
 stretch, names the instances of a type the scene has several of that the request did not
@@ -69,7 +70,10 @@ def _doubt(ctx: DoubtContext, k: int) -> Doubt | None:
     objs = [o for o in ctx.state.of_type(type_) if o.parent is not None]
     if not moving or len(objs) < 2:
         return None
-    move = moving[0]
+    # the goal that moves some away from where they all are ("one stays there and the spare
+    # goes in the drawer": not the keep of the first clause)
+    now = {ctx.state.obj(str(o.parent)).type for o in objs}
+    move = next((c for c in moving if c.receptacle is not None and not ref_types(c.receptacle) & now), moving[0])
     dest = ref_types(move.receptacle) if move.receptacle is not None else frozenset()
     here = _place_after(ctx, k)
     staying = [o for o in objs if ctx.state.obj(str(o.parent)).type in here]
@@ -110,7 +114,13 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
     words = load_rule_words().others
     out = []
     for k, item in enumerate(ctx.items):
-        if item.text not in words.others or k == 0 or ctx.items[k - 1].text not in words.determiners:
+        if item.text not in words.others or k == 0:
+            continue
+        # "the other stays", or a clause opened by the pro-form "one" ("of the two rolls, one
+        # stays there"; not the numeral of "one vase can stay")
+        if ctx.items[k - 1].text not in words.determiners and \
+                not (item.text in words.openers and ctx.items[k - 1].punct is not None
+                     and not (k + 1 < len(ctx.items) and ctx.named_types(ctx.items[k + 1]))):
             continue
         if not _kept(ctx, k, words.keepers):
             continue

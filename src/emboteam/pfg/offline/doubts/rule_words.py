@@ -58,6 +58,8 @@ class Others(_Closed):
     others: list[str]
     #: what stands before them ("the", "both")
     determiners: list[str]
+    #: the words of them that open a clause with no determiner ("of the two, one stays")
+    openers: list[str]
     #: keeping words after them ("stays", "where they are")
     keepers: list[str]
     #: prepositions of the place that names which ones ("the one on the holder stays")
