@@ -99,3 +99,11 @@ def test_a_keep_by_property_is_out_of_the_rest() -> None:
                      "the plate; everything else on the dining table goes onto the coffee table.")[0]
     assert {"inside(Book, CoffeeTable)", "inside(Laptop, DiningTable)", "inside(Plate, DiningTable)"} <= first
     assert not {"inside(Laptop, CoffeeTable)", "inside(Plate, CoffeeTable)"} & first
+
+
+def test_a_list_after_a_colon_is_the_set_the_property_heads() -> None:
+    """ "Everything small in here goes into the box: the pen and the pencil": the colon's
+    list names the things; the property only describes them (the other small things stay)."""
+    first = readings("Everything small in here goes into the box: the pen and the pencil.")[0]
+    assert {"inside(Pen, Box)", "inside(Pencil, Box)"} <= first
+    assert not {"inside(Book, Box)", "inside(CreditCard, Box)", "inside(KeyChain, Box)", "inside(Watch, Box)"} & first

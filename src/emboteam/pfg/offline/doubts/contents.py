@@ -346,6 +346,16 @@ def _sentence_with_exceptions(ctx: DoubtContext, k: int, words: Contents) -> tup
     return start, end, end
 
 
+def _enumerated(ctx: DoubtContext, k: int, end: int) -> list[str]:
+    """The things a list after a colon names when the quantified phrase heads it
+    ("everything small in here goes in the safe: the keys, the phone"): the list, not the
+    property, is the set."""
+    colon = next((j for j in range(k + 1, end) if ctx.words[j] == ":"), None)
+    if colon is None:
+        return []
+    return list(dict.fromkeys(t for j in range(colon + 1, end) for t in ctx.named_types(ctx.items[j])[:1]))
+
+
 def _anywhere(ctx: DoubtContext, k: int, start: int, end: int, exc_end: int, words: Contents) -> Doubt | None:
     """Things picked out by a property alone, wherever they are ("all the breakables into
     the box", "anything in here over four kilos goes onto the bed"): every carriable thing
@@ -353,11 +363,16 @@ def _anywhere(ctx: DoubtContext, k: int, start: int, end: int, exc_end: int, wor
     ways = _having(ctx, k, k, end, (start, exc_end))
     if not ways:
         return None
+    cat = load_catalogue()
+    listed = _enumerated(ctx, k, end)
+    if listed:
+        named = set(listed)
+        ways = [(f"listed ({', '.join(type_name(t) for t in listed)})",
+                 lambda o: (cat.source_type(o.type) or o.type) in named)]
     excepted = {t for _, types in _excepted(ctx, start, exc_end, words) for t in types}
     dest = _destination(ctx, k, k, end, "", set(), excepted, words)
     if dest is None:
         return None
-    cat = load_catalogue()
     # a thing the reading already places is named, not picked out by the property
     placed_already = {t for c in ctx.goals if c.predicate is Predicate.inside for t in ref_types(c.subject)}
     choices: list[Choice] = []
