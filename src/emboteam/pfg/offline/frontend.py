@@ -66,7 +66,12 @@ from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineP
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
 from emboteam.pfg.offline.knowledge import word_tables
-from emboteam.pfg.offline.list_positions import EARLIER_LIST, earlier_list_reading, resolve_list_positions
+from emboteam.pfg.offline.list_positions import (
+    EARLIER_LIST,
+    earlier_list_reading,
+    has_references,
+    resolve_list_positions,
+)
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
@@ -239,10 +244,15 @@ class OfflineFrontend:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
         surface = read_surface(text, scene.types())
-        tagged = _tag(surface.text)     # as said, self-corrections and all: what the points of doubt read
+        said = tag(surface.text)
+        # the other list a position may refer to is read only when a word may be one: the
+        # second tagging and reading cost a millisecond an instruction
+        positions = has_references(said)
+        tagged = resolve_list_positions(said)   # as said, self-corrections and all: what the points of doubt read
         try:
             alternatives = self._surface_readings(text, surface, scene, state, team)
-            alternatives |= self._earlier_list_reading(text, surface.text, scene, state, team)
+            if positions:
+                alternatives |= self._earlier_list_reading(text, surface.text, scene, state, team)
             return self._surfaced(self._read(text, tagged, scene, state, team, alternatives), alternatives)
         except ContradictoryInstruction:
             raise

@@ -252,10 +252,16 @@ def earlier_list_reading(items: list[Item]) -> list[Item] | None:
     return out if ambiguous else None
 
 
+def has_references(items: list[Item]) -> bool:
+    """Whether any word may refer to a position in a list ("first", "latter", "rest"): the
+    cheap test before anything is resolved or read again."""
+    return any((i.corrected_from or i.text) in _TRIGGERS for i in items)
+
+
 def _resolve(items: list[Item], earlier: bool) -> tuple[list[Item], bool]:
     """The items with the references resolved (to the earlier of two lists that fit, when
     ``earlier``), and whether any reference fitted two lists."""
-    if not any((i.corrected_from or i.text) in _TRIGGERS for i in items):
+    if not has_references(items):
         return items, False
     sentence_of, s = [], 0
     for it in items:
