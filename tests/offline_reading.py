@@ -3,6 +3,7 @@ reader's tests do (one place, so that every test reads the way a user's `embotea
 
 from __future__ import annotations
 
+from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
 from emboteam.pfg.reading import Reading
 from emboteam.world.robots import parse_team
@@ -16,3 +17,12 @@ def read_offline(frontend: OfflineFrontend, text: str, floor_plan: str = "FloorP
     scene = load_scene(floor_plan)
     robots = parse_team(team)
     return frontend.parse(text, scene, WorldState.from_scene(scene, robots), robots)
+
+
+def goal_of(frontend: OfflineFrontend, text: str, floor_plan: int | str, team: str = "1,2") -> set[str]:
+    """The goal conditions, as text, that ``text`` decomposes to in ``floor_plan`` at the
+    start of a benchmark episode (the state the reader's accuracy tests use)."""
+    scene = load_scene(floor_plan)
+    robots = parse_team(team)
+    spec = frontend.decompose(text, scene, initial_state({}, scene, robots), robots)
+    return {str(c) for c in spec.goal().conditions}

@@ -7,19 +7,14 @@ from __future__ import annotations
 
 import pytest
 
-from emboteam.bench.offline_accuracy import initial_state
 from emboteam.pfg.offline import OfflineFrontend
-from emboteam.world.robots import parse_team
-from emboteam.world.scene import load_scene
+from offline_reading import goal_of
 
 FRONTEND = OfflineFrontend()
 
 
 def goal(text: str, fp: int) -> set[str]:
-    scene = load_scene(fp)
-    team = parse_team("1,2")
-    spec = FRONTEND.decompose(text, scene, initial_state({}, scene, team), team)
-    return {str(c) for c in spec.goal().conditions}
+    return goal_of(FRONTEND, text, fp)
 
 
 @pytest.mark.parametrize(("text", "fp", "expected"), [
