@@ -57,9 +57,17 @@ def test_marker_counts_only_as_a_line_of_its_own(tmp_path: Path) -> None:
 
 
 def test_held_out_rounds_keep_their_tasks_outside_dev() -> None:
-    assert {"blind_r54", "blind_r56", "blind_r58", "blind_r60"} <= set(HELD_OUT_ROUNDS)
+    assert {"blind_r54", "blind_r56", "blind_r58", "blind_r60", "blind_r62"} <= set(HELD_OUT_ROUNDS)
     for name in HELD_OUT_ROUNDS:
         assert not (DATA / name / "dev").exists(), f"{name} is held out but has a dev folder"
+
+
+def test_round_61_waits_for_its_fresh_measurement() -> None:
+    """Round 61 (written with held-out round 62) is skipped until the lead removes its status line."""
+    assert (DATA / "blind_r61" / "dev").is_dir()
+    assert "blind_r61" not in HELD_OUT_ROUNDS
+    if is_unmeasured(DATA / "blind_r61"):
+        assert "blind_r61" not in {d.set for d in development_tasks(DATA, mace_thor=False)}
 
 
 def test_a_held_out_round_is_skipped_by_name_even_with_a_dev_folder(tmp_path: Path) -> None:
