@@ -377,16 +377,19 @@ PLANNER_INPUT_HELP = ("what Fast Downward reads: sas (our own grounded task, sea
                       "| pddl (its driver and translator)")
 
 
-def _with_planner_input(cfg: Any, planner_input: str, schedule: str = "fast") -> Any:
-    """A RunConfig or BenchConfig with ``--planner-input`` and ``--schedule`` set (checked
-    here: one line)."""
+def _with_planner_input(cfg: Any, planner_input: str, schedule: str = "fast", leave_open: bool = False) -> Any:
+    """A RunConfig or BenchConfig with ``--planner-input``, ``--schedule`` and
+    ``--leave-open`` set (checked here: one line)."""
     if planner_input not in ("sas", "pddl"):
         raise EmboTeamError(f"--planner-input takes sas or pddl, not {planner_input!r}")
     if schedule not in ("fast", "optimal"):
         raise EmboTeamError(f"--schedule takes fast or optimal, not {schedule!r}")
-    return cfg.model_copy(update={"planner_input": planner_input, "schedule": schedule})
+    return cfg.model_copy(update={"planner_input": planner_input, "schedule": schedule,
+                                  "close_after_use": not leave_open})
 
 
+LEAVE_OPEN_HELP = ("do not add the closing of a closed fridge, drawer or box the reading puts things into "
+                   "(by default the team closes what it opens unless asked to leave it open)")
 SCHEDULE_HELP = ("fast (default) | optimal: then CP-SAT over the whole schedule (who does what, in which order), "
                  "kept when shorter; up to ~10 s more per plan (docs/planning.md)")
 
@@ -458,6 +461,7 @@ def plan(
     as_json: bool = typer.Option(False, "--json", help="one JSON object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
     schedule: str = typer.Option("fast", "--schedule", help=SCHEDULE_HELP),
+    leave_open: bool = typer.Option(False, "--leave-open", help=LEAVE_OPEN_HELP),
 ) -> None:
     """Decompose and plan a task (PFG + HP) without executing it."""
     import time
@@ -470,7 +474,7 @@ def plan(
     fe, when = _front_end(frontend, llm, llm_when)
     cfg = _run_config("full", fe, llm, llm_timeout=llm_timeout, llm_when=when)
     ctx = EpisodeContext.open(task, cfg)
-    ctx = replace(ctx, cfg=_with_planner_input(cfg, planner_input, schedule))
+    ctx = replace(ctx, cfg=_with_planner_input(cfg, planner_input, schedule, leave_open))
     client = ctx.llm
     t0 = time.perf_counter()
     notes: list[str] = []        # what the front end could not read, or read with doubt
@@ -522,6 +526,7 @@ def run(
                                  "cannot tell, ask which end state was meant (numbered sentences; without a "
                                  "terminal the best reading)"),
     schedule: str = typer.Option("fast", "--schedule", help=SCHEDULE_HELP),
+    leave_open: bool = typer.Option(False, "--leave-open", help=LEAVE_OPEN_HELP),
 ) -> None:
     """Plan and execute a task in the simulator; print the outcome and metrics."""
     from emboteam.exec import Join
@@ -539,7 +544,7 @@ def run(
                       llm_merge=llm_merge, llm_when=when,
                       fault_level=faults, seed=seed, joins=tuple(join), env=_env(env),
                       clarify=clarify and not as_json)    # with --json the candidates are in the output
-    cfg = _with_planner_input(cfg, planner_input, schedule)
+    cfg = _with_planner_input(cfg, planner_input, schedule, leave_open)
     for j in join:
         Join.parse(j)  # a typed error now rather than mid-run
     check_config(cfg)
@@ -611,6 +616,7 @@ def bench(
     as_json: bool = typer.Option(False, "--json", help="one JSON summary object on stdout"),
     planner_input: str = typer.Option("sas", "--planner-input", help=PLANNER_INPUT_HELP),
     schedule: str = typer.Option("fast", "--schedule", help=SCHEDULE_HELP),
+    leave_open: bool = typer.Option(False, "--leave-open", help=LEAVE_OPEN_HELP),
 ) -> None:
     """Run a suite in one or more modes, seeds and fault levels; tables, plots, an HTML index."""
     from emboteam.bench.disturbance_scope import split_applicable
@@ -637,7 +643,7 @@ def bench(
         check_config(RunConfig(env=cfg.env, fault_level=max(cfg.fault_levels), disturbance=cfg.disturbance))
     for f in cfg.frontends:
         check_config(RunConfig(frontend=f, llm=cfg.llm, llm_timeout=llm_timeout, llm_when=cfg.llm_when))
-    cfg = _with_planner_input(cfg, planner_input, schedule)
+    cfg = _with_planner_input(cfg, planner_input, schedule, leave_open)
     tasks_run, not_applicable = split_applicable(cfg.disturbance, loaded.tasks)  # exit 2 if it fits none
     cfg = _bench_out(cfg, out_dir)
     out_dir = cfg.out_dir

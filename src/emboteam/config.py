@@ -51,6 +51,9 @@ class RunConfig(BaseModel):
                                         "(search binary only) or PDDL (driver and translator)")
     schedule: Literal["fast", "optimal"] = Field("fast", description="fast: the planner's own stages; optimal: "
                                                  "then CP-SAT over the whole schedule (hp/optimal.py)")
+    close_after_use: bool = Field(True, description="the team closes a closed receptacle it puts things "
+                                  "into unless the instruction asks it open (pfg/close_after_use.py); "
+                                  "False: --leave-open")
     fault_level: float = Field(0.0, ge=0, le=1)
     faults: FaultConfig | None = Field(None, description="explicit faults (overrides fault_level)")
     seed: int = 0

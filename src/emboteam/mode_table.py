@@ -50,6 +50,8 @@ class ModeWiring:
     llm_review: bool = False
     #: robots avoid each other on the navigation grid (reservations, waits, yields)
     avoidance: bool = True
+    #: the team closes what it opens (pfg/close_after_use.py); LaMMA-P plans the goals as read
+    close_after_use: bool = True
 
 
 #: LaMMA-P: optimal Fast Downward calls per subtask, one at a time, no cache, sub-plans
@@ -65,7 +67,7 @@ MODE_TABLE: dict[Mode, ModeWiring] = {
     "no-avoidance": ModeWiring(PlannerConfig(), "tree", replan=True, llm_review=True, avoidance=False),
     "smart-llm": ModeWiring(None, "sequences"),
     "lamma-p": ModeWiring(PlannerConfig(alias="astar(hmax())", workers=1, validate=False, merge="concatenate"),
-                          "linear"),
+                          "linear", close_after_use=False),
 }
 assert tuple(MODE_TABLE) == MODES, "the mode table lists every mode, in table order"
 

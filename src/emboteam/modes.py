@@ -31,6 +31,7 @@ from emboteam.pddl.domain import DomainError, step_literals
 from emboteam.pddl.errors import PlanningError
 from emboteam.pddl.literal import Literal
 from emboteam.pfg.clarification import Clarification, ClarifyHook
+from emboteam.pfg.close_after_use import close_after_use
 from emboteam.pfg.parser import offline_frontend
 from emboteam.pfg.reading import Reading
 from emboteam.pfg.scripted import scripted_action_lists
@@ -239,6 +240,11 @@ def plan_task(ctx: EpisodeContext, notes: list[str] | None = None, readings: lis
     what was taken and left out; ``notes`` says so)."""
     read: list[Reading] = [] if readings is None else readings
     spec = understand(ctx, notes, read)
+    if ctx.cfg.close_after_use and ctx.cfg.frontend != "oracle" and wiring(ctx.cfg.mode).close_after_use:
+        # the ground truth says what it wants closed; a reading gets the team's habit
+        spec, added = close_after_use(spec, ctx.state, ctx.team)
+        if notes is not None:
+            notes.extend(added)
     found: list[Feasible] = [] if feasible is None else feasible
     spec, plan = plan_spec(ctx, spec, read[-1] if read else None, found)
     if notes is not None and found:

@@ -77,6 +77,8 @@ class Job(RunConfig):
             parts.append(f"planner-input={self.planner_input}")
         if self.schedule != "fast":
             parts.append(f"schedule={self.schedule}")
+        if not self.close_after_use:
+            parts.append("leave-open")
         if self.disturbance.any:  # likewise: undisturbed keys stay as they were
             parts.append(f"disturb={self.disturbance.label}")
         if self.env != "sim":  # likewise: simulator keys stay as they were
@@ -114,6 +116,7 @@ class BenchConfig(BaseModel):
     resume: bool = False
     planner_input: PlannerInput = "sas"
     schedule: Literal["fast", "optimal"] = "fast"
+    close_after_use: bool = True
     llm_timeout: float = Field(60.0, gt=0)
     llm_when: LLMWhen = "doubt"
 
@@ -208,7 +211,7 @@ def expand_jobs(config: BenchConfig, tasks: Sequence[BenchTask]) -> list[Job]:
     return [
         Job(task=task, mode=mode, frontend=frontend, llm=config.llm, seed=seed, disturbance=config.disturbance,
             planner_input=config.planner_input, schedule=config.schedule,
-            env=config.env,
+            close_after_use=config.close_after_use, env=config.env,
             fault_level=level, llm_timeout=config.llm_timeout, llm_when=config.llm_when)
         for mode in config.modes
         for frontend in config.frontends
