@@ -169,12 +169,17 @@ def _likeness(a: frozenset[str], b: frozenset[str]) -> float:
 
 def _region_start(items: Sequence[Item], k: int) -> int:
     """Where the retracted part may start: the sentence of the marker, or the one before
-    when the marker opens a sentence."""
+    when the marker opens a sentence (and the one before that when it names no thing:
+    "... in the box. Both of them. Actually not the keys, the watch")."""
     j = k
-    while j > 0 and items[j - 1].punct is not None:
-        j -= 1
-    while j > 0 and items[j - 1].punct not in _SENTENCE:
-        j -= 1
+    for _ in range(2):
+        end = j
+        while j > 0 and items[j - 1].punct is not None:
+            j -= 1
+        while j > 0 and items[j - 1].punct not in _SENTENCE:
+            j -= 1
+        if not any(x.punct in _SENTENCE for x in items[j:end]) or any(x.noun is not None for x in items[j:end]):
+            break
     return j
 
 
@@ -367,9 +372,14 @@ def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None,
     if not hit:
         return []
     run = hit[-1]
+    if len(tail) > 1 and tail[0].punct == "," and tail[1].det:
+        end = _np_end(tail, 1)
+        if end > 2 and (end == len(tail) or tail[end].punct is not None):
+            # "not the keys, the watch": the thing named right after takes the member's place
+            return _swapped(before, lo, runs, tail[1:end], np, tail[end:])
     if len(_members(before, runs, run, lo)) > 1:
         out = _drop_member(before, run, lo)
-        if _pronoun_in(tail) and run is runs[-1]:
+        if _pronoun_in(tail) and run is [r for r in runs if not r.place][-1]:
             # "... and the cloth as well, no, not the cloth, that goes in the bin": a topic
             out = [*out, Item(".", punct="."), *before[run.start:run.end], Item(".", punct=".")]
         return [_Edit("member", f"{x.text!r} taken out of the list", out, tail)]

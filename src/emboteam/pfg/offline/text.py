@@ -76,6 +76,24 @@ def _arrows(text: str) -> str:
 _BROKEN_OFF = re.compile(r"\b([A-Za-z]+)-\s+(?:well|actually|er|erm|um|hmm),?\s+(?:just\s+)?")
 
 
+#: a word broken off by a dash before a space ("into the b- in the box", "in the fri-" as
+#: another speaker cuts in)
+_CUT_WORD = re.compile(r"\b([A-Za-z]+)-(?=\s|$)")
+#: how many words on the speaker may say the broken word in full
+_CUT_REACH = 30
+
+
+def _finish_cut_words(text: str) -> str:
+    """A broken-off word as the word it began, when one of the next words starts with it
+    ("the b- ... The BOX" -> "the box"): a false start says where the speaker was going.
+    Without such a word it stays as typed."""
+    def finish(m: re.Match[str]) -> str:
+        stem = m.group(1).lower()
+        later = re.findall(r"[A-Za-z]+", text[m.end():])[:_CUT_REACH]
+        return next((w.lower() for w in later if len(w) > len(stem) and w.lower().startswith(stem)), m.group(0))
+    return _CUT_WORD.sub(finish, text)
+
+
 #: letters with no decomposition into a letter and its accent
 _LIGATURES = str.maketrans({"ß": "ss", "æ": "ae", "œ": "oe", "ø": "o", "Æ": "Ae", "Œ": "Oe", "Ø": "O"})
 
@@ -93,7 +111,7 @@ def fold_accents(text: str) -> str:
 def normalize(text: str) -> str:
     """The instruction as lower-case words and punctuation separated by single spaces."""
     text = fold_accents(text)
-    text = _BROKEN_OFF.sub(r"\1 , i mean , ", _arrows(text))
+    text = _BROKEN_OFF.sub(r"\1 , i mean , ", _arrows(_finish_cut_words(text)))
     text = apply_rewrites(_REPLACE, text)
     text = apply_rewrites(_CONTRACTIONS, split_camel(text).lower())
     text = apply_rewrites(_CHAT, spoken(text))

@@ -86,7 +86,8 @@ def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, 
     emptying = _emptying(ctx.items[k].text, words)
     for j in range(k + 1, min(end, k + 3 + 3 * _remainder(ctx, k, words))):     # "the rest of what's on it"
         if ctx.items[j].text in words.pronoun_places and \
-                (emptying or ctx.items[j - 1].text in words.source_preps):
+                (emptying or ctx.items[j - 1].text in words.source_preps
+                 or (j == k + 1 and ctx.items[j].text in words.pronoun_places_after)):
             # what is left of the place an emptying verb named before ("clear that sofa:
             # ..., and the rest of what's on it")
             emptied = [found for e in _triggers(ctx, words) if e < k and _emptying(ctx.items[e].text, words)
@@ -339,10 +340,15 @@ def _left_alone(ctx: DoubtContext, k: int, source: str, words: Contents,
 
 def _sentence_with_exceptions(ctx: DoubtContext, k: int, words: Contents) -> tuple[int, int, int]:
     """The trigger's sentence, and where its exceptions may end: the next sentence too
-    when it opens with an excluder ("clear the counter. NOT the candle")."""
+    when it opens with an excluder ("clear the counter. NOT the candle") or adds a keep to
+    them ("... except the soap. Wait, no, the spray stays out too")."""
     start, end = sentence_bounds(ctx.items, k)
-    if end + 1 < len(ctx.items) and find(ctx.items, end + 1, end + 2, words.excluders):
-        return start, end, sentence_bounds(ctx.items, end + 1)[1]
+    if end + 1 < len(ctx.items):
+        after = sentence_bounds(ctx.items, end + 1)[1]
+        if find(ctx.items, end + 1, end + 2, words.excluders) or (
+                any(i.text in words.stay_verbs for i in ctx.items[end + 1:after])
+                and find(ctx.items, end + 1, after, words.also_stays)):
+            return start, end, after
     return start, end, end
 
 

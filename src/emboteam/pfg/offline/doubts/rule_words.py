@@ -46,6 +46,11 @@ class Contents(_Closed):
     #: words that add named things to a keep just said ("... stays where it is, and so do
     #: the book and the bowl")
     stay_too: list[Words] = Field(default_factory=list)
+    #: words that add a keep in a later sentence to the exceptions just said ("... except the
+    #: soap. Wait, no, the spray stays out too")
+    also_stays: list[Words] = Field(default_factory=list)
+    #: pronoun places that name the source right after the quantifier ("everything there")
+    pronoun_places_after: list[str] = Field(default_factory=list)
     #: words that stand for the quantified whole's noun after an excluder ("every lamp but
     #: the desk one")
     pro_forms: list[str] = Field(default_factory=list)
