@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from emboteam.pddl.goal_compiler import compile_condition, slicing_targets
+from emboteam.pddl.goal_compiler import compile_condition, shared_view, slicing_targets
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.goals import Condition, Goal, Predicate
 from emboteam.world.state import WorldState
@@ -17,7 +17,8 @@ from emboteam.world.state import WorldState
 
 def group_indices(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str]) -> list[list[int]]:
     """Indices of conditions grouped by shared candidate objects (union-find), in order."""
-    slices = slicing_targets(conditions, state, robots)
+    view = shared_view(state)  # the state does not change here: one view for every condition
+    slices = slicing_targets(conditions, state, robots, view)
     parent = list(range(len(conditions)))
 
     def find(i: int) -> int:
@@ -44,7 +45,7 @@ def group_indices(conditions: Sequence[Condition], state: WorldState, robots: Se
         mine.setdefault(anchor, i)
 
     for i, cond in enumerate(conditions):
-        part = compile_condition(cond, state, robots, slices=slices)
+        part = compile_condition(cond, state, robots, slices=slices, view=view)
         door = cond.predicate in (Predicate.open, Predicate.closed)
         for oid in part.subjects:
             anchor = oid.split("_Slice_")[0]

@@ -51,6 +51,7 @@ from emboteam.hp.stages.schedule import schedule, schedule_small
 from emboteam.hp.stages.split import split_clusters, split_containers
 from emboteam.hp.stages.take_over import take_over
 from emboteam.pddl.errors import PlanningError
+from emboteam.pddl.goal_compiler import shared_view
 from emboteam.pddl.problem import planning_state
 from emboteam.pddl.runner import FastDownward, PlanCache
 from emboteam.pfg.taskspec import TaskSpec
@@ -131,7 +132,8 @@ class HybridPlanner:
         if not team:
             raise PlanningError("no working robot in the team")
         start = planning_state(state)
-        needs = {t.id: [need_of(c, start, team) for c in t.goal] for t in spec.subtasks}
+        view = shared_view(start)
+        needs = {t.id: [need_of(c, start, team, view) for c in t.goal] for t in spec.subtasks}
         check_team([n for ns in needs.values() for n in ns], [start.robots[r].profile for r in team])
         ctx = Context(self.config, self.solver, spec, start, team, needs)
         plan = self._pipeline(ctx)

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from emboteam.pddl.errors import ImpossibleGoalError, MissingSkillError
-from emboteam.pddl.goal_compiler import GoalPart, compile_condition
+from emboteam.pddl.goal_compiler import GoalPart, StateView, compile_condition
 from emboteam.sim.capability import Role, brewer, cold_source, heater_for, water_basin
 from emboteam.sim.durations import ACTION_SECONDS, navigation_seconds
 from emboteam.world.actions import Skill
@@ -225,10 +225,12 @@ _RULES: dict[Predicate, Callable[[_Subject], Need]] = {
 }
 
 
-def need_of(cond: Condition, state: WorldState, robots: Sequence[str]) -> Need:
+def need_of(cond: Condition, state: WorldState, robots: Sequence[str], view: StateView | None = None) -> Need:
     """Roles for ``cond`` from ``state`` (raises the goal compiler's typed errors): the
-    facts every rule reads, then the predicate's rule from ``_RULES``."""
-    part = compile_condition(cond, state, robots)
+    facts every rule reads, then the predicate's rule from ``_RULES``. ``view``: a
+    :func:`~emboteam.pddl.goal_compiler.shared_view` of ``state``, for a caller asking
+    about many conditions of one state (the planner: every condition of the task)."""
+    part = compile_condition(cond, state, robots, view=view)
     if part.satisfied:
         return Need(cond, ((),), part=part)
     s = part.subjects[0]

@@ -194,6 +194,12 @@ class _Run:
     held: dict[str, str] = field(default_factory=dict)
     holding: dict[str, str] = field(default_factory=dict)
     times: dict[str, tuple[float, float]] = field(default_factory=dict)
+    #: the robots in name order (the order steps start in), sorted once: it is gone
+    #: through at every event, hundreds of times a simulation of a 32-robot plan
+    order: list[str] = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.order = sorted(self.queues)
 
     def _next(self, robot: str) -> PlanStep | None:
         """The robot's next step if it may start now: robot idle, waits ended, and its
@@ -213,7 +219,9 @@ class _Run:
     def start_ready(self) -> None:
         """Start every step that may start, robots in name order (a start may take a
         spot, so the order decides who gets it: fixed for the same plan)."""
-        for robot in sorted(self.queues):
+        for robot in self.order:
+            if robot in self.running:
+                continue
             step = self._next(robot)
             if step is None:
                 continue

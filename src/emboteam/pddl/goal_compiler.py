@@ -403,9 +403,12 @@ def compile_condition(cond: Condition, state: WorldState, robots: Sequence[str],
 
 def compile_goal(conditions: Sequence[Condition], state: WorldState, robots: Sequence[str], *,
                  narrow: bool = True) -> list[GoalPart]:
-    """Compile conditions that one problem must satisfy together."""
-    slices = slicing_targets(conditions, state, robots)
-    parts = [compile_condition(c, state, robots, slices=slices, narrow=narrow) for c in conditions]
+    """Compile conditions that one problem must satisfy together (one view of ``state``
+    for all of them: the pieces and each reference's objects found once, not per
+    condition; every problem the planner builds comes through here)."""
+    view = _View(state)
+    slices = slicing_targets(conditions, state, robots, view)
+    parts = [compile_condition(c, state, robots, slices=slices, narrow=narrow, view=view) for c in conditions]
     _check_hot_in_fridge(parts, state)
     return parts
 

@@ -120,6 +120,11 @@ class Context:
     #: (:meth:`Universe.at` their own states): a step grounded by one stage is reused by
     #: the next where the state answers alike (:mod:`emboteam.pddl.recorded`)
     universe: Universe = field(init=False, repr=False)
+    #: what pure functions of a draft gave, by (what, id of its plan), with the plan and
+    #: the sequence they were computed from (holding their ids): two stages asking about
+    #: the same draft (the route stage left it as it was, the idle stage asks again)
+    #: compute it once
+    memo: dict[tuple[str, int], tuple[object, object, object]] = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         self.universe = Universe(self.start.copy())

@@ -21,7 +21,7 @@ from emboteam.hp.contention import bottleneck_first, spot_seconds
 from emboteam.hp.eliminate import eliminate
 from emboteam.hp.interleave import interleave, worth_it
 from emboteam.hp.merge import GroundedStep, SeqStep
-from emboteam.hp.requirements import covers, need_of
+from emboteam.hp.requirements import Need, covers, need_of
 from emboteam.hp.rounds import Attempt, Unit, attribute, clusters, helpers, make_units, polish
 from emboteam.hp.stages import trim
 from emboteam.hp.stages.context import Context, Draft, Fallback, Invalid, Record
@@ -29,6 +29,7 @@ from emboteam.hp.stages.merge import merge_causal
 from emboteam.hp.stages.replay import replay
 from emboteam.hp.visits import merge_visits
 from emboteam.pddl.errors import PlannerMemoryError, PlanningError
+from emboteam.pddl.goal_compiler import shared_view
 from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import SolveResult
 from emboteam.pfg.taskspec import Subtask
@@ -65,6 +66,9 @@ class _Rounds:
         self.attempts = {t.id: Attempt() for t in ctx.spec.subtasks}
         self.pending = list(ctx.spec.subtasks)
         self.counter = itertools.count(1)
+        #: ``forward`` is still the start state (nothing accepted into it yet): the needs
+        #: the planner worked out on the start (:attr:`Context.needs`) hold for it as they are
+        self.at_start = True
 
     # ---- the rounds ---------------------------------------------------------------------
     def run(self) -> None:
@@ -88,7 +92,7 @@ class _Rounds:
         team, forward, record = self.ctx.team, self.forward, self.record
         load = {r: sum(g.seconds for g in self.accepted if g.robot == r) for r in team}
         groups = clusters(fresh, forward, team)
-        needs = {g.id: [need_of(c, forward, team) for c in g.goal] for g in groups}
+        needs = self._needs(groups)
         for a in allocate(groups, needs, forward, team, load, self.prefer):
             members = a.subtask.split("+")
             for m in members:
@@ -98,6 +102,19 @@ class _Rounds:
                 r for r in team if all(covers([forward.robots[r].profile], n) for n in needs[a.subtask]))
             if a.note != "as specified":
                 self.notes.append(f"{', '.join(members)}: {a.note} -> {', '.join(a.robots)}")
+
+    def _needs(self, groups: Sequence[Subtask]) -> dict[str, list[Need]]:
+        """The needs of each cluster's conditions on ``forward``: while nothing is accepted
+        into it, those the planner worked out on the start state (the same function of the
+        same state and team: the first round of every decomposed pass, re-allocation's
+        included, computes none again); else with one view of ``forward`` for all."""
+        known: dict[int, Need] = {}
+        if self.at_start:
+            for t in self.ctx.spec.subtasks:
+                known.update((id(c), n) for c, n in zip(t.goal, self.ctx.needs.get(t.id, ()), strict=False))
+        view = shared_view(self.forward)
+        return {g.id: [known[id(c)] if id(c) in known else need_of(c, self.forward, self.ctx.team, view)
+                       for c in g.goal] for g in groups}
 
     def _problems(self, units: Sequence[Unit], base: WorldState) -> list[tuple[Unit, Problem]]:
         """The round's problems; units already satisfied are accepted first, so their
@@ -222,6 +239,7 @@ class _Rounds:
     def _accept(self, u: Unit, grounded: list[GroundedStep], after: WorldState | None = None) -> None:
         if after is not None:
             self.forward.objects, self.forward.robots = after.objects, after.robots
+            self.at_start = False
         self.accepted.extend(grounded)
         for t in u.subtasks:
             self.done.add(t.id)
@@ -240,6 +258,7 @@ class _Rounds:
         del self.accepted[round_start:]
         self.accepted.extend(mixed[0])
         self.forward.objects, self.forward.robots = mixed[1].objects, mixed[1].robots
+        self.at_start = False
         for u, _ in plans:
             _protect(u, self.forward, self.protected)
 

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import cast
 
 from emboteam.hp import optimal, spot_order
 from emboteam.hp.critical_routes import improve_late
@@ -135,7 +136,12 @@ def draft_layout(ctx: Context, draft: Draft) -> Layout | None:
     plan, seq = draft.plan, draft.record.sequence
     if not ctx.independent or len(seq) != len(plan.steps):
         return None
-    return layout_of(ctx, plan, seq)
+    hit = ctx.memo.get(("layout", id(plan)))
+    if hit is not None and hit[0] is plan and hit[1] is seq:
+        return cast(Layout | None, hit[2])  # read only: the searches copy what they change
+    layout = layout_of(ctx, plan, seq)
+    ctx.memo[("layout", id(plan))] = (plan, seq, layout)
+    return layout
 
 
 def _once_large(ctx: Context, draft: Draft) -> Draft:
