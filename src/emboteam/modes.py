@@ -240,8 +240,10 @@ def plan_task(ctx: EpisodeContext, notes: list[str] | None = None, readings: lis
     what was taken and left out; ``notes`` says so)."""
     read: list[Reading] = [] if readings is None else readings
     spec = understand(ctx, notes, read)
-    if ctx.cfg.close_after_use and ctx.cfg.frontend != "oracle" and wiring(ctx.cfg.mode).close_after_use:
-        # the ground truth says what it wants closed; a reading gets the team's habit
+    if ctx.cfg.close_after_use and ctx.cfg.frontend in ("offline", "hybrid") and wiring(ctx.cfg.mode).close_after_use:
+        # the offline reader's reading gets the team's habit; the ground truth says what it
+        # wants closed, and an LLM's spec is its own answer (its review and repair see it as
+        # written, and recorded cassettes replay)
         spec, added = close_after_use(spec, ctx.state, ctx.team)
         if notes is not None:
             notes.extend(added)

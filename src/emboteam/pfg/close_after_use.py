@@ -8,8 +8,9 @@ right. This is a policy of the pipeline, not of the reader: the reading stays wh
 say, and the pipeline adds one closing subtask per receptacle type, after every subtask that
 puts into it or takes out of it. It is added only where it cannot contradict the reading
 (nothing asks that type open), restores the start (every instance of the type starts
-closed) and the team can do it (a robot with CloseObject). ``RunConfig.close_after_use``
-(``--leave-open``) turns it off.
+closed) and the team can do it (a robot with CloseObject). It applies to the offline and
+hybrid front ends' readings (not to the oracle's ground truth, nor to an LLM's own spec, nor
+to the LaMMA-P baseline); ``RunConfig.close_after_use`` (``--leave-open``) turns it off.
 """
 
 from __future__ import annotations
