@@ -345,8 +345,8 @@ def _noun(s: _NP) -> str | None:
         h.location.append(("on", Head(text=f"the {h.noun.phrase}", noun=h.noun, definite=True, role="place")))
     h.noun = it.noun
     h.plural = h.plural or it.noun.plural
-    if it.recipe is not None:
-        h.recipe = it.recipe
+    # "a toast rack", "the coffee mug": a dish before the head only names its kind
+    h.recipe = it.recipe
     s.take(it.text)
     if it.liquid is not None:
         h.liquid = it.liquid
