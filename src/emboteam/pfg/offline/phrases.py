@@ -345,8 +345,10 @@ def _noun(s: _NP) -> str | None:
         h.location.append(("on", Head(text=f"the {h.noun.phrase}", noun=h.noun, definite=True, role="place")))
     h.noun = it.noun
     h.plural = h.plural or it.noun.plural
-    # "a toast rack", "the coffee mug": a dish before the head only names its kind
-    h.recipe = it.recipe
+    if it.recipe is not None:
+        h.recipe = it.recipe
+    elif s.j > 0 and items[s.j - 1].recipe is not None:
+        h.recipe = None     # "a toast rack", "the coffee mug": a dish just before the head names its kind
     s.take(it.text)
     if it.liquid is not None:
         h.liquid = it.liquid
