@@ -16,6 +16,7 @@ from typing import NamedTuple
 from emboteam.pfg.offline import lexicon as lx
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.patterns import first_rule, pattern_tables
+from emboteam.pfg.offline.roles import role_subject, without_role
 from emboteam.pfg.offline.tagger import Item
 
 #: how a clause attaches to the one before it
@@ -123,7 +124,8 @@ def team_subject(items: list[Item], j: int) -> int:
     for words in TEAM_SUBJECTS:
         if said[:len(words)] == words:
             return j + len(words)
-    return _DESCRIBED_MEMBER.end(items, j) or j     # "the strong robot": described by its build
+    # "the strong robot": described by its build; "whoever has the knife skills": by its role
+    return _DESCRIBED_MEMBER.end(items, j) or role_subject(items, j)
 
 
 #: "I'd like my phone brought over": the verb after the object is the wished state
@@ -544,6 +546,8 @@ def segment(items: list[Item]) -> list[Clause]:
         if current.items:
             clauses.append(current)
         robot = _address(clauses, s_index, robot)
+    for c in clauses:
+        c.items = without_role(c.items)     # "whoever has the knife skills": a robot, no thing
     return [c for c in clauses if c.items]
 
 

@@ -1033,6 +1033,8 @@ def _frames(clause: Clause, items: list[Item], mentions: list[Head],
     terse = not any(i.copula for i in items)
     flags["terse"] = terse
     wished = noun_phrase_wish(items, mentions)
+    if wished is not None and flags.get("neg"):
+        return []       # "No coffee today": the dish is called off, nothing is made
     frames = [wished] if wished is not None else _state_frames(items, mentions, flags)
     if not frames and flags.get("also"):
         heads = np_list(items)

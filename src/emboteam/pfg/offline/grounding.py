@@ -179,7 +179,10 @@ class Grounder:
             types = (able or present)[:1]
             self._fell_back = bool(types)
         if not types:
-            types = self._compound_of(concept.types, need)
+            # "the curtain" of a bathroom: its one kind of curtain (ShowerCurtain)
+            word = head.noun.phrase.split()[-1]
+            word = word[:-1] if head.noun.plural and word.endswith("s") else word
+            types = self._compound_of((*concept.types, word.capitalize()) if word.isalpha() else concept.types, need)
             self._fell_back = bool(types)
         if not types:
             names = "/".join(concept.types)

@@ -347,6 +347,8 @@ def _noun(s: _NP) -> str | None:
     h.plural = h.plural or it.noun.plural
     if it.recipe is not None:
         h.recipe = it.recipe
+    elif s.j > 0 and items[s.j - 1].recipe is not None:
+        h.recipe = None     # "a toast rack", "the coffee mug": a dish just before the head names its kind
     s.take(it.text)
     if it.liquid is not None:
         h.liquid = it.liquid

@@ -14,6 +14,7 @@ from emboteam.pfg.offline.doubts.mention_words import REACH as _REACH
 from emboteam.pfg.offline.doubts.mention_words import after_preposition, answers, chatter
 from emboteam.pfg.offline.doubts.rule_words import load_rule_words
 from emboteam.pfg.offline.knowledge import word_tables
+from emboteam.pfg.offline.roles import in_role
 
 _W = word_tables("explained")     # data/words.json
 #: words that put what follows out of the request: negation, exclusion, calling off
@@ -59,6 +60,8 @@ def _explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool)
     before = ctx.items[max(start, k - _REACH):k]
     if after_preposition(ctx, k, start):
         return "a place or landmark"
+    if in_role(ctx.items, k):
+        return "a team member's role"
     if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
             ctx.scene.of_type(types[0]) and "receptacle" in _props(types[0]):
         return "the place of a chore"
