@@ -49,6 +49,11 @@ def test_negations_compose_by_count() -> None:
     assert read_force("i am not not not wanting the lamp off .") == "i am not wanting the lamp off ."
 
 
+def test_a_restore_wishes_the_past_not_the_present() -> None:
+    assert read_force("undo it . the mug was where it is now .") == "undo it . the mug should be where it is now ."
+    assert read_force("the lamp is off and is meant to stay that way .") == "the lamp should be off ."
+
+
 def test_plain_sentences_are_left_alone() -> None:
     for text in ("do not put the apple in the fridge .", "the lamp was on all night , turn it off .",
                  "the fridge is open , shut it ."):

@@ -1,19 +1,10 @@
-"""A clause's force: what a sentence that is no plain imperative asks for.
-
-People ask for an end state without an imperative: they negate twice ("I'm not not
-wanting the lamp off", "don't you dare not leave it on"), deny the opposite ("I wouldn't
-dream of leaving it open", "not anywhere but the box"), approve by litotes ("I won't be
-unhappy if ..."), hedge or ask ("is there any chance X might ...", "if it's no trouble"),
-tell a past arrangement to repeat ("X was off ... all that again", "was shut and should be
-again") or state a rule as a fact ("House rules: the lid is closed at night"). This stage
-rewrites each to the plain phrasing of the request, so the grammar reads the state asked
-for, not its opposite.
-
-One mechanism in stages, the words all data (``data/force.json``): ``cancel`` runs to a
-fixed point (each rule removes a pair of negations, so their count composes), then
-``only``, ``litotes`` and ``request``; ``repeat`` and ``rule`` are scoped: a repeat cue
-turns the past tense of its own sentence (or of the one before, when it stands alone)
-into the wished state, a rule header the described present states after it.
+"""A clause's force: the request behind a sentence that is no plain imperative ("I'm not
+not wanting the lamp off", "I wouldn't dream of leaving it open", "not anywhere but the
+box", "is there any chance X might ...", "X was off ... all that again", "House rules: the
+lid is closed at night"), rewritten to its plain phrasing so the grammar reads the state
+asked for, not its opposite. One mechanism, its words data (``data/force.json``): the
+cancelling of negation pairs runs to a fixed point (their count composes), then the
+rewrites; the cues of a repeat and of a rule are scoped by sentence.
 """
 
 from __future__ import annotations
@@ -25,6 +16,7 @@ from pydantic import model_validator
 
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
 from emboteam.pfg.offline.morphology import verb_lemma
+from emboteam.pfg.offline.regex_filter import needles
 
 _PIECE = re.compile(r"\{([a-z_]+)\}")
 #: where a sentence (a repeat cue's scope) ends in normalised text
@@ -63,6 +55,7 @@ class ForceFile(Strict):
     repeat_all_cues: tuple[str, ...]
     restore_headers: tuple[str, ...]
     wished_forms: dict[str, str]
+    present_forms: dict[str, str]
     rule_headers: tuple[str, ...]
     rule_states: ForceRule
 
@@ -87,22 +80,28 @@ class ForceFile(Strict):
         return self
 
 
-_Compiled = tuple[re.Pattern[str], str, int | None]
+_Compiled = tuple[re.Pattern[str], str, int | None, frozenset[str] | None]
 
 
 @cache
-def _tables() -> tuple[ForceFile, dict[str, tuple[_Compiled, ...]], dict[str, re.Pattern[str]], re.Pattern[str]]:
+def _tables() -> tuple[ForceFile, dict[str, tuple[_Compiled, ...]], dict[str, re.Pattern[str]],
+                       tuple[re.Pattern[str], re.Pattern[str]]]:
     data = load("force.json", ForceFile)
-    rules = {t: tuple((re.compile(data.expand(r.pattern)), r.replace, r.base) for r in getattr(data, t))
-             for t in RULES} | {"rule_states": ((re.compile(data.expand(data.rule_states.pattern)),
-                                                data.rule_states.replace, None),)}
-    cues = {t: re.compile(r"\s*(?:" + "|".join(getattr(data, t)) + ")") for t in CUES}
+    def comp(rule: ForceRule) -> _Compiled:
+        pattern = re.compile(data.expand(rule.pattern))
+        return pattern, rule.replace, rule.base, needles(pattern)    # skipped when no needle is in the text
+
+    rules = {t: tuple(map(comp, getattr(data, t))) for t in RULES} | {"rule_states": (comp(data.rule_states),)}
+    cues = {t: re.compile(" ?(?:" + "|".join(getattr(data, t)) + ")") for t in CUES}
     forms = sorted(map(re.escape, data.wished_forms), key=len, reverse=True)
-    return data, rules, cues, re.compile(r"\b(?:" + "|".join(forms) + r")\b")
+    present = re.compile(r"\b(?:" + "|".join(map(re.escape, data.present_forms)) + r")\b")
+    return data, rules, cues, (re.compile(r"\b(?:" + "|".join(forms) + r")\b"), present)
 
 
 def _sub(rule: _Compiled, text: str) -> str:
-    pattern, repl, base = rule
+    pattern, repl, base, required = rule
+    if required is not None and not any(n in text for n in required):
+        return text
 
     def fill(m: re.Match[str]) -> str:
         groups = [m.group(0), *(g or "" for g in m.groups())]
@@ -113,16 +112,27 @@ def _sub(rule: _Compiled, text: str) -> str:
     return pattern.sub(fill, text)
 
 
-def _repeat(text: str, data: ForceFile, cues: dict[str, re.Pattern[str]], forms: re.Pattern[str]) -> str:
+def _found(pattern: re.Pattern[str], text: str) -> bool:
+    """Does ``pattern`` match in ``text``? Looked for only when one of its needles is there."""
+    required = _needles(pattern)
+    return (required is None or any(n in text for n in required)) and pattern.search(text) is not None
+
+
+_needles = cache(needles)
+
+
+def _repeat(text: str, data: ForceFile, cues: dict[str, re.Pattern[str]],
+            forms: tuple[re.Pattern[str], re.Pattern[str]]) -> str:
     """A past arrangement told to be repeated: the described forms of the cue's sentence (of
-    the one before, when the cue stands alone: "...; this time too"), of every sentence
-    before a "make it so" or after an "undo it", become the wished ones."""
-    if not any(cues[t].search(text) for t in CUES[:3]):
+    the one before, when the cue stands alone: "...; this time too"), and the past ones of
+    every sentence before a "make it so" or after an "undo it", become the wished ones."""
+    if not any(_found(cues[t], text) for t in CUES[:3]):
         return text
     parts = _SENTENCE.split(text)
 
-    def wish(part: str) -> str:
-        return forms.sub(lambda m: data.wished_forms[m.group(0)], part)
+    def wish(part: str, present: bool = False) -> str:
+        part = forms[0].sub(lambda m: data.wished_forms[m.group(0)], part)
+        return forms[1].sub(lambda m: data.present_forms[m.group(0)], part) if present else part
 
     for k, part in enumerate(parts):
         if cues["repeat_all_cues"].search(part):
@@ -132,9 +142,9 @@ def _repeat(text: str, data: ForceFile, cues: dict[str, re.Pattern[str]], forms:
         elif cues["repeat_cues"].search(part):
             rest = cues["repeat_cues"].sub("", part)
             if re.search(r"[a-z]", rest.replace("this time", "").replace("please", "")) or k == 0:
-                parts[k] = wish(rest)
+                parts[k] = wish(rest, present=True)
             else:
-                parts[k - 1], parts[k] = wish(parts[k - 1]), rest.strip(" .;!?")
+                parts[k - 1], parts[k] = wish(parts[k - 1], present=True), rest.strip(" .;!?")
     return " ".join(p for p in parts if p.strip())
 
 
@@ -151,7 +161,7 @@ def read_force(text: str) -> str:
         for rule in rules[table]:
             text = _sub(rule, text)
     text = _repeat(text, data, cues, forms)
-    header = cues["rule_headers"].search(text)
+    header = cues["rule_headers"].search(text) if _found(cues["rule_headers"], text) else None
     if header is not None:
         text = text[:header.end()] + _sub(rules["rule_states"][0], text[header.end():])
     return re.sub(r"\s+", " ", text).strip()
