@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from emboteam.pfg.offline import lexicon as lx
+from emboteam.pfg.offline.force import read_force
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.morphology import (
     correct,
@@ -199,7 +200,7 @@ _IDIOMS = tuple((re.compile(pattern), repl) for pattern, repl in lx.IDIOMS)
 
 def tag(text: str) -> list[Item]:
     """Items of an instruction, in order."""
-    normal = " ".join(t.text for t in tokenize(text))
+    normal = read_force(" ".join(t.text for t in tokenize(text)))
     for pattern, repl in _IDIOMS:
         normal = pattern.sub(repl, normal)
     words, fixed = _repair(normal.split())
