@@ -170,9 +170,11 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, carried: bool, acted: bool,
         return ("named_place", here) if here is not None else None
     # a place its own words name that it is not in is the speaker's belief, not its place
     # ("the tomato's already in the fridge" with the tomato on the counter): no keep
-    named = {t for item in ctx.items[k + 1:end] for t in ctx.named_types(item)[:1] if t != thing}
-    if named and not named & present(ctx, thing):
-        return None
+    here_now = present(ctx, thing)
+    for item in ctx.items[k + 1:end]:
+        named = {t for t in ctx.named_types(item) if t != thing and "receptacle" in _props(t)}
+        if named and not named & here_now:
+            return None
     here = _here(ctx, thing, start, end)
     return (label, here) if here is not None else None
 
