@@ -51,8 +51,13 @@ def test_a_thing_with_a_place_is_no_doubt() -> None:
 
 
 def test_a_thing_nothing_acts_on_is_no_doubt() -> None:
-    # the candle is only a landmark: no act read, no state said
-    assert _kept_doubts("Put the soap bar next to the candle.", 427) == []
+    # no act read, no state said, no landmark, no keep: nothing to keep
+    assert _kept_doubts("Put the soap bar in the cabinet, then light the candle.", 427) == []
+
+
+def test_a_landmark_keeps_its_place() -> None:
+    # the candle is a landmark (keepall25): where it stands is a condition, never an act
+    assert _kept_doubts("Put the soap bar next to the candle.", 427) == ["inside(Candle, CounterTop)"]
 
 
 def test_the_cue_file_is_checked_at_load(tmp_path: Path) -> None:

@@ -33,6 +33,8 @@ RESULTS = _W.set("results")
 NOT_CORRECTING = _W.set("not_correcting")
 #: the explanation of a mention the person negated or excluded
 NEGATED = "negated or excluded"
+#: the explanation of a mention that is a place or a landmark ("to the box", "next to the pot")
+LANDMARK = "a place or landmark"
 #: the explanation of a mention a chatter cue frames ("we used to have ...": :mod:`.mention_cues`)
 CHATTER = "chatter"
 
@@ -59,7 +61,7 @@ def _explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool)
     start, _ = ctx.clause_bounds(k)
     before = ctx.items[max(start, k - _REACH):k]
     if after_preposition(ctx, k, start):
-        return "a place or landmark"
+        return LANDMARK
     if in_role(ctx.items, k):
         return "a team member's role"
     if any(i.text in CHORE_WORDS for i in ctx.items[max(start, k - _REACH):k + 1 + _REACH]) and \
@@ -74,7 +76,7 @@ def _explanation(ctx: DoubtContext, k: int, types: tuple[str, ...], goals: bool)
            for j, i in enumerate(after[:-1])):
         return "called off by a self-correction"
     if any(m.role in ("place", "dest") and set(types) & m.ref.types for m in ctx.history):
-        return "a place or landmark"
+        return LANDMARK
     if chatter(ctx, k):
         return CHATTER
     return None
