@@ -66,7 +66,21 @@ def without_role(items: list[Item]) -> list[Item]:
     while j < len(items) and (items[j].conj is not None or items[j].seq is not None):
         j += 1
     k = role_subject(items, j)
-    return items if k == j else [*items[:j], *items[k:]]
+    if k == j:
+        return items
+    if _restates_role(items, j, k):
+        return items[:j]
+    return [*items[:j], *items[k:]]
+
+
+def _restates_role(items: Sequence[Item], j: int, k: int) -> bool:
+    """Does the clause only say who acts ("whoever opens drawers | opens them")? Its verb
+    repeats the role's own verb on a pronoun for the role's things: a division of labour,
+    not an end state."""
+    verb = items[k].verb
+    rest = [x for x in items[k + 1:] if x.punct is None]
+    return (verb is not None and any(x.verb is not None and x.verb.lemma == verb.lemma for x in items[j:k])
+            and len(rest) == 1 and rest[0].pron is not None)
 
 
 def in_role(items: Sequence[Item], k: int) -> bool:
