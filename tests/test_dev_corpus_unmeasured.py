@@ -10,6 +10,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+
 from emboteam.bench.dev_corpus import (
     HELD_OUT_ROUNDS,
     UNMEASURED_MARKER,
@@ -57,17 +59,27 @@ def test_marker_counts_only_as_a_line_of_its_own(tmp_path: Path) -> None:
 
 
 def test_held_out_rounds_keep_their_tasks_outside_dev() -> None:
-    assert {"blind_r54", "blind_r56", "blind_r58", "blind_r60", "blind_r62"} <= set(HELD_OUT_ROUNDS)
+    assert {"blind_r54", "blind_r56", "blind_r58", "blind_r60", "blind_r62", "blind_r64"} <= set(HELD_OUT_ROUNDS)
     for name in HELD_OUT_ROUNDS:
         assert not (DATA / name / "dev").exists(), f"{name} is held out but has a dev folder"
 
 
-def test_round_61_waits_for_its_fresh_measurement() -> None:
-    """Round 61 (written with held-out round 62) is skipped until the lead removes its status line."""
-    assert (DATA / "blind_r61" / "dev").is_dir()
-    assert "blind_r61" not in HELD_OUT_ROUNDS
-    if is_unmeasured(DATA / "blind_r61"):
-        assert "blind_r61" not in {d.set for d in development_tasks(DATA, mace_thor=False)}
+@pytest.mark.parametrize(("dev_round", "held_out"), [("blind_r61", "blind_r62"), ("blind_r63", "blind_r64")])
+def test_a_new_round_waits_for_its_fresh_measurement(dev_round: str, held_out: str) -> None:
+    """A development round written with a held-out one is skipped until the lead removes its
+    status line; its held-out partner keeps its tasks in ``heldout/`` and is named in the list."""
+    assert (DATA / dev_round / "dev").is_dir()
+    assert dev_round not in HELD_OUT_ROUNDS
+    assert held_out in HELD_OUT_ROUNDS
+    if is_unmeasured(DATA / dev_round):
+        assert dev_round not in {d.set for d in development_tasks(DATA, mace_thor=False)}
+
+
+def test_round_63_is_marked_unmeasured_until_the_lead_runs_it() -> None:
+    """Round 63 arrives with its status line; the lead removes it after the one fresh run."""
+    about = (DATA / "blind_r63" / "ABOUT.md").read_text(encoding="utf-8")
+    if "Measured fresh" not in about:
+        assert is_unmeasured(DATA / "blind_r63")
 
 
 def test_a_held_out_round_is_skipped_by_name_even_with_a_dev_folder(tmp_path: Path) -> None:
