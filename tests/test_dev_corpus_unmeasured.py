@@ -75,13 +75,6 @@ def test_a_new_round_waits_for_its_fresh_measurement(dev_round: str, held_out: s
         assert dev_round not in {d.set for d in development_tasks(DATA, mace_thor=False)}
 
 
-def test_round_63_is_marked_unmeasured_until_the_lead_runs_it() -> None:
-    """Round 63 arrives with its status line; the lead removes it after the one fresh run."""
-    about = (DATA / "blind_r63" / "ABOUT.md").read_text(encoding="utf-8")
-    if "Measured fresh" not in about:
-        assert is_unmeasured(DATA / "blind_r63")
-
-
 def test_a_held_out_round_is_skipped_by_name_even_with_a_dev_folder(tmp_path: Path) -> None:
     _round(tmp_path, HELD_OUT_ROUNDS[-1], "# held out\n")
     _round(tmp_path, "blind_r91", None)
