@@ -29,7 +29,7 @@ from pathlib import Path
 from plan_dump import QUICK_CONDITIONS, QUICK_ROBOTS, mace_thor_inputs, sweep_input, sweep_inputs
 
 from emboteam.errors import EmboTeamError
-from emboteam.hp.optimal import REFERENCE_LIMIT, ScheduleTimeoutError, reference
+from emboteam.hp.optimal import PORTFOLIO, REFERENCE_LIMIT, Portfolio, ScheduleTimeoutError, reference
 from emboteam.hp.plan import MergedPlan
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
 from emboteam.hp.stages import schedule as schedule_stage
@@ -66,7 +66,7 @@ class Row:
 
 
 def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfig, limit: float,
-        bound_limit: float = 0.0, check_limit: float = 0.0) -> list[Row]:
+        bound_limit: float = 0.0, check_limit: float = 0.0, portfolio: Portfolio = PORTFOLIO) -> list[Row]:
     rows: list[Row] = []
     for label, spec, state in inputs:
         t0 = time.perf_counter()
@@ -82,7 +82,7 @@ def run(inputs: Iterator[tuple[str, TaskSpec, WorldState]], config: PlannerConfi
         t1 = time.perf_counter()
         try:
             ref = (reference(plan, spec, planning_state(state), limit, bound_limit=bound_limit,
-                             check_limit=check_limit)
+                             check_limit=check_limit, portfolio=portfolio)
                    if limit > 0 else None)
         except ScheduleTimeoutError as exc:  # the wall-clock safety net: no answer
             ref, row.error = None, str(exc)[:120]
@@ -168,26 +168,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--check-limit", type=float, default=0.0,
                     help="where the bound is still below the best schedule, this many more deterministic seconds of "
                     "branch-and-check, one cap at a time (emboteam.hp.optimal_check); 0: none")
+    ap.add_argument("--searches", default=",".join(PORTFOLIO.searches),
+                    help="CP-SAT's full-problem searches, one worker each, comma-separated (emboteam.hp.optimal."
+                    "Portfolio; default: the reference's own)")
     ap.add_argument("--out", type=Path, help="write the rows here (JSON)")
     args = ap.parse_args(argv)
+    portfolio = Portfolio(tuple(args.searches.split(",")))
     if args.schedule == "heuristic":
         schedule_stage.FAST_STEPS = 0  # no plan is small enough: the stage never runs
     config = PlannerConfig(schedule="optimal" if args.schedule == "optimal" else "fast")
     load0 = os.getloadavg()[0]
     started = time.strftime("%Y-%m-%d %H:%M")
-    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit, args.bound_limit, args.check_limit)
+    suite = [] if args.no_suite else run(mace_thor_inputs(), config, args.limit, args.bound_limit, args.check_limit,
+                                           portfolio)
     seeds = [int(s) for s in args.seeds.split(",")]
     cells: dict[int, list[Row]] = {}
     if args.cells and not args.no_sweep:
-        cells[-1] = run(cell_inputs(args.cells), config, args.limit, args.bound_limit, args.check_limit)
+        cells[-1] = run(cell_inputs(args.cells), config, args.limit, args.bound_limit, args.check_limit, portfolio)
     elif not args.no_sweep:
         for seed in seeds:
             cells[seed] = run(sweep_inputs([int(x) for x in args.robots.split(",")],
                                            [int(x) for x in args.conditions.split(",")], [seed]), config, args.limit,
-                               args.bound_limit, args.check_limit)
+                               args.bound_limit, args.check_limit, portfolio)
     lines = [f"{started}, load {load0:.1f} before, {os.cpu_count()} cores; schedule {args.schedule}, CP-SAT limit "
              f"{args.limit:g} deterministic s, route bound {args.bound_limit:g} s, "
-             f"branch-and-check {args.check_limit:g} s"]
+             f"branch-and-check {args.check_limit:g} s, searches {','.join(portfolio.searches)} "
+             f"({portfolio.workers} workers, batches of {portfolio.batch})"]
     if suite:
         lines += summary(suite, "MACE-THOR")
     for seed, rows in cells.items():

@@ -16,6 +16,7 @@ from emboteam.hp.optimal_bound import route_bound
 from emboteam.hp.optimal_carry import CarryLog
 from emboteam.hp.optimal_check import CapCheck, check_cap
 from emboteam.hp.planner import HybridPlanner, PlannerConfig
+from emboteam.hp.stages import schedule as schedule_stage
 from emboteam.hp.validate import simulate
 from emboteam.pddl.problem import planning_state
 from emboteam.pfg.oracle import OracleFrontend
@@ -116,6 +117,25 @@ def test_time_in_the_models_quantum_loses_no_schedule() -> None:
     assert all(abs(t * 100 % 200) < 1e-6 for t in strong.starts.values())
 
 
+def test_the_portfolio_is_a_setting_that_reaches_cp_sat_and_keeps_the_optimum() -> None:
+    """The strong search's portfolio (:class:`optimal.Portfolio`) sets CP-SAT's workers (one
+    per search), its searches and its batches; another portfolio may prove sooner or later,
+    never another optimum. The schedule stage's budget carries it."""
+    two = optimal.Portfolio(("default_lp", "no_lp"))
+    params = optimal._solver(True, 1.0, 2, two).parameters
+    assert params.num_workers == 2 and list(params.subsolvers) == ["default_lp", "no_lp"]
+    assert params.interleave_search and params.interleave_batch_size == optimal.PORTFOLIO_BATCH
+    assert not params.use_lns and params.max_deterministic_time == 1.0
+    assert optimal._solver(False, 1.0, 1, two).parameters.num_workers == 1  # fast's small model: one worker
+    assert schedule_stage.OPTIMAL.portfolio == optimal.PORTFOLIO
+    spec, state = random_cell(3, 10)
+    plan = HybridPlanner(PlannerConfig()).plan(spec, state)
+    answers = [reference(plan, spec, planning_state(state), limit=10.0, portfolio=p)
+               for p in (optimal.FOUR_SEARCHES, two, optimal.Portfolio(("max_lp", "no_lp")))]
+    assert all(a is not None and a.optimal for a in answers)
+    assert len({a.makespan for a in answers if a is not None}) == 1
+
+
 def test_a_solve_past_its_wall_clock_safety_net_raises(monkeypatch: pytest.MonkeyPatch) -> None:
     """The answer may depend only on the deterministic limit: a solve the wall clock stops
     gives no answer but a typed time-out."""
@@ -139,6 +159,9 @@ def test_a_starved_solve_raises_rather_than_stopping_early(monkeypatch: pytest.M
     plan = HybridPlanner(PlannerConfig()).plan(spec, state)
     problem = problem_of(plan, spec, planning_state(state))
     assert problem is not None
+    # the unstarved answer has its whole budget (a net wide enough for a machine other jobs
+    # already load: the two-search portfolio's two threads get a small share of it)
+    monkeypatch.setattr(optimal, "WALL_FLOOR", 600.0)
     ref = solve(problem, plan, limit=1.0)
     assert not ref.optimal and ref.deterministic >= 1.0
     request.getfixturevalue("busy_cpu")

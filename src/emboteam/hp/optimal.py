@@ -40,9 +40,10 @@ durations and drives (a quarter second on the navigation grid), and posts a driv
 a job without its robot where every candidate drives as long (issue 28: FloorPlan1 4 x 16,
 goal seeds 3 and 4, proven in 10 deterministic seconds, not before). Its domains end at
 the hint's makespan, and robots no constraint tells apart (:func:`interchangeable`) take
-groups in a fixed order: both exact, neither changes an optimum. Its portfolio is four
-full-problem searches without large-neighbourhood search (:data:`PORTFOLIO`): the cells
-left unproven were min-max routing problems whose proof is search, not the LP. Where it
+groups in a fixed order: both exact, neither changes an optimum. Its portfolio is two
+full-problem searches without large-neighbourhood search (:data:`PORTFOLIO`, a
+:class:`Portfolio`, a setting of :func:`solve` and of the schedule stage's budget): the
+cells left unproven were min-max routing problems whose proof is search, not the LP. Where it
 ends unproven, :func:`solve` can go on with the route relaxation's bound
 (:mod:`.optimal_bound`) and with branch-and-check one cap at a time (:mod:`.optimal_check`).
 """
@@ -89,13 +90,38 @@ WALL_FACTOR = 12.0
 #: portfolio of strategies interleaved in fixed batches, deterministic for a fixed worker
 #: count and batch size (``interleave_search``); it proved FloorPlan1 4 x 16 (goal seed 3)
 #: in 4.1 deterministic s where one worker needed 29.6
-PORTFOLIO_WORKERS = 4
 PORTFOLIO_BATCH = 12
-#: the portfolio's searches, without large-neighbourhood search (issue 28, branch proof28:
-#: with LNS and all eight full-problem searches, each of these got about 2 of the 10
-#: deterministic seconds, and FloorPlan1 4 x 24 seed 3 took 18.3 s to prove; these four
-#: alone prove it in 8.0 s, and FloorPlan1 2 x 24 seed 1 in 11.9 s)
-PORTFOLIO = ("default_lp", "max_lp", "no_lp", "quick_restart_no_lp")
+
+
+@dataclass(frozen=True)
+class Portfolio:
+    """The strong search: CP-SAT's full-problem searches (``subsolvers``, without
+    large-neighbourhood search), one worker each, interleaved in fixed batches of
+    ``batch`` tasks (``interleave_search``): deterministic for a fixed worker count and
+    batch size, so the answer depends only on this setting and the deterministic limit.
+    The deterministic limit counts the time of *every* search, so each takes its share of
+    it from the others (issue 28, branch proof28e)."""
+
+    searches: tuple[str, ...]
+    batch: int = PORTFOLIO_BATCH
+
+    @property
+    def workers(self) -> int:
+        return len(self.searches)
+
+
+#: four full-problem searches (issue 28, branch proof28: with LNS and all eight, each of
+#: these got about 2 of the 10 deterministic seconds, and FloorPlan1 4 x 24 seed 3 took
+#: 18.3 s to prove; these four alone prove it in 8.0 s, and FloorPlan1 2 x 24 seed 1 in 11.9 s)
+FOUR_SEARCHES = Portfolio(("default_lp", "max_lp", "no_lp", "quick_restart_no_lp"))
+#: the default strong search: the LP search with CP-SAT's default linearization and the
+#: search without LP, each with half the limit (issue 28, branch proof28f: on the 90 sweep
+#: cells up to 8 x 24, goal seeds 0-4, 88 proven in 10 deterministic s where the four
+#: searches proved 87, none lost, the same optima; FloorPlan201 4 x 24 seed 4 is no_lp's
+#: proof, FloorPlan1 2 x 24 seed 1 default_lp's)
+TWO_SEARCHES = Portfolio(("default_lp", "no_lp"))
+PORTFOLIO = TWO_SEARCHES
+PORTFOLIO_WORKERS = PORTFOLIO.workers
 
 
 class ScheduleTimeoutError(PlannerLimitError):
@@ -662,14 +688,14 @@ class _Model:
 
 def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFERENCE_LIMIT,
           linearization: int = 2, symmetry: bool = True, bound_limit: float = 0.0,
-          check_limit: float = 0.0) -> Reference:
+          check_limit: float = 0.0, portfolio: Portfolio = PORTFOLIO) -> Reference:
     """The optimal schedule of ``problem`` (or the best found and a bound), CP-SAT with
     seed 0 and ``limit`` seconds of *deterministic* time. ``linearization=2`` puts the
     circuits and the route lengths into the LP (``_Model._routes``): what proves the
     8-robot, 32-goal cells in 10 s (their bound was 55-90 % of the optimum); with it come
     the tight model (:class:`_Model`'s ``tight``: the quantum, domains ending at the hint's
     makespan, ``symmetry`` breaking among interchangeable robots) and the interleaved
-    portfolio (:data:`PORTFOLIO_WORKERS`). ``linearization=1`` (``fast``'s small stage)
+    ``portfolio`` (:class:`Portfolio`; default :data:`PORTFOLIO`). ``linearization=1`` (``fast``'s small stage)
     keeps one worker and the model its plans were made with. Raises
     :class:`ScheduleTimeoutError` when the wall-clock safety net (:data:`WALL_FLOOR`,
     :data:`WALL_FACTOR`) stops it. ``bound_limit`` > 0 (strong model only): where the
@@ -681,7 +707,7 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     up: a cap nothing ends by raises the bound a tick, a schedule found at it is the
     answer (proven: nothing ends earlier)."""
     strong = linearization >= 2
-    model, solver, status, capped = _solved(problem, hint, strong, limit, linearization, symmetry)
+    model, solver, status, capped = _solved(problem, hint, strong, limit, linearization, symmetry, portfolio)
     tick = model.unit / SCALE
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         name = "infeasible" if status == cp_model.INFEASIBLE else "unknown"
@@ -690,10 +716,10 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
     best, bound = round(solver.objective_value), round(solver.best_objective_bound)
     used = capped + solver.deterministic_time
     if status == cp_model.FEASIBLE and strong and bound_limit > 0:
-        routes = _route_bound(model, bound_limit, _chosen(model, solver))
+        routes = _route_bound(model, bound_limit, _chosen(model, solver), portfolio)
         bound, used = max(bound, routes.ticks), used + routes.deterministic
     if bound < best and strong and check_limit > 0:
-        bound, found, spent = _check_caps(model, bound, best, check_limit)
+        bound, found, spent = _check_caps(model, bound, best, check_limit, portfolio)
         used += spent
         if found is not None:
             best, answer = bound, found
@@ -706,18 +732,19 @@ def solve(problem: Problem, hint: MergedPlan | None = None, limit: float = REFER
 
 
 def _solved(problem: Problem, hint: MergedPlan | None, strong: bool, limit: float, linearization: int,
-            symmetry: bool) -> tuple[_Model, cp_model.CpSolver, cp_model.CpSolverStatus, float]:
+            symmetry: bool, portfolio: Portfolio
+            ) -> tuple[_Model, cp_model.CpSolver, cp_model.CpSolverStatus, float]:
     """:func:`solve`'s search: the model with its domains capped at the hint's makespan
     (strong model), and without the cap when the hint was no schedule after all (in what
     is left of ``limit``). The model, its solver, its status and the deterministic
     seconds of a capped solve that found nothing."""
     model = _Model(problem, hint, tight=strong, symmetry=symmetry)
-    solver, status = _run(model, strong, limit, linearization)
+    solver, status = _run(model, _solver(strong, limit, linearization, portfolio))
     capped = 0.0
     if status in (cp_model.INFEASIBLE, cp_model.UNKNOWN) and model.capped:
         capped = solver.deterministic_time
         model = _Model(problem, hint, tight=strong, cap=False, symmetry=symmetry)
-        solver, status = _run(model, strong, max(limit - capped, 0.0), linearization)
+        solver, status = _run(model, _solver(strong, max(limit - capped, 0.0), linearization, portfolio))
     return model, solver, status, capped
 
 
@@ -726,15 +753,15 @@ def _chosen(model: _Model, answer: cp_model.CpSolver | CapCheck) -> dict[str, st
     return {g: next(r for r in robots if answer.value(model.x[(g, r)])) for g, robots in model.p.candidates.items()}
 
 
-def _route_bound(model: _Model, limit: float, chosen: Mapping[str, str]) -> RouteBound:
+def _route_bound(model: _Model, limit: float, chosen: Mapping[str, str], portfolio: Portfolio) -> RouteBound:
     """:func:`emboteam.hp.optimal_bound.route_bound` on ``model``'s routes, with the strong
     search's deterministic portfolio and safety net, hinted with the robots ``chosen``
     for the groups."""
     hint = {(g, r): r == chosen[g] for g, r in model.x}
-    return route_bound(model.p, model.routing(), _solver(True, limit, 2), hint)
+    return route_bound(model.p, model.routing(), _solver(True, limit, 2, portfolio), hint)
 
 
-def _check_caps(model: _Model, bound: int, best: int, limit: float
+def _check_caps(model: _Model, bound: int, best: int, limit: float, portfolio: Portfolio
                 ) -> tuple[int, CapCheck | None, float]:
     """Branch-and-check (:func:`emboteam.hp.optimal_check.check_cap`) at caps ``bound``,
     ``bound`` + 1, ... below ``best`` within ``limit`` deterministic seconds in all: the
@@ -743,7 +770,7 @@ def _check_caps(model: _Model, bound: int, best: int, limit: float
     used = 0.0
     full = (model.m, model.x, model.makespan)
     while bound < best and used < limit:
-        answer = check_cap(model.p, model.routing(), full, bound, limit - used, lambda s: _solver(True, s, 2))
+        answer = check_cap(model.p, model.routing(), full, bound, limit - used, lambda s: _solver(True, s, 2, portfolio))
         used += answer.deterministic
         if answer.verdict == "none":
             bound += 1
@@ -754,23 +781,22 @@ def _check_caps(model: _Model, bound: int, best: int, limit: float
     return bound, None, used
 
 
-def _run(model: _Model, strong: bool, limit: float, linearization: int) -> tuple[cp_model.CpSolver, cp_model.CpSolverStatus]:
-    """One CP-SAT solve of ``model`` (see :func:`solve`); the safety net raises."""
-    solver = _solver(strong, limit, linearization)
+def _run(model: _Model, solver: cp_model.CpSolver) -> tuple[cp_model.CpSolver, cp_model.CpSolverStatus]:
+    """One CP-SAT solve of ``model`` with ``solver`` (see :func:`solve`); the safety net raises."""
     return solver, solver.solve(model.m)
 
 
-def _solver(strong: bool, limit: float, linearization: int) -> cp_model.CpSolver:
+def _solver(strong: bool, limit: float, linearization: int, portfolio: Portfolio = PORTFOLIO) -> cp_model.CpSolver:
     """A CP-SAT solver with seed 0, ``limit`` deterministic seconds, the wall-clock safety
-    net (:class:`_NetSolver`), and the strong search's portfolio (:data:`PORTFOLIO`) or one
+    net (:class:`_NetSolver`), and the strong search's ``portfolio`` or one
     worker. No ``max_time_in_seconds``: CP-SAT's own wall-clock limit stops early by a
     margin that grows with the load and leaves no trace in its answer (module docstring)."""
     solver = _NetSolver(limit)
-    solver.parameters.num_workers = PORTFOLIO_WORKERS if strong else 1
+    solver.parameters.num_workers = portfolio.workers if strong else 1
     if strong:
         solver.parameters.interleave_search = True
-        solver.parameters.interleave_batch_size = PORTFOLIO_BATCH
-        solver.parameters.subsolvers.extend(PORTFOLIO)
+        solver.parameters.interleave_batch_size = portfolio.batch
+        solver.parameters.subsolvers.extend(portfolio.searches)
         solver.parameters.use_lns = False
     solver.parameters.random_seed = 0
     solver.parameters.max_deterministic_time = limit
@@ -813,7 +839,7 @@ class _NetSolver(cp_model.CpSolver):
 
 def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float = REFERENCE_LIMIT,
               max_arcs: int = MAX_ARCS, linearization: int = 2, bound_limit: float = 0.0,
-              carries: bool = True, check_limit: float = 0.0) -> Reference | None:
+              carries: bool = True, check_limit: float = 0.0, portfolio: Portfolio = PORTFOLIO) -> Reference | None:
     """CP-SAT's schedule for ``plan``'s actions, hinted with the plan itself; None when
     the plan cannot be modelled (its replay fails) or the model is larger than
     ``max_arcs`` (:func:`arcs`). ``carries``: as :func:`problem_of` (False only for a
@@ -821,4 +847,5 @@ def reference(plan: MergedPlan, spec: TaskSpec, start: WorldState, limit: float 
     problem = problem_of(plan, spec, start, carries)
     if problem is None or not problem.jobs or arcs(problem) > max_arcs:
         return None
-    return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit, check_limit=check_limit)
+    return solve(problem, plan, limit, linearization=linearization, bound_limit=bound_limit, check_limit=check_limit,
+                 portfolio=portfolio)

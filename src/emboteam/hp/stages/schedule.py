@@ -42,6 +42,9 @@ class Budget:
     #: ``linearization_level``: 2 puts the circuits and the route lengths into the LP
     #: (the bound that proves the larger models); 1 is cheaper for a model of a few jobs
     linearization: int = 2
+    #: the strong search's CP-SAT searches (``linearization=2`` only; a fixed worker count
+    #: and deterministic time, so the plan does not depend on the machine)
+    portfolio: optimal.Portfolio = optimal.PORTFOLIO
 
 
 FAST = Budget(FAST_LIMIT, FAST_ARCS, linearization=1)
@@ -120,7 +123,7 @@ def _once(ctx: Context, draft: Draft, budget: Budget) -> Draft:
         return draft
     if _no_shorter(problem, plan.makespan):
         return draft
-    ref = optimal.solve(problem, plan, budget.limit, linearization=budget.linearization)
+    ref = optimal.solve(problem, plan, budget.limit, linearization=budget.linearization, portfolio=budget.portfolio)
     if not ref.robots or ref.makespan >= plan.makespan - 1e-6:
         return draft
     key = _keys(plan, ref)
