@@ -1,17 +1,10 @@
-"""A page's shapes that are not sentences, made plain clauses before anything else is read,
-so the rest of the reader sees ordinary running text (the shapes are data: ``page.json``).
-
-- an e-mail thread: quoted messages (``>``) are older; they are put first, oldest first,
-  and the unquoted reply last, so that its corrections come after what they correct
-  (the reader lets a later correction win); "On Fri, Ben wrote:" lines go;
-- a chat log or a script: the speakers' labels ("MUM (from the hall):") go;
-- a question and its answer ("TV? A: Off", "Q: Where do the keys go? A: Into the box",
-  "The light? Off."): one clause, the question's thing as the answer's subject;
-- a bare heading over indented items ("- fridge" over "- lettuce in too"): a dangling
-  "in" or "next to it" in an item is the heading's place;
-- config lines (``soap_bar.home = drawer``, ``[shower]`` over ``door = open``) and
-  code-like lines (``lamp.off()``, ``newspaper: shelf -> sofa``, "lid ↓");
-- a report's future ("will be in a cabinet", "'ll be shut"): the state asked for.
+"""A page's shapes that are not sentences made plain clauses before reading, so the rest of
+the reader sees running text (the shapes are data: ``page.json``): an e-mail thread oldest
+first (the reply's corrections after what they correct; "X wrote:" lines go); a chat's or a
+script's speaker labels; a question and its answer ("TV? A: Off", "The light? Off.") as one
+clause; a bare heading ("- fridge") as the place of its items' dangling "in"; config lines
+(``soap_bar.home = drawer``) and code-like lines (``lamp.off()``, "lid ↓"); a report's
+future ("will be in a cabinet") as the state asked for.
 """
 
 from __future__ import annotations
@@ -20,17 +13,10 @@ import re
 from collections.abc import Callable
 from functools import cache
 
-from emboteam.pfg.offline.knowledge import (
-    CompiledRewrite,
-    Rewrite,
-    Strict,
-    apply_rewrites,
-    compile_rewrites,
-    load,
-)
+from emboteam.pfg.offline import knowledge as kn
 
 
-class PageFile(Strict):
+class PageFile(kn.Strict):
     """``data/page.json``: the patterns of each shape and the words they turn on."""
 
     about: str = ""
@@ -43,7 +29,7 @@ class PageFile(Strict):
     question_fillers: tuple[str, ...]
     question_words: tuple[str, ...]
     question_words_max: int
-    wh: tuple[Rewrite, ...]
+    wh: tuple[kn.Rewrite, ...]
     answer_pronouns: tuple[str, ...]
     answer_not_joined: tuple[str, ...]
     dangling: str
@@ -53,22 +39,21 @@ class PageFile(Strict):
     config_comment: str
     config_lines: int
     place_keys: tuple[str, ...]
-    state_keys: tuple[str, ...]
     not_keys: tuple[str, ...]
     parts: tuple[str, ...]
-    code: tuple[Rewrite, ...]
-    future: tuple[Rewrite, ...]
+    code: tuple[kn.Rewrite, ...]
+    future: tuple[kn.Rewrite, ...]
 
 
 @cache
-def _page() -> tuple[PageFile, dict[str, re.Pattern[str]], dict[str, tuple[CompiledRewrite, ...]]]:
-    data = load("page.json", PageFile)
+def _page() -> tuple[PageFile, dict[str, re.Pattern[str]], dict[str, tuple[kn.CompiledRewrite, ...]]]:
+    data = kn.load("page.json", PageFile)
     names = ("quote", "quote_header", "speaker", "question", "dangling", "pronoun_place",
              "config_line", "config_section", "config_comment")
     rx = {n: re.compile(getattr(data, n), re.M if n == "question" else 0) for n in names}
+    rx["filler"] = re.compile(r"^(?:" + "|".join(data.question_fillers) + r")\s+", re.I)
     rx["joined"] = re.compile(r"\0[ \t]*(?:" + "|".join(data.answer_pronouns) + r")\b[ \t]*", re.I)
-    return (data, rx,
-            {n: compile_rewrites(getattr(data, n)) for n in ("wh", "code", "future")})
+    return data, rx, {n: kn.compile_rewrites(getattr(data, n)) for n in ("wh", "code", "future")}
 
 
 def read_page(text: str, bare: Callable[[str], bool], noun: Callable[[str], bool],
@@ -83,15 +68,11 @@ def read_page(text: str, bare: Callable[[str], bool], noun: Callable[[str], bool
         return 0 < len(words) <= data.question_words_max and nounish(words[-1]) \
             and not any(w in data.question_words for w in words)
 
-    lines = _thread(text.split("\n"), rx)
-    lines = _speakers(lines, rx, data, noun)
-    lines = _headings(lines, rx, bare, bullet)
-    lines = _config(lines, rx, data, noun)
-    out = "\n".join(lines)
-    out = apply_rewrites(rules["code"], out)
+    lines = _headings(_speakers(_thread(text.split("\n"), rx), rx, data, noun), rx, bare, bullet)
+    out = kn.apply_rewrites(rules["code"], "\n".join(_config(lines, rx, data, noun)))
     out = rx["question"].sub(lambda m: _answered(m, data, named), out)
     out = rx["joined"].sub("", out).replace("\0", "")     # the answer's "they" is the question's thing
-    return apply_rewrites(rules["future"], out)
+    return kn.apply_rewrites(rules["future"], out)
 
 
 def _thread(lines: list[str], rx: dict[str, re.Pattern[str]]) -> list[str]:
@@ -108,12 +89,10 @@ def _speakers(lines: list[str], rx: dict[str, re.Pattern[str]], data: PageFile,
               noun: Callable[[str], bool]) -> list[str]:
     """A chat log's or a script's lines without who says them (a label that names no
     thing, on at least ``speaker_lines`` lines)."""
-    def who(line: str) -> str | None:
+    def who(line: str) -> bool:
         m = rx["speaker"].match(line)
-        if m is None or m.group(1).upper() in {"Q", "A"} or any(noun(w.lower()) for w in m.group(1).split()):
-            return None
-        return m.group(1)
-    if sum(who(x) is not None for x in lines) < data.speaker_lines:
+        return m is not None and m.group(1).upper() not in {"Q", "A"} and not any(noun(w.lower()) for w in m.group(1).split())
+    if sum(map(who, lines)) < data.speaker_lines:
         return lines
     return [rx["speaker"].sub("", x, count=1) if who(x) else x for x in lines]
 
@@ -140,8 +119,8 @@ def _headings(lines: list[str], rx: dict[str, re.Pattern[str]], bare: Callable[[
 def _config(lines: list[str], rx: dict[str, re.Pattern[str]], data: PageFile,
             noun: Callable[[str], bool]) -> list[str]:
     """A config file's ``key = value`` lines as clauses: a place key's value is where the
-    thing goes ("soap bar → drawer"), a state key's is its state; a section names the
-    thing of its keys that name none ("[shower]" over "door = open": the shower door)."""
+    thing goes ("soap bar → drawer"); a section names the owner of a part ("[shower]" over
+    "door = open") or the kind of an adjective ("[lights]" over "main = off")."""
     if sum(bool(rx["config_line"].match(rx["config_comment"].sub("", x))) for x in lines) < data.config_lines:
         return lines
     out: list[str] = []
@@ -151,9 +130,7 @@ def _config(lines: list[str], rx: dict[str, re.Pattern[str]], data: PageFile,
             section = m.group(1).strip().lower()
             continue
         comment = rx["config_comment"].search(line)
-        body = rx["config_comment"].sub("", line)
-        m = rx["config_line"].match(body)
-        if m is None:
+        if (m := rx["config_line"].match(rx["config_comment"].sub("", line))) is None:
             out.append(line)
             continue
         *thing, key = m.group(1).lower().split(".")
@@ -177,11 +154,8 @@ def _answered(m: re.Match[str], data: PageFile, named: Callable[[str], bool]) ->
     answer = re.split(r"[.;!?\n]", rest, maxsplit=1)[0].split()
     if not answer or (not marked and len(answer) > data.short_answer):
         return m.group(0)
-    q = question.lower()
-    for filler in data.question_fillers:
-        if q.startswith(filler + " "):
-            question, q = question[len(filler) + 1:].strip(), q[len(filler) + 1:].strip()
-    asked = apply_rewrites(_page()[2]["wh"], question)
+    question = _page()[1]["filler"].sub("", question)      # "And the statue?"
+    asked = kn.apply_rewrites(_page()[2]["wh"], question)
     if asked == question and not named(question):
         return m.group(0)
     first = answer[0].lower().strip(",")
