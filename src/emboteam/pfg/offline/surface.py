@@ -33,6 +33,7 @@ from emboteam.pfg.offline.foreign import translate, warm_foreign
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
 from emboteam.pfg.offline.layout import Layout, Words, read_layout
 from emboteam.pfg.offline.morphology import edit_distance, singular, verb_lemma
+from emboteam.pfg.offline.page import read_page
 from emboteam.pfg.offline.regex_filter import needles
 from emboteam.pfg.offline.text import fold_accents, split_camel
 from emboteam.world.goals import Condition
@@ -508,6 +509,10 @@ def read_surface(text: str, scene_types: Iterable[str]) -> Surface:
     data = _data()[0]
     kinds: list[str] = []
     text = fold_accents(text)
+    paged = read_page(text, _bare, _is_noun, _nounish, re.compile(data.layout.bullet))
+    if paged != text:
+        kinds.append("page")
+        text = paged
     laid = read_layout(text, data.layout, _LIST_WORDS)
     if laid != text:
         kinds.append("layout")

@@ -1,0 +1,166 @@
+"""A page's shapes that are not sentences made plain clauses before reading, so the rest of
+the reader sees running text (the shapes are data: ``page.json``): an e-mail thread oldest
+first (the reply's corrections after what they correct; "X wrote:" lines go); a chat's or a
+script's speaker labels; a question and its answer ("TV? A: Off", "The light? Off.") as one
+clause; a bare heading ("- fridge") as the place of its items' dangling "in"; config lines
+(``soap_bar.home = drawer``) and code-like lines (``lamp.off()``, "lid ↓"); a report's
+future ("will be in a cabinet") as the state asked for.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from functools import cache
+
+from emboteam.pfg.offline import knowledge as kn
+
+
+class PageFile(kn.Strict):
+    """``data/page.json``: the patterns of each shape and the words they turn on."""
+
+    about: str = ""
+    quote: str
+    quote_header: str
+    speaker: str
+    speaker_lines: int
+    question: str
+    short_answer: int
+    question_fillers: tuple[str, ...]
+    question_words: tuple[str, ...]
+    question_words_max: int
+    wh: tuple[kn.Rewrite, ...]
+    answer_pronouns: tuple[str, ...]
+    answer_not_joined: tuple[str, ...]
+    dangling: str
+    pronoun_place: str
+    config_line: str
+    config_section: str
+    config_comment: str
+    config_lines: int
+    place_keys: tuple[str, ...]
+    not_keys: tuple[str, ...]
+    parts: tuple[str, ...]
+    code: tuple[kn.Rewrite, ...]
+    future: tuple[kn.Rewrite, ...]
+
+
+@cache
+def _page() -> tuple[PageFile, dict[str, re.Pattern[str]], dict[str, tuple[kn.CompiledRewrite, ...]]]:
+    data = kn.load("page.json", PageFile)
+    names = ("quote", "quote_header", "speaker", "question", "dangling", "pronoun_place",
+             "config_line", "config_section", "config_comment")
+    rx = {n: re.compile(getattr(data, n), re.M if n == "question" else 0) for n in names}
+    rx["filler"] = re.compile(r"^(?:" + "|".join(data.question_fillers) + r")\s+", re.I)
+    rx["joined"] = re.compile(r"\0[ \t]*(?:" + "|".join(data.answer_pronouns) + r")\b[ \t]*", re.I)
+    return data, rx, {n: kn.compile_rewrites(getattr(data, n)) for n in ("wh", "code", "future")}
+
+
+def read_page(text: str, bare: Callable[[str], bool], noun: Callable[[str], bool],
+              nounish: Callable[[str], bool], bullet: re.Pattern[str]) -> str:
+    """The text with its page shapes as plain clauses. ``bare``: a phrase only names things;
+    ``noun``: a word names a scene thing (a speaker's label does not); ``nounish``: a word
+    may be a noun; ``bullet``: a list item's opening."""
+    data, rx, rules = _page()
+
+    def named(question: str) -> bool:    # "TV", "Spare loo roll", "The light": no question's words
+        words = re.findall(r"[a-z']+", question.lower())
+        return 0 < len(words) <= data.question_words_max and nounish(words[-1]) \
+            and not any(w in data.question_words for w in words)
+
+    lines = _headings(_speakers(_thread(text.split("\n"), rx), rx, data, noun), rx, bare, bullet)
+    out = kn.apply_rewrites(rules["code"], "\n".join(_config(lines, rx, data, noun)))
+    out = rx["question"].sub(lambda m: _answered(m, data, named), out)
+    out = rx["joined"].sub("", out).replace("\0", "")     # the answer's "they" is the question's thing
+    return kn.apply_rewrites(rules["future"], out)
+
+
+def _thread(lines: list[str], rx: dict[str, re.Pattern[str]]) -> list[str]:
+    """An e-mail thread in the order it was written: the most quoted message first."""
+    depth = [len(re.sub(r"[^>]", "", m.group(1))) if (m := rx["quote"].match(x)) else 0 for x in lines]
+    if not any(depth):
+        return lines
+    bodies = [rx["quote"].sub("", x) for x in lines]
+    return [b for d in sorted(set(depth), reverse=True) for b, k in zip(bodies, depth, strict=True)
+            if k == d and not rx["quote_header"].match(b) and b.strip()]
+
+
+def _speakers(lines: list[str], rx: dict[str, re.Pattern[str]], data: PageFile,
+              noun: Callable[[str], bool]) -> list[str]:
+    """A chat log's or a script's lines without who says them (a label that names no
+    thing, on at least ``speaker_lines`` lines)."""
+    def who(line: str) -> bool:
+        m = rx["speaker"].match(line)
+        return m is not None and m.group(1).upper() not in {"Q", "A"} and not any(noun(w.lower()) for w in m.group(1).split())
+    if sum(map(who, lines)) < data.speaker_lines:
+        return lines
+    return [rx["speaker"].sub("", x, count=1) if who(x) else x for x in lines]
+
+
+def _headings(lines: list[str], rx: dict[str, re.Pattern[str]], bare: Callable[[str], bool],
+              bullet: re.Pattern[str]) -> list[str]:
+    """Items indented under a bare heading ("- fridge"): their dangling "in" and "next to
+    it" are the heading's place."""
+    out: list[str] = []
+    head, level = "", -1
+    for line in lines:
+        indent = len(line) - len(line.lstrip(" \t"))
+        item = bullet.sub("", line).strip()
+        if indent <= level or not line.strip():
+            head, level = "", -1
+        if head:
+            line = rx["pronoun_place"].sub(rf"\1 the {head}", rx["dangling"].sub(rf"\1 the {head}", line))
+        elif bullet.match(line) and item and not item.endswith(":") and bare(item):
+            head, level = re.sub(r"^(?:the|a|an) ", "", item.lower()), indent
+        out.append(line)
+    return out
+
+
+def _config(lines: list[str], rx: dict[str, re.Pattern[str]], data: PageFile,
+            noun: Callable[[str], bool]) -> list[str]:
+    """A config file's ``key = value`` lines as clauses: a place key's value is where the
+    thing goes ("soap bar → drawer"); a section names the owner of a part ("[shower]" over
+    "door = open") or the kind of an adjective ("[lights]" over "main = off")."""
+    if sum(bool(rx["config_line"].match(rx["config_comment"].sub("", x))) for x in lines) < data.config_lines:
+        return lines
+    out: list[str] = []
+    section = ""
+    for line in lines:
+        if m := rx["config_section"].match(line):
+            section = m.group(1).strip().lower()
+            continue
+        comment = rx["config_comment"].search(line)
+        if (m := rx["config_line"].match(rx["config_comment"].sub("", line))) is None:
+            out.append(line)
+            continue
+        *thing, key = m.group(1).lower().split(".")
+        value = m.group(2).replace("_", " ")
+        if not thing:
+            thing, key = [key], ""
+        name = " ".join(thing).replace("_", " ")
+        if section and " " not in name and noun(section.split()[-1]):   # "shower door", "main lights"
+            name = f"{section} {name}" if name in data.parts else f"{name} {section}"
+        said = (f"{name} → {value}" if key in data.place_keys else f"{name} not in the {value}"
+                if key in data.not_keys else f"{name} {value}")
+        out.append(said + (f" ({comment.group(1)})" if comment and comment.group(1) else "") + ".")
+    return out
+
+
+def _answered(m: re.Match[str], data: PageFile, named: Callable[[str], bool]) -> str:
+    """A question and the start of its answer as one clause's start, or as written when the
+    question is no thing's name or the answer has its own subject."""
+    lead, question, marked = m.group(1), m.group(2).strip(), m.group(3)
+    rest = m.string[m.end():]
+    answer = re.split(r"[.;!?\n]", rest, maxsplit=1)[0].split()
+    if not answer or (not marked and len(answer) > data.short_answer):
+        return m.group(0)
+    question = _page()[1]["filler"].sub("", question)      # "And the statue?"
+    asked = kn.apply_rewrites(_page()[2]["wh"], question)
+    if asked == question and not named(question):
+        return m.group(0)
+    first = answer[0].lower().strip(",")
+    if first in data.answer_not_joined:
+        return m.group(0)
+    if first in data.answer_pronouns:     # "The soap? A: They stay on the shelf"
+        return f"{lead}{asked} \0"
+    return f"{lead}{asked} "
