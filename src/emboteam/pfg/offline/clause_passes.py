@@ -532,7 +532,10 @@ def told_ahead(items: list[Item], clauses: list[Clause], parsed: list[ParsedClau
     if not cues:
         return silent
     first = items[cues[0][0]]
-    cued = next((k for k, c in enumerate(clauses) if any(i is first for i in c.items)), None)
+    # the clause holding the cue, or, when its first word became the link ("when I walk
+    # in, ..."), the first one holding a word after it
+    after = {id(i) for i in items[cues[0][0]:]}
+    cued = next((k for k, c in enumerate(clauses) if any(id(i) in after for i in c.items)), None)
     if cued is None:
         return silent
     if clauses[cued].items[0] is not first:

@@ -34,14 +34,14 @@ class ForceRule(Strict):
 
 
 #: the rewrite tables, in the order they apply
-RULES = ("cancel", "only", "litotes", "request")
+RULES = ("cancel", "only", "litotes", "request", "states")
 #: the cue tables: over their sentence, every sentence before, every one after; rule headers
 CUES = ("repeat_cues", "repeat_all_cues", "restore_headers", "rule_headers")
 
 
 class ForceFile(Strict):
     """``data/force.json``: named ``pieces``; double negations (``cancel``, each rule removes a
-    pair), ``only``, ``litotes``, ``request`` (questions and hedges); the cues of a past
+    pair), ``only``, ``litotes``, ``request`` (questions and hedges), ``states`` (kept and described states); the cues of a past
     arrangement to repeat and the forms they make wished ("was" -> "should be"); rule headers
     and what a described state after one becomes."""
 
@@ -51,6 +51,8 @@ class ForceFile(Strict):
     only: tuple[ForceRule, ...]
     litotes: tuple[ForceRule, ...]
     request: tuple[ForceRule, ...]
+    #: a described or kept state said plainly: code forms, "X is on, leave it", sarcasm's correction
+    states: tuple[ForceRule, ...] = ()
     repeat_cues: tuple[str, ...]
     repeat_all_cues: tuple[str, ...]
     restore_headers: tuple[str, ...]

@@ -63,6 +63,9 @@ def doubts(ctx: DoubtContext) -> list[Doubt]:
                or (i.verb is not None and i.verb.sense.act is Act.SWITCH_OFF)
                for n, i in enumerate(ctx.items[start:cue[0]], start=start)):
             continue    # "don't turn off the desk lamp, only the floor lamp"
+        if rule.kept == "after" and any((i.verb is not None and i.verb.sense.act in words.excepted_from)
+                                        or i.text in words.excepted_from_words for i in ctx.items[start:cue[0]]):
+            continue    # "everything goes in the drawers except the candle": an exception to a move
         if any(i.text in rule.not_after for i in ctx.items[max(start, cue[0] - words.reach):cue[0]]):
             continue    # "leave the candle alone": hands off it
         keep = _kept(ctx, start, end, cue, rule.kept, words)

@@ -16,6 +16,7 @@ from pydantic import Field, field_validator
 
 from emboteam.pfg.offline.knowledge import Strict as _Closed
 from emboteam.pfg.offline.knowledge import known_types, read
+from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.offline.tagger import Item
 
 RULE_WORDS_FILE = Path(__file__).with_name("rule_words.json")
@@ -93,6 +94,11 @@ class Exclusive(_Closed):
     #: words that, before the cue in its sentence, make "only" restrictive ("turn off
     #: only the floor lamp"): no exclusive purpose (a verb of switching off counts too)
     restrictive: list[str]
+    #: acts that, before an exception cue ("except", "apart from") in its sentence, make it an exception to that act
+    #: ("everything on the counter goes in the drawers except the candle"): no purpose of light
+    excepted_from: list[Act]
+    #: words that do the same without a verb ("desk cleared: all of it into the drawers, except ...")
+    excepted_from_words: list[str]
     reach: int = Field(6, ge=1, le=30)
 
     _known = field_validator("lights", "screens")(known_types)
