@@ -43,12 +43,14 @@ def load_place_roles(path: Path = PLACE_ROLES_FILE) -> PlaceRoles:
 
 def keeps_state(items: Sequence[Item], e: int) -> bool:
     """Whether a keep cue ending at ``e`` keeps a state, not a place: a state word follows
-    it that no place phrase follows ("stays shut", "stays open"; not "stays on the desk")."""
+    it that no place phrase follows ("stays shut", "stays open"; not "stays on the desk",
+    "stays cold in there": a state and a place)."""
     if e >= len(items) or items[e].state is None:
         return False
     nxt = items[e + 1] if e + 1 < len(items) else None
     return nxt is None or not (nxt.det or nxt.noun is not None or nxt.pron is not None
-                               or nxt.text in load_place_roles().place_after_state)
+                               or nxt.text in load_place_roles().place_after_state
+                               or nxt.text in load_mention_cues().place_preps)
 
 
 def state_kept(ctx: DoubtContext, k: int, end: int, cues: Sequence[SidedCue]) -> bool:
