@@ -58,6 +58,6 @@ def test_a_question_in_parentheses_is_an_aside() -> None:
 def test_the_cue_file_is_checked_at_load(tmp_path: Path) -> None:
     assert "there" in load_place_roles().place_after_state
     bad = tmp_path / "place_roles.json"
-    bad.write_text(json.dumps({"place_after_state": ["there"], "state_words": []}), encoding="utf-8")
+    bad.write_text(json.dumps({"place_after_state": ["there"], "describing_preps": ["on"], "state_words": []}), encoding="utf-8")
     with pytest.raises(KnowledgeDataError, match=r"place_roles\.json"):
         read_knowledge(bad, PlaceRoles)

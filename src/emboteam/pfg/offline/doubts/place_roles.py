@@ -33,6 +33,8 @@ class PlaceRoles(Strict):
     about: str = ""
     #: words that, right after a state word, make it a preposition of a place ("stays on there")
     place_after_state: list[str] = Field(min_length=1)
+    #: prepositions right after a receptacle that describe where it stands ("the box on the floor")
+    describing_preps: list[str] = Field(min_length=1)
 
 
 @cache
@@ -64,8 +66,8 @@ def _described_at(ctx: DoubtContext, k: int, places: frozenset[str]) -> bool:
     """Whether the mention at ``k`` is described by a place right after it ("the box on
     the floor") and no verb acts on it ("put the box on the floor" moves it)."""
     items = ctx.items
-    if k + 1 >= len(items) or items[k + 1].prep is None:
-        return False
+    if k + 1 >= len(items) or items[k + 1].prep is None or items[k + 1].text not in load_place_roles().describing_preps:
+        return False      # "the pot from the stove" ("that's already on"): where it comes from, kept
     after = next((m for m in range(k + 2, min(len(items), k + 5)) if ctx.named_types(items[m])), None)
     if after is None or not set(ctx.named_types(items[after])) & places:
         return False
