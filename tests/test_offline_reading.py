@@ -756,7 +756,7 @@ def test_reassurance_headings_and_means_leave_no_note(text: str, expected: set[s
 
 
 @pytest.mark.parametrize(("text", "fp", "expected"), [
-    ("Put the bar of soap on the side of the bath.", 404, {"inside(SoapBar, Bathtub)"}),
+    ("Put the bar of soap on the side of the bath.", 404, {"inside(SoapBar, BathtubBasin)"}),
     ("Keys and watch: into the cardboard box on the floor, then fold the box shut.", 201,
      {"inside(KeyChain, Box)", "inside(Watch, Box)", "closed(Box)"}),
     ("Toilet paper: off the floor and onto the holder. Cloth: out of the tub, onto the counter. Candle: lit.", 423,

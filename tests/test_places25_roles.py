@@ -1,7 +1,7 @@
 """A thing's places by role (issue 25, places25): a keep cue that a state word follows
 keeps the state, not the place; a receptacle that receives things, described by where it
-already stands, is named by that place (a landmark), not moved there; "tub" and "bath" name
-the Bathtub where the scene has one; a question in parentheses is an aside."""
+already stands, is named by that place (a landmark), not moved there; a question in
+parentheses is an aside."""
 
 from __future__ import annotations
 
@@ -28,11 +28,6 @@ def test_a_kept_state_is_no_kept_place(text: str, state: str) -> None:
 
 def test_a_keep_with_a_place_after_it_keeps_the_place() -> None:
     assert goal(read("The laptop stays on the desk.", 310)) == {"inside(Laptop, Desk)"}
-
-
-@pytest.mark.parametrize("word", ["tub", "bath", "bathtub"])
-def test_the_tub_is_the_bathtub_where_the_scene_has_one(word: str) -> None:
-    assert goal(read(f"Put the candle in the {word}.", 415)) == {"inside(Candle, Bathtub)"}
 
 
 def test_a_receptacle_described_by_where_it_stands_is_not_moved_there() -> None:
