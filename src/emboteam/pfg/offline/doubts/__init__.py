@@ -29,6 +29,7 @@ priors of ``priors.json`` (fitted by ``benchmarks/fit_reading_priors.py``).
 | device_state | :mod:`.device_state` (a device's end state in its own words: particles, calques, kept, purposes; ``state_words.json``) |
 | placed_instead | :mod:`.placed_instead` (a carried thing read as held or switched: placed where the words near it point) |
 | kept_place | :mod:`.kept_place` (a thing acted on with no place: the place its words keep or send it to, ``kept_place.json``) |
+| landmark_place | :mod:`.place_roles` (a receptacle that receives things, read as placed where it already stands: the place names it)
 | switch | :mod:`.switches` (a switch goal the other way; a named device, or its knob, switched: priors only) |
 
 The words of contents and exclusive are data: ``rule_words.json`` (:mod:`.rule_words`);
@@ -53,6 +54,7 @@ from emboteam.pfg.offline.doubts import (
     mention_cues,
     of_compound,
     others,
+    place_roles,
     placed_instead,
     resumed,
     scene_type,
@@ -91,6 +93,7 @@ def find_doubts(ctx: DoubtContext, priors: Priors | None = None) -> list[Doubt]:
              *of_compound.doubts(ctx), *scene_type.doubts(ctx),
              *device.doubts(ctx), *slices.doubts(ctx), *state.doubts(ctx, priors.state_swaps), *means.doubts(ctx),
              *instances.doubts(ctx), *others.doubts(ctx), *compare.doubts(ctx), *switches.doubts(ctx), *placed_instead.doubts(ctx),
+             *place_roles.doubts(ctx),
              *(d for d in reading_doubts(ctx) if d.kind != device_state.KIND)]
     return [d for d in found if len(d.choices) > 1]
 

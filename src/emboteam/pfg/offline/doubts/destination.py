@@ -37,7 +37,7 @@ from emboteam.pfg.offline.doubts.rule_words import Words, find, load_rule_words,
 from emboteam.pfg.offline.doubts.wants import placed
 from emboteam.pfg.offline.knowledge import read
 from emboteam.pfg.sentences import clause, type_name
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import load_catalogue, place_types
 from emboteam.world.goals import Predicate
 
 DESTINATION_CUES_FILE = Path(__file__).with_name("destination_cues.json")
@@ -134,7 +134,7 @@ def destination(ctx: DoubtContext, k: int, thing: str, hi: int | None = None) ->
     """The scene types of the receptacle the thing named at ``k`` goes in, by its window
     (up to ``hi``), the first the likeliest; none when its words say none (see the
     module's docstring)."""
-    data, cat, here = load_destination_cues(), load_catalogue(), present(ctx, thing)
+    data, cat, here = load_destination_cues(), load_catalogue(), place_types(tuple(present(ctx, thing)))
     lo, end = window(ctx, k, thing)
     end = end if hi is None else min(end, hi)
     # an excepted thing goes only where its own words send it, past a mark or a pronoun
@@ -175,7 +175,7 @@ def head_place(ctx: DoubtContext, k: int, thing: str) -> tuple[str, ...]:
     start = sentence_bounds(ctx.items, k)[0]
     if j <= start:
         return ()
-    cat, here = load_catalogue(), present(ctx, thing)
+    cat, here = load_catalogue(), place_types(tuple(present(ctx, thing)))
     for m in range(j - 1, start - 1, -1):
         types = fitting_first(thing, ctx.named_types(ctx.items[m]))
         if types and types[0] != thing and cat.can_place(thing, types[0]) and types[0] not in here \

@@ -44,6 +44,7 @@ from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.destination import destination, present
 from emboteam.pfg.offline.doubts.explained import LANDMARK, explanation
 from emboteam.pfg.offline.doubts.mention_words import load_mention_cues, segment
+from emboteam.pfg.offline.doubts.place_roles import keeps_state
 from emboteam.pfg.offline.doubts.rule_words import Words, find
 from emboteam.pfg.offline.doubts.wants import placed
 from emboteam.pfg.offline.knowledge import Strict, read
@@ -132,11 +133,11 @@ def _keep_cues() -> list[Words]:
 
 
 def _keep_cue(ctx: DoubtContext, lo: int, hi: int) -> bool:
-    """Whether a keep cue stands in [lo, hi) ("stays", "not moved", "do not take it from
-    ..."): this file's or one of ``mention_cues.json``'s said after the thing, not right
-    after a negation of its own ("it does not stay")."""
-    return any(ctx.items[s].neg or not any(i.neg for i in ctx.items[max(lo, s - 2):s])
-               for s, _ in find(ctx.items, lo, hi, _keep_cues()))
+    """Whether a keep cue of a place stands in [lo, hi) ("stays", "not moved", "do not take
+    it from ..."): this file's or one of ``mention_cues.json``'s said after the thing, not
+    right after a negation of its own ("it does not stay"), not keeping a state."""
+    return any((ctx.items[s].neg or not any(i.neg for i in ctx.items[max(lo, s - 2):s])) and not keeps_state(ctx.items, e)
+               for s, e in find(ctx.items, lo, hi, _keep_cues()))
 
 
 def _already(ctx: DoubtContext, lo: int, hi: int) -> bool:

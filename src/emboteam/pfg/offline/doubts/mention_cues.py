@@ -33,6 +33,7 @@ from emboteam.pfg.offline.doubts.mention_words import (
     side,
     sided,
 )
+from emboteam.pfg.offline.doubts.place_roles import state_kept
 from emboteam.pfg.offline.doubts.state_words import load_state_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed
 from emboteam.pfg.offline.tagger import Item
@@ -181,6 +182,8 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     as_is = sided(ctx, k, start, end, data.as_is)
     if keep == "after":
         goals = kept(ctx, thing, state, named, as_is)
+        if state is not None and state_kept(ctx, k, end, data.keep):      # "the laptop stays shut": not its place
+            goals = tuple(g for g in goals if g.predicate is not Predicate.inside)
         return ("keep", goals) if goals else None
     if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
         goals = kept(ctx, thing, state, named, as_is)
