@@ -1,7 +1,7 @@
 """Counts and conditions no one asked for (issue 25, round 61): a stated number is kept
 by a keep, a section mark counts nothing, an order of acts is no contradiction, and no
-goal comes from a word that names nothing asked (a real word is no far typo, "dark" is
-the lights, a phone mention is no switch)."""
+goal comes from a word that names nothing asked (a real word is no far typo, a phone
+mention is no switch)."""
 
 from __future__ import annotations
 
@@ -52,12 +52,3 @@ def test_a_phone_mentioned_is_not_switched_on() -> None:
     assert "switched_on(CellPhone)" not in goal(reading)
     assert all(r.label != "afford_switch" for c in reading.candidates for r in c.resolves)
 
-
-def test_dark_is_the_lights_not_the_blinds() -> None:
-    assert goal(read("Make it dark in here, I want to sleep", 301)) == {
-        "switched_off(DeskLamp)", "switched_off(LightSwitch)"}
-
-
-def test_sun_glare_still_closes_the_blinds() -> None:
-    # daylight is stopped by the blinds; "dark" alone is the lights
-    assert "closed(3 of Blinds)" in goal(read("the sun's blinding me, and the lamp is glaring", 226))

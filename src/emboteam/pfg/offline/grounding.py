@@ -344,6 +344,12 @@ class Grounder:
             raise GroundingError(f"{self.scene.floor_plan} has no lights to switch")
         return Ref("the lights", tuple(groups), True)
 
+    def every_instance(self, types: Iterable[str]) -> Ref | None:
+        """Every object of these types the scene has, one group per type (None if none)."""
+        groups = tuple((ObjectRef(types=(t,)), len(self.instances(t))) for t in types
+                       if self.instances(t))
+        return Ref("/".join(types), groups, True) if groups else None
+
     def all_that_are(self, stat: Stat) -> Ref:
         """"everything" that is on (``Stat.SWITCH``) or open (``Stat.OPEN``) now: every
         instance of each type with at least one such object."""

@@ -403,10 +403,13 @@ class Semantics:
             ("LightSwitch",), ("DeskLamp",), ("FloorLamp",)))
 
     def _lighting(self, bright: bool) -> list[Draft]:
-        """"make it dark": every light source off (the blinds only when said: no gold of
-        the development rounds closes them for "dark"); "make it bright": the main light
-        on (minimal sufficient)."""
-        return self._each(P.switched_on if bright else P.switched_off, self.g.light_sources(bright))
+        """"make it dark": every light source off and the blinds closed where the room has
+        them (daylight counts); "make it bright": the main light on (minimal sufficient)."""
+        out = self._each(P.switched_on if bright else P.switched_off, self.g.light_sources(bright))
+        blinds = self.g.every_instance(("Blinds",))
+        if not bright and blinds is not None:
+            out += self._each(P.closed, blinds)
+        return out
 
     def _everything(self, stat: Stat) -> list[Draft]:
         """"turn everything off", "close everything": every switchable object that is on
