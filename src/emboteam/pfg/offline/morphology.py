@@ -168,13 +168,13 @@ def is_english_word(word: str) -> bool:
 
 
 @cache
-def correct(word: str, nouns_only: bool = False, most: int = 2) -> str | None:
+def correct(word: str, nouns_only: bool = False) -> str | None:
     """The lexicon word a typo most likely stands for, or ``None``.
 
     Only words unknown to the lexicon and to the list of common English words are
     corrected, only into content words (nouns, verbs, states), and only when one candidate
     is strictly closest (ties are ambiguous: no guess). After a determiner only nouns
-    are candidates ("the bred" is bread, not brew). ``most``: at most this many edits.
+    are candidates ("the bred" is bread, not brew).
     """
     if word in lx.vocabulary() or not word.isalpha():
         return None
@@ -192,7 +192,7 @@ def correct(word: str, nouns_only: bool = False, most: int = 2) -> str | None:
     doubled = word + word[-1]
     if len(word) >= 3 and doubled in lx.VERBS and not nouns_only:
         return doubled      # "kil the lights": a doubled last letter typed once
-    limit = min(allowed_distance(word), most)
+    limit = allowed_distance(word)
     if limit == 0:
         return None
     return _closest(word, limit, nouns_only)

@@ -156,14 +156,10 @@ def _repair(words: list[str]) -> tuple[list[str], dict[int, str]]:
             # after a determiner ("the coach"), a verb starting a clause ("brake the egg");
             # elsewhere it is a word the parser does not need ("I keep losing my keys")
             slot = after_det or not out or out[-1] in PUNCT or out[-1] in _CLAUSE_OPENERS
-            common = is_english_word(w)
-            real = not slot and common
-            # in a slot, a real word is a typo one slip away ("the coach"), not two ("the
-            # weather" is no water)
-            most = 1 if common else 2
-            fix = unswap(w) or (None if real else correct(w, after_det, most))
+            real = not slot and is_english_word(w)
+            fix = unswap(w) or (None if real else correct(w, after_det))
             if fix is None and not real and w.endswith("s"):
-                stem = correct(w[:-1], after_det, most)
+                stem = correct(w[:-1], after_det)
                 fix = stem + "s" if stem is not None else None
             if fix is not None and verb_lemma(w) is None:
                 fixed[len(out)] = w
