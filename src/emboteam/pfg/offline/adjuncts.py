@@ -47,6 +47,15 @@ def _time_run(items: list[Item], k: int) -> int:
     return end if end > m else k
 
 
+def _ends_sentence(items: list[Item], k: int, end: int) -> bool:
+    """"open a drawer and shut it afterwards": a lone sequence word that ends its sentence
+    orders its clause (:func:`.clauses.segment`), it says no time."""
+    if end != k + 1 or items[k].seq is None:
+        return False
+    rest = next((j for j in range(end, len(items)) if items[j].punct in (".", "!", "?", ";")), len(items))
+    return not any(i.is_content() for i in items[end:rest])
+
+
 def drop_time_adjuncts(items: list[Item]) -> list[Item]:
     """The items without their time adjuncts (see the module docstring)."""
     out: list[Item] = []
@@ -58,7 +67,7 @@ def drop_time_adjuncts(items: list[Item]) -> list[Item]:
             continue
         start = k + 1 if _INTRODUCED.at(items, k) else k
         end = _time_run(items, start)
-        if end > start and (end >= len(items) or items[end].text != "of"):
+        if end > start and (end >= len(items) or items[end].text != "of") and not _ends_sentence(items, k, end):
             k = end        # "the morning of ..." aside: the whole adjunct goes
             continue
         out.append(items[k])

@@ -337,6 +337,14 @@ def _ordinal_step(sentence: list[Item], j: int) -> bool:
         and verb_here(sentence, _after_commas(sentence, j + 1))
 
 
+def _trailing_sequence(sentence: list[Item], j: int) -> bool:
+    """"open a drawer and shut it after(wards)": a sequence word that ends its sentence
+    orders its own clause after the one before, as a "then" before it would."""
+    it = sentence[j]
+    return (it.seq is not None or it.text == "after") and not any(
+        x.is_content() or x.pron is not None or x.copula for x in sentence[j + 1:])
+
+
 def _sequence_marker(sentence: list[Item], j: int, current: Clause) -> _Cut | None:
     if sentence[j].seq is not None:
         return _Cut(THEN, 1)
@@ -524,6 +532,10 @@ def segment(items: list[Item]) -> list[Clause]:
                 continue
             if _ordinal_step(sentence, j) and not _content(current.items):
                 j = _after_commas(sentence, j + 1)
+                continue
+            if _content(current.items) and _trailing_sequence(sentence, j):
+                current.link = THEN if current.link == AND else current.link
+                j += 1
                 continue
             cut = _boundary(sentence, j, current)
             if cut.link is None:

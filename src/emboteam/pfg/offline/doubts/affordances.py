@@ -1,7 +1,8 @@
 """The goals the scene allows for a thing, by what it affords: what an unexplained
 mention proposes when no word of its own stretch says what to do with it.
 
-- a thing that switches: the switch state it is not in now (all of its type off -> on);
+- a thing that switches: the switch state it is not in now (all of its type off -> on),
+  unless it is switched only to be used (a phone, a laptop: ``not_for``);
 - a thing that opens (not a container, whose opening is a means): the state it is not in;
 - a thing that is picked up: placed in one of the places named near it (within ``reach``
   words, nearest first, at most ``most``), the destinations the instruction mentions.
@@ -30,6 +31,8 @@ AFFORDANCES_FILE = Path(__file__).with_name("affordances.json")
 class _Switch(BaseModel):
     property: str
     label: str
+    #: types whose switch is a means of using them, never asked for by a bare mention
+    not_for: list[str] = Field(default_factory=list)
 
 
 class _Open(BaseModel):
@@ -89,7 +92,7 @@ def proposals(ctx: DoubtContext, k: int, thing: str) -> list[tuple[str, Conditio
         # a place where it is already asks nothing ("the remote's all the way over on the desk")
         goals = [g for p in places_near(ctx, k, thing, data.place) if not check_condition(g := placed(thing, p), ctx.state).holds]
         out += [(data.place.label, g) for g in goals[:data.place.most]]
-    if data.switch.property in props and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
+    if data.switch.property in props and thing not in data.switch.not_for and (p := _flip(ctx, thing, "is_on", Predicate.switched_on,
                                                      Predicate.switched_off)) is not None:
         out.append((data.switch.label, one_object(p, thing)))
     if data.open.property in props and not props & set(data.open.not_with) and (

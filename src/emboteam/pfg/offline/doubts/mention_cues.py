@@ -23,6 +23,7 @@ from collections.abc import Mapping, Sequence
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.context import type_props as _props
+from emboteam.pfg.offline.doubts.counts import counted, implied, said_count, said_number
 from emboteam.pfg.offline.doubts.destination import destination
 from emboteam.pfg.offline.doubts.explained import CHATTER, NEGATED, explanation
 from emboteam.pfg.offline.doubts.mention_words import (
@@ -145,11 +146,12 @@ def _kept_switch(ctx: DoubtContext, thing: str, is_on: bool, as_is: bool) -> Pre
 
 
 def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[str, int] | None = None,
-         as_is: bool = False) -> tuple[Condition, ...]:
+         as_is: bool = False, count: int | None = None) -> tuple[Condition, ...]:
     """The thing as it is: its start place (a thing that is picked up; of several, the one
     in the receptacle named nearest to it, ``named``: type -> distance, "the toilet paper
-    in the bin is fine") and the state its words name ("the candle stays and gets lit"),
-    else its start switch or open state."""
+    in the bin is fine"; ``count`` of them where they share it, "the two vases stay") and
+    the state its words name ("the candle stays and gets lit"), else its start switch or
+    open state."""
     near = named or {}
     objs = sorted(ctx.state.of_type(thing), key=lambda o: near.get(ctx.state.obj(o.parent).type, 99)
                   if o.parent is not None else 99)
@@ -158,7 +160,9 @@ def kept(ctx: DoubtContext, thing: str, state: Predicate | None, named: Mapping[
     o, props = objs[0], _props(thing)
     out = [one_object(state, thing)] if state is not None else []
     if "pickupable" in props and o.parent is not None:
-        out.append(placed(thing, ctx.state.obj(o.parent).type))
+        where = ctx.state.obj(o.parent).type
+        same = [x for x in objs[: count or 1] if x.parent is not None and ctx.state.obj(x.parent).type == where]
+        out.append(counted(placed(thing, where), len(same)))
     elif state is None and "toggleable" in props:
         out.append(one_object(_kept_switch(ctx, thing, o.is_on, as_is), thing))
     elif state is None and "openable" in props:
@@ -180,15 +184,17 @@ def _proposal(ctx: DoubtContext, k: int, thing: str, negated: bool) -> tuple[str
     # the state of the clause before ("lights off, the desk lamp can stay")
     state = _state(ctx, k, start, end, thing, before=keep is None)
     as_is = sided(ctx, k, start, end, data.as_is)
+    count = said_count(ctx, k, thing)
     if keep == "after":
-        goals = kept(ctx, thing, state, named, as_is)
+        goals = kept(ctx, thing, state, named, as_is, count)
         if state is not None and state_kept(ctx, k, end, data.keep):      # "the laptop stays shut": not its place
             goals = tuple(g for g in goals if g.predicate is not Predicate.inside)
         return ("keep", goals) if goals else None
     if keep == "before":      # "leave the lamp on", "leave the phone on the bed": a place named is where it goes
-        goals = kept(ctx, thing, state, named, as_is)
+        goals = kept(ctx, thing, state, named, as_is, count)
         if there := destination(ctx, k, thing, end):
-            goals = (*(g for g in goals if g.predicate is not Predicate.inside), placed(thing, there[0]))
+            goals = (*(g for g in goals if g.predicate is not Predicate.inside),
+                     counted(placed(thing, there[0]), said_number(ctx, k)))
         return ("leave", goals) if goals else None
     if negated:
         return None      # "not the lamp on": only a keeping cue speaks past a negation
@@ -205,7 +211,7 @@ def _choice(ctx: DoubtContext, thing: str, label: str, goals: tuple[Condition, .
     if label not in ("keep", "leave"):
         return None if thing in ctx.goal_types() else Choice(label, _how(thing, goals), add=goals)
     mine = [c for c in ctx.goals if thing in ref_types(c.subject)]
-    add = tuple(g for g in goals if g not in mine)
+    add = tuple(g for g in goals if not implied(g, mine))
     families = [f for f in _FAMILIES if any(g.predicate in f for g in add)]
     clash = tuple(c for c in mine if any(c.predicate in f for f in families))
     if not add or any(c.predicate is not Predicate.inside or label != "keep" for c in clash):

@@ -16,6 +16,7 @@ from __future__ import annotations
 from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts import affordances
 from emboteam.pfg.offline.doubts.context import DoubtContext
+from emboteam.pfg.offline.doubts.counts import counted, said_count
 from emboteam.pfg.offline.doubts.destination import (
     destination,
     head_place,
@@ -77,16 +78,16 @@ def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condi
     lo, hi = window(ctx, k, thing)
     if any(i.text in CORRECTIONS and i.text != "no" for i in ctx.items[lo:hi]) or find(ctx.items, lo, hi, data.described):
         return None      # "in the drawer - sorry, the box": the correction rules' (corrections.py)
-    said = _count(ctx, k, thing)
+    said = said_count(ctx, k, thing)
     if find(ctx.items, lo, min(hi, k + 1 + data.keep_reach), data.keep):
         here = sorted(present(ctx, thing))
-        return (KEEP, (_counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
+        return (KEEP, (counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
     dest = destination(ctx, k, thing, hi) or head_place(ctx, k, thing)
     if not dest:
         return None
     state = said_state(ctx, k, hi, thing) or _changed(ctx, lo, hi, thing)
     pieces = load_catalogue().slice_product(thing) if state is not None and state.predicate is Predicate.sliced else None
-    goal = _counted(placed(pieces[0] if pieces else thing, dest[0]), said)     # "the apple cut up on a plate"
+    goal = counted(placed(pieces[0] if pieces else thing, dest[0]), said)     # "the apple cut up on a plate"
     return PLACE, (goal,) if state is None else (state, goal)
 
 
@@ -98,21 +99,6 @@ _CHANGES = (Predicate.hot, Predicate.cold, Predicate.sliced, Predicate.cooked, P
 def _changed(ctx: DoubtContext, lo: int, hi: int, thing: str) -> Condition | None:
     pred = next((p for i in ctx.items[lo:hi] if (p := asked_predicate(i)) in _CHANGES), None)
     return None if pred is None else one_object(pred, thing)
-
-
-def _count(ctx: DoubtContext, k: int, thing: str) -> int | None:
-    """How many the mention names: its number ("both vases are up on the dresser"), or
-    every one the scene has for a plural ("bats are kept on my bedside table")."""
-    said = ctx.items[k - 1].number if k > 0 else None
-    if isinstance(said, int):
-        return said
-    noun = ctx.items[k].noun
-    return len(list(ctx.state.of_type(thing))) if noun is not None and noun.plural else None
-
-
-def _counted(goal: Condition, said: object) -> Condition:
-    return goal.model_copy(update={"count": said}) if isinstance(said, int) and said > 1 else goal
-
 
 
 def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doubt]:
