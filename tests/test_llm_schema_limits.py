@@ -22,7 +22,7 @@ from emboteam.llm.openai_backend import _UNPORTABLE, strict_subset
 from emboteam.pfg.action_lists import action_lists_schema
 from emboteam.pfg.hybrid import review_schema as hybrid_review_schema
 from emboteam.pfg.llm_frontend import LLMFrontend
-from emboteam.pfg.schema import COUNT_MAX, DESCRIPTION_MAX, SUBJECT_TYPES_MAX, SceneVocabulary
+from emboteam.pfg.schema import COUNT_MAX, DESCRIPTION_MAX, MAX_SUBTASKS, SUBJECT_TYPES_MAX, SceneVocabulary
 from emboteam.pfg.taskspec import Subtask, TaskSpec
 from emboteam.world.goals import Condition
 from emboteam.world.robots import RobotProfile
@@ -71,8 +71,8 @@ def test_every_bound_is_stated_in_its_description(scene1: Scene, state1: WorldSt
 
 def test_the_system_prompt_states_the_answer_limits() -> None:
     text = LLMFrontend(cast(LLMClient, None)).system_text()
-    assert "over 12 subtasks, 6 conditions" in text  # the defaults, as the schema holds them
-    for number in (12, 6, SUBJECT_TYPES_MAX, COUNT_MAX, DESCRIPTION_MAX):
+    assert f"over {MAX_SUBTASKS} subtasks, 6 conditions" in text  # the defaults, as the schema holds them
+    for number in (MAX_SUBTASKS, 6, SUBJECT_TYPES_MAX, COUNT_MAX, DESCRIPTION_MAX):
         assert str(number) in text
     assert "$" not in text  # every placeholder filled
     assert "null: the planner chooses and may combine members" in text  # what robot: null means

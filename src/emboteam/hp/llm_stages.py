@@ -31,7 +31,13 @@ from emboteam.pfg.fewshot import example_subject_types
 from emboteam.pfg.focus import focus_types, spec_types
 from emboteam.pfg.llm_frontend import LLMFrontend, answer_token_cap, checked_types, quote_instruction
 from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene, render_team
-from emboteam.pfg.schema import SceneVocabulary, taskspec_from_answer, taskspec_schema, taskspec_to_answer
+from emboteam.pfg.schema import (
+    MAX_SUBTASKS,
+    SceneVocabulary,
+    taskspec_from_answer,
+    taskspec_schema,
+    taskspec_to_answer,
+)
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.robots import RobotProfile
 from emboteam.world.scene import Scene
@@ -62,7 +68,7 @@ class SpecReview(BaseModel):
     rejected: str | None = None
 
 
-def review_schema(vocab: SceneVocabulary, spec: TaskSpec, *, max_subtasks: int = 12) -> dict[str, Any]:
+def review_schema(vocab: SceneVocabulary, spec: TaskSpec, *, max_subtasks: int = MAX_SUBTASKS) -> dict[str, Any]:
     subtasks = taskspec_schema(vocab, max_subtasks=max_subtasks,
                                extra_ids=[s.id for s in spec.subtasks])["properties"]["subtasks"]
     return {

@@ -36,6 +36,7 @@ from emboteam.pfg.prompts import GOAL_SKILLS, load_prompt, render, render_scene,
 from emboteam.pfg.schema import (
     COUNT_MAX,
     DESCRIPTION_MAX,
+    MAX_SUBTASKS,
     SUBJECT_TYPES_MAX,
     SceneVocabulary,
     clarification_from_answer,
@@ -67,7 +68,8 @@ NEEDED_SUBTASKS = 6
 def answer_token_cap(subtasks: int = NEEDED_SUBTASKS) -> int:
     """Completion tokens a valid answer of ``subtasks`` one-condition subtasks needs.
 
-    The schema allows more (12 subtasks of up to 6 conditions): only a model that loops,
+    The schema allows more (:data:`~emboteam.pfg.schema.MAX_SUBTASKS` subtasks of up to 6
+    conditions): only a model that loops,
     repeating a subtask until the schema's limit, comes near it. On a 2-core CPU every
     token costs 0.1-1 s, so the cap, not the schema, bounds a looping answer (the
     recorded 531-token loop took 43 min); the cut-off answer is fed back like any other.
@@ -121,7 +123,7 @@ class LLMFrontend:
     name = "llm"
     stage = "pfg"
 
-    def __init__(self, client: LLMClient, *, fewshot: int = 1, repair_rounds: int = 2, max_subtasks: int = 12,
+    def __init__(self, client: LLMClient, *, fewshot: int = 1, repair_rounds: int = 2, max_subtasks: int = MAX_SUBTASKS,
                  max_conditions: int = 6, max_tokens: int | None = None, seed: int = 0, focus: bool = True,
                  clarify: bool = True, avoid_set: str = "") -> None:
         self.client = client

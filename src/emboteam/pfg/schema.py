@@ -49,6 +49,11 @@ DESCRIPTION_MAX = 80
 SUBJECT_TYPES_MAX = 6
 #: how many distinct objects one condition may ask for ("close all the cabinets": FloorPlan9 has 28)
 COUNT_MAX = 30
+#: subtasks one answer may hold: the longest right answer in the development corpus (one
+#: condition a subtask, as the worked examples are written) has 15 (round 63's harder tasks
+#: have 12-15; 12 refused nine of its forty right answers); the completion cap, not this
+#: bound, stops a model that loops (:func:`emboteam.pfg.llm_frontend.answer_token_cap`)
+MAX_SUBTASKS = 20
 
 
 @dataclass(frozen=True)
@@ -128,7 +133,7 @@ def clarification_schema() -> dict[str, Any]:
     }, {"type": "null"}]}
 
 
-def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_conditions: int = 6,
+def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = MAX_SUBTASKS, max_conditions: int = 6,
                     extra_ids: Sequence[str] = (), min_items: int = 1) -> dict[str, Any]:
     """The list of subtasks (shared by the decomposition and the review answers)."""
     ids = list(dict.fromkeys([*subtask_ids(max_subtasks), *extra_ids]))
@@ -154,7 +159,7 @@ def subtasks_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_condi
     }
 
 
-def taskspec_schema(vocab: SceneVocabulary, *, max_subtasks: int = 12, max_conditions: int = 6,
+def taskspec_schema(vocab: SceneVocabulary, *, max_subtasks: int = MAX_SUBTASKS, max_conditions: int = 6,
                     extra_ids: Sequence[str] = (), clarify: bool = False) -> dict[str, Any]:
     """The answer schema of a decomposition over this scene and team. Subtask ids are
     ``s1..s<max_subtasks>`` plus ``extra_ids`` (those of a spec under review). With
