@@ -149,8 +149,10 @@ def test_ctrl_c_says_what_is_saved_and_how_to_resume(tmp_path: Path) -> None:
     os.killpg(proc.pid, signal.SIGINT)  # what Ctrl-C does: the whole foreground group
     proc.wait(timeout=60)
     reader.join(timeout=30)  # stderr ends when every process holding it has ended
-    assert proc.returncode == 130
     text = "".join(lines)
+    # once (CI, 2026-12-07, load 2-5) this run exited 70, an internal error, not reproduced
+    # since: the message shows which error it was
+    assert proc.returncode == 130, text[-2000:]
     assert "Traceback" not in text and "leaked semaphore" not in text
     last = [line for line in lines if line.strip()][-1]
     m = re.fullmatch(rf"error: interrupted: (\d+) of {TINY_EPISODES} episodes are saved in (\S+); continue with: (.+)\n", last)
