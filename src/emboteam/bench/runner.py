@@ -524,8 +524,19 @@ def _run_pending(config: BenchConfig, pending: list[Job], episode_fn: EpisodeFn,
                 for job, result in executor.wait():
                     _record(store, out_dir, job, result)
                     bar.finished(job, result.episode)
-    finally:
+    except BaseException:
+        _close_abandoned(executor)
+        raise
+    executor.close()
+
+
+def _close_abandoned(executor: JobExecutor) -> None:
+    """Stop the workers of a run an error or Ctrl-C ended. A failure to stop them is logged,
+    not raised: it would replace the error the user must see (Ctrl-C exiting 70, not 130)."""
+    try:
         executor.close()
+    except Exception:
+        log.warning("the benchmark's workers did not stop cleanly", exc_info=True)
 
 
 def _record(store: ResultStore, out_dir: Path, job: Job, result: JobResult) -> None:
