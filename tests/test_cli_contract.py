@@ -166,6 +166,30 @@ def test_ctrl_c_says_what_is_saved_and_how_to_resume(tmp_path: Path) -> None:
     assert one_object(done.stdout)["n"] == TINY_EPISODES
 
 
+_INTERRUPT_WHILE_LOADING = """
+import sys
+
+class CtrlC:  # Ctrl-C landing while the CLI's libraries load, as it does in the first second
+    def find_spec(self, name, path=None, target=None):
+        if name == "emboteam.cli":
+            raise KeyboardInterrupt
+
+sys.meta_path.insert(0, CtrlC())
+sys.argv = ["emboteam", "tasks", "--suite", "mace-thor", "--json"]
+from emboteam.entry import main
+main()
+"""
+
+
+def test_ctrl_c_while_the_cli_loads_is_one_line_not_a_traceback() -> None:
+    proc = subprocess.run([sys.executable, "-c", _INTERRUPT_WHILE_LOADING], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 130
+    assert proc.stderr == "error: interrupted\n"
+    assert one_object(proc.stdout) == {"success": False, "error": "interrupted", "error_type": "KeyboardInterrupt",
+                                       "exit_code": 130}
+
+
 def test_sigkill_leaves_no_leaked_semaphore_warning(tmp_path: Path) -> None:
     proc, lines, reader = _bench(tmp_path, tmp_path / "run")
     _wait_for_episode(lines)

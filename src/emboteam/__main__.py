@@ -1,7 +1,7 @@
 """``python -m emboteam``: the same command line as the ``emboteam`` script, for
 environments where the script is not on PATH."""
 
-from emboteam.cli import main
+from emboteam.entry import main
 
 if __name__ == "__main__":
     main()
