@@ -141,3 +141,14 @@ def test_an_unknown_device_type_names_the_file_and_entry(tmp_path: Path) -> None
 def test_a_misspelt_field_is_an_error_not_ignored(tmp_path: Path) -> None:
     with pytest.raises(KnowledgeDataError, match=r"rule_words\.json"):
         read_data(_broken(tmp_path, {"quantifers": ["everything"]}, "contents"), RuleWords)
+
+
+def test_a_phrase_list_built_for_one_search_is_never_taken_for_an_earlier_one() -> None:
+    # lists built for a call are freed after it and their id() reused by the next list: a
+    # search once found the earlier list's phrases, so readings depended on what ran before
+    from emboteam.pfg.offline.doubts.rule_words import find
+
+    items = tag("the lamp stays on")
+    assert find(items, 0, len(items), [["lamp"]]) == [(1, 2)]
+    assert find(items, 0, len(items), [["stays"]]) == [(2, 3)]
+    assert find(items, 0, len(items), [["on"], ["the"]]) == [(0, 1), (3, 4)]

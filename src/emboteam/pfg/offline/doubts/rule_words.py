@@ -191,18 +191,21 @@ def starts_at(items: Sequence[Item], k: int, words: Words) -> bool:
     return k + len(words) <= len(items) and all(items[k + i].text == w for i, w in enumerate(words))
 
 
-#: phrase list (by identity: the loaded file's lists live as long as the process) -> its
-#: phrases by first word, so that a search looks only at the phrases a token can start
-_BY_FIRST: dict[int, dict[str, list[Words]]] = {}
+#: phrase list (by its words) -> its phrases by first word, so that a search looks only at
+#: the phrases a token can start. Keyed by value, not by id(): callers also pass lists built
+#: for the call, and a freed list's id is reused by the next one, which then found the old
+#: list's phrases (readings that depended on what ran before in the process).
+_BY_FIRST: dict[tuple[tuple[str, ...], ...], dict[str, list[Words]]] = {}
 
 
 def _by_first(phrases: Sequence[Words]) -> dict[str, list[Words]]:
-    index = _BY_FIRST.get(id(phrases))
+    key = tuple(tuple(words) for words in phrases)
+    index = _BY_FIRST.get(key)
     if index is None:
         index = {}
         for words in phrases:
             index.setdefault(words[0], []).append(words)
-        _BY_FIRST[id(phrases)] = index
+        _BY_FIRST[key] = index
     return index
 
 
