@@ -33,12 +33,12 @@ from emboteam.pfg.candidates import AS_READ, Choice, Doubt
 from emboteam.pfg.offline.doubts.context import DoubtContext, ref_types
 from emboteam.pfg.offline.doubts.context import type_props as _props
 from emboteam.pfg.offline.doubts.destination import destination, led, linked
-from emboteam.pfg.offline.doubts.properties import alternatives, properties_in
+from emboteam.pfg.offline.doubts.properties import Picked, Test, alternatives, properties_in
 from emboteam.pfg.offline.doubts.rule_words import Contents, find, load_rule_words, sentence_bounds
 from emboteam.pfg.offline.doubts.wants import one_object, placed
 from emboteam.pfg.offline.morphology import verb_lemma
 from emboteam.pfg.sentences import type_name
-from emboteam.world.catalogue import load_catalogue
+from emboteam.world.catalogue import load_catalogue, place_types
 from emboteam.world.goals import Condition, Predicate
 from emboteam.world.state import ObjectState
 
@@ -85,9 +85,9 @@ def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, 
     named last before."""
     emptying = _emptying(ctx.items[k].text, words)
     for j in range(k + 1, min(end, k + 3 + 3 * _remainder(ctx, k, words))):     # "the rest of what's on it"
-        if ctx.items[j].text in words.pronoun_places and \
-                (emptying or ctx.items[j - 1].text in words.source_preps
-                 or (j == k + 1 and ctx.items[j].text in words.pronoun_places_after)):
+        if ctx.items[j].text in words.pronoun_sources or (ctx.items[j].text in words.pronoun_places and (
+                emptying or ctx.items[j - 1].text in words.source_preps
+                or (j == k + 1 and ctx.items[j].text in words.pronoun_places_after))):
             # what is left of the place an emptying verb named before ("clear that sofa:
             # ..., and the rest of what's on it")
             emptied = [found for e in _triggers(ctx, words) if e < k and _emptying(ctx.items[e].text, words)
@@ -95,7 +95,7 @@ def _source(ctx: DoubtContext, k: int, end: int, words: Contents) -> tuple[int, 
             return emptied[-1] if emptied else _place_before(ctx, k, words)
     for m in range(k + 1, min(end, k + words.reach)):
         types = _named(ctx, m)
-        if types:
+        if types and not _is_class(ctx, m):
             if "receptacle" not in _props(types[0]):
                 return None     # "all three vases on the counter": things, not contents
             lead = [i.text for i in ctx.items[max(k + 1, m - 2):m]]
@@ -109,16 +109,57 @@ def _remainder(ctx: DoubtContext, k: int, words: Contents) -> bool:
     return any(i.text in words.remainder for i in ctx.items[k:k + 2])
 
 
+def _aside(ctx: DoubtContext, j: int, end: int) -> set[int]:
+    """The things an aside right after the quantified phrase lists as examples of the set
+    ("everything in it - the cloth, the soap, the whole shebang - goes to the counter"):
+    between two marks (a dash, a bracket; not a colon's list: "clear the desk: the pen goes
+    in the drawer") up to the phrase's verb, no place a cue leads to."""
+    while j < end and ctx.items[j].punct is None and ctx.items[j].verb is None and not ctx.named_types(ctx.items[j]):
+        j += 1
+    if j >= end or ctx.items[j].punct != ",":
+        return set()
+    out: set[int] = set()
+    for m in range(j + 1, end):
+        item = ctx.items[m]
+        if item.verb is not None and item.noun is None:     # closed by a mark after the last thing
+            return out if out and any(i.punct is not None for i in ctx.items[max(out) + 1:m]) else set()
+        types = ctx.named_types(item)
+        if types and (led(ctx, m) is not None or "pickupable" not in _props(types[0])):
+            break
+        if types:
+            out.add(m)
+    return set()
+
+
 def _span_end(ctx: DoubtContext, j: int, end: int, words: Contents) -> int:
     """Where an excepted list ends: a verb, a sequence word or the sentence's end
-    (marks between the things do not end it)."""
+    (marks between the things do not end it); a link word right after the excluder is a
+    determiner ("except that bar of soap")."""
+    first = j
     while j < end:
         item = ctx.items[j]
+        if item.verb is not None and item.noun is None and j > first and ctx.items[j - 1].punct is not None:
+            # an aside between marks with the list going on after it ("except the candle
+            # (lit, please) and the soap bottle")
+            resume = next((n + 1 for n in range(j + 1, min(end, j + 4)) if ctx.items[n].punct is not None
+                           and n + 1 < end and ctx.items[n + 1].conj), None)
+            if resume is not None:
+                j = resume
+                continue
         if item.seq is not None or (item.verb is not None and item.noun is None) \
-                or item.text in words.own_place_links:
+                or (item.text in words.own_place_links and j > first):
             return j
         j += 1
     return end
+
+
+def _excluding(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[tuple[int, int]]:
+    """The excluders between ``start`` and ``end``; not a "not" after a copula, which says
+    what a named thing is not ("the sponge is not food"), not what is left out ("anything
+    that isn't a pillow")."""
+    return [(b, e) for b, e in find(ctx.items, start, end, words.excluders)
+            if not (b > 1 and ctx.items[b].text == "not" and ctx.items[b - 1].text in words.copulas
+                    and ctx.named_types(ctx.items[b - 2]))]
 
 
 def _excepted(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[tuple[int, tuple[str, ...]]]:
@@ -126,7 +167,7 @@ def _excepted(ctx: DoubtContext, start: int, end: int, words: Contents) -> list[
     watch", "all but the mug and the phone") or just before a post-positive one ("the
     knife excepted"); every pickupable type the word may name ("the dishes")."""
     spots: list[tuple[int, tuple[str, ...]]] = []
-    for _, after in find(ctx.items, start, end, words.excluders):
+    for _, after in _excluding(ctx, start, end, words):
         stop = _span_end(ctx, after, end, words)
         spots += [(m, ctx.named_types(ctx.items[m], verbs_too=True)) for m in range(after, stop)]
     for at, _ in find(ctx.items, start, end, words.post_excluders):
@@ -172,10 +213,13 @@ def _destination(ctx: DoubtContext, k: int, src_at: int, end: int, source: str,
     return None
 
 
-def _holders(ctx: DoubtContext, source: str) -> list[ObjectState]:
-    """The instances of the source type, those holding most pickupable things first."""
+def _holders(ctx: DoubtContext, source: str, kinds: frozenset[str] | None = None) -> list[ObjectState]:
+    """The instances of the source type, those holding most pickupable things first; a
+    sink or a tub is also its basin ("everything in the sink": on the sink or in its basin),
+    of ``kinds`` when the word names only one of them ("in the basin")."""
     held = Counter(o.parent for o in ctx.state.objects.values() if o.parent is not None and o.has("pickupable"))
-    objs = [o for o in ctx.state.of_type(source) if held[o.id]]
+    objs = [o for t in sorted(place_types((source,)) if kinds is None else kinds)
+            for o in ctx.state.of_type(t) if held[o.id]]
     return sorted(objs, key=lambda o: -held[o.id])
 
 
@@ -184,20 +228,33 @@ def _source_sets(ctx: DoubtContext, src_at: int, source: str, excepted: set[str]
     each instance that holds something, as alternatives, those holding more of the
     excepted things first ("everything on the TV stand except the TV": the TV's stand),
     then the fuller ones."""
-    holders = _holders(ctx, source)
+    holders = _holders(ctx, source, frozenset({source, *(set(_named(ctx, src_at)) & place_types((source,)))}))
     item = ctx.items[src_at]
     if len(holders) <= 1 or (item.noun is not None and item.noun.plural):
         return [holders] if holders else []
+    # a sink and its basin are one place
+    ids = {h.id for h in holders}
+    groups = [[h, *(b for b in holders if b.parent == h.id)] for h in holders if h.parent not in ids]
 
-    def excepted_there(h: ObjectState) -> int:
-        return len({o.type for o in ctx.state.objects.values() if o.parent == h.id} & excepted)
-    return [[h] for h in sorted(holders, key=lambda h: -excepted_there(h))[:MAX_SOURCES]]
+    def excepted_there(group: list[ObjectState]) -> int:
+        here = {h.id for h in group}
+        return len({o.type for o in ctx.state.objects.values() if o.parent in here} & excepted)
+    return sorted(groups, key=lambda g: -excepted_there(g))[:MAX_SOURCES]
 
 
 def _inside(ctx: DoubtContext, holders: Sequence[ObjectState]) -> list[str]:
     ids = {h.id for h in holders}
     return [o.id for o in ctx.state.objects.values()
             if o.parent in ids and o.has("pickupable")]
+
+
+def _now(ctx: DoubtContext, type_: str, source: str) -> str:
+    """Where an excepted thing is now: the source's instance holding it (the sink, not
+    its basin, for a sponge on the sink's edge), else the source."""
+    cat = load_catalogue()
+    here = {ctx.state.obj(o.parent).type for o in ctx.state.objects.values()
+            if (cat.source_type(o.type) or o.type) == type_ and o.parent is not None}
+    return next(iter(sorted(here & place_types((source,)))), source)
 
 
 def _goal(type_: str, place: str, count: int) -> Condition:
@@ -256,7 +313,7 @@ def _choice(ctx: DoubtContext, holders: list[ObjectState], source: str, dest: st
               and set(ctx.state.ancestors(o.id)) & all_holders}
     kept = {t: n for t, n in every.items() if t in excepted}
     add = [_goal(t, dest, n) for t, n in moved.items()]
-    add += [_goal(t, excepted[t] or source, n) for t, n in kept.items()]
+    add += [_goal(t, excepted[t] or _now(ctx, t, source), n) for t, n in kept.items()]
     add += [placed(t, p) for t, p in excepted.items() if p is not None and t not in kept]
     # what a keep by property names stays, also a thing nobody carries ("anything on it
     # that runs on electricity stays where it is")
@@ -300,12 +357,25 @@ def _having(ctx: DoubtContext, k: int, src_at: int, end: int, exc: tuple[int, in
         return bool(ctx.named_types(ctx.items[j]))
     words = load_rule_words().contents
     spans = [] if exc is None else [(after, _span_end(ctx, after, exc[1], words))
-                                    for _, after in find(ctx.items, exc[0], exc[1], words.excluders)]
+                                    for _, after in _excluding(ctx, exc[0], exc[1], words)]
     # after an excluder the property names the things left alone ("apart from what's plugged in")
     left_out = [replace(p, negated=True) for lo, hi in spans for p in properties_in(ctx.items, lo, hi, thing)]
-    picked = [p for p in properties_in(ctx.items, k + 1, min(end, stop), thing)
+    picked = [p for p in [*properties_in(ctx.items, k + 1, min(end, stop), thing), *_classes(ctx, k + 1, min(end, stop))]
               if not any(lo <= p.start < hi for lo, hi in spans)]
     return alternatives(picked + left_out)
+
+
+def _is_class(ctx: DoubtContext, j: int) -> bool:
+    """Whether the word at ``j`` names a class of things ("fruit and veg", "cutlery"; a
+    lexicon category): under a quantifier it picks the set out like a property."""
+    noun = ctx.items[j].noun
+    return noun is not None and noun.concept.kind == "category" and bool(ctx.named_types(ctx.items[j]))
+
+
+def _classes(ctx: DoubtContext, lo: int, hi: int) -> list[Picked]:
+    """The class nouns between ``lo`` and ``hi``, each as a property: its types."""
+    return [Picked(j, j + 1, noun.concept.name, (Test(types=list(noun.concept.types)),))
+            for j in range(lo, hi) if _is_class(ctx, j) and (noun := ctx.items[j].noun) is not None]
 
 
 def _left_alone(ctx: DoubtContext, k: int, source: str, words: Contents,
@@ -376,11 +446,14 @@ def _anywhere(ctx: DoubtContext, k: int, start: int, end: int, exc_end: int, wor
         ways = [(f"listed ({', '.join(type_name(t) for t in listed)})",
                  lambda o: (cat.source_type(o.type) or o.type) in named)]
     excepted = {t for _, types in _excepted(ctx, start, exc_end, words) for t in types}
-    dest = _destination(ctx, k, k, end, "", set(), excepted, words)
+    classes = {j for j in range(k + 1, end) if _is_class(ctx, j)}
+    dest = _destination(ctx, k, k, end, "", classes, excepted, words)
     if dest is None:
         return None
-    # a thing the reading already places is named, not picked out by the property
-    placed_already = {t for c in ctx.goals if c.predicate is Predicate.inside for t in ref_types(c.subject)}
+    # a thing the reading already places is named, not picked out by the property (nor
+    # placed by the class noun's own reading: "every bit of fruit" read as the apple)
+    by_name = {t for m, _, ts in ctx.mentions() if not _is_class(ctx, m) for t in ts}
+    placed_already = {t for c in ctx.goals if c.predicate is Predicate.inside for t in ref_types(c.subject) & by_name}
     choices: list[Choice] = []
     for i, (how, test) in enumerate(ways):
         found = Counter(cat.source_type(o.type) or o.type for o in ctx.state.objects.values()
@@ -391,7 +464,9 @@ def _anywhere(ctx: DoubtContext, k: int, start: int, end: int, exc_end: int, wor
         add = tuple(_goal(t, dest, n) for t, n in sorted(found.items()))
         if set(add) <= set(ctx.goals):
             continue        # the reading as read (a vague property's other tests are still offered)
-        c = Choice("all_contents" if i == 0 else OTHER_TEST, f"what is {how} goes to the {type_name(dest)}", (), add)
+        drop = tuple(c for c in ctx.goals if c.predicate is Predicate.inside and c not in add
+                     and ref_types(c.subject) and ref_types(c.subject) <= set(found))
+        c = Choice("all_contents" if i == 0 else OTHER_TEST, f"what is {how} goes to the {type_name(dest)}", drop, add)
         if all((c.add, c.drop) != (o.add, o.drop) for o in choices):
             choices.append(c)
     return Doubt(KIND, ctx.items[k].text, (Choice(AS_READ, "the things as read"), *choices)) if choices else None
@@ -413,7 +488,8 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     own = {m for m, _, ts in ctx.mentions() if spots and m > spots[0][0] and linked(ctx, spots[0][0], m)
            and any("pickupable" in _props(t) for t in spots[0][1])}
     rest = _remainder(ctx, k, words)
-    dest = _destination(ctx, k, max(k, src_at) if rest else src_at, end, source, own, named, words)
+    dest = _destination(ctx, k, max(k, src_at) if rest else src_at, end, source,
+                        own | _aside(ctx, max(k, src_at) + 1, end), named, words)
     if dest is None:
         return None
     # what is left: every thing the reading places elsewhere is out ("paper onto the
@@ -428,9 +504,10 @@ def _doubt_at(ctx: DoubtContext, k: int, words: Contents) -> Doubt | None:
     ways: list[tuple[str, Callable[[ObjectState], bool]] | None] = [*found_ways] or [None]
     for holders in _source_sets(ctx, src_at, source, marks):
         present = {ctx.state.obj(o).type for o in _inside(ctx, holders)}
-        # a thing nobody can carry has no place of its own ("not the telly itself, goes into the box")
-        excepted = {t: next(iter(destination(ctx, m, t, exc_end)), None) if "pickupable" in _props(t) else None
-                    for m, types in spots for t in _which(types, present)}
+        # a thing nobody can carry has no place of its own ("not the telly itself, goes into the box"),
+        # nor is an excepted thing's own place where the set goes ("all but the book - goes in the drawers")
+        excepted = {t: next((d for d in destination(ctx, m, t, exc_end) if d != dest), None)
+                    if "pickupable" in _props(t) else None for m, types in spots for t in _which(types, present)}
         for having in ways:
             c = _choice(ctx, holders, source, dest, excepted, elsewhere, having, stays)
             if c is not None and having is not ways[0]:

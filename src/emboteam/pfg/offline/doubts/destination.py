@@ -91,7 +91,13 @@ def linked(ctx: DoubtContext, at: int, m: int) -> bool:
     """Whether a mark or a pronoun stands between a thing and a later place (the place is
     then the thing's own: "except the knife, which goes in a drawer")."""
     links = load_rule_words().contents.own_place_links
-    return any(i.punct is not None or i.text in links for i in ctx.items[at + 1:m])
+    if any(i.text in links for i in ctx.items[at + 1:m]):
+        return True
+    marks = [j for j in range(at + 1, m) if ctx.items[j].punct is not None]
+    # not when the sentence's own verb resumes after an aside ("everything - everything
+    # except the laptop - goes in the drawers")
+    return bool(marks) and not (marks[-1] + 1 < m and ctx.items[marks[-1] + 1].verb is not None
+                                and ctx.items[marks[-1] + 1].noun is None)
 
 
 def _listed(ctx: DoubtContext, last: int, m: int) -> bool:

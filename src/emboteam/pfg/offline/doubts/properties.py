@@ -60,6 +60,8 @@ class PropertiesFile(Strict):
     about: str = ""
     properties: list[Property_]
     measures: Measures
+    #: hedges that may stand inside a property's words ("that you could actually eat")
+    fillers: list[str] = Field(default_factory=list)
 
 
 @cache
@@ -109,6 +111,18 @@ def _measure(items: Sequence[Item], k: int, table: Measures) -> Picked | None:
     return None
 
 
+def _matched(items: Sequence[Item], k: int, words: Words, fillers: frozenset[str]) -> int | None:
+    """Where ``words`` end when they stand from ``k`` on, hedges between them skipped."""
+    j = k
+    for n, w in enumerate(words):
+        while n and j < len(items) and items[j].text in fillers and items[j].text != w:
+            j += 1
+        if j >= len(items) or items[j].text != w:
+            return None
+        j += 1
+    return j
+
+
 def picked_at(items: Sequence[Item], k: int, names_thing: Callable[[int], bool]) -> Picked | None:
     """The property whose words start at ``k``; not an adjective of a thing named right
     after it ("the small lamp" names a lamp, not a set)."""
@@ -120,8 +134,8 @@ def picked_at(items: Sequence[Item], k: int, names_thing: Callable[[int], bool])
         return found
     for prop in data.properties:
         for words in prop.words:
-            if starts_at(items, k, words):
-                end = k + len(words)
+            end = _matched(items, k, words, frozenset(data.fillers))
+            if end is not None:
                 nxt = end + 1 if end < len(items) and items[end].det else end
                 if nxt < len(items) and names_thing(nxt):
                     continue

@@ -52,6 +52,11 @@ class Contents(_Closed):
     also_stays: list[Words] = Field(default_factory=list)
     #: pronoun places that name the source right after the quantifier ("everything there")
     pronoun_places_after: list[str] = Field(default_factory=list)
+    #: pronoun adverbs that carry their own preposition and name the place said before
+    #: anywhere in reach ("all items thereon", "whatever lies therein")
+    pronoun_sources: list[str] = Field(default_factory=list)
+    #: copulas: a "not" after one says what a thing is not ("the sponge is not food")
+    copulas: list[str] = Field(default_factory=list)
     #: words that stand for the quantified whole's noun after an excluder ("every lamp but
     #: the desk one")
     pro_forms: list[str] = Field(default_factory=list)
