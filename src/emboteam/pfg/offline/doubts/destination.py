@@ -50,6 +50,15 @@ class DestinationCues(BaseModel):
     towards: list[Words]
     #: the towards cues tried first ("into" before "on")
     directional: list[str]
+    #: marks that join a thing to where it goes with the verb left out ("potato and apple:
+    #: fridge"): a receptacle right after one (determiners between) is led by it
+    links: list[str] = []
+    #: words that send a thing where the thing before it went ("the keys go in the same
+    #: spot"); not after "back" (that is where it was)
+    same_place: list[Words] = []
+    #: words that carry the place or state said before over to a verbless stretch, besides
+    #: rule_words.json's "too", "as well", "same for" ("the pan: same deal", "incl the teddy")
+    carry_over: list[Words] = []
     #: words before a place that make it where the thing is or comes from ("from", "lying on")
     sources: list[str]
     home: list[Words]
@@ -82,9 +91,29 @@ def led(ctx: DoubtContext, m: int, lo: int = 0) -> str | None:
     # not "on. le frigo", nor "on the counter tomato -> slices" (the cue's place is named before)
     cues = [ctx.items[b].text for b, e in find(ctx.items, start, m, data.towards)
             if e <= m and all(i.punct is None and not ctx.named_types(i) for i in ctx.items[e:m])]
+    if not cues:
+        cues = _link(ctx, m, start, data.links)
     if not cues or (cues[-1] not in data.directional and any(i.text in data.sources for i in ctx.items[start:m])):
         return None
     return cues[-1]
+
+
+def _link(ctx: DoubtContext, m: int, lo: int, links: list[str]) -> list[str]:
+    """The mark that leads to the place at ``m`` with the verb left out (determiners
+    between), as a one-cue list: a link mark with a thing named just before it ("potato
+    and apple: fridge"; not "Status: fridge"), or a sentence end when the place is a
+    sentence of its own ("why is the basketball on the floor? Bed.")."""
+    j = m - 1
+    while j > lo and ctx.items[j].det:
+        j -= 1
+    mark = ctx.items[j].punct if j >= lo else None
+    if mark is None or j == 0:
+        return []
+    if mark in links:
+        return [mark] if any("pickupable" in _props(t) for t in ctx.named_types(ctx.items[j - 1])) else []
+    ends = load_rule_words().sentence_ends
+    alone = m + 1 == len(ctx.items) or ctx.items[m + 1].punct in ends
+    return [mark] if mark in ends and alone else []
 
 
 def linked(ctx: DoubtContext, at: int, m: int) -> bool:
@@ -162,6 +191,41 @@ def destination(ctx: DoubtContext, k: int, thing: str, hi: int | None = None) ->
         elif cue is not None and fits and types[0] not in here and not (excepted and not linked(ctx, k, m)):
             found.append((cue not in data.directional, len(found), types))
     return min(found)[2] if found else ()
+
+
+def place_before(ctx: DoubtContext, at: int, thing: str) -> tuple[str, ...]:
+    """The scene types of the nearest place before ``at`` (within the window's reach) a
+    towards cue leads to and the thing can go in, not where it is nor after a negation in
+    its stretch: the place a thing named before went to (:func:`same_place`, and an
+    additive word's, :func:`.unexplained.carried`)."""
+    cat, here = load_catalogue(), place_types(tuple(present(ctx, thing)))
+    for m in range(at - 1, max(-1, at - 1 - load_destination_cues().reach), -1):
+        types = fitting_first(thing, ctx.named_types(ctx.items[m], verbs_too=m > 0 and ctx.items[m - 1].det))
+        if types and types[0] != thing and types[0] not in here and cat.can_place(thing, types[0]) \
+                and led(ctx, m) is not None and not any(i.neg for i in ctx.items[ctx.clause_bounds(m)[0]:m]):
+            return types
+    return ()
+
+
+def same_place(ctx: DoubtContext, k: int, lo: int, hi: int, thing: str) -> tuple[str, ...]:
+    """Where the thing at ``k`` goes when its window sends it to "the same place" (its
+    words ``lo``-``hi``): the place named before it (:func:`place_before`), or, "as" another
+    thing, where the reading puts that one, else where that one is ("the same place as the
+    apple")."""
+    data = load_destination_cues()
+    said = [e for b, e in find(ctx.items, lo, hi, data.same_place)
+            if not any(i.text == "back" for i in ctx.items[max(lo, b - 3):b])]
+    if not said:
+        return ()
+    if said[0] < len(ctx.items) and ctx.items[said[0]].text == "as":
+        other = next((ts[0] for m, _, ts in ctx.mentions() if said[0] < m <= said[0] + 3), None)
+        if other is None:
+            return ()
+        goes = [c.receptacle.types for c in ctx.goals if c.predicate is Predicate.inside
+                and c.subject.types == (other,) and c.receptacle is not None]
+        here = sorted(present(ctx, other))
+        return tuple(goes[0]) if goes else tuple(here) if len(here) == 1 else ()
+    return place_before(ctx, k, thing)
 
 
 def head_place(ctx: DoubtContext, k: int, thing: str) -> tuple[str, ...]:

@@ -21,12 +21,14 @@ from emboteam.pfg.offline.doubts.destination import (
     destination,
     head_place,
     load_destination_cues,
+    place_before,
     present,
+    same_place,
     window,
 )
 from emboteam.pfg.offline.doubts.explained import CORRECTIONS, NEGATED, explanation
 from emboteam.pfg.offline.doubts.mention_cues import said_state
-from emboteam.pfg.offline.doubts.rule_words import find
+from emboteam.pfg.offline.doubts.rule_words import find, load_rule_words
 from emboteam.pfg.offline.doubts.wants import asked_predicate, one_object, placed, with_subject
 from emboteam.pfg.sentences import clause, type_name
 from emboteam.world.catalogue import load_catalogue
@@ -36,6 +38,14 @@ from emboteam.world.goals import Condition, Predicate
 KIND = "unexplained_mention"
 #: the labels of the goals a window gives (priors.json, kind unexplained_mention)
 PLACE, KEEP = "window_place", "window_keep"
+#: the label of the goal an additive word carries over ("same for the cloth", "the soap
+#: bottle too")
+CARRY_SAID = "carry_said"
+#: the additive words ("too", "as well", "same for": rule_words.json's contents lists; "same
+#: deal", "incl": destination_cues.json's carry_over), one list for the life of the process
+#: (:func:`.rule_words.find` indexes a list by its id)
+_ADDITIVE = [*load_rule_words().contents.stay_too, *load_rule_words().contents.also_stays,
+             *load_destination_cues().carry_over]
 
 
 def unexplained_spans(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[tuple[int, str, tuple[str, ...]]]:
@@ -68,6 +78,27 @@ def _own_words(ctx: DoubtContext, k: int, thing: str) -> list[Condition]:
             if (pred := asked_predicate(item)) is not None and pred is not Predicate.inside]
 
 
+def carried(ctx: DoubtContext, k: int, thing: str) -> Condition | None:
+    """The goal an additive word in the mention's own verbless stretch carries over to it
+    ("the spray out of sight in a drawer. Same for the cloth.", "the cloth into the
+    cabinet, the soap bottle too"), or None: for a thing that can be moved, the nearest
+    place before the stretch a towards cue leads to and it can go in (not where it is);
+    for another, the nearest goal before it of a predicate other than a place."""
+    start, end = ctx.clause_bounds(k)
+    cues = find(ctx.items, start, end, _ADDITIVE)
+    cued = {j for b, e in cues for j in range(b, e)}
+    if not cues or any(i.verb is not None or i.state is not None or i.copula
+                       for j, i in enumerate(ctx.items[start:end], start) if j not in cued):
+        return None
+    cat = load_catalogue()
+    if "pickupable" not in cat.type(thing).properties:
+        before = sorted(((pos, c) for c in ctx.goals if (pos := ctx.position_of(c)) is not None and pos < start
+                         and c.predicate is not Predicate.inside), key=lambda x: -x[0])
+        return with_subject(before[0][1], thing) if before else None
+    place = place_before(ctx, start, thing)
+    return placed(thing, place[0]) if place else None
+
+
 def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condition, ...]] | None:
     """(label, goals) the window of the mention at ``k`` gives the thing, or None: its
     place (kept, or where it goes), and a state its words ask beside it ("out and
@@ -79,10 +110,14 @@ def window_goal(ctx: DoubtContext, k: int, thing: str) -> tuple[str, tuple[Condi
     if any(i.text in CORRECTIONS and i.text != "no" for i in ctx.items[lo:hi]) or find(ctx.items, lo, hi, data.described):
         return None      # "in the drawer - sorry, the box": the correction rules' (corrections.py)
     said = said_count(ctx, k, thing)
-    if find(ctx.items, lo, min(hi, k + 1 + data.keep_reach), data.keep):
+    keeps = find(ctx.items, lo, min(hi, k + 1 + data.keep_reach), data.keep)
+    # a place it is sent to before the keep cue is where it goes, the keep a later thing's
+    # ("keys + card -> a drawer. shut it after, all of em stay shut")
+    sent = destination(ctx, k, thing, keeps[0][0]) if keeps else ()
+    if keeps and not sent:
         here = sorted(present(ctx, thing))
         return (KEEP, (counted(placed(thing, here[0]), said),)) if len(here) == 1 else None
-    dest = destination(ctx, k, thing, hi) or head_place(ctx, k, thing)
+    dest = sent or destination(ctx, k, thing, hi) or head_place(ctx, k, thing) or same_place(ctx, k, lo, hi, thing)
     if not dest:
         return None
     state = said_state(ctx, k, hi, thing) or _changed(ctx, lo, hi, thing)
@@ -117,6 +152,8 @@ def doubts(ctx: DoubtContext, unless: frozenset[str] = frozenset()) -> list[Doub
                                                clause(c) for c in strong[1]), add=strong[1]))))
             continue
         proposals: list[tuple[str, Condition]] = [("own_words", c) for c in _own_words(ctx, k, thing)]
+        if (said := carried(ctx, k, thing)) is not None:
+            proposals.insert(0, (CARRY_SAID, said))
         prev, nxt = _neighbour_goals(ctx, k)
         for label, c in (("carry_previous", prev), ("carry_next", nxt)):
             if c is not None:
