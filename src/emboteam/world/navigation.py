@@ -32,6 +32,11 @@ State = tuple[Cell, int]
 POSE_CHOICES = 4
 
 
+#: :meth:`Navigator.actions_to`'s memo: a missing answer, and at most this many kept
+_UNKNOWN = object()
+_ACTIONS_KEPT = 1 << 18
+
+
 class Navigator:
     """Poses, drive lengths and paths on one floor plan (use :func:`navigator`)."""
 
@@ -42,6 +47,9 @@ class Navigator:
         #: ALFRED keys its openable poses by AI2-THOR id; the symbolic state knows points
         self._thor_at = {(round(o.position[0], 3), round(o.position[2], 3)): key
                          for o in scene.objects if (key := alfred_key(o, self.grid)) is not None}
+        #: :meth:`actions_to`'s answers by (start, goal cell, goal heading): every simulated
+        #: drive and every cold drive estimate asks it, the same few thousand pairs a plan
+        self._actions: dict[tuple[Cell, Cell, int], int | None] = {}
 
     # ---- poses -------------------------------------------------------------------------
     def poses_for(self, point: tuple[float, float]) -> tuple[Pose, ...]:
@@ -75,10 +83,20 @@ class Navigator:
         return best
 
     def actions_to(self, start: Cell, pose: Pose) -> int | None:
-        """Agent actions from ``start`` (any heading) to ``pose``; ``None`` if unreachable."""
+        """Agent actions from ``start`` (any heading) to ``pose``; ``None`` if unreachable.
+        Kept by plain tuples (a pure function of the grid): a hit hashes no :class:`Pose`
+        and asks no table (issue 28: some 8,000 calls in the 32 x 96 cell's plan)."""
+        key = (start, pose.cell, pose.heading)
+        known = self._actions.get(key, _UNKNOWN)
+        if known is not _UNKNOWN:
+            return known  # type: ignore[return-value]
         table = cost_table(self.floor_plan, pose)
         best = [d for h in range(4) if (d := table.get((start, h))) is not None]
-        return min(best) if best else None
+        found = min(best) if best else None
+        if len(self._actions) >= _ACTIONS_KEPT:
+            self._actions.clear()  # a bound on memory in a long-lived process; answers stay the same
+        self._actions[key] = found
+        return found
 
     def travel_actions(self, a: tuple[float, float], b: tuple[float, float]) -> int | None:
         """Agent actions for a robot at point ``a`` to reach the nearest pose of the thing at

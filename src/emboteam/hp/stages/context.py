@@ -17,7 +17,7 @@ from emboteam.pddl.problem import Problem, build_problem
 from emboteam.pddl.runner import FastDownward, SolveResult
 from emboteam.pfg.taskspec import TaskSpec
 from emboteam.world.checker import condition_holds
-from emboteam.world.goals import Condition
+from emboteam.world.goals import Condition, Goal
 from emboteam.world.state import WorldState
 
 
@@ -126,8 +126,19 @@ class Context:
     #: compute it once
     memo: dict[tuple[str, int], tuple[object, object, object]] = field(default_factory=dict, repr=False)
 
+    #: ``spec.goal()`` and the spec it was made of (:attr:`goal`)
+    _goal: tuple[TaskSpec, Goal] | None = field(default=None, init=False, repr=False)
+
     def __post_init__(self) -> None:
         self.universe = Universe(self.start.copy())
+
+    @property
+    def goal(self) -> Goal:
+        """The task's goal, made once per spec (both frozen): every rebuilt plan's replay
+        and simulation asks for it, and ``TaskSpec.goal`` builds and validates a new one."""
+        if self._goal is None or self._goal[0] is not self.spec:
+            self._goal = (self.spec, self.spec.goal())
+        return self._goal[1]
 
     @property
     def independent(self) -> bool:

@@ -41,7 +41,7 @@ def finish(grounded: Sequence[GroundedStep], deps: Mapping[str, Sequence[str]], 
 
 def finish_independent(ctx: Context, sequence: Sequence[GroundedStep]) -> MergedPlan:
     """:func:`finish` for a sequence of independent final subtasks (the improvements')."""
-    return finish(sequence, {}, ctx.team, ctx.start, ctx.spec.goal(), "formal", ctx.config.validate)
+    return finish(sequence, {}, ctx.team, ctx.start, ctx.goal, "formal", ctx.config.validate)
 
 
 def merge_causal(ctx: Context, accepted: Sequence[GroundedStep], unit_of: Mapping[str, str],
@@ -59,7 +59,7 @@ def merge_causal(ctx: Context, accepted: Sequence[GroundedStep], unit_of: Mappin
     while True:
         waits = dependency_waits(ctx.start, accepted, deps, strict)
         try:
-            return finish(accepted, groups, ctx.team, ctx.start, ctx.spec.goal(), "formal", ctx.config.validate,
+            return finish(accepted, groups, ctx.team, ctx.start, ctx.goal, "formal", ctx.config.validate,
                           waits)
         except Invalid as exc:
             relaxed = [d for d in deps if d not in strict]

@@ -50,7 +50,7 @@ def replayed(ctx: Context, steps: Sequence[SeqStep], what: str,
     """``steps`` replayed from the start (after ``head``, see :func:`replay_to_goal`),
     merged and simulated; None when they no longer run, miss the goal or fail in the
     simulator."""
-    grounded, why = replay_to_goal(ctx.start, steps, ctx.spec.goal(), repair, head, ctx.universe)
+    grounded, why = replay_to_goal(ctx.start, steps, ctx.goal, repair, head, ctx.universe)
     if why is not None:
         log.debug("%s does not replay: %s", what, why)
         return None

@@ -59,7 +59,7 @@ def _moved(ctx: Context, seq: list[GroundedStep], block: spot_order.Block, new_o
         apply_action(state, g.robot, g.action)
     grounded, why = replay_reusing(state, [seq[k] for k in new_order[p:]],
                                    {i for i, k in enumerate(new_order[p:]) if seq[k].robot == block.robot}, universe)
-    if why is None and not all(condition_holds(c, state) for c in ctx.spec.goal().conditions):
+    if why is None and not all(condition_holds(c, state) for c in ctx.goal.conditions):
         why = "misses the goal"
     if why is not None:
         log.debug("moving %s fails: %s", block, why)

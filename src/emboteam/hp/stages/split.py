@@ -212,7 +212,7 @@ def _appended(ctx: Context, plan: MergedPlan, cut: _Cut, new: Sequence[GroundedS
     if why is not None:
         return None
     parts, why = replay(trial, [SeqStep(g.robot, g.action, g.subtask, g.group) for g in new], cut.universe)
-    if why is not None or not all(condition_holds(c, trial) for c in ctx.spec.goal().conditions):
+    if why is not None or not all(condition_holds(c, trial) for c in ctx.goal.conditions):
         return None
     return _kept(ctx, plan, [*cut.before, *tail, *parts], what)
 
@@ -223,7 +223,7 @@ def _spliced(ctx: Context, plan: MergedPlan, cut: _Cut, state: WorldState, new: 
     and its sequence when shorter than ``plan``, else None."""
     trial = state.copy()
     tail, why = replay_reusing(trial, cut.rest, set(), cut.universe, [*cut.gone, *new])
-    if why is not None or not all(condition_holds(c, trial) for c in ctx.spec.goal().conditions):
+    if why is not None or not all(condition_holds(c, trial) for c in ctx.goal.conditions):
         return None
     return _kept(ctx, plan, [*cut.before, *new, *tail], what)
 

@@ -36,7 +36,7 @@ def _tried(ctx: Context, plan: MergedPlan, sequence: list[GroundedStep], index: 
         apply_action(state, g.robot, g.action)
     tail = [taken_over(sequence, index, robot), *sequence[index + 1:]]
     grounded, why = replay_reusing(state, tail, {0}, ctx.universe, [sequence[index]])
-    if why is None and not all(condition_holds(c, state) for c in ctx.spec.goal().conditions):
+    if why is None and not all(condition_holds(c, state) for c in ctx.goal.conditions):
         why = "misses the goal"
     if why is not None:
         log.debug("%s taking over step %d fails: %s", robot, index, why)
