@@ -61,6 +61,11 @@ def test_undo_of_what_someone_else_did_calls_nothing_back(text: str) -> None:
     assert "inside(Apple, Fridge)" in goal(text)
 
 
+def test_undo_after_a_narrative_puts_back_what_someone_did() -> None:
+    said = "she moved the apple to the sink ; it was in the fridge . undo that ."
+    assert words(said) == said
+
+
 def test_a_change_of_mind_takes_back_the_request_before_it() -> None:
     got = goal("Switch the light off. Update: my sister changed her mind; switch the toaster on instead.")
     assert "switched_on(Toaster)" in got

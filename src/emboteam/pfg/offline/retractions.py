@@ -22,6 +22,7 @@ _CHANGED, _SUBJECT = _W.phrases("changed_mind"), _W.set("subject_words")
 #: at most this many words of a subject before "changed her mind" ("the quest giver")
 _SUBJECT_REACH = 5
 _CALL_OFF, _NOT, _THAT, _MEANT = (_W.phrases(n) for n in ("call_off", "not", "that", "meant"))
+_PAST, _NARRATORS = _W.set("past"), _W.set("narrators")
 _SENTENCE = frozenset(".!?;")
 
 
@@ -53,6 +54,14 @@ def _statements(items: Sequence[Item]) -> list[tuple[int, int]]:
 
 def _asks(items: Sequence[Item]) -> bool:
     return any(x.verb is not None or x.noun is not None or x.state is not None for x in items)
+
+
+def _narrative(items: Sequence[Item]) -> bool:
+    """Whether a statement tells what someone did ("she moved the soap bottle", "it was on
+    the toilet"): an undo after it asks to put things back, it calls back no request."""
+    first = next((x for x in items if x.verb is not None or x.copula or x.text in _NARRATORS), None)
+    return first is not None and (first.text in _PAST or first.text in _NARRATORS
+                                  or (first.verb is not None and first.verb.form == "ed"))
 
 
 def _cue(items: Sequence[Item], lo: int, hi: int) -> tuple[str, int, int] | None:
@@ -123,13 +132,14 @@ def retract(items: list[Item]) -> list[Item]:
         kind, at, end = found or ("", hi, hi)
         end = _tail_end(items, end, hi)
         names, end = _named(items, end, hi) if kind == "redo" else (frozenset(), end)
-        if found is None or (end < hi and items[end].punct == ":"):    # "Undo it: ..." announces
+        back = next((i for i in range(len(kept) - 1, -1, -1) if live[i]), None)
+        if found is None or (end < hi and items[end].punct == ":") or (   # "Undo it: ..." announces
+                kind == "undo" and back is not None and _narrative(kept[back])):
             kept.append(list(items[lo:hi]))
             live.append(_asks(items[lo:hi]))
             continue
         said: list[Item] = []
         if kind == "undo":
-            back = next((i for i in range(len(kept) - 1, -1, -1) if live[i]), None)
             if back is not None:
                 undone.append(kept[back])
                 kept[back], live[back] = [], False
