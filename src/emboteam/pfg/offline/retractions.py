@@ -130,11 +130,13 @@ def retract(items: list[Item]) -> list[Item]:
     for lo, hi in spans:
         found = _cue(items, lo, hi)
         kind, at, end = found or ("", hi, hi)
+        # "Undo the tidying: ...": an act of someone else's undone, no request called back
+        done = kind == "undo" and end == at + 1 and end < hi and items[end].det and items[end].pron is None
         end = _tail_end(items, end, hi)
         names, end = _named(items, end, hi) if kind == "redo" else (frozenset(), end)
         back = next((i for i in range(len(kept) - 1, -1, -1) if live[i]), None)
-        if found is None or (end < hi and items[end].punct == ":") or (   # "Undo it: ..." announces
-                kind == "undo" and back is not None and _narrative(kept[back])):
+        if found is None or done or (end < hi and items[end].punct == ":") or (   # "Undo it: ..." announces
+                kind == "undo" and (back is None or _narrative(kept[back]))):
             kept.append(list(items[lo:hi]))
             live.append(_asks(items[lo:hi]))
             continue
