@@ -18,6 +18,7 @@ from itertools import pairwise
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.lexicon import Act
 from emboteam.pfg.offline.patterns import pattern_tables
+from emboteam.pfg.offline.retractions import retract
 from emboteam.pfg.offline.tagger import Item
 from emboteam.world.catalogue import load_catalogue
 
@@ -299,6 +300,13 @@ def _slot_edits(before: list[Item], lo: int, fix: list[Item], weak: bool = False
     runs = _runs(before, lo, len(before))
     dest = _destination(runs, before)
     head = fix[0]
+    if (head.text in _NEGATORS or head.neg) and len(fix) > 2 and fix[1].prep is not None and dest is not None:
+        end = _np_end(fix, 2)
+        if end > 2 and _same(dest, _fix_run(fix[2:end])):
+            # "no, not in the bowl, on the plate": the place said after the one taken back
+            rest = fix[end + int(end < len(fix) and fix[end].punct == ","):]
+            if rest and rest[0].prep is not None:
+                return _slot_edits(before, lo, rest, weak, nested)
     if head.text in _NEGATORS or head.neg:
         end = _np_end(fix, 1)
         if end > 1:
@@ -355,6 +363,9 @@ def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None,
     destination (then a place said later in the correcting part takes its place)."""
     x = _fix_run(np)
     if dest is not None and _same(dest, x) and dest.prep_at is not None:
+        named = _strip_fillers(list(tail))
+        if len(named) < len(tail) and named and named[0].det:
+            tail = named      # "not the hamper I meant the desk": the place after the marker
         at = 1 if tail and tail[0].punct == "," else 0
         if len(tail) > at and tail[at].det:
             # "not the micro wave (,) the fridge": the place named right after
@@ -379,8 +390,9 @@ def _taken_out(before: list[Item], lo: int, runs: list[_Run], dest: _Run | None,
             return _swapped(before, lo, runs, tail[1:end], np, tail[end:])
     if len(_members(before, runs, run, lo)) > 1:
         out = _drop_member(before, run, lo)
-        if _pronoun_in(tail) and run is [r for r in runs if not r.place][-1]:
-            # "... and the cloth as well, no, not the cloth, that goes in the bin": a topic
+        if _pronoun_in(tail):
+            # "... and the cloth as well, no, not the cloth, that goes in the bin", "not the
+            # tomato, it goes mushy, leave it on the counter": a topic
             out = [*out, Item(".", punct="."), *before[run.start:run.end], Item(".", punct=".")]
         return [_Edit("member", f"{x.text!r} taken out of the list", out, tail)]
     return [_Edit("member", f"{x.text!r} called back", _called_back(before, lo, run, runs, _pronoun_in(tail)), tail)]
@@ -482,6 +494,13 @@ def _clause(before: list[Item], lo: int, runs: list[_Run], fix: list[Item], weak
     last = things[-1]
     pronoun = any(i.pron is not None for i in fix[:stop])
     if pronoun and not own:
+        later = [j for j in range(last.end, len(before)) if before[j].pron is not None and not before[j].det]
+        if later:    # "shower door: open it. Wait no, keep it shut": the pronoun's clause
+            start = _clause_start(before, lo, later[-1])
+            kept = before[:start]
+            while kept and kept[-1].punct is not None:
+                kept.pop()
+            return [_Edit("clause", "the clause said again", [*kept, *before[_clause_end(before, later[-1]):]], fix)]
         return [_Edit("clause", "the clause said again", _called_back(before, lo, last, runs), fix)]
     again = _called_back(before, lo, last, runs, False)
     if own and (_starts_clause(fix[0]) or len(_members(before, runs, last, lo)) == 1):
@@ -573,9 +592,10 @@ def _not_after_list(items: Sequence[Item], k: int) -> bool:
 
 def correct(items: list[Item], alternatives: bool = True) -> Corrected:
     """The items with every self-correction applied, and the other readings of the
-    corrections whose slot is in doubt."""
+    corrections whose slot is in doubt; requests undone or redone whole
+    (:mod:`.retractions`) first."""
     k = 0
-    out = list(items)
+    out = retract(items) if alternatives else list(items)
     alts: list[tuple[str, str, list[Item]]] = []
     while k < len(out):
         size = _marker_at(out, k)

@@ -75,6 +75,7 @@ from emboteam.pfg.offline.list_positions import (
 from emboteam.pfg.offline.morphology import warm_spelling
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
+from emboteam.pfg.offline.retractions import retract
 from emboteam.pfg.offline.semantics import Draft, Semantics, concat
 from emboteam.pfg.offline.start_conditions import conditionals
 from emboteam.pfg.offline.start_conditions import settle as settle_start_conditions
@@ -248,7 +249,9 @@ class OfflineFrontend:
         # the other list a position may refer to is read only when a word may be one: the
         # second tagging and reading cost a millisecond an instruction
         positions = has_references(said)
-        tagged = resolve_list_positions(said)   # as said, self-corrections and all: what the points of doubt read
+        # as said, self-corrections and all: what the points of doubt read; a request undone
+        # whole ("... [beep] undo") was taken back, not said (:mod:`.retractions`)
+        tagged = retract(resolve_list_positions(said))
         try:
             alternatives = self._surface_readings(text, surface, scene, state, team)
             if positions:

@@ -118,6 +118,9 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
     start, end = sentence_bounds(ctx.items, k)
     if end < len(ctx.items) and ctx.items[end].punct == "?":
         return None     # "is the light on?": a question
+    corrections = set(load_rule_words().correction.cues)
+    if end + 1 < len(ctx.items) and ctx.items[end + 1].text in corrections:
+        _, end = sentence_bounds(ctx.items, end + 1)    # "open it. Wait no, keep it shut": it goes on
     lo, _ = ctx.clause_bounds(k)
     # "don't leave the toaster on": a negated verb before the device in its clause (not
     # "not the desk lamps": an exclusion)
@@ -130,7 +133,6 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         return None     # a role ("whoever opens drawers"), a complaint ("somebody left the fridge open")
     found: Said | None = None
     corrected = False       # a self-correction since the state found ("off - sorry, I mean leave it on")
-    corrections = set(load_rule_words().correction.cues)
     keepers = set(load_rule_words().stays.keepers) - {"but", "not", "except", "where"}
     kept = False
     for j in range(k + 1, end):
@@ -145,11 +147,12 @@ def _own_words(ctx: DoubtContext, k: int, type_: str, words: StateWords, named: 
         if (item.conj is not None or item.sub is not None) and not _acts_on_it(ctx, k, j) and not (
                 found is not None and (found.act or (j + 1 < end and ctx.items[j + 1].text in state_word_index()))):
             return found    # "when the kids shower, and close it after": another clause's act
-        if item.text in words.stop and not flipped:
+        if item.text in words.stop and not flipped and not corrected:
             # "the light is on again": a complaint; "shut it again": the act stands
             return None if found is not None and found.label == "copula" else found
-        if item.neg or any(starts_at(ctx.items, j, f) for f in words.flip):
-            flipped = True
+        if (item.neg and not (found is not None and item.text in corrections)) or any(
+                starts_at(ctx.items, j, f) for f in words.flip):
+            flipped = True      # (the "no" of "open it - no, keep it shut" takes back, it does not negate)
         condition = condition or item.text in words.conditions
         kept = kept or item.text in keepers
         corrected = corrected or (found is not None and item.text in corrections)
