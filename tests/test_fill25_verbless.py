@@ -63,3 +63,11 @@ def test_back_in_the_same_place_is_where_it_was() -> None:
     k = _at(ctx, "cup")
     lo, hi = window(ctx, k, "Cup")
     assert same_place(ctx, k, lo, hi, "Cup") == ("Microwave",)
+
+
+def test_a_colon_after_a_landmark_sends_nothing_of_the_sentence_before() -> None:
+    # FloorPlan308: the clock and the bowl stand on a desk, the laptop on the other; "the one
+    # with the laptop:" names a desk, not a thing placed, so the shelf is only the mug's
+    got = goal(read("Two things stay, the clock and the bowl. The one with the laptop: the mug onto a shelf.", 308))
+    assert "inside(Mug, Shelf)" in got
+    assert not {"inside(AlarmClock, Shelf)", "inside(Bowl, Shelf)"} & got

@@ -101,7 +101,7 @@ def led(ctx: DoubtContext, m: int, lo: int = 0) -> str | None:
 def _link(ctx: DoubtContext, m: int, lo: int, links: list[str]) -> list[str]:
     """The mark that leads to the place at ``m`` with the verb left out (determiners
     between), as a one-cue list: a link mark with a thing named just before it ("potato
-    and apple: fridge"; not "Status: fridge"), or a sentence end when the place is a
+    and apple: fridge"; not "Status: fridge", nor "the one with the laptop: the mug ..."), or a sentence end when the place is a
     sentence of its own ("why is the basketball on the floor? Bed.")."""
     j = m - 1
     while j > lo and ctx.items[j].det:
@@ -109,8 +109,9 @@ def _link(ctx: DoubtContext, m: int, lo: int, links: list[str]) -> list[str]:
     mark = ctx.items[j].punct if j >= lo else None
     if mark is None or j == 0:
         return []
-    if mark in links:
-        return [mark] if any("pickupable" in _props(t) for t in ctx.named_types(ctx.items[j - 1])) else []
+    if mark in links:  # the thing before it is the one placed, not a landmark ("the one with the laptop:")
+        return [mark] if any("pickupable" in _props(t) for t in ctx.named_types(ctx.items[j - 1])) \
+            and not after_preposition(ctx, j - 1, ctx.clause_bounds(j - 1)[0]) else []
     ends = load_rule_words().sentence_ends
     alone = m + 1 == len(ctx.items) or ctx.items[m + 1].punct in ends
     return [mark] if mark in ends and alone else []
