@@ -60,13 +60,13 @@ def test_marker_counts_only_as_a_line_of_its_own(tmp_path: Path) -> None:
 
 def test_held_out_rounds_keep_their_tasks_outside_dev() -> None:
     assert {"blind_r54", "blind_r56", "blind_r58", "blind_r60", "blind_r62", "blind_r64",
-            "blind_r66"} <= set(HELD_OUT_ROUNDS)
+            "blind_r66", "blind_r68"} <= set(HELD_OUT_ROUNDS)
     for name in HELD_OUT_ROUNDS:
         assert not (DATA / name / "dev").exists(), f"{name} is held out but has a dev folder"
 
 
 @pytest.mark.parametrize(("dev_round", "held_out"), [("blind_r61", "blind_r62"), ("blind_r63", "blind_r64"),
-                                                      ("blind_r65", "blind_r66")])
+                                                      ("blind_r65", "blind_r66"), ("blind_r67", "blind_r68")])
 def test_a_new_round_waits_for_its_fresh_measurement(dev_round: str, held_out: str) -> None:
     """A development round written with a held-out one is skipped until the lead removes its
     status line; its held-out partner keeps its tasks in ``heldout/`` and is named in the list."""
@@ -90,3 +90,13 @@ def test_round_65_waits_for_its_fresh_measurement() -> None:
         assert not any(d.set == "blind_r65" for d in development_tasks(DATA, mace_thor=False))
     assert (DATA / "blind_r66" / "heldout").is_dir()
     assert not (DATA / "blind_r66" / "dev").exists()
+
+
+def test_round_67_waits_for_its_fresh_measurement() -> None:
+    """Round 67 is merged unmeasured: while its status line stands no reading script sees it,
+    and its held-out partner 68 keeps its tasks in ``heldout/`` only."""
+    if is_unmeasured(DATA / "blind_r67"):
+        assert not any(d.set == "blind_r67" for d in development_tasks(DATA, mace_thor=False))
+    assert (DATA / "blind_r68" / "heldout").is_dir()
+    assert not (DATA / "blind_r68" / "dev").exists()
+    assert "blind_r68" not in {d.set for d in development_tasks(DATA, mace_thor=False)}

@@ -27,7 +27,7 @@ from emboteam.task import BenchTask
 #: scripts that take any folder check this list). docs/unseen_suite.md says what each is for.
 HELD_OUT_ROUNDS = ("blind_r42", "blind_r44", "blind_r46", "blind_r48", "blind_r50", "blind_r52",
                    "blind_r54", "blind_r56", "blind_r58", "blind_r60", "blind_r62", "blind_r64",
-                   "blind_r66")
+                   "blind_r66", "blind_r68")
 
 #: a line of a round's ``ABOUT.md`` saying its ``dev`` tasks await their one fresh measurement;
 #: until the lead removes it, no fitting or failure-listing script may read the round's words
