@@ -9,8 +9,8 @@ import re
 import pytest
 
 from emboteam.pfg.offline import idioms, text
-from emboteam.pfg.offline.knowledge import apply_rewrites
-from emboteam.pfg.offline.regex_filter import needles
+from emboteam.pfg.offline.knowledge import CompiledRewrite, apply_rewrites
+from emboteam.pfg.offline.regex_filter import needle_groups, needles
 
 #: sentences written for this test, with the spoken, chat and contracted forms the
 #: rewrites are for (not copied from any round)
@@ -28,8 +28,12 @@ SENTENCES = [
 ]
 
 
-def _all_rules() -> list[tuple[re.Pattern[str], str, frozenset[str] | None]]:
+def _all_rules() -> list[CompiledRewrite]:
     return [*text._REPLACE, *text._CONTRACTIONS, *text._CHAT, *idioms.SPOKEN, *idioms.PHRASINGS]
+
+
+def _has_all(groups: tuple[frozenset[str], ...], probe: str) -> bool:
+    return all(any(n in probe for n in group) for group in groups)
 
 
 @pytest.mark.parametrize("sentence", SENTENCES)
@@ -37,18 +41,35 @@ def test_skipped_rewrites_would_not_have_matched(sentence: str) -> None:
     # every stage's input, as normalize() feeds it: a skipped rule finds nothing there
     for stage in (sentence, text.split_camel(sentence).lower()):
         current = stage
-        for pattern, repl, required in _all_rules():
-            if required is not None and not any(n in current for n in required):
+        for pattern, repl, groups, blind in _all_rules():
+            probe = current.lower() if blind else current
+            if groups and (current.isascii() or not blind) and not _has_all(groups, probe):
                 assert pattern.search(current) is None, pattern.pattern
             current = pattern.sub(repl, current)
 
 
 @pytest.mark.parametrize("sentence", SENTENCES)
-def test_filtered_rewrites_give_the_unfiltered_text(sentence: str) -> None:
-    rules = _all_rules()
-    unfiltered = tuple((p, r, None) for p, r, _ in rules)
-    lowered = sentence.lower()
-    assert apply_rewrites(rules, lowered) == apply_rewrites(unfiltered, lowered)
+@pytest.mark.parametrize("case", [str.lower, str])
+def test_filtered_rewrites_give_the_unfiltered_text(sentence: str, case: object) -> None:
+    rules = tuple(_all_rules())
+    unfiltered = tuple((p, r, (), False) for p, r, _, _ in rules)
+    typed = case(sentence)  # type: ignore[operator]
+    assert apply_rewrites(rules, typed) == apply_rewrites(unfiltered, typed)
+
+
+def test_every_part_of_a_rule_is_a_group() -> None:
+    # "the" is in most texts: the rule is still skipped when "toilet" is not
+    groups = needle_groups(re.compile(r"\b(?:lift|raise) the (loo|toilet) (?:lid|seat)\b"))
+    assert frozenset({"loo", "toilet"}) in groups or frozenset({" loo", " toilet"}) in groups
+    assert not _has_all(groups, "lift the lid of the box")
+    assert _has_all(groups, "lift the toilet seat")
+
+
+def test_case_blind_groups_are_lower_case_and_ascii() -> None:
+    groups = needle_groups(re.compile(r"(?i)\bthe Kettle\b"))
+    assert groups and all(n == n.lower() for group in groups for n in group)
+    assert _has_all(groups, "Put THE KETTLE on".lower())
+    assert needle_groups(re.compile(r"(?i)caf\u00e9")) == ()
 
 
 @pytest.mark.parametrize(("pattern", "text_with", "text_without"), [

@@ -54,6 +54,7 @@ from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradic
 from emboteam.pfg.offline.doubts.contradiction import settle_placements
 from emboteam.pfg.offline.doubts.mention_words import being
 from emboteam.pfg.offline.doubts.priors import Priors
+from emboteam.pfg.offline.doubts.sound_alike import warm_sound_alike
 from emboteam.pfg.offline.draft_passes import (
     drop_fulfilled_wishes,
     drop_guessed_water,
@@ -63,8 +64,10 @@ from emboteam.pfg.offline.draft_passes import (
     drop_superseded_placements,
 )
 from emboteam.pfg.offline.errors import GroundingError, IncapableError, OfflineParseError
+from emboteam.pfg.offline.force import warm_force
 from emboteam.pfg.offline.frames import parse_clause
 from emboteam.pfg.offline.grounding import Grounder
+from emboteam.pfg.offline.idioms import warm_idioms
 from emboteam.pfg.offline.knowledge import word_tables
 from emboteam.pfg.offline.list_positions import (
     EARLIER_LIST,
@@ -73,6 +76,7 @@ from emboteam.pfg.offline.list_positions import (
     resolve_list_positions,
 )
 from emboteam.pfg.offline.morphology import warm_spelling
+from emboteam.pfg.offline.page import warm_page
 from emboteam.pfg.offline.patterns import pattern_tables
 from emboteam.pfg.offline.phrases import ParsedClause, np_start
 from emboteam.pfg.offline.retractions import retract
@@ -213,12 +217,16 @@ class OfflineFrontend:
     def __init__(self, priors: Priors | None = None) -> None:
         #: the ranker's priors (None: the shipped ``doubts/priors.json``)
         self.priors = priors
-        # build the lexicon and the spelling index now (about 0.1 s, once per process), so
-        # that every instruction parses in milliseconds
+        # build the lexicon, the spelling index and the rule tables now (about 0.3 s, once
+        # per process), so that every instruction parses in milliseconds, the first too
         lexicon.nouns()
         lexicon.vocabulary()
         warm_spelling()
         warm_surface()
+        warm_force()
+        warm_page()
+        warm_idioms()
+        warm_sound_alike()
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile]) -> TaskSpec:

@@ -131,6 +131,11 @@ def _numbers() -> tuple[dict[str, int], dict[int, str]]:
     return numbers, words
 
 
+def warm_idioms() -> None:
+    """Load the number words ahead of the first instruction."""
+    _numbers()
+
+
 def _fractions(text: str) -> str:
     """A fraction of a said number is that count ("half of the four vases" -> "two vases");
     left as said when the number is no number or the part no whole count."""

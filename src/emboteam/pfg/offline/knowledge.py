@@ -18,7 +18,7 @@ from typing import Any, TypeVar
 from pydantic import BaseModel, ConfigDict, ValidationError, model_validator
 
 from emboteam.errors import EmboTeamError
-from emboteam.pfg.offline.regex_filter import needles
+from emboteam.pfg.offline.regex_filter import needle_groups
 from emboteam.world.catalogue import load_catalogue
 
 #: where the knowledge files are (package data)
@@ -67,25 +67,39 @@ class Rewrite(Strict):
         return re.compile(self.pattern), self.replace
 
 
-#: a compiled rewrite: the pattern, its replacement, strings one of which any match contains
-CompiledRewrite = tuple[re.Pattern[str], str, frozenset[str] | None]
+#: a compiled rewrite: the pattern, its replacement, the groups of strings a match contains
+#: one of each of (:func:`.regex_filter.needle_groups`) and whether they are lower-case
+#: strings of a case-blind pattern (tested on the lower-cased ASCII text)
+CompiledRewrite = tuple[re.Pattern[str], str, tuple[frozenset[str], ...], bool]
 
 
 def compile_rewrites(rules: tuple[Rewrite, ...]) -> tuple[CompiledRewrite, ...]:
-    return tuple((pattern, repl, needles(pattern)) for pattern, repl in (rule.compiled() for rule in rules))
+    return tuple((pattern, repl, needle_groups(pattern), bool(pattern.flags & re.IGNORECASE))
+                 for pattern, repl in (rule.compiled() for rule in rules))
 
 
 def apply_rewrites(rules: tuple[CompiledRewrite, ...], text: str) -> str:
-    """Each rule in order, every match rewritten (``re.sub``); a rule none of whose
-    needles is in the text cannot match and is skipped (:mod:`.regex_filter`)."""
-    for pattern, repl, required in rules:
-        if required is not None:
-            for needle in required:     # a loop, not any(): no generator per rule
-                if needle in text:
+    """Each rule in order, every match rewritten (``re.sub``); a rule that misses a string
+    of one of its needle groups cannot match and is skipped (:mod:`.regex_filter`)."""
+    lower: str | None = None    # the text lower-cased, for the case-blind rules' groups
+    for pattern, repl, groups, blind in rules:
+        if groups and (not blind or text.isascii()):
+            probe = text
+            if blind:
+                probe = lower = text.lower() if lower is None else lower
+            missing = False
+            for group in groups:    # loops, not a call or any(): this runs per rule
+                for needle in group:
+                    if needle in probe:
+                        break
+                else:
+                    missing = True
                     break
-            else:
+            if missing:
                 continue
-        text = pattern.sub(repl, text)
+        changed = pattern.sub(repl, text)
+        if changed != text:
+            text, lower = changed, None
     return text
 
 

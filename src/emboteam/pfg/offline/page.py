@@ -56,6 +56,11 @@ def _page() -> tuple[PageFile, dict[str, re.Pattern[str]], dict[str, tuple[kn.Co
     return data, rx, {n: kn.compile_rewrites(getattr(data, n)) for n in ("wh", "code", "future")}
 
 
+def warm_page() -> None:
+    """Load and compile the page rules ahead of the first instruction."""
+    _page()
+
+
 def read_page(text: str, bare: Callable[[str], bool], noun: Callable[[str], bool],
               nounish: Callable[[str], bool], bullet: re.Pattern[str]) -> str:
     """The text with its page shapes as plain clauses. ``bare``: a phrase only names things;

@@ -75,3 +75,53 @@ def _element(op: Any, av: Any) -> Needles:
     if op is _IN and av and all(o is _LITERAL for o, _ in av):
         return frozenset(chr(c) for _, c in av)
     return None
+
+
+def needle_groups(pattern: re.Pattern[str]) -> tuple[frozenset[str], ...]:
+    """Every constraint a match of ``pattern`` meets, the most selective first: a match
+    contains one string of each group. :func:`needles` keeps the one best constraint; a
+    rule whose best needle is common ("the") is still skipped when another of its parts
+    ("toilet") is absent. Case-blind patterns give lower-case groups, for a lower-cased
+    ASCII text (none when a needle is not ASCII); () when the pattern promises nothing."""
+    try:
+        found = _all(list(_sre.parse(pattern.pattern, pattern.flags)))
+    except Exception:     # a construct this reader does not know: no promise, no skipping
+        return ()
+    if pattern.flags & re.IGNORECASE:
+        if not all(n.isascii() for group in found for n in group):
+            return ()
+        found = [frozenset(n.lower() for n in group) for group in found]
+    # stable: ties keep the pattern's order (no set order, which varies by process)
+    ranked = sorted(dict.fromkeys(found), key=lambda s: (-min(map(len, s)), len(s)))
+    return tuple(ranked[:_MAX_GROUPS])
+
+
+#: the groups kept per rule: the tests stop at the first group a text misses, so a few more
+#: cost little; a dozen would
+_MAX_GROUPS = 5
+
+
+def _all(items: list[tuple[Any, Any]]) -> list[frozenset[str]]:
+    """The constraints of a sequence one by one: each literal run, each required part's own
+    constraints, a branch's union (:func:`_element`)."""
+    out: list[frozenset[str]] = []
+    run = ""
+    for op, av in items:
+        if op is _LITERAL:
+            run += chr(av)
+            continue
+        if run:
+            out.append(frozenset({run}))
+            run = ""
+        if op is _SUBPATTERN and not av[1] & re.IGNORECASE:
+            out.extend(_all(list(av[3])))
+        elif op is _ATOMIC:
+            out.extend(_all(list(av)))
+        elif op in _REPEATS and av[0] >= 1:
+            out.extend(_all(list(av[2])))
+        elif (found := _element(op, av)) is not None:
+            out.append(found)
+    if run:
+        out.append(frozenset({run}))
+    return [g for g in out if g and all(g)]
+

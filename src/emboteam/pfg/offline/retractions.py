@@ -27,8 +27,10 @@ _SENTENCE = frozenset(".!?;")
 
 
 def _phrase(items: Sequence[Item], k: int, phrases: Sequence[tuple[str, ...]]) -> int:
+    first = items[k].text if 0 <= k < len(items) else None
     for p in phrases:
-        if tuple(x.text for x in items[k:k + len(p)]) == p:
+        # the first word first: most phrases start with another word
+        if not p or ((k < 0 or p[0] == first) and tuple(x.text for x in items[k:k + len(p)]) == p):
             return len(p)
     return 0
 

@@ -31,7 +31,10 @@ _REACH = 8
 def _starts(items: Sequence[Item], j: int, phrases: tuple[tuple[str, ...], ...]) -> int:
     """The index after the longest phrase of ``phrases`` at ``items[j]``, else ``j``."""
     best = j
+    first = items[j].text if 0 <= j < len(items) else None
     for words in phrases:
+        if words and j >= 0 and words[0] != first:     # most phrases start with another word
+            continue
         if tuple(x.text for x in items[j:j + len(words)]) == words:
             best = max(best, j + len(words))
     return best

@@ -34,7 +34,7 @@ from emboteam.pfg.offline.knowledge import Rewrite, Strict, load
 from emboteam.pfg.offline.layout import Layout, Words, read_layout
 from emboteam.pfg.offline.morphology import edit_distance, singular, verb_lemma
 from emboteam.pfg.offline.page import read_page
-from emboteam.pfg.offline.regex_filter import needles
+from emboteam.pfg.offline.regex_filter import needle_groups
 from emboteam.pfg.offline.text import fold_accents, split_camel
 from emboteam.world.goals import Condition
 
@@ -113,31 +113,31 @@ class Surface:
 
 
 @cache
-def _data() -> tuple[SurfaceFile, tuple[tuple[re.Pattern[str], SurfaceRewrite, frozenset[str] | None], ...]]:
+def _data() -> tuple[SurfaceFile, tuple[tuple[re.Pattern[str], SurfaceRewrite, tuple[frozenset[str], ...]], ...]]:
     data = load("surface.json", SurfaceFile)
-    return data, tuple((re.compile(r.pattern, re.IGNORECASE), r, _lower_needles(r.pattern)) for r in data.rewrites)
-
-
-def _lower_needles(pattern: str) -> frozenset[str] | None:
-    """Lower-case strings one of which any match of the case-blind ``pattern`` contains in
-    an ASCII text (:mod:`.regex_filter`); None when it promises none in ASCII."""
-    found = needles(re.compile(pattern))
-    return frozenset(n.lower() for n in found) if found is not None and all(n.isascii() for n in found) else None
+    compiled = [(re.compile(r.pattern, re.IGNORECASE), r) for r in data.rewrites]
+    # lower-case strings a match has one of each group of in an ASCII text (:mod:`.regex_filter`)
+    return data, tuple((pattern, r, needle_groups(pattern)) for pattern, r in compiled)
 
 
 def _rewrite(text: str, scene_types: Collection[str], certain: bool, kinds: list[str]) -> str:
     """The rules of one certainty, in order; the kinds that changed the text noted. A rule
-    none of whose needles an ASCII text has cannot match it and is skipped (most texts
+    that misses a needle group in an ASCII text cannot match it and is skipped (most texts
     match no rule: the reader's time budget)."""
     lower = text.lower() if text.isascii() else None
     for pattern, rule, required in _data()[1]:
         if rule.certain != certain or (rule.needs and not any(t in scene_types for t in rule.needs)):
             continue
-        if lower is not None and required is not None:
-            for needle in required:     # a loop, not any(): no generator per rule
-                if needle in lower:
+        if lower is not None and required:
+            missing = False
+            for group in required:      # loops, not a call or any(): this runs per rule
+                for needle in group:
+                    if needle in lower:
+                        break
+                else:
+                    missing = True
                     break
-            else:
+            if missing:
                 continue
         new = pattern.sub(rule.replace, text)
         if new != text:

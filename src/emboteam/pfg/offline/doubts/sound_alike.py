@@ -67,13 +67,30 @@ def _phrase_sounds() -> tuple[tuple[str, tuple[str, ...]], ...]:
                  for phrase, concept in nouns().items())
 
 
+def warm_sound_alike() -> None:
+    """Load the rules and work out every noun phrase's sound ahead of the first instruction."""
+    _phrases_by_type()
+
+
+@cache
+def _phrases_by_type() -> dict[str, tuple[int, ...]]:
+    """Type -> the positions in :func:`_phrase_sounds` of the phrases that name it."""
+    out: dict[str, list[int]] = {}
+    for k, (_, types) in enumerate(_phrase_sounds()):
+        for t in types:
+            out.setdefault(t, []).append(k)
+    return {t: tuple(ks) for t, ks in out.items()}
+
+
 @cache
 def _sounds(scene_types: frozenset[str]) -> dict[str, tuple[tuple[str, tuple[str, ...]], ...]]:
     """(sound, scene types) of every noun phrase naming a type of the scene, by the sound's
     first letter (a misheard name keeps its first sound: the index keeps the reader
     within its time budget)."""
     out: dict[str, list[tuple[str, tuple[str, ...]]]] = {}
-    for said, all_types in _phrase_sounds():
+    phrases = _phrase_sounds()
+    by_type = _phrases_by_type()    # only the phrases naming a type of the scene, in order
+    for said, all_types in (phrases[k] for k in sorted({k for t in scene_types for k in by_type.get(t, ())})):
         types = tuple(t for t in all_types if t in scene_types)
         if types and len(said) >= 3:
             out.setdefault(said[0], []).append((said, types))
@@ -117,6 +134,8 @@ def _closest(said: str, scene_types: frozenset[str], limit: int | None = None) -
     if len(said) < 3:
         return None
     limit = _limit(len(said)) if limit is None else limit
+    if limit == 0:      # the sound itself, the first in order (no distance to work out)
+        return next((types for s, types in _sounds(scene_types).get(said[0], ()) if s == said), None)
     best: tuple[int, tuple[str, ...]] | None = None
     for s, types in _sounds(scene_types).get(said[0], ()):
         if abs(len(s) - len(said)) > limit:
