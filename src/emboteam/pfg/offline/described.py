@@ -35,7 +35,7 @@ _POSTURES = frozenset({"lie", "lies", "lying", "lay", "sit", "sits", "sitting", 
                        "standing", "stood", "rest", "rests", "resting", "hang", "hangs", "hanging"})
 #: a noun and a comma, dash or bracket right before "the one ...": an aside about that noun
 _APPOSED = re.compile(r"[a-z]\s*[,(\-\u2013\u2014]\s*$", re.IGNORECASE)
-_PLURAL_HEADS = frozenset({"things", "thingies", "ones", "tools", "stuff", "everything"})
+_PLURAL_HEADS = frozenset({"things", "thingies", "ones", "tools", "stuff"})
 
 
 class Thing(Strict):
@@ -115,11 +115,12 @@ def _data() -> tuple[DescribedFile, re.Pattern[str], tuple[tuple[re.Pattern[str]
                      tuple[tuple[re.Pattern[str], str, str], ...]]:
     data = load("described.json", DescribedFile)
     heads = "|".join(sorted(map(re.escape, data.heads), key=len, reverse=True))
-    # "the (round) thing (over the window) (that|which) (you) (use) (to|for) ..." or "everything (that) I ..."
+    # "the (round) thing (over the window) (that|which) (you) (use) (to|for) ...": not after a
+    # quantifier ("everything I write with", "all the stuff that runs on electricity" are
+    # properties of many things: doubts/properties.py reads them)
     description = re.compile(
-        rf"\b(?:(?:the|that|this|a|an|those|these|my|your|all the) (?:([a-z]+) )?({heads})"
+        rf"\b(?<!all )(?:the|that|this|a|an|those|these|my|your) (?:([a-z]+) )?({heads})"
         rf"(?: (?:over|on|by|above|under|near|in|at) (?:the |a |my )?[a-z]+(?= that| which))?"
-        rf"|(everything|anything|whatever|all the things|all the stuff))"
         rf"( that| which)?(?: ({_SUBJECTS}))?(?: (use|uses|need|needs|have|has)(?: to)?)?"
         rf"( to| for)? ", re.IGNORECASE)
     uses = tuple((re.compile(_use_pattern(u), re.IGNORECASE), t.type, u.endswith(_PREPOSITIONS),
@@ -190,17 +191,17 @@ def _described_by_use(text: str, scene_types: Collection[str] | None) -> str:
         best_end, types = -1, []
         # "the one standing by ...", "the one cut in half": no description without a
         # relative pronoun, a person using it or a purpose
-        if not any(m.group(k) for k in (4, 5, 6, 7)):
+        if not any(m.group(k) for k in (3, 4, 5, 6)):
             continue
-        head = (m.group(2) or m.group(3) or "").lower()
+        head = (m.group(2) or "").lower()
         # "the chair - the one I sit on": an aside that picks one of a thing already named
         if head in ("one", "ones") and _APPOSED.search(text, 0, m.start()):
             continue
         # "the thing you cut bread with": said of a person, a tool or a place keeps its preposition
-        said_of_user = m.group(5) is not None and m.group(6) is None
+        said_of_user = m.group(4) is not None and m.group(5) is None
         # "the thing that flips" / "that lies on the floor": a bare verb or a posture said of
         # the thing itself is no use (switches are flipped too; a thing lies where it is)
-        said_of_itself = m.group(5) is None and m.group(6) is None and m.group(7) is None
+        said_of_itself = m.group(4) is None and m.group(5) is None and m.group(6) is None
         for pattern, type_, tool, bare in uses:
             u = pattern.match(text, m.end())
             if u is None or (said_of_user and tool and u.group("prep") is None) \
@@ -212,7 +213,7 @@ def _described_by_use(text: str, scene_types: Collection[str] | None) -> str:
                 types.append(type_)
         if not types:
             continue
-        chosen = _pick(types, scene_types, head in _PLURAL_HEADS or head.startswith(("every", "all")))
+        chosen = _pick(types, scene_types, head in _PLURAL_HEADS)
         if not chosen:
             continue
         out.append(text[at:m.start()])
