@@ -1,15 +1,9 @@
-"""Things named by their use or their look, not by their name: "the thing you boil water
-in", "the thing I pay with", "the round one you eat cereal from", "everything I write
-with", "the thing over the window that lets the light in", "the plastic disc".
-
-The knowledge is ``data/described.json``: per AI2-THOR type, the name the lexicon knows
-it by, the uses a person says of it and the looks that name it. The code only knows the
-shape of such a description (a determiner, a head like "thing" or "one", an optional
-place, a relative clause with or without its subject, the use, a trailing preposition)
-and inflects the use's first word. The scene settles which of the types sharing a use is
-meant ("the thing I write with": a pen where there is one, else a pencil); a plural head
-("everything I write with") names every such type the scene has. The description is
-rewritten to the name before the reader reads the text, so the grammar never sees it.
+"""Things named by use, look or a landmark, not by name: "the thing you boil water in",
+"the round one you eat cereal from", "the plastic disc", "the roll by the soap stays".
+``data/described.json`` knows, per AI2-THOR type, its name, uses and looks; the code knows
+the shape of a description (determiner, head, relative clause, use, preposition) and
+inflects a use's first word. The scene picks among types sharing a use (a plural head
+takes each it has); the name replaces the description before the reader reads the text.
 """
 
 from __future__ import annotations
@@ -29,39 +23,32 @@ _PREPOSITIONS = ("with", "in", "into", "on", "onto", "from", "out of", "off", "b
                  "against", "in front of")
 #: who uses it: "the thing (that) you/I/we ... "
 _SUBJECTS = r"(?:you|i|we|u|people|they|he|she|one|my (?:mum|dad|wife|husband|partner|son|daughter|kids))"
-#: heads that name many things at once: each type the scene has for the use
 #: verbs of where a thing is, not what it is for ("the paper that lies on the floor")
 _POSTURES = frozenset({"lie", "lies", "lying", "lay", "sit", "sits", "sitting", "sat", "stand", "stands",
                        "standing", "stood", "rest", "rests", "resting", "hang", "hangs", "hanging"})
 #: a noun and a comma, dash or bracket right before "the one ...": an aside about that noun
 _APPOSED = re.compile(r"[a-z]\s*[,(\-\u2013\u2014]\s*$", re.IGNORECASE)
+#: heads that name many things at once: each type the scene has for the use
 _PLURAL_HEADS = frozenset({"things", "thingies", "ones", "tools", "stuff"})
 
 
 class Thing(Strict):
     """A type, the name the lexicon knows it by and what people use it for."""
-
     type: str
     name: str
     uses: tuple[str, ...]
-
     _types = field_validator("type")(lambda cls, v: known_types([v])[0])
 
 
-class Look(Strict):
+class Look(Thing):
     """A type and the descriptions of its look that name it after a determiner."""
-
-    type: str
-    name: str
+    uses: tuple[str, ...] = ()
     words: tuple[str, ...]
-
-    _types = field_validator("type")(lambda cls, v: known_types([v])[0])
 
 
 class Relations(Strict):
-    """A thing named by what it is next to: the words of the relation, the verbs after a
-    subject and the prepositions of a destination that show the relation only names it."""
-
+    """The words of a relation, and the verbs after it or destinations that show it only
+    names the thing."""
     why: str = ""
     words: tuple[str, ...]
     subject_verbs: tuple[str, ...]
@@ -70,7 +57,6 @@ class Relations(Strict):
 
 class DescribedFile(Strict):
     """``data/described.json``."""
-
     about: str = ""
     #: the nouns a description is built on ("the thing", "the one", "the bottle that ...")
     heads: tuple[str, ...]
@@ -89,10 +75,9 @@ def _inflected(word: str) -> str:
 
 
 def _use_pattern(use: str) -> str:
-    """A use as a regular expression: its first word inflected, a determiner for any
-    determiner (or none), "me" for any object pronoun; a trailing preposition (the thing
-    as the tool or place of the use) is the group ``prep``, left out where the thing is
-    what does it ("the thing that boils water") or what it is for ("for cutting")."""
+    """A use as a regular expression: first word inflected, a determiner for any (or none),
+    "me" for any object pronoun; a trailing preposition (the tool's, the place's) is the
+    group ``prep``, which "the thing that boils water", "for cutting" leave out."""
     words = use.split()
     prep = next((p for p in sorted(_PREPOSITIONS, key=len, reverse=True) if use.endswith(f" {p}")), None)
     if prep:
@@ -110,11 +95,15 @@ def _use_pattern(use: str) -> str:
     return body + (rf"(?P<prep> {re.escape(prep)}\b(?! half| halves| two| pieces| slices| bits| quarters))?" if prep else "") + r"\b"
 
 
+def _alt(words: Collection[str]) -> str:
+    return "|".join(sorted(map(re.escape, words), key=len, reverse=True))
+
+
 @cache
 def _data() -> tuple[DescribedFile, re.Pattern[str], tuple[tuple[re.Pattern[str], str, bool, bool], ...],
                      tuple[tuple[re.Pattern[str], str, str], ...]]:
     data = load("described.json", DescribedFile)
-    heads = "|".join(sorted(map(re.escape, data.heads), key=len, reverse=True))
+    heads = _alt(data.heads)
     # "the (round) thing (over the window) (that|which) (you) (use) (to|for) ...": not after a
     # quantifier ("everything I write with", "all the stuff that runs on electricity" are
     # properties of many things: doubts/properties.py reads them)
@@ -129,10 +118,6 @@ def _data() -> tuple[DescribedFile, re.Pattern[str], tuple[tuple[re.Pattern[str]
     looks = tuple((re.compile(rf"\b(?:the|that|this|a|an|my|your) {re.escape(w)}\b", re.IGNORECASE), look.type, look.name)
                   for look in data.looks for w in look.words)
     return data, description, uses, looks
-
-
-def _alt(words: Collection[str]) -> str:
-    return "|".join(sorted(map(re.escape, words), key=len, reverse=True))
 
 
 @cache
@@ -162,35 +147,27 @@ def _named_by_relation(text: str) -> str:
     return named.sub(lambda m: m.group(1), aside.sub(" ", text))
 
 
-def warm_described() -> None:
-    """Load and compile the table ahead of the first instruction."""
-    _data()
-    _relation_patterns()
-
-
-def _names() -> dict[str, str]:
-    return {t.type: t.name for t in _data()[0].things}
+#: load and compile the tables ahead of the first instruction
+warm_described = _relation_patterns
 
 
 def _pick(types: list[str], scene_types: Collection[str] | None, plural: bool) -> list[str]:
-    """The types a description names in this scene: every one the scene has when the
-    head is plural, else the first the scene has (table order); none when it has none
-    (without a scene: the table's first)."""
+    """Each type the scene has of those a description fits when the head is plural, else
+    the first (table order); without a scene, any."""
     present = [t for t in dict.fromkeys(types) if scene_types is None or t in scene_types]
     return present if plural else present[:1]
 
 
 def _described_by_use(text: str, scene_types: Collection[str] | None) -> str:
-    _, description, uses, _ = _data()
-    names = _names()
+    data, description, uses, _ = _data()
+    names = {t.type: t.name for t in data.things}
     out: list[str] = []
     at = 0
     for m in description.finditer(text):
         if m.start() < at:
             continue
         best_end, types = -1, []
-        # "the one standing by ...", "the one cut in half": no description without a
-        # relative pronoun, a person using it or a purpose
+        # "the one standing by ...": no description without a relative pronoun, a user or a purpose
         if not any(m.group(k) for k in (3, 4, 5, 6)):
             continue
         head = (m.group(2) or "").lower()
@@ -214,25 +191,18 @@ def _described_by_use(text: str, scene_types: Collection[str] | None) -> str:
         if not types:
             continue
         chosen = _pick(types, scene_types, head in _PLURAL_HEADS)
-        if not chosen:
-            continue
-        out.append(text[at:m.start()])
-        out.append(" and ".join(f"the {names.get(t, t.lower())}" for t in chosen))
-        at = best_end
+        if chosen:
+            out.append(text[at:m.start()] + " and ".join(f"the {names[t]}" for t in chosen))
+            at = best_end
     out.append(text[at:])
     return "".join(out)
 
 
-def _described_by_look(text: str, scene_types: Collection[str] | None) -> str:
-    """"the plastic disc" -> "the cd": only where the scene has the thing it looks like."""
-    for pattern, type_, name in _data()[3]:
+def name_described(text: str, scene_types: Collection[str] | None = None) -> str:
+    """Each thing described by its use or look named (for the scene's types when given),
+    and with a scene, each landmark that only says where a thing is dropped."""
+    text = _described_by_use(text, scene_types)
+    for pattern, type_, name in _data()[3]:    # "the plastic disc" -> "the cd"
         if scene_types is None or type_ in scene_types:
             text = pattern.sub(f"the {name}", text)
-    return text
-
-
-def name_described(text: str, scene_types: Collection[str] | None = None) -> str:
-    """The text with each thing described by its use or look replaced by its name (for
-    the scene's types when given; without a scene, by the table's first type)."""
-    text = _described_by_look(_described_by_use(text, scene_types), scene_types)
     return _named_by_relation(text) if scene_types is not None else text
