@@ -101,7 +101,7 @@ def _alt(words: Collection[str]) -> str:
 
 @cache
 def _data() -> tuple[DescribedFile, re.Pattern[str], tuple[tuple[re.Pattern[str], str, bool, bool], ...],
-                     tuple[tuple[re.Pattern[str], str, str], ...]]:
+                     re.Pattern[str], dict[str, tuple[str, str]]]:
     data = load("described.json", DescribedFile)
     heads = _alt(data.heads)
     # "the (round) thing (over the window) (that|which) (you) (use) (to|for) ...": not after a
@@ -115,13 +115,13 @@ def _data() -> tuple[DescribedFile, re.Pattern[str], tuple[tuple[re.Pattern[str]
     uses = tuple((re.compile(_use_pattern(u), re.IGNORECASE), t.type, u.endswith(_PREPOSITIONS),
                   (len(u.split()) <= 2 and u.endswith(_PREPOSITIONS)) or len(u.split()) == 1)
                  for t in data.things for u in t.uses)
-    looks = tuple((re.compile(rf"\b(?:the|that|this|a|an|my|your) {re.escape(w)}\b", re.IGNORECASE), look.type, look.name)
-                  for look in data.looks for w in look.words)
-    return data, description, uses, looks
+    looks = {w.lower(): (look.type, look.name) for look in data.looks for w in look.words}
+    look = re.compile(rf"\b(?:the|that|this|a|an|my|your) ({_alt(looks)})\b", re.IGNORECASE)
+    return data, description, uses, look, looks
 
 
 @cache
-def _relation_patterns() -> tuple[re.Pattern[str], re.Pattern[str]]:
+def _relation_patterns() -> tuple[re.Pattern[str], re.Pattern[str], re.Pattern[str]]:
     """"(the roll) by the soap (stays)", "(the knife) next to the kettle (into a drawer)";
     "- the one standing by the wine -" after a noun."""
     rel = _data()[0].relations
@@ -138,13 +138,13 @@ def _relation_patterns() -> tuple[re.Pattern[str], re.Pattern[str]]:
     aside = re.compile(rf"\s+[-\u2013\u2014,]\s*the one (?:that is |which is |that's |which's )?"
                        rf"(?:standing |sitting |lying |resting )?(?:{_alt(rel.words)}) {landmark}\s*[-\u2013\u2014,]\s*",
                        re.IGNORECASE)
-    return named, aside
+    return named, aside, re.compile(rf"\b(?:{_alt(rel.words)}) ", re.IGNORECASE)
 
 
 def _named_by_relation(text: str) -> str:
     """The relation that only names a thing dropped: the landmark is where it is."""
-    named, aside = _relation_patterns()
-    return named.sub(lambda m: m.group(1), aside.sub(" ", text))
+    named, aside, gate = _relation_patterns()
+    return named.sub(lambda m: m.group(1), aside.sub(" ", text)) if gate.search(text) else text
 
 
 #: load and compile the tables ahead of the first instruction
@@ -159,7 +159,7 @@ def _pick(types: list[str], scene_types: Collection[str] | None, plural: bool) -
 
 
 def _described_by_use(text: str, scene_types: Collection[str] | None) -> str:
-    data, description, uses, _ = _data()
+    data, description, uses, _, _ = _data()
     names = {t.type: t.name for t in data.things}
     out: list[str] = []
     at = 0
@@ -202,7 +202,11 @@ def name_described(text: str, scene_types: Collection[str] | None = None) -> str
     """Each thing described by its use or look named (for the scene's types when given),
     and with a scene, each landmark that only says where a thing is dropped."""
     text = _described_by_use(text, scene_types)
-    for pattern, type_, name in _data()[3]:    # "the plastic disc" -> "the cd"
-        if scene_types is None or type_ in scene_types:
-            text = pattern.sub(f"the {name}", text)
+    *_, look, looks = _data()
+
+    def named(m: re.Match[str]) -> str:    # "the plastic disc" -> "the cd"
+        type_, name = looks[m.group(1).lower()]
+        return f"the {name}" if scene_types is None or type_ in scene_types else m.group(0)
+
+    text = look.sub(named, text)
     return _named_by_relation(text) if scene_types is not None else text
