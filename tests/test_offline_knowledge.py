@@ -141,8 +141,8 @@ def test_a_state_without_a_rule_is_named(tmp_path: Path) -> None:
 
 def test_a_described_pattern_naming_an_unknown_piece_is_named(tmp_path: Path) -> None:
     def change(data: dict[str, Any]) -> None:
-        data["described"]["used_for"][1] = "{descibed} with"
-    with pytest.raises(KnowledgeDataError, match=r"^idioms\.json: described -> used_for\[1\]: no piece 'descibed'"):
+        data["described"]["kept_in"][1] = "{keepin} with"
+    with pytest.raises(KnowledgeDataError, match=r"^idioms\.json: described -> kept_in\[1\]: no piece 'keepin'"):
         read(_broken(tmp_path, "idioms.json", change), IdiomsFile)
 
 

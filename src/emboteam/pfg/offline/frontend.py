@@ -49,6 +49,7 @@ from emboteam.pfg.offline.constructions import (
 from emboteam.pfg.offline.corrections import Corrected, correct
 from emboteam.pfg.offline.cues import cue_mentions, is_statement, read_cues
 from emboteam.pfg.offline.decompose import assemble
+from emboteam.pfg.offline.described import name_described, warm_described
 from emboteam.pfg.offline.doubts.choose import choices, from_mentions_choices
 from emboteam.pfg.offline.doubts.contradiction import settle as settle_contradictions
 from emboteam.pfg.offline.doubts.contradiction import settle_placements
@@ -227,6 +228,7 @@ class OfflineFrontend:
         warm_page()
         warm_idioms()
         warm_sound_alike()
+        warm_described()
 
     def decompose(self, instruction: str, scene: Scene, state: WorldState,
                   team: Sequence[RobotProfile]) -> TaskSpec:
@@ -252,7 +254,8 @@ class OfflineFrontend:
         if len(text) > _MAX_CHARS:
             raise OfflineParseError(f"instruction too long ({len(text)} characters, at most "
                                     f"{_MAX_CHARS})")
-        surface = read_surface(text, scene.types())
+        # "the thing you boil water in": named for this scene's types before anything reads it
+        surface = read_surface(name_described(text, scene.types()), scene.types())
         said = tag(surface.text)
         # the other list a position may refer to is read only when a word may be one: the
         # second tagging and reading cost a millisecond an instruction

@@ -14,6 +14,7 @@ from functools import cache
 
 from pydantic import BaseModel, ConfigDict, model_validator
 
+from emboteam.pfg.offline.described import name_described
 from emboteam.pfg.offline.knowledge import Rewrite, Strict, apply_rewrites, compile_rewrites, load
 
 _PIECE = re.compile(r"\{([a-z_]+)\}")
@@ -26,7 +27,6 @@ class _Described(Strict):
     relative_place: str
     participle_place: str
     kept_in: tuple[str, str]
-    used_for: tuple[str, str]
 
 
 class _Fractions(Strict):
@@ -54,9 +54,6 @@ class IdiomsFile(Strict):
     result_words: frozenset[str]
     #: a wish or a finding earlier in the sentence makes a posture the wished place
     wish_words: frozenset[str]
-    #: what a thing described by its use is ("the thing for unblocking the loo"): the verb of
-    #: the use -> the noun the lexicon knows
-    tool_for: dict[str, str]
     #: what a thing is known by holding ("the thing we keep valuables in"): what is kept ->
     #: the container the lexicon knows
     kept_in: dict[str, str]
@@ -66,14 +63,14 @@ class IdiomsFile(Strict):
     fractions: _Fractions
 
     def expand(self, pattern: str) -> str:
-        """The pattern with its pieces filled in; ``{kept}`` and ``{used}`` are the keys of
-        ``kept_in`` and ``tool_for``, longest first."""
-        pieces = {**self.pieces, "kept": _alternatives(self.kept_in), "used": _alternatives(self.tool_for)}
+        """The pattern with its pieces filled in; ``{kept}`` is the keys of ``kept_in``,
+        longest first."""
+        pieces = {**self.pieces, "kept": _alternatives(self.kept_in)}
         return _PIECE.sub(lambda m: pieces[m.group(1)], pattern)
 
     @model_validator(mode="after")
     def _patterns_compile(self) -> IdiomsFile:
-        known = {*self.pieces, "kept", "used"}
+        known = {*self.pieces, "kept"}
         for name, value in self.described:
             for k, pattern in enumerate((value,) if isinstance(value, str) else value):
                 where = f"described -> {name}" + ("" if isinstance(value, str) else f"[{k}]")
@@ -93,7 +90,6 @@ _DATA = load("idioms.json", IdiomsFile)
 SPOKEN = compile_rewrites(_DATA.spoken)
 #: postures, corrected places, clefts, asides: applied after :func:`_where_things_are`
 PHRASINGS = compile_rewrites(_DATA.phrasings)
-TOOL_FOR = _DATA.tool_for
 KEPT_IN = _DATA.kept_in
 _RESULT_WORDS = _DATA.result_words
 _WISH_WORDS = _DATA.wish_words
@@ -102,7 +98,6 @@ _ON_IN = _DATA.expand("{on_in}")
 _RELATIVE_PLACE, _PARTICIPLE_PLACE = (re.compile(_DATA.expand(p)) for p in (
     _DATA.described.relative_place, _DATA.described.participle_place))
 _KEPT_IN = tuple(re.compile(_DATA.expand(p)) for p in _DATA.described.kept_in)
-_USED_FOR = tuple(re.compile(_DATA.expand(p)) for p in _DATA.described.used_for)
 
 
 _FRACTION = _alternatives({re.escape(w): "" for w in _DATA.fractions.words})
@@ -198,22 +193,14 @@ def _described_by_contents(text: str) -> str:
     return _KEPT_IN[1].sub(lambda m: f"in {name(m)}", text)
 
 
-def _described_by_use(text: str) -> str:
-    """"the thing for unblocking the loo", "the thing you cut bread with", "the tool to
-    flip pancakes": the object the use names (:data:`TOOL_FOR`)."""
-    def name(m: re.Match[str]) -> str:
-        verb = m.group(1)
-        return f"the {TOOL_FOR.get(verb) or TOOL_FOR.get(verb.rstrip('s'), verb)}"
-
-    return _USED_FOR[1].sub(name, _USED_FOR[0].sub(name, text))
-
-
 def spoken(text: str) -> str:
     """The spoken and typed variants of :data:`SPOKEN`, in order."""
     return apply_rewrites(SPOKEN, text)
 
 
 def rephrase(text: str) -> str:
-    """Where things are, things described by their use or contents, then :data:`PHRASINGS`."""
-    text = _described_by_contents(_described_by_use(_where_things_are(_fractions(text))))
+    """Where things are, things described by their use or look (:mod:`.described`, here
+    without a scene: the front end names them for its scene first) or contents, then
+    :data:`PHRASINGS`."""
+    text = _described_by_contents(name_described(_where_things_are(_fractions(text))))
     return apply_rewrites(PHRASINGS, text)
