@@ -22,7 +22,7 @@ from emboteam.pfg.offline.clauses import AND, THEN, Clause
 from emboteam.pfg.offline.errors import OfflineParseError
 from emboteam.pfg.offline.grounding import Grounder, ref_types
 from emboteam.pfg.offline.knowledge import word_tables
-from emboteam.pfg.offline.lexicon import Stat
+from emboteam.pfg.offline.lexicon import Act, Stat
 from emboteam.pfg.offline.phrases import Head, ParsedClause
 from emboteam.pfg.offline.semantics import Draft
 from emboteam.world.checker import check_condition
@@ -69,11 +69,12 @@ def _denial(c: Clause) -> bool:
 
 
 def _condition(c: Clause, p: ParsedClause, before: Head | None) -> tuple[Head, tuple[Stat, bool]] | None:
-    """The thing and the state an "if" clause asks about, if it is one device state."""
+    """The thing and the state an "if" clause asks about, if it is one device state (a
+    state it was left in too: "if the microwave has been left running")."""
     if c.link != "if" or len(p.frames) != 1:
         return None
     f = p.frames[0]
-    if f.state is None or f.state[0] not in _CHECKED or len(f.targets) != 1 or f.act not in (None,) \
+    if f.state is None or f.state[0] not in _CHECKED or len(f.targets) != 1 or f.act not in (None, Act.CAUSE) \
             or f.report or f.past:
         return None
     head = f.targets[0].head
