@@ -170,5 +170,8 @@ def read_force(text: str) -> str:
     text = _repeat(text, data, cues, forms)
     header = cues["rule_headers"].search(text) if _found(cues["rule_headers"], text) else None
     if header is not None:
-        text = text[:header.end()] + _sub(rules["rule_states"][0], text[header.end():])
+        # a rule holds from its header on, and over the header's own sentence ("cabinets
+        # are shut in this house": said after what it rules)
+        start = max(text.rfind(p, 0, header.start()) for p in ".!?;") + 1
+        text = text[:start] + _sub(rules["rule_states"][0], text[start:])
     return re.sub(r"\s+", " ", text).strip()
