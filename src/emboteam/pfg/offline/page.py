@@ -88,7 +88,7 @@ def read_page(text: str, bare: Callable[[str], bool], noun: Callable[[str], bool
     text, turns = _turns(text, rx, data, noun)
     lines = _headings(_speakers(_thread(text.split("\n"), rx), rx, data, noun), rx, bare, bullet)
     out = kn.apply_rewrites(rules["code"], "\n".join(_config(lines, rx, data, noun)))
-    out = rx["question"].sub(lambda m: _answered(m, data, named), out)
+    out = rx["question"].sub(lambda m: _answered(m, data, named, bare), out)
     if turns:       # an answer not joined to its question stands on its own
         out = re.sub(r"\?[ \t]*A:[ \t]*", "? ", out)
     out = rx["joined"].sub("", out).replace("\0", "")     # the answer's "they" is the question's thing
@@ -266,9 +266,10 @@ def _config(lines: list[str], rx: dict[str, re.Pattern[str]], data: PageFile,
     return out
 
 
-def _answered(m: re.Match[str], data: PageFile, named: Callable[[str], bool]) -> str:
+def _answered(m: re.Match[str], data: PageFile, named: Callable[[str], bool], bare: Callable[[str], bool]) -> str:
     """A question and the start of its answer as one clause's start, or as written when the
-    question is no thing's name or the answer has its own subject."""
+    question is no thing's name or the answer has its own subject; a marked answer that only
+    names a thing ("Spoons? A: a drawer, then close it") is where the thing asked goes."""
     lead, question, marked = m.group(1), m.group(2).strip(), m.group(3)
     rest = m.string[m.end():]
     answer = re.split(r"[.;!?\n]", rest, maxsplit=1)[0].split()
@@ -279,6 +280,8 @@ def _answered(m: re.Match[str], data: PageFile, named: Callable[[str], bool]) ->
     if asked == question and not named(question):
         return m.group(0)
     first = answer[0].lower().strip(",")
+    if marked and bare(re.split(r"[,;.!?\n]", rest, maxsplit=1)[0].strip()):
+        return f"{lead}{asked} → "
     if first in data.answer_not_joined:
         return m.group(0)
     if first in data.answer_pronouns:     # "The soap? A: They stay on the shelf"
