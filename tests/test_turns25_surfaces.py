@@ -70,3 +70,11 @@ def test_an_answer_that_only_names_a_place_is_where_the_thing_goes() -> None:
                  "Bot: Lamp? Me: off. Bot: TV? Me: the one on the wall stays on.")
     assert "Spoons on the counter → a drawer, then close it." in said and "Mug → the sink." in said
     assert "TV? the one on the wall stays on." in said
+
+
+def test_a_thread_s_post_numbers_end_its_posts() -> None:
+    assert _page("1/ bots, listen up 2/ keys + card -> a drawer 3/ mug -> sink") == \
+        "bots, listen up. keys + card -> a drawer. mug -> sink"
+    assert _page("2/4 pot -> stove 3/4 mug -> sink.").startswith("pot -> stove. mug -> sink.")
+    said = "Cut 1/2 the bread and put 3/ of it away."     # no thread: numbers out of order
+    assert _page(said) == said

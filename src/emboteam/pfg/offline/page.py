@@ -3,8 +3,8 @@ the reader sees running text (the shapes are data: ``page.json``): an e-mail thr
 first (the reply's corrections after what they correct; "X wrote:" lines go); a chat's or a
 script's speaker labels; a dialogue's turns ("Robot: The phone? Me: leave it") as a question
 and its answer; a question and its answer ("TV? A: Off", "The light? Off.") as one clause; a
-shouted telegram ("MUG TO SINK STOP") in lower case with its words as punctuation; a typing
-slip fixed in place ("the male - sorry, MUG", "the sinking. Sink.") as the word meant; a bare heading ("- fridge") as the place of its items' dangling "in"; config lines
+shouted telegram ("MUG TO SINK STOP") in lower case with its words as punctuation; a thread's post
+numbers ("2/ keys -> drawer 3/ ...") as sentence ends; a typing slip fixed in place ("the male - sorry, MUG", "the sinking. Sink.") as the word meant; a bare heading ("- fridge") as the place of its items' dangling "in"; config lines
 (``soap_bar.home = drawer``) and code-like lines (``lamp.off()``, "lid ↓"); a report's
 future ("will be in a cabinet") as the state asked for.
 """
@@ -14,6 +14,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from functools import cache
+from itertools import pairwise
 
 from emboteam.pfg.offline import knowledge as kn
 from emboteam.pfg.offline.morphology import edit_distance
@@ -35,6 +36,7 @@ class PageFile(kn.Strict):
     telegram_min: int
     telegram: tuple[kn.Rewrite, ...]
     dropped_place: str
+    post: str
     slip_cue: str
     slip_echo: str
     slip_back: int
@@ -63,7 +65,7 @@ class PageFile(kn.Strict):
 @cache
 def _page() -> tuple[PageFile, dict[str, re.Pattern[str]], dict[str, tuple[kn.CompiledRewrite, ...]]]:
     data = kn.load("page.json", PageFile)
-    names = ("quote", "quote_header", "speaker", "turn", "dropped_place", "slip_cue", "slip_echo", "question", "dangling", "pronoun_place",
+    names = ("quote", "quote_header", "speaker", "turn", "dropped_place", "post", "slip_cue", "slip_echo", "question", "dangling", "pronoun_place",
              "config_line", "config_section", "config_comment")
     rx = {n: re.compile(getattr(data, n), re.M if n == "question" else 0) for n in names}
     rx["filler"] = re.compile(r"^(?:" + "|".join(data.question_fillers) + r")\s+", re.I)
@@ -84,7 +86,7 @@ def read_page(text: str, bare: Callable[[str], bool], noun: Callable[[str], bool
             and not any(w in data.question_words for w in words)
 
     text = _telegram(text, rx, data, rules["telegram"], noun)
-    text = _slips(text, rx, data, noun)
+    text = _slips(_posts(text, rx), rx, data, noun)
     text, turns = _turns(text, rx, data, noun)
     lines = _headings(_speakers(_thread(text.split("\n"), rx), rx, data, noun), rx, bare, bullet)
     out = kn.apply_rewrites(rules["code"], "\n".join(_config(lines, rx, data, noun)))
@@ -108,6 +110,19 @@ def _telegram(text: str, rx: dict[str, re.Pattern[str]], data: PageFile,
     out = kn.apply_rewrites(rules, text.lower())
     out = rx["dropped_place"].sub(lambda m: f"{m.group(1)} on {m.group(2)}" if noun(m.group(2)) else m.group(0), out)
     return ". ".join(_name_run(x.split(), noun) for x in out.split(". "))
+
+
+def _posts(text: str, rx: dict[str, re.Pattern[str]]) -> str:
+    """A thread's posts numbered in order ("1/ ... 2/ ...", "2/4 ... 3/4 ..."): each number
+    ends the post before it, as a full stop would (numbers out of order are no thread)."""
+    found = list(rx["post"].finditer(text))
+    numbers = [int(m.group(1)) for m in found]
+    if len(found) < 2 or any(b != a + 1 for a, b in pairwise(numbers)):
+        return text
+    for m in found[::-1]:
+        before = text[:m.start()].rstrip()
+        text = before + ("" if not before or before[-1] in ".!?" else ".") + " " + text[m.end():]
+    return text.lstrip()
 
 
 _WORD = re.compile(r"[A-Za-z]+")
