@@ -3,8 +3,10 @@ the reader sees running text (the shapes are data: ``page.json``): an e-mail thr
 first (the reply's corrections after what they correct; "X wrote:" lines go); a chat's or a
 script's speaker labels; a dialogue's turns ("Robot: The phone? Me: leave it") as a question
 and its answer; a question and its answer ("TV? A: Off", "The light? Off.") as one clause; a
-shouted telegram ("MUG TO SINK STOP") in lower case with its words as punctuation; a thread's post
-numbers ("2/ keys -> drawer 3/ ...") as sentence ends; a typing slip fixed in place ("the male - sorry, MUG", "the sinking. Sink.") as the word meant; a bare heading ("- fridge") as the place of its items' dangling "in"; config lines
+shouted telegram ("MUG TO SINK STOP") in lower case with its words as punctuation; a
+thread's post numbers ("2/ keys -> drawer 3/ ...") as sentence ends; a typing slip fixed in
+place ("the male - sorry, MUG", "the sinking. Sink.") as the word meant; a bare heading ("-
+fridge") as the place of its items' dangling "in"; config lines
 (``soap_bar.home = drawer``) and code-like lines (``lamp.off()``, "lid ↓"); a report's
 future ("will be in a cabinet") as the state asked for.
 """
@@ -65,8 +67,8 @@ class PageFile(kn.Strict):
 @cache
 def _page() -> tuple[PageFile, dict[str, re.Pattern[str]], dict[str, tuple[kn.CompiledRewrite, ...]]]:
     data = kn.load("page.json", PageFile)
-    names = ("quote", "quote_header", "speaker", "turn", "dropped_place", "post", "slip_cue", "slip_echo", "question", "dangling", "pronoun_place",
-             "config_line", "config_section", "config_comment")
+    names = ("quote", "quote_header", "speaker", "turn", "dropped_place", "post", "slip_cue", "slip_echo",
+             "question", "dangling", "pronoun_place", "config_line", "config_section", "config_comment")
     rx = {n: re.compile(getattr(data, n), re.M if n == "question" else 0) for n in names}
     rx["filler"] = re.compile(r"^(?:" + "|".join(data.question_fillers) + r")\s+", re.I)
     rx["joined"] = re.compile(r"\0[ \t]*(?:" + "|".join(data.answer_pronouns) + r")\b[ \t]*", re.I)
