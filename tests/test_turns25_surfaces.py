@@ -78,3 +78,8 @@ def test_a_thread_s_post_numbers_end_its_posts() -> None:
     assert _page("2/4 pot -> stove 3/4 mug -> sink.").startswith("pot -> stove. mug -> sink.")
     said = "Cut 1/2 the bread and put 3/ of it away."     # no thread: numbers out of order
     assert _page(said) == said
+
+
+def test_an_echo_that_inflects_the_word_is_no_slip() -> None:
+    said = "Press two to confirm. Confirmed. Put it on the shelf. Shelves."
+    assert _page(said) == said

@@ -133,8 +133,9 @@ _WORD = re.compile(r"[A-Za-z]+")
 def _slips(text: str, rx: dict[str, re.Pattern[str]], data: PageFile, noun: Callable[[str], bool]) -> str:
     """A typing slip the writer fixes at once, as the word meant: "the male in the microwave -
     sorry, MUG" (a named thing after the cue replaces the nearest word before it that begins
-    like it and names nothing) and "into the sinking. Sink." (a one-word sentence echoing the
-    word before it, a few letters off)."""
+    like it and names nothing) and "into the sinking. Sink." (a one-word sentence, a name or
+    shouted, echoing the word before it a few letters off; not an inflection: "confirm.
+    Confirmed.")."""
     edits: list[tuple[int, int, str]] = []
     for m in rx["slip_cue"].finditer(text):
         meant = m.group(1).lower()
@@ -151,9 +152,9 @@ def _slips(text: str, rx: dict[str, re.Pattern[str]], data: PageFile, noun: Call
         text = text[:start] + said + text[end:]
 
     def echo(m: re.Match[str]) -> str:
-        said, meant = m.group(1).lower(), m.group(3).lower()
-        near = meant.startswith(said) or said.startswith(meant) or edit_distance(said, meant) <= data.slip_edits
-        if said[0] != meant[0] or said == meant or noun(said) or not near:
+        said, meant = m.group(1).lower(), m.group(3).lower()     # a name, or a word shouted
+        near = said.startswith(meant) or edit_distance(said, meant) <= data.slip_edits
+        if said[0] != meant[0] or said == meant or noun(said) or not near or not (noun(meant) or m.group(3).isupper()):
             return m.group(0)
         return meant + m.group(4)
     return rx["slip_echo"].sub(echo, text)
