@@ -422,7 +422,7 @@ class FastDownward:
         done = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
         plan = _read_plan(work)
         _clear_plans(work)
-        if proc.returncode == 127 and "shared libraries" in (err or ""):
+        if loader_ran_out(proc.returncode, err or ""):
             # the dynamic loader could not map the binary within the address-space limit
             raise PlannerMemoryError(f"Fast Downward's search cannot even start within {self.memory_limit_mb} MB: "
                                      f"{_excerpt(done)}")
@@ -463,6 +463,16 @@ class FastDownward:
                 self.seconds += seconds
             return interpret(proc.returncode, _read_plan(work), _excerpt(proc), seconds=seconds,
                              time_limit=self.time_limit, memory_limit_mb=self.memory_limit_mb)
+
+
+#: what glibc's dynamic loader says (exit 127) when the address-space limit leaves it no room
+#: to map the binary's libraries or its first thread's TLS: which one a machine hits varies
+_LOADER_OUT_OF_MEMORY = ("shared libraries", "cannot allocate TLS")
+
+
+def loader_ran_out(code: int, stderr: str) -> bool:
+    """Did the binary fail to start because the memory limit left the loader no room?"""
+    return code == 127 and any(m in stderr for m in _LOADER_OUT_OF_MEMORY)
 
 
 def interpret(code: int, plan: tuple[str, ...] | None, message: str, *, seconds: float = 0.0,
